@@ -1,0 +1,106 @@
+"""fishbot_urdf: read, check and explore URDF robot descriptions, with or without ROS.
+
+>>> import fishbot_urdf
+>>> robot = fishbot_urdf.load("robots/fishbot/urdf/first_robot.urdf")  # doctest: +SKIP
+>>> [link.name for link in robot.links]  # doctest: +SKIP
+['base_link', 'imu_link']
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from .check import CheckResult, check, check_file
+from .diagnostics import Diagnostic, Severity
+from .errors import (
+    FishbotUrdfError,
+    InputError,
+    MissingDependencyError,
+    RobotError,
+    UnsupportedInputError,
+    XmlSyntaxError,
+)
+from .graph import Topology, chain, leaves, root, subtree, to_networkx, topology, tree_text
+from .model import (
+    Box,
+    Calibration,
+    Collision,
+    Cylinder,
+    Dynamics,
+    Geometry,
+    Inertia,
+    Inertial,
+    Joint,
+    JointType,
+    Limit,
+    Link,
+    Location,
+    Material,
+    Mesh,
+    Mimic,
+    Origin,
+    Robot,
+    SafetyController,
+    Sphere,
+    Visual,
+)
+from .parse import Parsed, load, parse, read
+from .write import to_urdf
+
+__all__ = [
+    "Box",
+    "Calibration",
+    "CheckResult",
+    "Collision",
+    "Cylinder",
+    "Diagnostic",
+    "Dynamics",
+    "FishbotUrdfError",
+    "Geometry",
+    "Inertia",
+    "Inertial",
+    "InputError",
+    "Joint",
+    "JointType",
+    "Limit",
+    "Link",
+    "Location",
+    "Material",
+    "Mesh",
+    "Mimic",
+    "MissingDependencyError",
+    "Origin",
+    "Parsed",
+    "Robot",
+    "RobotError",
+    "SafetyController",
+    "Severity",
+    "Sphere",
+    "Topology",
+    "UnsupportedInputError",
+    "Visual",
+    "XmlSyntaxError",
+    "__version__",
+    "chain",
+    "check",
+    "check_file",
+    "leaves",
+    "load",
+    "parse",
+    "read",
+    "root",
+    "subtree",
+    "to_networkx",
+    "to_urdf",
+    "topology",
+    "tree_text",
+]
+
+
+def __getattr__(name: str) -> Any:
+    # importlib.metadata costs several milliseconds: only pay for it when asked.
+    if name == "__version__":
+        from importlib.metadata import version
+
+        return version("fishbot-urdf")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

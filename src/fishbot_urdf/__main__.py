@@ -1,0 +1,5 @@
+"""`python -m fishbot_urdf` runs the `fishbot` command."""
+
+from .cli import main
+
+main()

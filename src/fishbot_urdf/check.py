@@ -1,0 +1,218 @@
+"""Robot -> diagnostics: everything check_urdf rejects, then what it lets through."""
+
+from __future__ import annotations
+
+import difflib
+from collections import Counter
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass
+from pathlib import Path
+
+from .diagnostics import Diagnostic, Severity, sort_key
+from .graph import Topology, topology
+from .model import Joint, Location, Robot
+from .parse import read
+from .xmlsource import diagnostic
+
+__all__ = ["CheckResult", "check", "check_file"]
+
+
+@dataclass(frozen=True, slots=True)
+class CheckResult:
+    """The outcome of checking one file.
+
+    Attributes:
+        path: The file checked.
+        robot: The robot as read (possibly faulty), or None if there was no <robot>.
+        diagnostics: Every finding, sorted by position.
+        topology: The link structure, when there is a robot.
+    """
+
+    path: str
+    robot: Robot | None
+    diagnostics: tuple[Diagnostic, ...]
+    topology: Topology | None
+
+    @property
+    def ok(self) -> bool:
+        """True when there is a robot and no finding is an error."""
+        return self.robot is not None and not any(d.is_error for d in self.diagnostics)
+
+
+def check_file(source: str | Path | bytes, *, path: str | None = None) -> CheckResult:
+    """Read and check one URDF, collecting every finding.
+
+    Raises:
+        InputError: The file cannot be read.
+        XmlSyntaxError: The file is not well-formed XML.
+        UnsupportedInputError: The file is a .xacro file.
+    """
+    parsed = read(source, path=path)
+    if parsed.robot is None:
+        return CheckResult(parsed.path, None, parsed.diagnostics, None)
+    topo = topology(parsed.robot)
+    found = list(parsed.diagnostics)
+    found.extend(_rules(parsed.robot, topo, parsed.path))
+    return CheckResult(parsed.path, parsed.robot, tuple(sorted(found, key=sort_key)), topo)
+
+
+def check(robot: Robot) -> tuple[Diagnostic, ...]:
+    """Check a robot's structure and values; returns every finding, sorted by position."""
+    path = robot.source.path if robot.source else "<robot>"
+    return tuple(sorted(_rules(robot, topology(robot), path), key=sort_key))
+
+
+def _rules(robot: Robot, topo: Topology, path: str) -> Iterator[Diagnostic]:
+    yield from _names(robot, path)
+    yield from _joints(robot, path)
+    yield from _links(robot, path)
+    yield from _structure(robot, topo, path)
+
+
+def _at(
+    rule: str, message: str, where: Location | None, path: str, hint: str | None = None,
+    severity: Severity = Severity.ERROR,
+) -> Diagnostic:
+    return diagnostic(rule, message, where, hint=hint, severity=severity, path=path)
+
+
+def _names(robot: Robot, path: str) -> Iterator[Diagnostic]:
+    if not robot.links:
+        yield _at("no-links", f"robot {robot.name!r} has no links", robot.source, path,
+                  "a robot needs at least one <link name=\"...\">")
+    for kind, items in (("link", robot.links), ("joint", robot.joints),
+                        ("material", robot.materials)):
+        first: dict[str, Location | None] = {}
+        for item in items:
+            if not item.name:
+                continue
+            if item.name in first:
+                where = first[item.name]
+                seen = f" (first defined at line {where.line})" if where else ""
+                yield _at(f"duplicate-{kind}", f"{kind} {item.name!r} is defined twice{seen}",
+                          item.source, path, f"every {kind} needs a unique name")
+            else:
+                first[item.name] = item.source
+
+
+def _suggest(name: str, candidates: Iterable[str]) -> str:
+    names = sorted(set(candidates))
+    close = difflib.get_close_matches(name, names, n=1)
+    listed = ", ".join(names[:8]) + (", ..." if len(names) > 8 else "")
+    guess = f"did you mean {close[0]!r}? " if close else ""
+    return f"{guess}links: {listed}" if names else "the robot defines no links"
+
+
+def _joints(robot: Robot, path: str) -> Iterator[Diagnostic]:
+    link_names = {link.name for link in robot.links}
+    joint_names = {joint.name for joint in robot.joints}
+    for joint in robot.joints:
+        owner = f"joint {joint.name!r}"
+        for end, name, where in (("parent", joint.parent, joint.parent_source),
+                                 ("child", joint.child, joint.child_source)):
+            if name and name not in link_names:
+                yield _at("undefined-link", f"{owner}: {end} link {name!r} is not defined",
+                          where or joint.source, path, _suggest(name, link_names))
+        if joint.parent and joint.parent == joint.child:
+            yield _at("joint-self-loop", f"{owner}: parent and child are the same link "
+                      f"{joint.parent!r}", joint.child_source or joint.source, path,
+                      "a joint connects two different links")
+        yield from _limits(joint, owner, path)
+        if joint.type.uses_axis and joint.axis == (0.0, 0.0, 0.0):
+            yield _at("zero-axis", f"{owner}: the axis is 0 0 0, so the joint cannot move",
+                      joint.source, path, "give a unit vector, e.g. <axis xyz=\"0 0 1\"/>")
+        if joint.mimic is not None and joint.mimic.joint:
+            if joint.mimic.joint not in joint_names:
+                close = difflib.get_close_matches(joint.mimic.joint, sorted(joint_names), n=1)
+                yield _at("undefined-mimic", f"{owner}: mimics joint {joint.mimic.joint!r}, "
+                          "which is not defined", joint.mimic.source, path,
+                          f"did you mean {close[0]!r}?" if close else "name an existing joint")
+            elif joint.mimic.joint == joint.name:
+                yield _at("undefined-mimic", f"{owner}: mimics itself", joint.mimic.source,
+                          path, "name another joint")
+
+
+def _limits(joint: Joint, owner: str, path: str) -> Iterator[Diagnostic]:
+    limit = joint.limit
+    if limit is None:
+        if joint.type.needs_limit:
+            yield _at("missing-limit", f"{owner}: a {joint.type.value} joint needs <limit>",
+                      joint.source, path,
+                      "write <limit lower=\"..\" upper=\"..\" effort=\"..\" velocity=\"..\"/>")
+        return
+    if joint.type.needs_limit and limit.lower > limit.upper:
+        yield _at("limit-range", f"{owner}: lower limit {limit.lower:g} is above upper "
+                  f"limit {limit.upper:g}", limit.source, path, "swap them, lower <= upper")
+    for field in ("effort", "velocity"):
+        value = getattr(limit, field)
+        if value < 0:
+            yield _at("negative-limit", f"{owner}: {field} limit {value:g} is negative",
+                      limit.source, path, f"{field} is a magnitude, >= 0")
+
+
+def _links(robot: Robot, path: str) -> Iterator[Diagnostic]:
+    for link in robot.links:
+        inertial = link.inertial
+        if inertial is not None and inertial.mass < 0:
+            yield _at("negative-mass", f"link {link.name!r}: mass {inertial.mass:g} kg is "
+                      "negative", inertial.source, path, "mass is >= 0 kg")
+
+
+def _structure(robot: Robot, topo: Topology, path: str) -> Iterator[Diagnostic]:
+    if not robot.links:
+        return
+    by_name = {link.name: link for link in robot.links}
+    for name, joints in topo.parents.items():
+        if len(joints) > 1:
+            listed = ", ".join(repr(j.name) for j in joints)
+            yield _at("multiple-parents", f"link {name!r} is the child of {len(joints)} "
+                      f"joints: {listed}", joints[1].child_source or joints[1].source, path,
+                      "a link has one parent joint; in a URDF tree loops are not allowed")
+    if len(topo.roots) > 1:
+        listed = ", ".join(repr(r) for r in topo.roots)
+        yield _at("multiple-roots", f"robot {robot.name!r} has {len(topo.roots)} root links: "
+                  f"{listed}", by_name[topo.roots[1]].source, path,
+                  "connect every link but one to a parent with a joint")
+    cut_off = [link.name for link in robot.links if link.name not in topo.reachable]
+    if not topo.roots:
+        yield _at("no-root", f"robot {robot.name!r} has no root link: every link is some "
+                  "joint's child", robot.source, path,
+                  "one link must be no joint's child; look for a joint loop")
+    if cut_off and len(topo.roots) <= 1:
+        yield from _cycles(cut_off, topo, by_name, path)
+
+
+def _cycles(
+    cut_off: list[str], topo: Topology, by_name: dict[str, object], path: str
+) -> Iterator[Diagnostic]:
+    """Report each loop once, and links hanging below a loop as unreachable."""
+    state: dict[str, int] = {}  # 1 on the current walk, 2 done
+    in_cycle: set[str] = set()
+    for start in cut_off:
+        walk: list[str] = []
+        name = start
+        while name not in state:
+            state[name] = 1
+            walk.append(name)
+            parents = topo.parents[name]
+            if not parents:
+                break
+            name = parents[0].parent
+        if state.get(name) == 1 and name in walk:
+            loop = walk[walk.index(name):]
+            in_cycle.update(loop)
+            joints = [topo.parents[n][0] for n in loop]
+            link_list = " -> ".join(reversed([*loop, loop[0]]))
+            first = min(joints, key=lambda j: (j.source.line if j.source else 0))
+            yield _at("cycle", f"joints {', '.join(repr(j.name) for j in joints)} form a loop: "
+                      f"{link_list}", first.source, path,
+                      "URDF is a tree; break the loop or model it with a mimic joint")
+        for n in walk:
+            state[n] = 2
+    counts = Counter(n for n in cut_off if n not in in_cycle)
+    for name in cut_off:
+        if name in counts:
+            link = by_name[name]
+            source = getattr(link, "source", None)
+            yield _at("unreachable-link", f"link {name!r} is not connected to the root",
+                      source, path, "it hangs below a joint loop", Severity.ERROR)

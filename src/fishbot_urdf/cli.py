@@ -1,0 +1,160 @@
+"""The `fishbot` command line: one click group, one short function per subcommand.
+
+Exit status: 0 the robot is valid, 1 the robot has errors, 2 usage or I/O problem.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+from collections.abc import Iterable, Sequence
+from typing import IO, Any, NoReturn
+
+import click
+
+from .diagnostics import Diagnostic, Severity, has_errors
+from .errors import FishbotUrdfError, InputError, UnsupportedInputError
+
+EXIT_OK, EXIT_INVALID, EXIT_USAGE = 0, 1, 2
+
+_COLORS = {Severity.ERROR: "red", Severity.WARNING: "magenta", Severity.NOTE: "cyan"}
+
+
+def _use_color(stream: IO[str]) -> bool:
+    if os.environ.get("NO_COLOR"):
+        return False
+    return stream.isatty()
+
+
+def _emit_findings(diagnostics: Iterable[Diagnostic]) -> None:
+    err = click.get_text_stream("stderr")
+    color = _use_color(err)
+    for d in diagnostics:
+        line = d.format()
+        if color:
+            label = f"{d.severity.value}:"
+            line = line.replace(f" {label} ", " " + click.style(label, fg=_COLORS[d.severity],
+                                                                 bold=True) + " ", 1)
+        click.echo(line, err=True, color=color)
+
+
+def _fail(exc: FishbotUrdfError) -> Diagnostic:
+    """One finding for an exception that stopped a file from being read."""
+    return Diagnostic(exc.rule, Severity.ERROR, exc.message, exc.path or "<input>",
+                      exc.line, exc.column)
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(package_name="fishbot-urdf", prog_name="fishbot")
+def cli() -> None:
+    """fishbot: check and explore URDF robot descriptions, with or without ROS.
+
+    \b
+    Examples:
+      fishbot check robots/fishbot/urdf/first_robot.urdf
+      fishbot check --format json robot.urdf
+    """
+
+
+@cli.command()
+@click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=True, allow_dash=True))
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text",
+              show_default=True, help="text: check_urdf's output; json: a report for machines.")
+@click.option("--strict", is_flag=True, help="Warnings fail too (exit 1).")
+def check(files: Sequence[str], fmt: str, strict: bool) -> None:
+    """Check URDF files, like check_urdf, and more strictly.
+
+    On a valid robot, prints exactly what check_urdf prints (the robot's name and its link
+    tree). Every finding goes to stderr as one line, path:line:col: error: ... [rule].
+    FILE may be - to read standard input. Exit status: 0 valid (warnings allowed), 1 the
+    robot has errors, 2 a file could not be read or the command line is wrong.
+
+    \b
+    Examples:
+      fishbot check robots/fishbot/urdf/first_robot.urdf
+      fishbot check --strict a.urdf b.urdf
+      xacro robot.urdf.xacro | fishbot check -
+    """
+    from .check import check_file
+    from .graph import tree_text
+
+    status = EXIT_OK
+    reports: list[dict[str, Any]] = []
+    for name in files:
+        try:
+            if name == "-":
+                result = check_file(click.get_binary_stream("stdin").read(), path="<stdin>")
+            else:
+                result = check_file(name)
+        except (InputError, UnsupportedInputError) as exc:
+            _report_failure(fmt, exc, reports)
+            status = max(status, EXIT_USAGE)
+            continue
+        except FishbotUrdfError as exc:
+            _report_failure(fmt, exc, reports)
+            status = max(status, EXIT_INVALID)
+            continue
+        failed = result.robot is None or has_errors(result.diagnostics, strict=strict)
+        if failed:
+            status = max(status, EXIT_INVALID)
+        if fmt == "json":
+            reports.append(_json_report(result, failed))
+            continue
+        _emit_findings(result.diagnostics)
+        if not failed and result.robot is not None:
+            _write_chunks(tree_text(result.robot))
+    if fmt == "json":
+        click.echo(json.dumps({"ok": status == EXIT_OK, "files": reports}, indent=2))
+    sys.exit(status)
+
+
+def _report_failure(fmt: str, exc: FishbotUrdfError, reports: list[dict[str, Any]]) -> None:
+    finding = _fail(exc)
+    if fmt == "json":
+        reports.append({"path": finding.path, "ok": False, "robot": None,
+                        "diagnostics": [finding.to_dict()]})
+    else:
+        _emit_findings([finding])
+
+
+def _json_report(result: Any, failed: bool) -> dict[str, Any]:
+    robot = result.robot
+    topo = result.topology
+    return {
+        "path": result.path,
+        "ok": not failed,
+        "robot": None if robot is None else robot.name,
+        "root": None if topo is None else topo.root,
+        "links": None if robot is None else len(robot.links),
+        "joints": None if robot is None else len(robot.joints),
+        "diagnostics": [d.to_dict() for d in result.diagnostics],
+    }
+
+
+def _write_chunks(chunks: Iterable[str]) -> None:
+    """Write text to stdout in large blocks (a deep tree prints hundreds of megabytes)."""
+    out = click.get_binary_stream("stdout")
+    buffer: list[str] = []
+    size = 0
+    for chunk in chunks:
+        buffer.append(chunk)
+        size += len(chunk)
+        if size > 1 << 20:
+            out.write("".join(buffer).encode("utf-8"))
+            buffer, size = [], 0
+    out.write("".join(buffer).encode("utf-8"))
+    out.flush()
+
+
+def main(argv: Sequence[str] | None = None) -> NoReturn:
+    """Entry point of the `fishbot` console script and of `python -m fishbot_urdf`."""
+    try:
+        cli.main(args=list(argv) if argv is not None else None, prog_name="fishbot",
+                 standalone_mode=True)
+    except BrokenPipeError:
+        # The reader went away (`fishbot check big.urdf | head`): stop quietly.
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        sys.exit(EXIT_OK)
+    sys.exit(EXIT_OK)

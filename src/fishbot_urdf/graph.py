@@ -1,0 +1,216 @@
+"""The kinematic tree: topology, tree queries, check_urdf's tree text, and networkx export.
+
+Nothing here recurses per tree level, so a 10 000-deep chain is fine. networkx is imported
+only by ``to_networkx``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from .errors import FishbotUrdfError
+from .model import Joint, Robot
+
+if TYPE_CHECKING:
+    import networkx as nx
+
+__all__ = [
+    "Topology",
+    "chain",
+    "leaves",
+    "root",
+    "subtree",
+    "to_networkx",
+    "topology",
+    "tree_text",
+]
+
+
+@dataclass(frozen=True, slots=True)
+class Topology:
+    """How the links hang together, as urdfdom builds it, whatever the robot's faults.
+
+    Attributes:
+        children: For each link name, the joints whose parent it is, ordered by joint name
+            (urdfdom keeps joints in a map keyed by name, so that is check_urdf's order).
+        parents: For each link name, every joint whose child it is, in file order.
+        roots: Links that are no joint's child, in file order.
+        reachable: Links reachable from ``roots[0]`` (empty when there is no root).
+    """
+
+    children: dict[str, tuple[Joint, ...]]
+    parents: dict[str, tuple[Joint, ...]]
+    roots: tuple[str, ...]
+    reachable: frozenset[str]
+
+    @property
+    def root(self) -> str | None:
+        """The single root, or None when there is none or more than one."""
+        return self.roots[0] if len(self.roots) == 1 else None
+
+
+def topology(robot: Robot) -> Topology:
+    """Analyse the joint structure of ``robot`` in time linear in its size."""
+    names = [link.name for link in robot.links]
+    known = set(names)
+    children: dict[str, list[Joint]] = {name: [] for name in names}
+    parents: dict[str, list[Joint]] = {name: [] for name in names}
+    for joint in robot.joints:
+        if joint.parent in known and joint.child in known:
+            children[joint.parent].append(joint)
+            parents[joint.child].append(joint)
+    sorted_children = {
+        name: tuple(sorted(joints, key=_joint_name)) if len(joints) > 1 else tuple(joints)
+        for name, joints in children.items()
+    }
+    roots = tuple(dict.fromkeys(name for name in names if not parents[name]))
+    reachable: set[str] = set()
+    if roots:
+        stack = [roots[0]]
+        reachable.add(roots[0])
+        while stack:
+            for joint in sorted_children[stack.pop()]:
+                if joint.child not in reachable:
+                    reachable.add(joint.child)
+                    stack.append(joint.child)
+    return Topology(
+        children=sorted_children,
+        parents={name: tuple(joints) for name, joints in parents.items()},
+        roots=roots,
+        reachable=frozenset(reachable),
+    )
+
+
+def _joint_name(joint: Joint) -> str:
+    return joint.name
+
+
+def _tree(robot: Robot) -> Topology:
+    topo = topology(robot)
+    if topo.root is None:
+        found = ", ".join(topo.roots) if topo.roots else "none"
+        raise FishbotUrdfError(f"robot {robot.name!r} has no single root link (roots: {found})")
+    return topo
+
+
+def root(robot: Robot) -> str:
+    """The name of the root link (the one link that is no joint's child).
+
+    Raises:
+        FishbotUrdfError: There is no root, or more than one.
+    """
+    topo = _tree(robot)
+    assert topo.root is not None
+    return topo.root
+
+
+def tree_text(robot: Robot) -> Iterator[str]:
+    """Yield check_urdf's output for a valid robot, piece by piece (join them to get it all).
+
+    The pieces are the header and one line per link, each ending in a newline; a link
+    appears once for every path to it, as in check_urdf.
+    """
+    topo = _tree(robot)
+    top = topo.root
+    assert top is not None
+    yield f"robot name is: {robot.name}\n"
+    yield "---------- Successfully Parsed XML ---------------\n"
+    yield f"root Link: {top} has {len(topo.children[top])} child(ren)\n"
+    # Depth-first, children by joint name, with an explicit stack of (joints, next index).
+    stack: list[tuple[tuple[Joint, ...], int]] = [(topo.children[top], 0)]
+    indents: list[str] = [""]
+    while stack:
+        joints, index = stack[-1]
+        if index == len(joints):
+            stack.pop()
+            continue
+        stack[-1] = (joints, index + 1)
+        depth = len(stack)
+        while len(indents) <= depth:
+            indents.append(indents[-1] + "    ")
+        child = joints[index].child
+        yield f"{indents[depth]}child({index + 1}):  {child}\n"
+        grandchildren = topo.children[child]
+        if grandchildren:
+            if len(stack) > len(topo.children):
+                break  # a cycle: check reports it; never loop forever
+            stack.append((grandchildren, 0))
+
+
+def subtree(robot: Robot, link: str) -> list[str]:
+    """``link`` and every link below it, depth-first with children ordered by joint name."""
+    topo = topology(robot)
+    if link not in topo.children:
+        raise KeyError(link)
+    order: list[str] = []
+    seen: set[str] = set()
+    stack = [link]
+    while stack:
+        name = stack.pop()
+        if name in seen:
+            continue
+        seen.add(name)
+        order.append(name)
+        stack.extend(j.child for j in reversed(topo.children[name]))
+    return order
+
+
+def leaves(robot: Robot) -> list[str]:
+    """Links that are no joint's parent, in file order."""
+    topo = topology(robot)
+    return [link.name for link in robot.links if not topo.children[link.name]]
+
+
+def chain(robot: Robot, start: str, end: str) -> list[str]:
+    """The links on the path from ``start`` to ``end`` (both included).
+
+    The path goes up from ``start`` to the nearest common ancestor and down to ``end``.
+
+    Raises:
+        KeyError: A link name is not in the robot.
+        FishbotUrdfError: The two links are not connected.
+    """
+    topo = topology(robot)
+    for name in (start, end):
+        if name not in topo.parents:
+            raise KeyError(name)
+
+    def ancestors(name: str) -> list[str]:
+        path = [name]
+        seen = {name}
+        while topo.parents[path[-1]]:
+            up = topo.parents[path[-1]][0].parent
+            if up in seen:
+                break
+            seen.add(up)
+            path.append(up)
+        return path
+
+    up_from_start = ancestors(start)
+    up_from_end = ancestors(end)
+    index = {name: i for i, name in enumerate(up_from_start)}
+    for j, name in enumerate(up_from_end):
+        if name in index:
+            return up_from_start[: index[name] + 1] + list(reversed(up_from_end[:j]))
+    raise FishbotUrdfError(f"links {start!r} and {end!r} are not connected")
+
+
+def to_networkx(robot: Robot) -> nx.DiGraph:
+    """A DiGraph with a node per link and an edge parent -> child per joint.
+
+    Node attributes: ``link`` (the Link). Edge attributes: ``joint`` (the Joint), ``name``,
+    ``type`` (the JointType value). The graph attribute ``name`` is the robot's name.
+    Joints naming links that do not exist still add their nodes, so a faulty robot can
+    be inspected too.
+    """
+    import networkx as nx  # ~200 ms to import: only when asked for
+
+    graph = nx.DiGraph(name=robot.name)
+    for link in robot.links:
+        graph.add_node(link.name, link=link)
+    for joint in robot.joints:
+        graph.add_edge(joint.parent, joint.child, joint=joint, name=joint.name,
+                       type=joint.type.value)
+    return graph
