@@ -3,14 +3,13 @@
 from __future__ import annotations
 
 import difflib
-from collections import Counter
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
 from .diagnostics import Diagnostic, Severity, sort_key
 from .graph import Topology, topology
-from .model import Joint, Location, Robot
+from .model import Joint, Link, Location, Robot
 from .parse import read
 from .xmlsource import diagnostic
 
@@ -168,7 +167,13 @@ def _structure(robot: Robot, topo: Topology, path: str) -> Iterator[Diagnostic]:
             yield _at("multiple-parents", f"link {name!r} is the child of {len(joints)} "
                       f"joints: {listed}", joints[1].child_source or joints[1].source, path,
                       "a link has one parent joint; in a URDF tree loops are not allowed")
-    if len(topo.roots) > 1:
+    # A joint with a missing or misspelt end leaves its child as an extra root: report the
+    # joint only, not the consequence.
+    broken_joint = any(
+        not j.parent or not j.child or j.parent not in by_name or j.child not in by_name
+        for j in robot.joints
+    )
+    if len(topo.roots) > 1 and not broken_joint:
         listed = ", ".join(repr(r) for r in topo.roots)
         yield _at("multiple-roots", f"robot {robot.name!r} has {len(topo.roots)} root links: "
                   f"{listed}", by_name[topo.roots[1]].source, path,
@@ -183,7 +188,7 @@ def _structure(robot: Robot, topo: Topology, path: str) -> Iterator[Diagnostic]:
 
 
 def _cycles(
-    cut_off: list[str], topo: Topology, by_name: dict[str, object], path: str
+    cut_off: list[str], topo: Topology, by_name: dict[str, Link], path: str
 ) -> Iterator[Diagnostic]:
     """Report each loop once, and links hanging below a loop as unreachable."""
     state: dict[str, int] = {}  # 1 on the current walk, 2 done
@@ -199,20 +204,20 @@ def _cycles(
                 break
             name = parents[0].parent
         if state.get(name) == 1 and name in walk:
-            loop = walk[walk.index(name):]
+            # The walk went child -> parent; reverse it to follow the joints' direction.
+            loop = list(reversed(walk[walk.index(name):]))
+            first_link = loop.index(name)  # start where the walk entered the loop
+            loop = loop[first_link:] + loop[:first_link]
             in_cycle.update(loop)
-            joints = [topo.parents[n][0] for n in loop]
-            link_list = " -> ".join(reversed([*loop, loop[0]]))
+            joints = [topo.parents[n][0] for n in loop[1:] + loop[:1]]
+            link_list = " -> ".join([*loop, loop[0]])
             first = min(joints, key=lambda j: (j.source.line if j.source else 0))
             yield _at("cycle", f"joints {', '.join(repr(j.name) for j in joints)} form a loop: "
                       f"{link_list}", first.source, path,
                       "URDF is a tree; break the loop or model it with a mimic joint")
         for n in walk:
             state[n] = 2
-    counts = Counter(n for n in cut_off if n not in in_cycle)
     for name in cut_off:
-        if name in counts:
-            link = by_name[name]
-            source = getattr(link, "source", None)
+        if name not in in_cycle:
             yield _at("unreachable-link", f"link {name!r} is not connected to the root",
-                      source, path, "it hangs below a joint loop", Severity.ERROR)
+                      by_name[name].source, path, "it hangs below a joint loop")

@@ -58,7 +58,8 @@ def topology(robot: Robot) -> Topology:
     children: dict[str, list[Joint]] = {name: [] for name in names}
     parents: dict[str, list[Joint]] = {name: [] for name in names}
     for joint in robot.joints:
-        if joint.parent in known and joint.child in known:
+        # A joint from a link to itself is no edge of the tree (check reports it).
+        if joint.parent in known and joint.child in known and joint.parent != joint.child:
             children[joint.parent].append(joint)
             parents[joint.child].append(joint)
     sorted_children = {

@@ -314,7 +314,8 @@ class _Reader:
 
     def material(self, el: etree._Element, at: Location, owner: str) -> Material:
         name = el.get("name")
-        if not name:
+        if name is None:
+            # urdfdom accepts name="" (an anonymous colour, common in exported robots).
             self.error(
                 "missing-attribute",
                 f"{owner}: <material> has no name",
@@ -339,8 +340,9 @@ class _Reader:
                         "each of red, green, blue and alpha is between 0 and 1",
                     )
             elif child.tag == "texture":
-                t_at = self.locator.locate(child)
-                texture = self.text(child, t_at, "filename", f"material {name!r}")
+                self.locator.locate(child)
+                # An empty <texture/> is common in exported robots; urdfdom ignores it too.
+                texture = child.get("filename") or None
         return Material(name=name or "", color=color, texture=texture, source=at)
 
     def link(self, el: etree._Element, at: Location) -> Link:

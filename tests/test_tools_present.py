@@ -1,0 +1,14 @@
+"""The corpus and the real tools that the parity tests depend on are there."""
+
+from __future__ import annotations
+
+from conftest import CORPUS, require_tool
+
+
+def test_corpus_is_installed() -> None:
+    # example-robot-data is a test dependency: without it the parity sweep would be empty.
+    assert len(CORPUS) >= 50, "pip install -e '.[test]' installs example-robot-data"
+
+
+def test_check_urdf_is_available() -> None:
+    assert require_tool("check_urdf", "liburdfdom-tools").endswith("check_urdf")
