@@ -28,7 +28,7 @@ def _use_color(stream: IO[str]) -> bool:
 
 
 def _emit_findings(diagnostics: Iterable[Diagnostic]) -> None:
-    err = click.get_text_stream("stderr")
+    err = sys.stderr
     color = _use_color(err)
     for d in diagnostics:
         line = d.format()
@@ -45,7 +45,7 @@ def _fail(exc: FishbotUrdfError) -> Diagnostic:
                       exc.line, exc.column)
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.group(name="fishbot", context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="fishbot-urdf", prog_name="fishbot")
 def cli() -> None:
     """fishbot: check and explore URDF robot descriptions, with or without ROS.
@@ -84,7 +84,7 @@ def check(files: Sequence[str], fmt: str, strict: bool) -> None:
     for name in files:
         try:
             if name == "-":
-                result = check_file(click.get_binary_stream("stdin").read(), path="<stdin>")
+                result = check_file(sys.stdin.buffer.read(), path="<stdin>")
             else:
                 result = check_file(name)
         except (InputError, UnsupportedInputError) as exc:
@@ -134,7 +134,7 @@ def _json_report(result: Any, failed: bool) -> dict[str, Any]:
 
 def _write_chunks(chunks: Iterable[str]) -> None:
     """Write text to stdout in large blocks (a deep tree prints hundreds of megabytes)."""
-    out = click.get_binary_stream("stdout")
+    out = sys.stdout.buffer
     buffer: list[str] = []
     size = 0
     for chunk in chunks:

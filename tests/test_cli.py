@@ -1,0 +1,155 @@
+"""The `fishbot` command: exit codes and exact output, through click's CliRunner."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+from click.testing import CliRunner
+from conftest import DATA, FISHBOT
+
+from fishbot_urdf.cli import cli
+
+FIRST = FISHBOT / "urdf" / "first_robot.urdf"
+FIRST_TREE = (
+    "robot name is: first_robot\n"
+    "---------- Successfully Parsed XML ---------------\n"
+    "root Link: base_link has 1 child(ren)\n"
+    "    child(1):  imu_link\n"
+)
+
+
+def run(*args: str, stdin: bytes | None = None) -> tuple[int, str, str]:
+    result = CliRunner().invoke(cli, list(args), input=stdin)
+    return result.exit_code, result.stdout, result.stderr
+
+
+def test_check_first_robot() -> None:
+    assert run("check", str(FIRST)) == (0, FIRST_TREE, "")
+
+
+def test_check_reads_stdin() -> None:
+    assert run("check", "-", stdin=FIRST.read_bytes()) == (0, FIRST_TREE, "")
+
+
+def test_findings_go_to_stderr_and_exit_1() -> None:
+    path = DATA / "invalid" / "undefined_parent.urdf"
+    status, out, err = run("check", str(path))
+    assert status == 1
+    assert out == ""
+    assert err == (
+        f"{path}:6:5: error: joint 'left_wheel_joint': parent link 'base' is not defined "
+        "(did you mean 'base_link'? links: base_link, left_wheel_link) [undefined-link]\n"
+    )
+
+
+def test_warnings_pass_unless_strict() -> None:
+    path = str(DATA / "invalid" / "collision_material.urdf")
+    status, out, err = run("check", path)
+    assert status == 0
+    assert out.startswith("robot name is: classic_mistake\n")
+    assert err.count("warning:") == 1
+    status, out, err = run("check", "--strict", path)
+    assert (status, out) == (1, "")
+    assert err.count("warning:") == 1
+
+
+def test_missing_file_is_exit_2() -> None:
+    assert run("check", "does/not/exist.urdf") == (
+        2, "", "does/not/exist.urdf: error: no such file [io]\n"
+    )
+
+
+def test_a_folder_is_exit_2(tmp_path: Path) -> None:
+    assert run("check", str(tmp_path)) == (
+        2, "", f"{tmp_path}: error: is a directory, not a file [io]\n"
+    )
+
+
+def test_bad_option_is_exit_2() -> None:
+    status, out, err = run("check", "--colour", str(FIRST))
+    assert status == 2
+    assert "Error: No such option '--colour'" in err
+    assert err.startswith("Usage: fishbot check ")
+
+
+def test_no_file_is_exit_2() -> None:
+    status, _, err = run("check")
+    assert status == 2
+    assert "Missing argument 'FILES...'" in err
+
+
+def test_xacro_says_expand_is_coming(tmp_path: Path) -> None:
+    path = tmp_path / "robot.urdf.xacro"
+    path.write_text("<robot/>")
+    status, out, err = run("check", str(path))
+    assert (status, out) == (2, "")
+    assert err.startswith(f"{path}: error: this is a xacro file;")
+    assert "`fishbot expand` is coming" in err
+    assert err.endswith("[unsupported-input]\n")
+    assert err.count("\n") == 1
+
+
+def test_many_files_worst_status_wins() -> None:
+    bad = str(DATA / "invalid" / "cycle.urdf")
+    status, out, err = run("check", str(FIRST), bad, "missing.urdf")
+    assert status == 2
+    assert out == FIRST_TREE
+    assert "[cycle]" in err
+    assert "missing.urdf: error: no such file [io]" in err
+
+
+def test_json_report() -> None:
+    bad = DATA / "invalid" / "limit_range.urdf"
+    status, out, err = run("check", "--format", "json", str(FIRST), str(bad))
+    assert status == 1
+    assert err == ""
+    report = json.loads(out)
+    assert report["ok"] is False
+    first, second = report["files"]
+    assert first == {
+        "path": str(FIRST), "ok": True, "robot": "first_robot", "root": "base_link",
+        "links": 2, "joints": 1, "diagnostics": [],
+    }
+    assert second["ok"] is False
+    assert [d["rule"] for d in second["diagnostics"]] == ["limit-range"]
+    assert second["diagnostics"][0]["line"] == 7
+
+
+def test_json_report_for_unreadable_file() -> None:
+    status, out, _ = run("check", "--format", "json", "nope.urdf")
+    assert status == 2
+    assert json.loads(out)["files"][0]["diagnostics"][0]["rule"] == "io"
+
+
+def test_help_has_an_example() -> None:
+    for args in (["--help"], ["check", "--help"]):
+        status, out, _ = run(*args)
+        assert status == 0
+        assert "fishbot check robots/fishbot/urdf/first_robot.urdf" in out
+
+
+def test_python_dash_m_and_no_color(tmp_path: Path) -> None:
+    bad = DATA / "invalid" / "cycle.urdf"
+    proc = subprocess.run(
+        [sys.executable, "-m", "fishbot_urdf", "check", str(bad)],
+        capture_output=True, text=True, check=False, env={"NO_COLOR": "1", "PATH": ""},
+    )
+    assert proc.returncode == 1
+    assert proc.stdout == ""
+    assert proc.stderr.startswith(f"{bad}:7:3: error: joints 'a_to_b'")
+    assert "\x1b[" not in proc.stderr
+
+
+def test_colour_only_on_a_terminal() -> None:
+    bad = str(DATA / "invalid" / "cycle.urdf")
+    _, _, err = run("check", bad)  # CliRunner's stderr is no terminal
+    assert "\x1b[" not in err
+
+
+def test_version() -> None:
+    status, out, _ = run("--version")
+    assert status == 0
+    assert out.startswith("fishbot, version ")
