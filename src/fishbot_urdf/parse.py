@@ -125,7 +125,15 @@ def _strict(parsed: Parsed) -> Robot:
 
 
 def _xml_text(element: etree._Element) -> str:
-    return etree.tostring(element, encoding="unicode", with_tail=False)
+    """An element URDF does not define, as compact XML text (layout white space dropped, so
+    that a robot written out with another indentation reads back equal)."""
+    copy = etree.fromstring(etree.tostring(element, with_tail=False))
+    for node in copy.iter():
+        if node.text is not None and not node.text.strip():
+            node.text = None
+        if node.tail is not None and not node.tail.strip():
+            node.tail = None
+    return etree.tostring(copy, encoding="unicode")
 
 
 class _Reader:

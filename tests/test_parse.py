@@ -1,0 +1,183 @@
+"""Parsing: the model, number rules (compared live with urdfdom), locations, round trips."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from conftest import CORPUS, DATA, VALID, run_check_urdf
+
+import fishbot_urdf
+from fishbot_urdf import (
+    Box,
+    Cylinder,
+    JointType,
+    Mesh,
+    RobotError,
+    Sphere,
+    load,
+    parse,
+    to_urdf,
+)
+
+ALL = DATA / "valid" / "all_elements.urdf"
+
+
+def _origin_robot(xyz: str) -> bytes:
+    return (
+        '<robot name="n"><link name="a"/><link name="b"/>'
+        '<joint name="j" type="fixed"><parent link="a"/><child link="b"/>'
+        f'<origin xyz="{xyz}"/></joint></robot>'
+    ).encode()
+
+
+# Vector texts and whether urdfdom accepts them (each is also run through check_urdf live).
+VECTORS = {
+    "1e-3 0 0": True,
+    "  0.5   0 0 ": True,
+    "+1 -0 .5": True,
+    "5. 0 0": True,
+    "1E+2 0 0": True,
+    "1 2": False,
+    "1 2 3 4": False,
+    "1kg 0 0": False,
+    "0x10 0 0": False,
+    "inf 0 0": False,
+    "nan 0 0": False,
+    "1.5.3 0 0": False,
+    "1,5 0 0": False,
+    "1e 0 0": False,
+    "1e999 0 0": False,
+    "": False,
+}
+
+
+@pytest.mark.parametrize(("text", "accepted"), VECTORS.items(), ids=list(VECTORS))
+def test_vector_numbers_like_urdfdom(text: str, accepted: bool, tmp_path: Path) -> None:
+    data = _origin_robot(text)
+    result = fishbot_urdf.check_file(data, path="n.urdf")
+    assert result.ok is accepted, [d.format() for d in result.diagnostics]
+    path = tmp_path / "n.urdf"
+    path.write_bytes(data)
+    real = run_check_urdf(path)
+    assert (real.returncode == 0) is accepted, real.stderr
+
+
+def test_model_of_every_element() -> None:
+    robot = load(ALL)
+    assert robot.name == "everything"
+    assert robot.version == "1.0"
+    assert [m.name for m in robot.materials] == ["blue", "wood"]
+    assert robot.materials[0].color == (0.0, 0.0, 0.8, 1.0)
+    assert robot.materials[1].texture == "package://demo/textures/wood.png"
+    base = robot.link("base_link")
+    assert base.inertial is not None
+    assert base.inertial.mass == 2.5
+    assert base.inertial.origin.xyz == (0.0, 0.0, 0.05)
+    assert base.inertial.inertia.izz == 0.02
+    assert [v.name for v in base.visuals] == ["body", None]
+    assert base.visuals[0].geometry == Box((0.3, 0.2, 0.1))
+    assert base.visuals[1].geometry == Mesh("package://demo/meshes/cover.stl", (0.001,) * 3)
+    assert base.collisions[1].geometry == Sphere(0.05)
+    arm = robot.link("arm")
+    assert arm.visuals[0].geometry == Cylinder(radius=0.02, length=0.4)
+    assert arm.visuals[0].material == fishbot_urdf.Material("red", (1.0, 0.0, 0.0, 1.0))
+    assert arm.extras == ('<sensor_mount type="custom">kept as XML</sensor_mount>',)
+    shoulder = robot.joint("shoulder")
+    assert shoulder.type is JointType.REVOLUTE
+    assert shoulder.origin.rpy == (0.0, 1.5707963, 0.0)
+    assert shoulder.axis == (0.0, 1.0, 0.0)
+    assert shoulder.limit == fishbot_urdf.Limit(effort=30, velocity=2, lower=-1.57, upper=1.57)
+    assert shoulder.dynamics == fishbot_urdf.Dynamics(damping=0.5, friction=0.1)
+    assert shoulder.calibration == fishbot_urdf.Calibration(rising=0.1, falling=-0.1)
+    assert shoulder.safety_controller == fishbot_urdf.SafetyController(
+        k_velocity=10, k_position=100, soft_lower_limit=-1.5, soft_upper_limit=1.5
+    )
+    assert robot.joint("finger_b_joint").mimic == fishbot_urdf.Mimic("finger_a_joint", 1, 0)
+    assert robot.joint("marker_joint").axis == (1.0, 0.0, 0.0)  # the spec's default
+    assert {j.type for j in robot.joints} == set(JointType)
+    assert [e.split(" ", 1)[0] for e in robot.extras] == [
+        "<transmission", "<gazebo", "<ros2_control"
+    ]
+
+
+def test_every_element_knows_its_line_and_column() -> None:
+    robot = load(ALL)
+    lines = ALL.read_text().splitlines()
+
+    def where(needle: str) -> tuple[int, int]:
+        line = next(i for i, text in enumerate(lines, 1) if needle in text)
+        return line, lines[line - 1].index(needle) + 1
+
+    shoulder = robot.joint("shoulder")
+    assert shoulder.source == fishbot_urdf.Location(str(ALL), *where('<joint name="shoulder"'))
+    assert shoulder.limit is not None and shoulder.limit.source is not None
+    assert (shoulder.limit.source.line, shoulder.limit.source.column) == where('<limit lower="-1.57"')
+    assert shoulder.parent_source is not None
+    assert shoulder.parent_source.line == where('<parent link="base_link"/>')[0]
+
+
+def test_columns_count_characters_not_bytes() -> None:
+    text = "<robot name='r'><!-- 机器人 --><link name='a'><inertial><mass value='x'/>"
+    text += "<inertia ixx='1' ixy='0' ixz='0' iyy='1' iyz='0' izz='1'/></inertial></link></robot>"
+    with pytest.raises(RobotError) as info:
+        parse(text)
+    (finding,) = info.value.diagnostics
+    assert finding.column == text.index("value='x'") + 1
+
+
+def test_comments_do_not_confuse_locations() -> None:
+    text = (
+        "<robot name='r'>\n<!-- <link name='commented'/> -->\n<link name='a'/>\n"
+        "<link name='a'/>\n</robot>"
+    )
+    (finding,) = fishbot_urdf.check_file(text.encode(), path="c.urdf").diagnostics
+    assert (finding.rule, finding.line, finding.column) == ("duplicate-link", 4, 1)
+
+
+def test_multi_line_start_tags_report_their_first_line() -> None:
+    text = b'<robot name="r">\n  <link\n     name="a"/>\n  <link\n    name="a"/>\n</robot>'
+    (finding,) = fishbot_urdf.check_file(text, path="m.urdf").diagnostics
+    assert (finding.line, finding.column) == (4, 3)
+
+
+def test_parse_raises_with_every_finding() -> None:
+    text = (
+        "<robot name='r'><link name='a'><inertial><mass value='1kg'/>"
+        "<inertia ixx='x' ixy='0' ixz='0' iyy='1' iyz='0' izz='1'/></inertial></link></robot>"
+    )
+    with pytest.raises(RobotError) as info:
+        parse(text)
+    assert [d.rule for d in info.value.diagnostics] == ["bad-number", "bad-number"]
+    assert str(info.value).startswith("<string>:1:")
+    assert str(info.value).endswith("[bad-number] (and 1 more)")
+
+
+# Corpus robots that load (ur3.urdf, for one, has no robot name: check_urdf rejects it too).
+LOADABLE = [p for p in CORPUS if not any(d.is_error for d in fishbot_urdf.read(p).diagnostics)]
+
+
+def test_nearly_all_of_the_corpus_loads() -> None:
+    assert len(LOADABLE) >= len(CORPUS) - 2
+
+
+@pytest.mark.parametrize("path", VALID + LOADABLE, ids=[p.name for p in VALID + LOADABLE])
+def test_round_trip(path: Path) -> None:
+    robot = load(path)
+    text = to_urdf(robot)
+    again = parse(text)
+    assert again == robot
+    assert to_urdf(again) == text
+
+
+def test_parse_accepts_str_with_an_encoding_declaration() -> None:
+    robot = parse('<?xml version="1.0" encoding="UTF-8"?>\n<robot name="机器人"><link name="a"/></robot>')
+    assert robot.name == "机器人"
+
+
+def test_robot_lookup_errors() -> None:
+    robot = load(ALL)
+    with pytest.raises(KeyError):
+        robot.link("nope")
+    with pytest.raises(KeyError):
+        robot.joint("nope")
