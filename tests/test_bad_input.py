@@ -1,0 +1,119 @@
+"""Bad input of every kind: one clear finding, the documented exit status, no traceback,
+and nothing read from outside the file."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from fishbot_urdf import XmlSyntaxError, check_file
+from fishbot_urdf.cli import cli
+
+SECRET = "fishbot-secret-marker"
+
+CASES: dict[str, tuple[bytes, str]] = {
+    "empty": (b"", "the file is empty"),
+    "blank": (b"  \n\t\n", "the file is empty"),
+    "binary": (bytes(range(256)) * 40, "this is not an XML file: it does not start with '<'"),
+    "truncated": (b'<?xml version="1.0"?>\n<robot name="r">\n  <link name="a">',
+                  "XML syntax error: Premature end of data in tag link line 3"),
+    "deep": (b'<robot name="r">' + b"<a>" * 5000 + b"</a>" * 5000 + b"</robot>",
+             "XML syntax error: elements are nested more than 256 deep (no URDF needs that)"),
+    "entity_bomb": (
+        b'<?xml version="1.0"?>\n<!DOCTYPE lolz [\n <!ENTITY lol "lol">\n'
+        + b"".join(
+            b' <!ENTITY lol%d "%s">\n' % (i, (b"&lol%d;" % (i - 1) if i > 1 else b"&lol;") * 10)
+            for i in range(1, 10)
+        )
+        + b']>\n<robot name="&lol9;"><link name="a"/></robot>',
+        "XML entity declarations are not allowed",
+    ),
+    "undefined_entity": (b'<robot name="&foo;"><link name="a"/></robot>',
+                         "XML syntax error: Entity 'foo' not defined"),
+}
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_bad_input_is_one_clear_line(name: str, tmp_path: Path) -> None:
+    data, message = CASES[name]
+    path = tmp_path / f"{name}.urdf"
+    path.write_bytes(data)
+    result = CliRunner().invoke(cli, ["check", str(path)])
+    assert result.exit_code == 1
+    assert result.exception is None or isinstance(result.exception, SystemExit)
+    assert result.stdout == ""
+    lines = result.stderr.splitlines()
+    assert len(lines) == 1, lines
+    assert lines[0].startswith(f"{path}:")
+    assert f"error: {message}" in lines[0]
+    assert lines[0].endswith("[xml-syntax]")
+    assert "Traceback" not in result.stderr
+
+
+def test_external_entity_is_not_read(tmp_path: Path) -> None:
+    secret = tmp_path / "secret.txt"
+    secret.write_text(SECRET)
+    for target in (secret.as_uri(), "file:///etc/passwd"):
+        data = (
+            '<?xml version="1.0"?>\n<!DOCTYPE r [<!ENTITY xxe SYSTEM "' + target + '">]>\n'
+            '<robot name="r"><link name="&xxe;"/></robot>'
+        ).encode()
+        with pytest.raises(XmlSyntaxError) as info:
+            check_file(data, path="xxe.urdf")
+        line = data.decode().splitlines()[1]
+        assert (info.value.line, info.value.column) == (2, line.index("<!ENTITY") + 1)
+        assert SECRET not in str(info.value)
+        assert "root:" not in str(info.value)
+
+
+def test_parameter_entity_is_refused() -> None:
+    data = b'<!DOCTYPE r [<!ENTITY % p SYSTEM "http://example.invalid/x.dtd"> %p;]><robot/>'
+    with pytest.raises(XmlSyntaxError, match="entity declarations are not allowed"):
+        check_file(data)
+
+
+def test_a_plain_doctype_is_harmless() -> None:
+    assert check_file(b'<!DOCTYPE robot>\n<robot name="r"><link name="a"/></robot>').ok
+
+
+def test_utf16_file_is_read() -> None:
+    text = '<?xml version="1.0" encoding="UTF-16"?><robot name="r"><link name="a"/></robot>'
+    assert check_file(text.encode("utf-16")).ok
+
+
+def test_ten_megabyte_robot(tmp_path: Path) -> None:
+    parts = ['<?xml version="1.0"?>\n<robot name="big">\n<link name="l0"/>\n']
+    size, i = 0, 0
+    while size < 10_000_000:
+        i += 1
+        chunk = (
+            f'<link name="l{i}"><visual><geometry><box size="0.1 0.1 0.1"/></geometry>'
+            f'</visual><!-- {"padding " * 20} --></link>\n'
+            f'<joint name="j{i}" type="fixed"><parent link="l{i - 1}"/><child link="l{i}"/>'
+            '<origin xyz="0 0 0.1"/></joint>\n'
+        )
+        parts.append(chunk)
+        size += len(chunk)
+    parts.append("</robot>\n")
+    path = tmp_path / "big.urdf"
+    path.write_text("".join(parts))
+    assert path.stat().st_size > 10_000_000
+    result = check_file(path)
+    assert result.ok
+    assert result.robot is not None and len(result.robot.links) == i + 1
+
+
+def test_unreadable_file_is_exit_2(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    path = tmp_path / "locked.urdf"
+    path.write_text('<robot name="r"><link name="a"/></robot>')
+
+    def refuse(self: Path) -> bytes:
+        raise PermissionError(13, "Permission denied", str(self))
+
+    # Simulated: file permissions do not stop root, which CI runs as.
+    monkeypatch.setattr(Path, "read_bytes", refuse)
+    result = CliRunner().invoke(cli, ["check", str(path)])
+    assert result.exit_code == 2
+    assert result.stderr == f"{path}: error: permission denied [io]\n"
