@@ -83,67 +83,89 @@ def parse_xml(data: bytes, path: str = STRING_PATH) -> etree._Element:
     return root
 
 
-class Locator:
-    """Finds where elements start in the raw bytes, in document order, in linear time.
+# Every start tag, in document order; comments, CDATA, processing instructions and the DOCTYPE
+# are matched too so that a "<tag" inside them is not taken for an element.
+_MARKUP = re.compile(
+    rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>|<!DOCTYPE(?:[^\[>]|\[.*?\])*>|(<)[^/!?]",
+    re.DOTALL,
+)
+_AFTER_TAG = frozenset(b" \t\r\n/>")
 
-    lxml reports the line where a start tag *ends*, and no column, so the locator scans the
-    bytes itself: each call looks for ``<tag`` after the previous match, skipping comments.
-    Callers must ask for elements in document order (parents before children).
+
+class Locator:
+    """Exact line and column of every element's start tag, in linear time.
+
+    lxml reports the line where a start tag *ends*, and no column, so one regular-expression
+    pass over the bytes lists where every start tag begins, in document order. Callers
+    visit elements in document order and ``skip`` the subtrees they do not read; each
+    ``locate`` checks the tag name, so a missed subtree only costs a short scan.
     """
 
-    __slots__ = ("_column_at_cursor", "_cursor", "_data", "_last", "_line", "path")
+    __slots__ = (
+        "_ascii", "_chars_at", "_data", "_index", "_last", "_line", "_line_start", "_pos",
+        "_starts", "_tags", "path",
+    )
 
     def __init__(self, data: bytes, path: str) -> None:
         self._data = data
         self.path = path
-        self._cursor = 0  # byte offset just after the last element found
-        self._line = 1  # line number at _cursor
-        self._column_at_cursor = 1  # 1-based character column at _cursor
+        self._starts = [s for m in _MARKUP.finditer(data) if (s := m.start(1)) >= 0]
+        self._index = 0  # next entry of _starts to hand out
+        self._ascii = data.isascii()
+        self._pos = 0  # byte offset of the last element located
+        self._line = 1  # its line
+        self._line_start = 0  # byte offset where that line starts
+        self._chars_at = (0, 0)  # (byte offset, characters since line start), non-ASCII only
+        self._tags: dict[str, bytes] = {}
         self._last: tuple[Location, int] | None = None  # the last element found, and its offset
 
-    @staticmethod
-    def _chars(data: bytes) -> int:
-        return len(data) if data.isascii() else len(data.decode("utf-8", "replace"))
-
-    def _advance(self, offset: int) -> tuple[int, int]:
-        """Line and column of ``offset`` (>= cursor), scanning only the bytes in between."""
+    def _position(self, offset: int) -> tuple[int, int]:
         data = self._data
-        newlines = data.count(b"\n", self._cursor, offset)
-        if newlines:
-            line_start = data.rfind(b"\n", self._cursor, offset) + 1
-            return self._line + newlines, self._chars(data[line_start:offset]) + 1
-        return self._line, self._column_at_cursor + self._chars(data[self._cursor : offset])
-
-    def _find(self, tag: bytes) -> int:
-        data = self._data
-        needle = b"<" + tag
-        pos = self._cursor if self._last is None else self._cursor + 1
-        while True:
-            found = data.find(needle, pos)
-            if found < 0:
-                return -1
-            comment = data.find(b"<!--", pos, found)
-            if comment >= 0:
-                end = data.find(b"-->", comment + 4)
-                pos = len(data) if end < 0 else end + 3
-                continue
-            after = data[found + len(needle) : found + len(needle) + 1]
-            if after and after not in b" \t\r\n/>":
-                pos = found + 1
-                continue
-            return found
+        if offset > self._pos:
+            newlines = data.count(b"\n", self._pos, offset)
+            if newlines:
+                self._line += newlines
+                self._line_start = data.rfind(b"\n", self._pos, offset) + 1
+                self._chars_at = (self._line_start, 0)
+            self._pos = offset
+        if self._ascii:
+            return self._line, offset - self._line_start + 1
+        # Count characters, not bytes, carrying the count along the line (a long one-line
+        # file stays linear).
+        base, chars = self._chars_at
+        if offset < base:
+            base, chars = self._line_start, 0
+        chars += len(data[base:offset].decode("utf-8", "replace"))
+        self._chars_at = (offset, chars)
+        return self._line, chars + 1
 
     def locate(self, element: etree._Element) -> Location:
-        """The location of ``element``'s start tag; advances the cursor past it."""
+        """The location of ``element``'s start tag (the next one of its name)."""
         tag = element.tag
-        found = self._find(tag.encode("utf-8")) if isinstance(tag, str) else -1
-        if found < 0:
+        if not isinstance(tag, str):
             return Location(self.path, element.sourceline or 1, 1)
-        line, column = self._advance(found)
-        location = Location(self.path, line, column)
-        self._line, self._column_at_cursor, self._cursor = line, column, found
-        self._last = (location, found)
-        return location
+        name = self._tags.get(tag)
+        if name is None:
+            name = self._tags[tag] = b"<" + tag.encode("utf-8")
+        data, starts, size = self._data, self._starts, len(name)
+        for index in range(self._index, len(starts)):
+            offset = starts[index]
+            if data.startswith(name, offset) and data[offset + size] in _AFTER_TAG:
+                self._index = index + 1
+                line, column = self._position(offset)
+                location = Location(self.path, line, column)
+                self._last = (location, offset)
+                return location
+        return Location(self.path, element.sourceline or 1, 1)
+
+    def skip(self, element: etree._Element) -> None:
+        """Pass over ``element`` and everything inside it without locating them."""
+        self.locate(element)
+        self.skip_children(element)
+
+    def skip_children(self, element: etree._Element) -> None:
+        """Pass over everything inside ``element`` (already located)."""
+        self._index += sum(1 for node in element.iterdescendants() if isinstance(node.tag, str))
 
     def attribute(self, location: Location, name: str) -> Location:
         """The location of attribute ``name`` in the start tag found at ``location``.
@@ -160,7 +182,7 @@ class Locator:
         match = pattern.search(data, tag_start, tag_end if tag_end >= 0 else len(data))
         if match is None:
             return location
-        line, column = self._advance(match.start() + 1)
+        line, column = self._position(match.start() + 1)
         return Location(self.path, line, column)
 
 

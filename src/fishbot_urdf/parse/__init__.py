@@ -1,0 +1,105 @@
+"""URDF text or file -> Robot. Every element keeps its file, line and column.
+
+``read`` is lenient (it collects every finding); ``load`` and ``parse`` are strict (they raise
+RobotError listing every finding).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..diagnostics import Diagnostic
+from ..errors import RobotError, UnsupportedInputError
+from ..model import Robot
+from ..xmlsource import STRING_PATH, Locator, parse_xml, read_bytes
+from ._reader import Reader
+from .values import to_double
+
+__all__ = ["Parsed", "is_xacro_path", "load", "parse", "read", "to_double"]
+
+
+@dataclass(frozen=True, slots=True)
+class Parsed:
+    """The outcome of reading one file leniently.
+
+    Attributes:
+        path: The file read ('<string>' for bytes).
+        robot: The robot, possibly with faults; None if the file has no <robot>.
+        diagnostics: Every finding made while reading, in document order.
+    """
+
+    path: str
+    robot: Robot | None
+    diagnostics: tuple[Diagnostic, ...]
+
+
+def is_xacro_path(path: str | Path) -> bool:
+    """True for ``.xacro`` files (``robot.xacro``, ``robot.urdf.xacro``)."""
+    return str(path).lower().endswith(".xacro")
+
+
+def read(source: str | Path | bytes, *, path: str | None = None) -> Parsed:
+    """Read a URDF leniently, collecting every finding instead of stopping at the first.
+
+    Args:
+        source: A file path, or the document itself as bytes.
+        path: The name to report (default: the file path, or ``<string>`` for bytes).
+
+    Raises:
+        InputError: The file cannot be read.
+        XmlSyntaxError: The file is not well-formed XML.
+        UnsupportedInputError: The file is a .xacro file.
+    """
+    if isinstance(source, bytes):
+        data, name = source, path or STRING_PATH
+    else:
+        name = path or str(source)
+        if is_xacro_path(source):
+            raise UnsupportedInputError(
+                "this is a xacro file; xacro input is not supported yet "
+                "(expand it to URDF first, e.g. `xacro robot.urdf.xacro > robot.urdf`; "
+                "`fishbot expand` is coming)",
+                path=name,
+            )
+        data = read_bytes(source)
+    root = parse_xml(data, name)
+    reader = Reader(Locator(data, name))
+    robot = reader.robot(root)
+    return Parsed(name, robot, tuple(reader.diagnostics))
+
+
+def parse(text: str | bytes, *, path: str | None = None) -> Robot:
+    """Parse URDF text into a Robot.
+
+    Raises:
+        XmlSyntaxError: The text is not well-formed XML.
+        RobotError: An element is malformed (``.diagnostics`` lists every finding).
+    """
+    if isinstance(text, str):
+        # A str is decoded already: an encoding declaration in it would mislead lxml.
+        data = re.sub(rb"^\s*<\?xml[^>]*\?>", b"", text.encode("utf-8"), count=1)
+    else:
+        data = text
+    return _strict(read(data, path=path or STRING_PATH))
+
+
+def load(path: str | Path) -> Robot:
+    """Load a URDF file into a Robot.
+
+    The tree's structure (undefined links, loops, ...) is checked by ``fishbot_urdf.check``.
+
+    Raises:
+        InputError: The file cannot be read.
+        XmlSyntaxError: The file is not well-formed XML.
+        RobotError: An element is malformed (``.diagnostics`` lists every finding).
+    """
+    return _strict(read(path))
+
+
+def _strict(parsed: Parsed) -> Robot:
+    errors = [d for d in parsed.diagnostics if d.is_error]
+    if errors or parsed.robot is None:
+        raise RobotError(errors, path=parsed.path)
+    return parsed.robot

@@ -1,0 +1,148 @@
+"""What every element reader shares: findings, attribute values, skipping unread elements."""
+
+from __future__ import annotations
+
+from lxml import etree
+
+from ..diagnostics import Diagnostic, Severity
+from ..model import ZERO3, Location, Vector3
+from ..xmlsource import Locator, diagnostic
+from .values import to_double
+
+
+def xml_text(element: etree._Element) -> str:
+    """An element URDF does not define, as compact XML text (layout white space dropped, so
+    that a robot written out with another indentation reads back equal)."""
+    copy = etree.fromstring(etree.tostring(element, with_tail=False))
+    for node in copy.iter():
+        if node.text is not None and not node.text.strip():
+            node.text = None
+        if node.tail is not None and not node.tail.strip():
+            node.tail = None
+    return etree.tostring(copy, encoding="unicode")
+
+
+class ReaderBase:
+    """Collects findings while the model is built; reads attribute values."""
+
+    def __init__(self, locator: Locator) -> None:
+        self.locator = locator
+        self.diagnostics: list[Diagnostic] = []
+
+    # -- findings ---------------------------------------------------------------------------
+    def error(
+        self,
+        rule: str,
+        message: str,
+        location: Location | None,
+        hint: str | None = None,
+        severity: Severity = Severity.ERROR,
+    ) -> None:
+        self.diagnostics.append(
+            diagnostic(rule, message, location, hint=hint, severity=severity,
+                       path=self.locator.path)
+        )
+
+    def warn(self, rule: str, message: str, location: Location, hint: str | None = None) -> None:
+        self.error(rule, message, location, hint, Severity.WARNING)
+
+    def missing(self, el: etree._Element, at: Location, attr: str, owner: str, value: str) -> None:
+        self.error("missing-attribute", f"{owner}: <{el.tag}> has no {attr!r} attribute", at,
+                   f"write <{el.tag} {attr}=\"{value}\">")
+
+    def extra(self, el: etree._Element) -> str:
+        """Keep an element URDF does not define, as XML text."""
+        self.locator.skip(el)
+        return xml_text(el)
+
+    def ignored(self, el: etree._Element, owner: str, parent: str, allowed: str) -> None:
+        """Warn about an element that has no meaning where it stands, and pass over it."""
+        at = self.locator.locate(el)
+        self.locator.skip_children(el)
+        self.warn("unknown-element", f"{owner}: <{el.tag}> is not allowed inside <{parent}> "
+                  "and is ignored", at, allowed)
+
+    # -- attributes -------------------------------------------------------------------------
+    def text(self, el: etree._Element, at: Location, attr: str, owner: str) -> str | None:
+        """A required string attribute; reports ``missing-attribute`` when absent or empty."""
+        value = el.get(attr)
+        if not value:
+            self.missing(el, at, attr, owner, "...")
+            return None
+        return value
+
+    def number(
+        self,
+        el: etree._Element,
+        at: Location,
+        attr: str,
+        owner: str,
+        default: float = 0.0,
+        *,
+        required: bool = False,
+    ) -> float:
+        value = el.get(attr)
+        if value is None:
+            if required:
+                self.missing(el, at, attr, owner, "NUMBER")
+            return default
+        number = to_double(value) if value else None
+        if number is None:
+            self.error("bad-number", f"{owner}: <{el.tag} {attr}=\"{value}\"> is not a number",
+                       self.locator.attribute(at, attr),
+                       "write a finite decimal like 0.5 or 1e-3, with no units or trailing "
+                       "spaces")
+            return default
+        return number
+
+    def optional_number(
+        self, el: etree._Element, at: Location, attr: str, owner: str
+    ) -> float | None:
+        return None if el.get(attr) is None else self.number(el, at, attr, owner)
+
+    def numbers(
+        self,
+        el: etree._Element,
+        at: Location,
+        attr: str,
+        owner: str,
+        count: int,
+        meaning: str,
+    ) -> list[float] | None:
+        """``count`` numbers separated by spaces; None (and a finding) when malformed."""
+        value = el.get(attr, "")
+        # urdfdom splits on spaces and drops empty pieces.
+        pieces = value.split(" ")
+        if "" in pieces:
+            pieces = [p for p in pieces if p]
+        if len(pieces) != count:
+            self.error("bad-vector", f"{owner}: <{el.tag} {attr}=\"{value}\"> has {len(pieces)} "
+                       f"value{'' if len(pieces) == 1 else 's'}, {count} are needed",
+                       self.locator.attribute(at, attr),
+                       f"write {attr}=\"{meaning}\" separated by spaces")
+            return None
+        numbers = [to_double(p) for p in pieces]
+        if None in numbers:
+            bad = pieces[numbers.index(None)]
+            self.error("bad-number", f"{owner}: <{el.tag} {attr}=\"{value}\">: {bad!r} is not "
+                       "a number", self.locator.attribute(at, attr),
+                       f"write {attr}=\"{meaning}\" as finite decimals separated by spaces")
+            return None
+        return numbers  # type: ignore[return-value]
+
+    def vector3(
+        self,
+        el: etree._Element,
+        at: Location,
+        attr: str,
+        owner: str,
+        default: Vector3 = ZERO3,
+        *,
+        required: bool = False,
+    ) -> Vector3:
+        if el.get(attr) is None:
+            if required:
+                self.missing(el, at, attr, owner, "x y z")
+            return default
+        found = self.numbers(el, at, attr, owner, 3, "x y z")
+        return default if found is None else (found[0], found[1], found[2])

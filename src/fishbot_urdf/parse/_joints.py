@@ -1,0 +1,133 @@
+"""Readers for <joint> and what it holds."""
+
+from __future__ import annotations
+
+from lxml import etree
+
+from ..model import (
+    DEFAULT_AXIS,
+    Calibration,
+    Dynamics,
+    Joint,
+    JointType,
+    Limit,
+    Location,
+    Mimic,
+    Origin,
+    SafetyController,
+)
+from ._links import LinkReader
+
+_TYPES = {t.value: t for t in JointType}
+
+
+class JointReader(LinkReader):
+    """Builds Joint and its parts."""
+
+    def joint_type(self, el: etree._Element, at: Location, owner: str) -> JointType:
+        text = el.get("type")
+        found = _TYPES.get(text or "")
+        if found is not None:
+            return found
+        if not text:
+            self.error("joint-type", f"{owner}: has no type", at,
+                       "write type=\"revolute|continuous|prismatic|fixed|floating|planar\"")
+        else:
+            self.error("joint-type", f"{owner}: type {text!r} is not a URDF joint type",
+                       self.locator.attribute(at, "type"),
+                       "use revolute, continuous, prismatic, fixed, floating or planar")
+        return JointType.FIXED  # stands in so that the rest can still be checked
+
+    def joint(self, el: etree._Element, at: Location) -> Joint:
+        name = self.text(el, at, "name", "joint") or ""
+        owner = f"joint {name!r}"
+        joint_type = self.joint_type(el, at, owner)
+        parts: dict[str, object] = {}
+        ends: dict[str, tuple[str, Location]] = {}
+        extras: list[str] = []
+        for child in el:
+            tag = child.tag
+            if not isinstance(tag, str):
+                continue
+            if tag not in _PARTS:
+                extras.append(self.extra(child))
+                continue
+            c_at = self.locator.locate(child)
+            if tag in parts or tag in ends:
+                self.locator.skip_children(child)
+                self.warn("duplicate-element", f"{owner}: a second <{tag}> is ignored", c_at,
+                          f"a joint has at most one <{tag}>")
+            elif tag == "parent" or tag == "child":
+                ends[tag] = (self.text(child, c_at, "link", owner) or "", c_at)
+            else:
+                parts[tag] = _PARTS[tag](self, child, c_at, owner)
+        for end in ("parent", "child"):
+            if end not in ends:
+                self.error("missing-element", f"{owner}: has no <{end}>", at,
+                           f"write <{end} link=\"LINK_NAME\"/>")
+        parent, parent_at = ends.get("parent", ("", None))
+        child_name, child_at = ends.get("child", ("", None))
+        return Joint(
+            name,
+            joint_type,
+            parent,
+            child_name,
+            parts.get("origin", Origin()),  # type: ignore[arg-type]
+            parts.get("axis", DEFAULT_AXIS),  # type: ignore[arg-type]
+            parts.get("limit"),  # type: ignore[arg-type]
+            parts.get("dynamics"),  # type: ignore[arg-type]
+            parts.get("calibration"),  # type: ignore[arg-type]
+            parts.get("mimic"),  # type: ignore[arg-type]
+            parts.get("safety_controller"),  # type: ignore[arg-type]
+            tuple(extras),
+            at,
+            parent_at,
+            child_at,
+        )
+
+    def axis(self, el: etree._Element, at: Location, owner: str) -> tuple[float, ...]:
+        return self.vector3(el, at, "xyz", owner, DEFAULT_AXIS, required=True)
+
+    def limit(self, el: etree._Element, at: Location, owner: str) -> Limit:
+        return Limit(
+            effort=self.number(el, at, "effort", owner, required=True),
+            velocity=self.number(el, at, "velocity", owner, required=True),
+            lower=self.number(el, at, "lower", owner),
+            upper=self.number(el, at, "upper", owner),
+            source=at,
+        )
+
+    def dynamics(self, el: etree._Element, at: Location, owner: str) -> Dynamics:
+        return Dynamics(self.number(el, at, "damping", owner),
+                        self.number(el, at, "friction", owner), at)
+
+    def calibration(self, el: etree._Element, at: Location, owner: str) -> Calibration:
+        return Calibration(self.optional_number(el, at, "rising", owner),
+                           self.optional_number(el, at, "falling", owner), at)
+
+    def mimic(self, el: etree._Element, at: Location, owner: str) -> Mimic:
+        return Mimic(self.text(el, at, "joint", owner) or "",
+                     self.number(el, at, "multiplier", owner, 1.0),
+                     self.number(el, at, "offset", owner), at)
+
+    def safety_controller(self, el: etree._Element, at: Location, owner: str) -> SafetyController:
+        return SafetyController(
+            k_velocity=self.number(el, at, "k_velocity", owner, required=True),
+            k_position=self.number(el, at, "k_position", owner),
+            soft_lower_limit=self.number(el, at, "soft_lower_limit", owner),
+            soft_upper_limit=self.number(el, at, "soft_upper_limit", owner),
+            source=at,
+        )
+
+
+_PARTS = {
+    "parent": None,
+    "child": None,
+    "origin": JointReader.origin,
+    "axis": JointReader.axis,
+    "limit": JointReader.limit,
+    "dynamics": JointReader.dynamics,
+    "calibration": JointReader.calibration,
+    "mimic": JointReader.mimic,
+    "safety_controller": JointReader.safety_controller,
+}

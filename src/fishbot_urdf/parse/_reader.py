@@ -1,0 +1,48 @@
+"""The top of the reader: <robot> and the elements directly inside it."""
+
+from __future__ import annotations
+
+from lxml import etree
+
+from ..model import Joint, Link, Material, Robot
+from ._joints import JointReader
+
+# urdfdom knows only version 1.0; 1.1 is accepted by newer urdfdom releases.
+_VERSIONS = ("1.0", "1.1")
+
+
+class Reader(JointReader):
+    """Builds a Robot from the lxml tree, collecting findings as it goes."""
+
+    def robot(self, el: etree._Element) -> Robot | None:
+        at = self.locator.locate(el)
+        if el.tag != "robot":
+            self.error("no-robot", f"the root element is <{el.tag}>, not <robot>", at,
+                       "a URDF file holds one <robot name=\"...\"> element")
+            return None
+        name = el.get("name")
+        if not name:
+            self.error("robot-name", "<robot> has no name", at, "write <robot name=\"my_robot\">")
+        version = el.get("version")
+        if version is not None and version not in _VERSIONS:
+            self.error("robot-version",
+                       f"<robot version=\"{version}\"> is not a URDF version this tool knows",
+                       self.locator.attribute(at, "version"),
+                       "use version=\"1.0\" or leave the attribute out")
+        links: list[Link] = []
+        joints: list[Joint] = []
+        materials: list[Material] = []
+        extras: list[str] = []
+        locate = self.locator.locate
+        for child in el:
+            tag = child.tag
+            if tag == "link":
+                links.append(self.link(child, locate(child)))
+            elif tag == "joint":
+                joints.append(self.joint(child, locate(child)))
+            elif tag == "material":
+                materials.append(self.material(child, locate(child), "robot"))
+            elif isinstance(tag, str):
+                extras.append(self.extra(child))
+        return Robot(name or "", tuple(links), tuple(joints), tuple(materials), version,
+                     tuple(extras), at)
