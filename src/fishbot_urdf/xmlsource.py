@@ -86,9 +86,10 @@ def parse_xml(data: bytes, path: str = STRING_PATH) -> etree._Element:
 # Every start tag, in document order; comments, CDATA, processing instructions and the DOCTYPE
 # are matched too so that a "<tag" inside them is not taken for an element.
 _MARKUP = re.compile(
-    rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>|<!DOCTYPE(?:[^\[>]|\[.*?\])*>|(<)[^/!?]",
+    rb"<(?:!--.*?-->|!\[CDATA\[.*?\]\]>|\?.*?\?>|!DOCTYPE(?:[^\[>]|\[.*?\])*>|([^/!?]))",
     re.DOTALL,
 )
+_START_TAG = re.compile(rb"<[^/!?]")  # enough when there are no comments, CDATA or DOCTYPE
 _AFTER_TAG = frozenset(b" \t\r\n/>")
 
 
@@ -109,7 +110,10 @@ class Locator:
     def __init__(self, data: bytes, path: str) -> None:
         self._data = data
         self.path = path
-        self._starts = [s for m in _MARKUP.finditer(data) if (s := m.start(1)) >= 0]
+        if b"<!" in data:
+            self._starts = [m.start() for m in _MARKUP.finditer(data) if m.lastindex]
+        else:
+            self._starts = [m.start() for m in _START_TAG.finditer(data)]
         self._index = 0  # next entry of _starts to hand out
         self._ascii = data.isascii()
         self._pos = 0  # byte offset of the last element located
