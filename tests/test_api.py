@@ -1,0 +1,91 @@
+"""Drift: the public API resolves, the README's commands and the examples run as written."""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from conftest import ROOT
+
+import fishbot_urdf
+
+README = (ROOT / "README.md").read_text(encoding="utf-8")
+EXAMPLES = sorted((ROOT / "examples").glob("*.py"))
+
+
+def _quickstart() -> list[str]:
+    section = README.split("## Quickstart", 1)[1]
+    block = re.search(r"```bash\n(.*?)```", section, re.DOTALL)
+    assert block is not None
+    return [line for line in block.group(1).splitlines() if line.strip()]
+
+
+def test_every_name_in_all_resolves() -> None:
+    for name in fishbot_urdf.__all__:
+        assert getattr(fishbot_urdf, name) is not None, name
+    assert sorted(fishbot_urdf.__all__) == fishbot_urdf.__all__
+
+
+def test_version_comes_from_the_package_metadata() -> None:
+    from importlib.metadata import version
+
+    assert fishbot_urdf.__version__ == version("fishbot-urdf")
+
+
+def test_type_hints_are_shipped() -> None:
+    assert (Path(fishbot_urdf.__file__).parent / "py.typed").exists()
+
+
+def test_quickstart_is_two_commands_and_ci_runs_the_second() -> None:
+    commands = _quickstart()
+    assert len(commands) == 2
+    install_and_check, run_tests = commands
+    assert "fishbot check robots/fishbot/" in install_and_check
+    ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
+    assert run_tests in ci.splitlines()
+
+
+def test_quickstart_check_command_runs() -> None:
+    # The part after the install: the installed package is the one under test.
+    command = _quickstart()[0].split("&&", 1)[1].strip()
+    args = command.split()
+    assert args[0] == "fishbot"
+    proc = subprocess.run(
+        [sys.executable, "-m", "fishbot_urdf", *args[1:]],
+        cwd=ROOT, capture_output=True, text=True, check=False,
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.startswith("robot name is: ")
+
+
+def test_readme_architecture_names_every_module() -> None:
+    package = Path(fishbot_urdf.__file__).parent
+    modules = {p.name for p in package.iterdir() if p.suffix == ".py" and p.name[0] != "_"}
+    modules |= {p.name + "/" for p in package.iterdir() if (p / "__init__.py").exists()}
+    section = README.split("## Architecture", 1)[1].split("\n## ", 1)[0]
+    for module in modules:
+        assert f"`{module}`" in section, module
+
+
+@pytest.mark.parametrize("example", EXAMPLES, ids=[p.name for p in EXAMPLES])
+def test_example_runs(example: Path) -> None:
+    proc = subprocess.run([sys.executable, str(example)], capture_output=True, text=True,
+                          check=False, cwd=ROOT)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.strip()
+    assert proc.stderr == ""
+
+
+def test_first_robot_example_output() -> None:
+    proc = subprocess.run([sys.executable, str(ROOT / "examples" / "inspect_first_robot.py")],
+                          capture_output=True, text=True, check=True)
+    assert proc.stdout.splitlines() == [
+        "robot first_robot: 2 links, 1 joints",
+        "  link  base_link  cylinder",
+        "  link  imu_link   box",
+        "  joint imu_joint  fixed      base_link -> imu_link at (0, 0, 0.03) m",
+        "check: ok",
+    ]
