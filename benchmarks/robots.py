@@ -10,7 +10,7 @@ from pathlib import Path
 def _link(i: int) -> str:
     return (
         f'  <link name="link_{i}">\n'
-        "    <inertial><mass value=\"0.1\"/>"
+        '    <inertial><mass value="0.1"/>'
         '<inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" iyz="0" izz="1e-4"/></inertial>\n'
         '    <visual><geometry><box size="0.05 0.05 0.1"/></geometry></visual>\n'
         '    <collision><geometry><box size="0.05 0.05 0.1"/></geometry></collision>\n'

@@ -20,8 +20,10 @@ def main() -> None:
         print(f"  link  {link.name:<10} {shapes}")
     for joint in robot.joints:
         x, y, z = joint.origin.xyz
-        print(f"  joint {joint.name:<10} {joint.type.value:<10} {joint.parent} -> {joint.child}"
-              f" at ({x:g}, {y:g}, {z:g}) m")
+        print(
+            f"  joint {joint.name:<10} {joint.type.value:<10} {joint.parent} -> {joint.child}"
+            f" at ({x:g}, {y:g}, {z:g}) m"
+        )
     findings = fishbot_urdf.check(robot)
     print("check:", "ok" if not findings else f"{len(findings)} finding(s)")
 

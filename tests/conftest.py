@@ -38,10 +38,6 @@ def run_check_urdf(path: Path) -> subprocess.CompletedProcess[bytes]:
 
 def corpus() -> list[Path]:
     """Every URDF shipped by the example-robot-data package (a test dependency)."""
-    try:
-        import example_robot_data  # noqa: F401  (the cmeel package has no Python module)
-    except ImportError:
-        pass
     import sysconfig
 
     roots = {Path(sysconfig.get_paths()[key]) for key in ("purelib", "platlib")}

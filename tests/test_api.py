@@ -55,7 +55,10 @@ def test_quickstart_check_command_runs() -> None:
     assert args[0] == "fishbot"
     proc = subprocess.run(
         [sys.executable, "-m", "fishbot_urdf", *args[1:]],
-        cwd=ROOT, capture_output=True, text=True, check=False,
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=False,
     )
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.startswith("robot name is: ")
@@ -72,16 +75,21 @@ def test_readme_architecture_names_every_module() -> None:
 
 @pytest.mark.parametrize("example", EXAMPLES, ids=[p.name for p in EXAMPLES])
 def test_example_runs(example: Path) -> None:
-    proc = subprocess.run([sys.executable, str(example)], capture_output=True, text=True,
-                          check=False, cwd=ROOT)
+    proc = subprocess.run(
+        [sys.executable, str(example)], capture_output=True, text=True, check=False, cwd=ROOT
+    )
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.strip()
     assert proc.stderr == ""
 
 
 def test_first_robot_example_output() -> None:
-    proc = subprocess.run([sys.executable, str(ROOT / "examples" / "inspect_first_robot.py")],
-                          capture_output=True, text=True, check=True)
+    proc = subprocess.run(
+        [sys.executable, str(ROOT / "examples" / "inspect_first_robot.py")],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     assert proc.stdout.splitlines() == [
         "robot first_robot: 2 links, 1 joints",
         "  link  base_link  cylinder",

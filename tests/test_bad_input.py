@@ -17,10 +17,14 @@ CASES: dict[str, tuple[bytes, str]] = {
     "empty": (b"", "the file is empty"),
     "blank": (b"  \n\t\n", "the file is empty"),
     "binary": (bytes(range(256)) * 40, "this is not an XML file: it does not start with '<'"),
-    "truncated": (b'<?xml version="1.0"?>\n<robot name="r">\n  <link name="a">',
-                  "XML syntax error: Premature end of data in tag link line 3"),
-    "deep": (b'<robot name="r">' + b"<a>" * 5000 + b"</a>" * 5000 + b"</robot>",
-             "XML syntax error: elements are nested more than 256 deep (no URDF needs that)"),
+    "truncated": (
+        b'<?xml version="1.0"?>\n<robot name="r">\n  <link name="a">',
+        "XML syntax error: Premature end of data in tag link line 3",
+    ),
+    "deep": (
+        b'<robot name="r">' + b"<a>" * 5000 + b"</a>" * 5000 + b"</robot>",
+        "XML syntax error: elements are nested more than 256 deep (no URDF needs that)",
+    ),
     "entity_bomb": (
         b'<?xml version="1.0"?>\n<!DOCTYPE lolz [\n <!ENTITY lol "lol">\n'
         + b"".join(
@@ -30,8 +34,10 @@ CASES: dict[str, tuple[bytes, str]] = {
         + b']>\n<robot name="&lol9;"><link name="a"/></robot>',
         "XML entity declarations are not allowed",
     ),
-    "undefined_entity": (b'<robot name="&foo;"><link name="a"/></robot>',
-                         "XML syntax error: Entity 'foo' not defined"),
+    "undefined_entity": (
+        b'<robot name="&foo;"><link name="a"/></robot>',
+        "XML syntax error: Entity 'foo' not defined",
+    ),
 }
 
 
@@ -90,7 +96,7 @@ def test_ten_megabyte_robot(tmp_path: Path) -> None:
         i += 1
         chunk = (
             f'<link name="l{i}"><visual><geometry><box size="0.1 0.1 0.1"/></geometry>'
-            f'</visual><!-- {"padding " * 20} --></link>\n'
+            f"</visual><!-- {'padding ' * 20} --></link>\n"
             f'<joint name="j{i}" type="fixed"><parent link="l{i - 1}"/><child link="l{i}"/>'
             '<origin xyz="0 0 0.1"/></joint>\n'
         )

@@ -58,18 +58,22 @@ def test_warnings_pass_unless_strict() -> None:
 
 def test_missing_file_is_exit_2() -> None:
     assert run("check", "does/not/exist.urdf") == (
-        2, "", "does/not/exist.urdf: error: no such file [io]\n"
+        2,
+        "",
+        "does/not/exist.urdf: error: no such file [io]\n",
     )
 
 
 def test_a_folder_is_exit_2(tmp_path: Path) -> None:
     assert run("check", str(tmp_path)) == (
-        2, "", f"{tmp_path}: error: is a directory, not a file [io]\n"
+        2,
+        "",
+        f"{tmp_path}: error: is a directory, not a file [io]\n",
     )
 
 
 def test_bad_option_is_exit_2() -> None:
-    status, out, err = run("check", "--colour", str(FIRST))
+    status, _, err = run("check", "--colour", str(FIRST))
     assert status == 2
     assert "Error: No such option '--colour'" in err
     assert err.startswith("Usage: fishbot check ")
@@ -110,8 +114,13 @@ def test_json_report() -> None:
     assert report["ok"] is False
     first, second = report["files"]
     assert first == {
-        "path": str(FIRST), "ok": True, "robot": "first_robot", "root": "base_link",
-        "links": 2, "joints": 1, "diagnostics": [],
+        "path": str(FIRST),
+        "ok": True,
+        "robot": "first_robot",
+        "root": "base_link",
+        "links": 2,
+        "joints": 1,
+        "diagnostics": [],
     }
     assert second["ok"] is False
     assert [d["rule"] for d in second["diagnostics"]] == ["limit-range"]
@@ -135,7 +144,10 @@ def test_python_dash_m_and_no_color(tmp_path: Path) -> None:
     bad = DATA / "invalid" / "cycle.urdf"
     proc = subprocess.run(
         [sys.executable, "-m", "fishbot_urdf", "check", str(bad)],
-        capture_output=True, text=True, check=False, env={"NO_COLOR": "1", "PATH": ""},
+        capture_output=True,
+        text=True,
+        check=False,
+        env={"NO_COLOR": "1", "PATH": ""},
     )
     assert proc.returncode == 1
     assert proc.stdout == ""

@@ -56,7 +56,12 @@ def test_root_leaves_subtree_chain() -> None:
     robot = fishbot_urdf.load(ALL)
     assert fishbot_urdf.root(robot) == "base_link"
     assert fishbot_urdf.leaves(robot) == [
-        "finger_a", "finger_b", "world_marker", "drawer", "puck", "camera_link"
+        "finger_a",
+        "finger_b",
+        "world_marker",
+        "drawer",
+        "puck",
+        "camera_link",
     ]
     assert fishbot_urdf.subtree(robot, "arm") == ["arm", "finger_a", "finger_b"]
     assert fishbot_urdf.chain(robot, "base_link", "finger_b") == ["base_link", "arm", "finger_b"]

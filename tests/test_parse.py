@@ -97,7 +97,9 @@ def test_model_of_every_element() -> None:
     assert robot.joint("marker_joint").axis == (1.0, 0.0, 0.0)  # the spec's default
     assert {j.type for j in robot.joints} == set(JointType)
     assert [e.split(" ", 1)[0] for e in robot.extras] == [
-        "<transmission", "<gazebo", "<ros2_control"
+        "<transmission",
+        "<gazebo",
+        "<ros2_control",
     ]
 
 
@@ -112,7 +114,9 @@ def test_every_element_knows_its_line_and_column() -> None:
     shoulder = robot.joint("shoulder")
     assert shoulder.source == fishbot_urdf.Location(str(ALL), *where('<joint name="shoulder"'))
     assert shoulder.limit is not None and shoulder.limit.source is not None
-    assert (shoulder.limit.source.line, shoulder.limit.source.column) == where('<limit lower="-1.57"')
+    assert (shoulder.limit.source.line, shoulder.limit.source.column) == where(
+        '<limit lower="-1.57"'
+    )
     assert shoulder.parent_source is not None
     assert shoulder.parent_source.line == where('<parent link="base_link"/>')[0]
 
@@ -171,7 +175,9 @@ def test_round_trip(path: Path) -> None:
 
 
 def test_parse_accepts_str_with_an_encoding_declaration() -> None:
-    robot = parse('<?xml version="1.0" encoding="UTF-8"?>\n<robot name="机器人"><link name="a"/></robot>')
+    robot = parse(
+        '<?xml version="1.0" encoding="UTF-8"?>\n<robot name="机器人"><link name="a"/></robot>'
+    )
     assert robot.name == "机器人"
 
 

@@ -69,7 +69,11 @@ def _rules(robot: Robot, topo: Topology, path: str) -> Iterator[Diagnostic]:
 
 
 def _at(
-    rule: str, message: str, where: Location | None, path: str, hint: str | None = None,
+    rule: str,
+    message: str,
+    where: Location | None,
+    path: str,
+    hint: str | None = None,
     severity: Severity = Severity.ERROR,
 ) -> Diagnostic:
     return diagnostic(rule, message, where, hint=hint, severity=severity, path=path)
@@ -77,10 +81,18 @@ def _at(
 
 def _names(robot: Robot, path: str) -> Iterator[Diagnostic]:
     if not robot.links:
-        yield _at("no-links", f"robot {robot.name!r} has no links", robot.source, path,
-                  "a robot needs at least one <link name=\"...\">")
-    for kind, items in (("link", robot.links), ("joint", robot.joints),
-                        ("material", robot.materials)):
+        yield _at(
+            "no-links",
+            f"robot {robot.name!r} has no links",
+            robot.source,
+            path,
+            'a robot needs at least one <link name="...">',
+        )
+    for kind, items in (
+        ("link", robot.links),
+        ("joint", robot.joints),
+        ("material", robot.materials),
+    ):
         first: dict[str, Location | None] = {}
         for item in items:
             if not item.name:
@@ -88,8 +100,13 @@ def _names(robot: Robot, path: str) -> Iterator[Diagnostic]:
             if item.name in first:
                 where = first[item.name]
                 seen = f" (first defined at line {where.line})" if where else ""
-                yield _at(f"duplicate-{kind}", f"{kind} {item.name!r} is defined twice{seen}",
-                          item.source, path, f"every {kind} needs a unique name")
+                yield _at(
+                    f"duplicate-{kind}",
+                    f"{kind} {item.name!r} is defined twice{seen}",
+                    item.source,
+                    path,
+                    f"every {kind} needs a unique name",
+                )
             else:
                 first[item.name] = item.source
 
@@ -107,54 +124,98 @@ def _joints(robot: Robot, path: str) -> Iterator[Diagnostic]:
     joint_names = {joint.name for joint in robot.joints}
     for joint in robot.joints:
         owner = f"joint {joint.name!r}"
-        for end, name, where in (("parent", joint.parent, joint.parent_source),
-                                 ("child", joint.child, joint.child_source)):
+        for end, name, where in (
+            ("parent", joint.parent, joint.parent_source),
+            ("child", joint.child, joint.child_source),
+        ):
             if name and name not in link_names:
-                yield _at("undefined-link", f"{owner}: {end} link {name!r} is not defined",
-                          where or joint.source, path, _suggest(name, link_names))
+                yield _at(
+                    "undefined-link",
+                    f"{owner}: {end} link {name!r} is not defined",
+                    where or joint.source,
+                    path,
+                    _suggest(name, link_names),
+                )
         if joint.parent and joint.parent == joint.child:
-            yield _at("joint-self-loop", f"{owner}: parent and child are the same link "
-                      f"{joint.parent!r}", joint.child_source or joint.source, path,
-                      "a joint connects two different links")
+            yield _at(
+                "joint-self-loop",
+                f"{owner}: parent and child are the same link {joint.parent!r}",
+                joint.child_source or joint.source,
+                path,
+                "a joint connects two different links",
+            )
         yield from _limits(joint, owner, path)
         if joint.type.uses_axis and joint.axis == (0.0, 0.0, 0.0):
-            yield _at("zero-axis", f"{owner}: the axis is 0 0 0, so the joint cannot move",
-                      joint.source, path, "give a unit vector, e.g. <axis xyz=\"0 0 1\"/>")
+            yield _at(
+                "zero-axis",
+                f"{owner}: the axis is 0 0 0, so the joint cannot move",
+                joint.source,
+                path,
+                'give a unit vector, e.g. <axis xyz="0 0 1"/>',
+            )
         if joint.mimic is not None and joint.mimic.joint:
             if joint.mimic.joint not in joint_names:
                 close = difflib.get_close_matches(joint.mimic.joint, sorted(joint_names), n=1)
-                yield _at("undefined-mimic", f"{owner}: mimics joint {joint.mimic.joint!r}, "
-                          "which is not defined", joint.mimic.source, path,
-                          f"did you mean {close[0]!r}?" if close else "name an existing joint")
+                yield _at(
+                    "undefined-mimic",
+                    f"{owner}: mimics joint {joint.mimic.joint!r}, which is not defined",
+                    joint.mimic.source,
+                    path,
+                    f"did you mean {close[0]!r}?" if close else "name an existing joint",
+                )
             elif joint.mimic.joint == joint.name:
-                yield _at("undefined-mimic", f"{owner}: mimics itself", joint.mimic.source,
-                          path, "name another joint")
+                yield _at(
+                    "undefined-mimic",
+                    f"{owner}: mimics itself",
+                    joint.mimic.source,
+                    path,
+                    "name another joint",
+                )
 
 
 def _limits(joint: Joint, owner: str, path: str) -> Iterator[Diagnostic]:
     limit = joint.limit
     if limit is None:
         if joint.type.needs_limit:
-            yield _at("missing-limit", f"{owner}: a {joint.type.value} joint needs <limit>",
-                      joint.source, path,
-                      "write <limit lower=\"..\" upper=\"..\" effort=\"..\" velocity=\"..\"/>")
+            yield _at(
+                "missing-limit",
+                f"{owner}: a {joint.type.value} joint needs <limit>",
+                joint.source,
+                path,
+                'write <limit lower=".." upper=".." effort=".." velocity=".."/>',
+            )
         return
     if joint.type.needs_limit and limit.lower > limit.upper:
-        yield _at("limit-range", f"{owner}: lower limit {limit.lower:g} is above upper "
-                  f"limit {limit.upper:g}", limit.source, path, "swap them, lower <= upper")
+        yield _at(
+            "limit-range",
+            f"{owner}: lower limit {limit.lower:g} is above upper limit {limit.upper:g}",
+            limit.source,
+            path,
+            "swap them, lower <= upper",
+        )
     for field in ("effort", "velocity"):
         value = getattr(limit, field)
         if value < 0:
-            yield _at("negative-limit", f"{owner}: {field} limit {value:g} is negative",
-                      limit.source, path, f"{field} is a magnitude, >= 0")
+            yield _at(
+                "negative-limit",
+                f"{owner}: {field} limit {value:g} is negative",
+                limit.source,
+                path,
+                f"{field} is a magnitude, >= 0",
+            )
 
 
 def _links(robot: Robot, path: str) -> Iterator[Diagnostic]:
     for link in robot.links:
         inertial = link.inertial
         if inertial is not None and inertial.mass < 0:
-            yield _at("negative-mass", f"link {link.name!r}: mass {inertial.mass:g} kg is "
-                      "negative", inertial.source, path, "mass is >= 0 kg")
+            yield _at(
+                "negative-mass",
+                f"link {link.name!r}: mass {inertial.mass:g} kg is negative",
+                inertial.source,
+                path,
+                "mass is >= 0 kg",
+            )
 
 
 def _structure(robot: Robot, topo: Topology, path: str) -> Iterator[Diagnostic]:
@@ -164,9 +225,13 @@ def _structure(robot: Robot, topo: Topology, path: str) -> Iterator[Diagnostic]:
     for name, joints in topo.parents.items():
         if len(joints) > 1:
             listed = ", ".join(repr(j.name) for j in joints)
-            yield _at("multiple-parents", f"link {name!r} is the child of {len(joints)} "
-                      f"joints: {listed}", joints[1].child_source or joints[1].source, path,
-                      "a link has one parent joint; in a URDF tree loops are not allowed")
+            yield _at(
+                "multiple-parents",
+                f"link {name!r} is the child of {len(joints)} joints: {listed}",
+                joints[1].child_source or joints[1].source,
+                path,
+                "a link has one parent joint; in a URDF tree loops are not allowed",
+            )
     # A joint with a missing or misspelt end leaves its child as an extra root: report the
     # joint only, not the consequence.
     broken_joint = any(
@@ -175,14 +240,22 @@ def _structure(robot: Robot, topo: Topology, path: str) -> Iterator[Diagnostic]:
     )
     if len(topo.roots) > 1 and not broken_joint:
         listed = ", ".join(repr(r) for r in topo.roots)
-        yield _at("multiple-roots", f"robot {robot.name!r} has {len(topo.roots)} root links: "
-                  f"{listed}", by_name[topo.roots[1]].source, path,
-                  "connect every link but one to a parent with a joint")
+        yield _at(
+            "multiple-roots",
+            f"robot {robot.name!r} has {len(topo.roots)} root links: {listed}",
+            by_name[topo.roots[1]].source,
+            path,
+            "connect every link but one to a parent with a joint",
+        )
     cut_off = [link.name for link in robot.links if link.name not in topo.reachable]
     if not topo.roots:
-        yield _at("no-root", f"robot {robot.name!r} has no root link: every link is some "
-                  "joint's child", robot.source, path,
-                  "one link must be no joint's child; look for a joint loop")
+        yield _at(
+            "no-root",
+            f"robot {robot.name!r} has no root link: every link is some joint's child",
+            robot.source,
+            path,
+            "one link must be no joint's child; look for a joint loop",
+        )
     if cut_off and len(topo.roots) <= 1:
         yield from _cycles(cut_off, topo, by_name, path)
 
@@ -205,19 +278,28 @@ def _cycles(
             name = parents[0].parent
         if state.get(name) == 1 and name in walk:
             # The walk went child -> parent; reverse it to follow the joints' direction.
-            loop = list(reversed(walk[walk.index(name):]))
+            loop = list(reversed(walk[walk.index(name) :]))
             first_link = loop.index(name)  # start where the walk entered the loop
             loop = loop[first_link:] + loop[:first_link]
             in_cycle.update(loop)
             joints = [topo.parents[n][0] for n in loop[1:] + loop[:1]]
             link_list = " -> ".join([*loop, loop[0]])
-            first = min(joints, key=lambda j: (j.source.line if j.source else 0))
-            yield _at("cycle", f"joints {', '.join(repr(j.name) for j in joints)} form a loop: "
-                      f"{link_list}", first.source, path,
-                      "URDF is a tree; break the loop or model it with a mimic joint")
+            first = min(joints, key=lambda j: j.source.line if j.source else 0)
+            yield _at(
+                "cycle",
+                f"joints {', '.join(repr(j.name) for j in joints)} form a loop: {link_list}",
+                first.source,
+                path,
+                "URDF is a tree; break the loop or model it with a mimic joint",
+            )
         for n in walk:
             state[n] = 2
     for name in cut_off:
         if name not in in_cycle:
-            yield _at("unreachable-link", f"link {name!r} is not connected to the root",
-                      by_name[name].source, path, "it hangs below a joint loop")
+            yield _at(
+                "unreachable-link",
+                f"link {name!r} is not connected to the root",
+                by_name[name].source,
+                path,
+                "it hangs below a joint loop",
+            )

@@ -34,15 +34,17 @@ def _emit_findings(diagnostics: Iterable[Diagnostic]) -> None:
         line = d.format()
         if color:
             label = f"{d.severity.value}:"
-            line = line.replace(f" {label} ", " " + click.style(label, fg=_COLORS[d.severity],
-                                                                 bold=True) + " ", 1)
+            line = line.replace(
+                f" {label} ", " " + click.style(label, fg=_COLORS[d.severity], bold=True) + " ", 1
+            )
         click.echo(line, err=True, color=color)
 
 
 def _fail(exc: FishbotUrdfError) -> Diagnostic:
     """One finding for an exception that stopped a file from being read."""
-    return Diagnostic(exc.rule, Severity.ERROR, exc.message, exc.path or "<input>",
-                      exc.line, exc.column)
+    return Diagnostic(
+        exc.rule, Severity.ERROR, exc.message, exc.path or "<input>", exc.line, exc.column
+    )
 
 
 @click.group(name="fishbot", context_settings={"help_option_names": ["-h", "--help"]})
@@ -59,8 +61,14 @@ def cli() -> None:
 
 @cli.command()
 @click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=True, allow_dash=True))
-@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text",
-              show_default=True, help="text: check_urdf's output; json: a report for machines.")
+@click.option(
+    "--format",
+    "fmt",
+    type=click.Choice(["text", "json"]),
+    default="text",
+    show_default=True,
+    help="text: check_urdf's output; json: a report for machines.",
+)
 @click.option("--strict", is_flag=True, help="Warnings fail too (exit 1).")
 def check(files: Sequence[str], fmt: str, strict: bool) -> None:
     """Check URDF files, like check_urdf, and more strictly.
@@ -112,8 +120,9 @@ def check(files: Sequence[str], fmt: str, strict: bool) -> None:
 def _report_failure(fmt: str, exc: FishbotUrdfError, reports: list[dict[str, Any]]) -> None:
     finding = _fail(exc)
     if fmt == "json":
-        reports.append({"path": finding.path, "ok": False, "robot": None,
-                        "diagnostics": [finding.to_dict()]})
+        reports.append(
+            {"path": finding.path, "ok": False, "robot": None, "diagnostics": [finding.to_dict()]}
+        )
     else:
         _emit_findings([finding])
 
@@ -150,8 +159,9 @@ def _write_chunks(chunks: Iterable[str]) -> None:
 def main(argv: Sequence[str] | None = None) -> NoReturn:
     """Entry point of the `fishbot` console script and of `python -m fishbot_urdf`."""
     try:
-        cli.main(args=list(argv) if argv is not None else None, prog_name="fishbot",
-                 standalone_mode=True)
+        cli.main(
+            args=list(argv) if argv is not None else None, prog_name="fishbot", standalone_mode=True
+        )
     except BrokenPipeError:
         # The reader went away (`fishbot check big.urdf | head`): stop quietly.
         devnull = os.open(os.devnull, os.O_WRONLY)

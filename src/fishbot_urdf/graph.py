@@ -198,7 +198,7 @@ def chain(robot: Robot, start: str, end: str) -> list[str]:
     raise FishbotUrdfError(f"links {start!r} and {end!r} are not connected")
 
 
-def to_networkx(robot: Robot) -> nx.DiGraph:
+def to_networkx(robot: Robot) -> nx.DiGraph[str]:
     """A DiGraph with a node per link and an edge parent -> child per joint.
 
     Node attributes: ``link`` (the Link). Edge attributes: ``joint`` (the Joint), ``name``,
@@ -208,10 +208,11 @@ def to_networkx(robot: Robot) -> nx.DiGraph:
     """
     import networkx as nx  # ~200 ms to import: only when asked for
 
-    graph = nx.DiGraph(name=robot.name)
+    graph: nx.DiGraph[str] = nx.DiGraph(name=robot.name)
     for link in robot.links:
         graph.add_node(link.name, link=link)
     for joint in robot.joints:
-        graph.add_edge(joint.parent, joint.child, joint=joint, name=joint.name,
-                       type=joint.type.value)
+        graph.add_edge(
+            joint.parent, joint.child, joint=joint, name=joint.name, type=joint.type.value
+        )
     return graph

@@ -23,7 +23,7 @@ class Location:
 
 def _source() -> Location | None:
     # Locations never take part in equality: a robot written out and read back is equal.
-    return field(default=None, compare=False, repr=False)  # type: ignore[no-any-return]
+    return field(default=None, compare=False, repr=False)
 
 
 class JointType(str, Enum):
@@ -54,7 +54,7 @@ class JointType(str, Enum):
 
 @dataclass(frozen=True, slots=True)
 class Origin:
-    """A pose: translation ``xyz`` in metres, then fixed-axis roll, pitch, yaw ``rpy`` in radians."""
+    """A pose: translation ``xyz`` (metres), then fixed-axis roll, pitch, yaw ``rpy`` (radians)."""
 
     xyz: Vector3 = ZERO3
     rpy: Vector3 = ZERO3

@@ -81,8 +81,16 @@ def _inertial(parent: etree._Element, inertial: Inertial) -> None:
     _origin(element, inertial.origin)
     _sub(element, "mass", value=_num(inertial.mass))
     i = inertial.inertia
-    _sub(element, "inertia", ixx=_num(i.ixx), ixy=_num(i.ixy), ixz=_num(i.ixz),
-         iyy=_num(i.iyy), iyz=_num(i.iyz), izz=_num(i.izz))
+    _sub(
+        element,
+        "inertia",
+        ixx=_num(i.ixx),
+        ixy=_num(i.ixy),
+        ixz=_num(i.ixz),
+        iyy=_num(i.iyy),
+        iyz=_num(i.iyz),
+        izz=_num(i.izz),
+    )
 
 
 def _shape(parent: etree._Element, tag: str, item: Visual | Collision) -> etree._Element:
@@ -121,20 +129,40 @@ def _joint(parent: etree._Element, joint: Joint) -> None:
             if value is not None:
                 calibration.set(key, _num(value))
     if joint.dynamics is not None:
-        _sub(element, "dynamics", damping=_num(joint.dynamics.damping),
-             friction=_num(joint.dynamics.friction))
+        _sub(
+            element,
+            "dynamics",
+            damping=_num(joint.dynamics.damping),
+            friction=_num(joint.dynamics.friction),
+        )
     if joint.limit is not None:
         limit = joint.limit
-        _sub(element, "limit", lower=_num(limit.lower), upper=_num(limit.upper),
-             effort=_num(limit.effort), velocity=_num(limit.velocity))
+        _sub(
+            element,
+            "limit",
+            lower=_num(limit.lower),
+            upper=_num(limit.upper),
+            effort=_num(limit.effort),
+            velocity=_num(limit.velocity),
+        )
     if joint.mimic is not None:
-        _sub(element, "mimic", joint=joint.mimic.joint, multiplier=_num(joint.mimic.multiplier),
-             offset=_num(joint.mimic.offset))
+        _sub(
+            element,
+            "mimic",
+            joint=joint.mimic.joint,
+            multiplier=_num(joint.mimic.multiplier),
+            offset=_num(joint.mimic.offset),
+        )
     if joint.safety_controller is not None:
         sc = joint.safety_controller
-        _sub(element, "safety_controller", soft_lower_limit=_num(sc.soft_lower_limit),
-             soft_upper_limit=_num(sc.soft_upper_limit), k_position=_num(sc.k_position),
-             k_velocity=_num(sc.k_velocity))
+        _sub(
+            element,
+            "safety_controller",
+            soft_lower_limit=_num(sc.soft_lower_limit),
+            soft_upper_limit=_num(sc.soft_upper_limit),
+            k_position=_num(sc.k_position),
+            k_velocity=_num(sc.k_velocity),
+        )
     _extras(element, joint.extras)
 
 

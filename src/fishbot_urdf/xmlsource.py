@@ -13,16 +13,6 @@ from .model import Location
 
 STRING_PATH = "<string>"
 
-# No entity expansion, no DTD loading, no network, libxml2's default size/depth guards on.
-_PARSER_OPTIONS = {
-    "resolve_entities": False,
-    "load_dtd": False,
-    "no_network": True,
-    "dtd_validation": False,
-    "huge_tree": False,
-    "remove_comments": False,
-    "recover": False,
-}
 
 def read_bytes(path: str | Path) -> bytes:
     """Read a whole file, turning every OS error into an InputError that names the file."""
@@ -45,12 +35,13 @@ def parse_xml(data: bytes, path: str = STRING_PATH) -> etree._Element:
         XmlSyntaxError: The text is not well-formed XML, or declares entities.
     """
     if not data.strip():
-        raise XmlSyntaxError("the file is empty (a URDF starts with <robot name=\"...\">)", path=path)
+        raise XmlSyntaxError('the file is empty (a URDF starts with <robot name="...">)', path=path)
     if not data.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"<") and not data.startswith(
         (b"\xff\xfe", b"\xfe\xff")  # UTF-16 byte order marks
     ):
-        raise XmlSyntaxError("this is not an XML file: it does not start with '<'", path=path,
-                             line=1, column=1)
+        raise XmlSyntaxError(
+            "this is not an XML file: it does not start with '<'", path=path, line=1, column=1
+        )
     doctype = data.find(b"<!DOCTYPE")
     entity = data.find(b"<!ENTITY", doctype) if doctype >= 0 else -1
     if entity >= 0:
@@ -62,7 +53,15 @@ def parse_xml(data: bytes, path: str = STRING_PATH) -> etree._Element:
             column=len(data[data.rfind(b"\n", 0, entity) + 1 : entity].decode("utf-8", "replace"))
             + 1,
         )
-    parser = etree.XMLParser(**_PARSER_OPTIONS)  # type: ignore[call-overload]
+    # No entity expansion, no DTD loading, no network, libxml2's size and depth guards on.
+    parser = etree.XMLParser(
+        resolve_entities=False,
+        load_dtd=False,
+        no_network=True,
+        dtd_validation=False,
+        huge_tree=False,
+        recover=False,
+    )
     try:
         root = etree.fromstring(data, parser)
     except etree.XMLSyntaxError as exc:
@@ -103,8 +102,17 @@ class Locator:
     """
 
     __slots__ = (
-        "_ascii", "_chars_at", "_data", "_index", "_last", "_line", "_line_start", "_pos",
-        "_starts", "_tags", "path",
+        "_ascii",
+        "_chars_at",
+        "_data",
+        "_index",
+        "_last",
+        "_line",
+        "_line_start",
+        "_pos",
+        "_starts",
+        "_tags",
+        "path",
     )
 
     def __init__(self, data: bytes, path: str) -> None:
@@ -147,7 +155,7 @@ class Locator:
         """The location of ``element``'s start tag (the next one of its name)."""
         tag = element.tag
         if not isinstance(tag, str):
-            return Location(self.path, element.sourceline or 1, 1)
+            return self._fallback(element)
         name = self._tags.get(tag)
         if name is None:
             name = self._tags[tag] = b"<" + tag.encode("utf-8")
@@ -160,7 +168,12 @@ class Locator:
                 location = Location(self.path, line, column)
                 self._last = (location, offset)
                 return location
-        return Location(self.path, element.sourceline or 1, 1)
+        return self._fallback(element)
+
+    def _fallback(self, element: etree._Element) -> Location:
+        # Only reached if the scan and lxml disagree: lxml's line is close enough then.
+        line = element.sourceline
+        return Location(self.path, line if isinstance(line, int) else 1, 1)
 
     def skip(self, element: etree._Element) -> None:
         """Pass over ``element`` and everything inside it without locating them."""

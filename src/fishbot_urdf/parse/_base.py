@@ -39,16 +39,21 @@ class ReaderBase:
         severity: Severity = Severity.ERROR,
     ) -> None:
         self.diagnostics.append(
-            diagnostic(rule, message, location, hint=hint, severity=severity,
-                       path=self.locator.path)
+            diagnostic(
+                rule, message, location, hint=hint, severity=severity, path=self.locator.path
+            )
         )
 
     def warn(self, rule: str, message: str, location: Location, hint: str | None = None) -> None:
         self.error(rule, message, location, hint, Severity.WARNING)
 
     def missing(self, el: etree._Element, at: Location, attr: str, owner: str, value: str) -> None:
-        self.error("missing-attribute", f"{owner}: <{el.tag}> has no {attr!r} attribute", at,
-                   f"write <{el.tag} {attr}=\"{value}\">")
+        self.error(
+            "missing-attribute",
+            f"{owner}: <{el.tag}> has no {attr!r} attribute",
+            at,
+            f'write <{el.tag} {attr}="{value}">',
+        )
 
     def extra(self, el: etree._Element) -> str:
         """Keep an element URDF does not define, as XML text."""
@@ -59,8 +64,12 @@ class ReaderBase:
         """Warn about an element that has no meaning where it stands, and pass over it."""
         at = self.locator.locate(el)
         self.locator.skip_children(el)
-        self.warn("unknown-element", f"{owner}: <{el.tag}> is not allowed inside <{parent}> "
-                  "and is ignored", at, allowed)
+        self.warn(
+            "unknown-element",
+            f"{owner}: <{el.tag}> is not allowed inside <{parent}> and is ignored",
+            at,
+            allowed,
+        )
 
     # -- attributes -------------------------------------------------------------------------
     def text(self, el: etree._Element, at: Location, attr: str, owner: str) -> str | None:
@@ -88,10 +97,12 @@ class ReaderBase:
             return default
         number = to_double(value) if value else None
         if number is None:
-            self.error("bad-number", f"{owner}: <{el.tag} {attr}=\"{value}\"> is not a number",
-                       self.locator.attribute(at, attr),
-                       "write a finite decimal like 0.5 or 1e-3, with no units or trailing "
-                       "spaces")
+            self.error(
+                "bad-number",
+                f'{owner}: <{el.tag} {attr}="{value}"> is not a number',
+                self.locator.attribute(at, attr),
+                "write a finite decimal like 0.5 or 1e-3, with no units or trailing spaces",
+            )
             return default
         return number
 
@@ -116,17 +127,23 @@ class ReaderBase:
         if "" in pieces:
             pieces = [p for p in pieces if p]
         if len(pieces) != count:
-            self.error("bad-vector", f"{owner}: <{el.tag} {attr}=\"{value}\"> has {len(pieces)} "
-                       f"value{'' if len(pieces) == 1 else 's'}, {count} are needed",
-                       self.locator.attribute(at, attr),
-                       f"write {attr}=\"{meaning}\" separated by spaces")
+            self.error(
+                "bad-vector",
+                f'{owner}: <{el.tag} {attr}="{value}"> has {len(pieces)} '
+                f"value{'' if len(pieces) == 1 else 's'}, {count} are needed",
+                self.locator.attribute(at, attr),
+                f'write {attr}="{meaning}" separated by spaces',
+            )
             return None
         numbers = [to_double(p) for p in pieces]
         if None in numbers:
             bad = pieces[numbers.index(None)]
-            self.error("bad-number", f"{owner}: <{el.tag} {attr}=\"{value}\">: {bad!r} is not "
-                       "a number", self.locator.attribute(at, attr),
-                       f"write {attr}=\"{meaning}\" as finite decimals separated by spaces")
+            self.error(
+                "bad-number",
+                f'{owner}: <{el.tag} {attr}="{value}">: {bad!r} is not a number',
+                self.locator.attribute(at, attr),
+                f'write {attr}="{meaning}" as finite decimals separated by spaces',
+            )
             return None
         return numbers  # type: ignore[return-value]
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from lxml import etree
 
 from ..model import (
@@ -30,12 +32,19 @@ class JointReader(LinkReader):
         if found is not None:
             return found
         if not text:
-            self.error("joint-type", f"{owner}: has no type", at,
-                       "write type=\"revolute|continuous|prismatic|fixed|floating|planar\"")
+            self.error(
+                "joint-type",
+                f"{owner}: has no type",
+                at,
+                'write type="revolute|continuous|prismatic|fixed|floating|planar"',
+            )
         else:
-            self.error("joint-type", f"{owner}: type {text!r} is not a URDF joint type",
-                       self.locator.attribute(at, "type"),
-                       "use revolute, continuous, prismatic, fixed, floating or planar")
+            self.error(
+                "joint-type",
+                f"{owner}: type {text!r} is not a URDF joint type",
+                self.locator.attribute(at, "type"),
+                "use revolute, continuous, prismatic, fixed, floating or planar",
+            )
         return JointType.FIXED  # stands in so that the rest can still be checked
 
     def joint(self, el: etree._Element, at: Location) -> Joint:
@@ -49,22 +58,30 @@ class JointReader(LinkReader):
             tag = child.tag
             if not isinstance(tag, str):
                 continue
-            if tag not in _PARTS:
+            if tag not in _PARTS and tag not in _ENDS:
                 extras.append(self.extra(child))
                 continue
             c_at = self.locator.locate(child)
             if tag in parts or tag in ends:
                 self.locator.skip_children(child)
-                self.warn("duplicate-element", f"{owner}: a second <{tag}> is ignored", c_at,
-                          f"a joint has at most one <{tag}>")
-            elif tag == "parent" or tag == "child":
+                self.warn(
+                    "duplicate-element",
+                    f"{owner}: a second <{tag}> is ignored",
+                    c_at,
+                    f"a joint has at most one <{tag}>",
+                )
+            elif tag in _ENDS:
                 ends[tag] = (self.text(child, c_at, "link", owner) or "", c_at)
             else:
                 parts[tag] = _PARTS[tag](self, child, c_at, owner)
         for end in ("parent", "child"):
             if end not in ends:
-                self.error("missing-element", f"{owner}: has no <{end}>", at,
-                           f"write <{end} link=\"LINK_NAME\"/>")
+                self.error(
+                    "missing-element",
+                    f"{owner}: has no <{end}>",
+                    at,
+                    f'write <{end} link="LINK_NAME"/>',
+                )
         parent, parent_at = ends.get("parent", ("", None))
         child_name, child_at = ends.get("child", ("", None))
         return Joint(
@@ -98,17 +115,24 @@ class JointReader(LinkReader):
         )
 
     def dynamics(self, el: etree._Element, at: Location, owner: str) -> Dynamics:
-        return Dynamics(self.number(el, at, "damping", owner),
-                        self.number(el, at, "friction", owner), at)
+        return Dynamics(
+            self.number(el, at, "damping", owner), self.number(el, at, "friction", owner), at
+        )
 
     def calibration(self, el: etree._Element, at: Location, owner: str) -> Calibration:
-        return Calibration(self.optional_number(el, at, "rising", owner),
-                           self.optional_number(el, at, "falling", owner), at)
+        return Calibration(
+            self.optional_number(el, at, "rising", owner),
+            self.optional_number(el, at, "falling", owner),
+            at,
+        )
 
     def mimic(self, el: etree._Element, at: Location, owner: str) -> Mimic:
-        return Mimic(self.text(el, at, "joint", owner) or "",
-                     self.number(el, at, "multiplier", owner, 1.0),
-                     self.number(el, at, "offset", owner), at)
+        return Mimic(
+            self.text(el, at, "joint", owner) or "",
+            self.number(el, at, "multiplier", owner, 1.0),
+            self.number(el, at, "offset", owner),
+            at,
+        )
 
     def safety_controller(self, el: etree._Element, at: Location, owner: str) -> SafetyController:
         return SafetyController(
@@ -120,9 +144,8 @@ class JointReader(LinkReader):
         )
 
 
-_PARTS = {
-    "parent": None,
-    "child": None,
+_ENDS = ("parent", "child")
+_PARTS: dict[str, Callable[[JointReader, etree._Element, Location, str], object]] = {
     "origin": JointReader.origin,
     "axis": JointReader.axis,
     "limit": JointReader.limit,

@@ -48,9 +48,12 @@ class LinkReader(ReaderBase):
                 elif rgba is not None:
                     color = (rgba[0], rgba[1], rgba[2], rgba[3])
                     if not all(0.0 <= v <= 1.0 for v in color):
-                        self.error("bad-color", f"{label}: <color rgba=\"{child.get('rgba')}\"> "
-                                   "has a value outside 0..1", self.locator.attribute(c_at, "rgba"),
-                                   "each of red, green, blue and alpha is between 0 and 1")
+                        self.error(
+                            "bad-color",
+                            f'{label}: <color rgba="{child.get("rgba")}"> has a value outside 0..1',
+                            self.locator.attribute(c_at, "rgba"),
+                            "each of red, green, blue and alpha is between 0 and 1",
+                        )
             elif tag == "texture":
                 self.locator.skip(child)
                 # An empty <texture/> is common in exported robots; urdfdom ignores it too.
@@ -77,8 +80,12 @@ class LinkReader(ReaderBase):
             elif tag == "inertial":
                 d_at = self.locator.locate(child)
                 self.locator.skip_children(child)
-                self.warn("duplicate-element", f"{owner}: a second <inertial> is ignored", d_at,
-                          "a link has at most one <inertial>")
+                self.warn(
+                    "duplicate-element",
+                    f"{owner}: a second <inertial> is ignored",
+                    d_at,
+                    "a link has at most one <inertial>",
+                )
                 extras.append(xml_text(child))
             elif isinstance(tag, str):
                 extras.append(self.extra(child))
@@ -95,25 +102,32 @@ class LinkReader(ReaderBase):
                 origin = self.origin(child, self.locator.locate(child), owner)
             elif tag == "mass":
                 has_mass = True
-                mass = self.number(child, self.locator.locate(child), "value", owner,
-                                   required=True)
+                mass = self.number(child, self.locator.locate(child), "value", owner, required=True)
             elif tag == "inertia":
                 c_at = self.locator.locate(child)
-                inertia = Inertia(
-                    *(self.number(child, c_at, key, owner, required=True)
-                      for key in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")),
-                    source=c_at,
+                ixx, ixy, ixz, iyy, iyz, izz = (
+                    self.number(child, c_at, key, owner, required=True)
+                    for key in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
                 )
+                inertia = Inertia(ixx, ixy, ixz, iyy, iyz, izz, c_at)
             elif isinstance(tag, str):
-                self.ignored(child, owner, "inertial", "<inertial> holds <origin>, <mass> and "
-                             "<inertia>")
+                self.ignored(
+                    child, owner, "inertial", "<inertial> holds <origin>, <mass> and <inertia>"
+                )
         if not has_mass:
-            self.error("missing-element", f"{owner}: <inertial> has no <mass>", at,
-                       "write <mass value=\"KG\"/>")
+            self.error(
+                "missing-element",
+                f"{owner}: <inertial> has no <mass>",
+                at,
+                'write <mass value="KG"/>',
+            )
         if inertia is None:
-            self.error("missing-element", f"{owner}: <inertial> has no <inertia>", at,
-                       "write <inertia ixx=\"..\" ixy=\"0\" ixz=\"0\" iyy=\"..\" iyz=\"0\" "
-                       "izz=\"..\"/>")
+            self.error(
+                "missing-element",
+                f"{owner}: <inertial> has no <inertia>",
+                at,
+                'write <inertia ixx=".." ixy="0" ixz="0" iyy=".." iyz="0" izz=".."/>',
+            )
         return Inertial(mass, inertia or Inertia(), origin, at)
 
     def _shape_parts(
@@ -133,17 +147,25 @@ class LinkReader(ReaderBase):
             elif tag == "material" and visual:
                 material = self.material(child, self.locator.locate(child), owner)
             elif tag == "material":
-                self.warn("collision-material", f"{owner}: <material> inside <collision> is "
-                          "ignored", self.locator.locate(child),
-                          "colours belong in <visual>; move the <material> there")
+                self.warn(
+                    "collision-material",
+                    f"{owner}: <material> inside <collision> is ignored",
+                    self.locator.locate(child),
+                    "colours belong in <visual>; move the <material> there",
+                )
                 self.locator.skip_children(child)
             elif isinstance(tag, str):
-                allowed = "<origin>, <geometry> and <material>" if visual else (
-                    "<origin> and <geometry>")
+                allowed = (
+                    "<origin>, <geometry> and <material>" if visual else ("<origin> and <geometry>")
+                )
                 self.ignored(child, owner, el.tag, f"<{el.tag}> holds {allowed}")
         if not seen_geometry:
-            self.error("missing-element", f"{owner}: <{el.tag}> has no <geometry>", at,
-                       f"write <geometry> with one {_SHAPES}")
+            self.error(
+                "missing-element",
+                f"{owner}: <{el.tag}> has no <geometry>",
+                at,
+                f"write <geometry> with one {_SHAPES}",
+            )
         return origin, geometry or Box(ZERO3), material
 
     def visual(self, el: etree._Element, at: Location, owner: str) -> Visual:
@@ -164,16 +186,22 @@ class LinkReader(ReaderBase):
             c_at = self.locator.locate(child)
             self.locator.skip_children(child)
             if seen:
-                self.warn("duplicate-element", f"{owner}: <geometry> holds more than one shape; "
-                          f"<{tag}> is ignored", c_at,
-                          "one <geometry> has exactly one shape; use another <visual> or "
-                          "<collision>")
+                self.warn(
+                    "duplicate-element",
+                    f"{owner}: <geometry> holds more than one shape; <{tag}> is ignored",
+                    c_at,
+                    "one <geometry> has exactly one shape; use another <visual> or <collision>",
+                )
                 continue
             seen = True
             shape = self.shape(child, c_at, owner)
         if not seen:
-            self.error("missing-element", f"{owner}: <geometry> is empty", at,
-                       f"write one {_SHAPES} inside it")
+            self.error(
+                "missing-element",
+                f"{owner}: <geometry> is empty",
+                at,
+                f"write one {_SHAPES} inside it",
+            )
         return shape
 
     def shape(self, el: etree._Element, at: Location, owner: str) -> Geometry | None:
@@ -191,6 +219,7 @@ class LinkReader(ReaderBase):
             if el.get("scale") is not None:
                 scale = self.vector3(el, at, "scale", owner, (1.0, 1.0, 1.0))
             return Mesh(filename, scale, at)
-        self.error("unknown-geometry", f"{owner}: <{tag}> is not a URDF shape", at,
-                   f"use {_SHAPES}")
+        self.error(
+            "unknown-geometry", f"{owner}: <{tag}> is not a URDF shape", at, f"use {_SHAPES}"
+        )
         return None

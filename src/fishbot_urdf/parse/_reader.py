@@ -17,18 +17,24 @@ class Reader(JointReader):
     def robot(self, el: etree._Element) -> Robot | None:
         at = self.locator.locate(el)
         if el.tag != "robot":
-            self.error("no-robot", f"the root element is <{el.tag}>, not <robot>", at,
-                       "a URDF file holds one <robot name=\"...\"> element")
+            self.error(
+                "no-robot",
+                f"the root element is <{el.tag}>, not <robot>",
+                at,
+                'a URDF file holds one <robot name="..."> element',
+            )
             return None
         name = el.get("name")
         if not name:
-            self.error("robot-name", "<robot> has no name", at, "write <robot name=\"my_robot\">")
+            self.error("robot-name", "<robot> has no name", at, 'write <robot name="my_robot">')
         version = el.get("version")
         if version is not None and version not in _VERSIONS:
-            self.error("robot-version",
-                       f"<robot version=\"{version}\"> is not a URDF version this tool knows",
-                       self.locator.attribute(at, "version"),
-                       "use version=\"1.0\" or leave the attribute out")
+            self.error(
+                "robot-version",
+                f'<robot version="{version}"> is not a URDF version this tool knows',
+                self.locator.attribute(at, "version"),
+                'use version="1.0" or leave the attribute out',
+            )
         links: list[Link] = []
         joints: list[Joint] = []
         materials: list[Material] = []
@@ -44,5 +50,6 @@ class Reader(JointReader):
                 materials.append(self.material(child, locate(child), "robot"))
             elif isinstance(tag, str):
                 extras.append(self.extra(child))
-        return Robot(name or "", tuple(links), tuple(joints), tuple(materials), version,
-                     tuple(extras), at)
+        return Robot(
+            name or "", tuple(links), tuple(joints), tuple(materials), version, tuple(extras), at
+        )
