@@ -49,6 +49,12 @@ VECTORS = {
     "1e 0 0": False,
     "1e999 0 0": False,
     "": False,
+    # Raw tabs and line breaks: XML reads them as spaces, urdfdom as part of a number.
+    "0\t0 1": False,
+    "0 0\n 1": False,
+    "0 0 1\n": False,
+    "\t1 0 0": True,
+    "0 0\r\n 1": False,
 }
 
 
@@ -187,3 +193,27 @@ def test_robot_lookup_errors() -> None:
         robot.link("nope")
     with pytest.raises(KeyError):
         robot.joint("nope")
+
+
+VERSIONS = {
+    "1.0": True,
+    "1.00": True,
+    "01.0": True,
+    " 1.0": True,
+    "1.1": False,
+    "2.0": False,
+    "1": False,
+    "1.": False,
+    "1.0 ": False,
+    "1.0.0": False,
+    "abc": False,
+}
+
+
+@pytest.mark.parametrize(("version", "accepted"), VERSIONS.items(), ids=list(VERSIONS))
+def test_robot_version_like_urdfdom(version: str, accepted: bool, tmp_path: Path) -> None:
+    data = f'<robot name="v" version="{version}"><link name="a"/></robot>'.encode()
+    assert fishbot_urdf.check_file(data).ok is accepted
+    path = tmp_path / "v.urdf"
+    path.write_bytes(data)
+    assert (run_check_urdf(path).returncode == 0) is accepted

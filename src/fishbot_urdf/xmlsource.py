@@ -90,6 +90,9 @@ _MARKUP = re.compile(
 )
 _START_TAG = re.compile(rb"<[^/!?]")  # enough when there are no comments, CDATA or DOCTYPE
 _AFTER_TAG = frozenset(b" \t\r\n/>")
+# An attribute value holding a raw tab or line break. XML turns them into spaces, but
+# urdfdom's XML parser keeps them, and then refuses a vector like "0 0<TAB>1".
+_RAW_WHITESPACE = re.compile(rb"=\s*(?:\"[^\"<]*[\t\n\r][^\"<]*\"|'[^'<]*[\t\n\r][^'<]*')")
 
 
 class Locator:
@@ -113,6 +116,7 @@ class Locator:
         "_starts",
         "_tags",
         "path",
+        "raw_whitespace",
     )
 
     def __init__(self, data: bytes, path: str) -> None:
@@ -129,6 +133,7 @@ class Locator:
         self._line_start = 0  # byte offset where that line starts
         self._chars_at = (0, 0)  # (byte offset, characters since line start), non-ASCII only
         self._tags: dict[str, bytes] = {}
+        self.raw_whitespace = _RAW_WHITESPACE.search(data) is not None
         self._last: tuple[Location, int] | None = None  # the last element found, and its offset
 
     def _position(self, offset: int) -> tuple[int, int]:
@@ -184,19 +189,33 @@ class Locator:
         """Pass over everything inside ``element`` (already located)."""
         self._index += sum(1 for node in element.iterdescendants() if isinstance(node.tag, str))
 
+    def _attribute_match(self, location: Location, name: str) -> re.Match[bytes] | None:
+        if self._last is None or self._last[0] is not location:
+            return None
+        data = self._data
+        tag_start = self._last[1]
+        tag_end = data.find(b">", tag_start)
+        pattern = re.compile(
+            rb"\s" + re.escape(name.encode("utf-8")) + rb"\s*=\s*(?:\"([^\"]*)\"|'([^']*)')"
+        )
+        return pattern.search(data, tag_start, tag_end if tag_end >= 0 else len(data))
+
+    def raw_attribute(self, location: Location, name: str) -> str | None:
+        """Attribute ``name`` of the element at ``location`` as written, white space and all
+        (character references are not expanded). None when it cannot be found."""
+        match = self._attribute_match(location, name)
+        if match is None:
+            return None
+        raw = match.group(1) if match.group(1) is not None else match.group(2)
+        return raw.decode("utf-8", "replace")
+
     def attribute(self, location: Location, name: str) -> Location:
         """The location of attribute ``name`` in the start tag found at ``location``.
 
         Exact for the element located last (attributes are read before children are located);
         otherwise the element's own location.
         """
-        if self._last is None or self._last[0] is not location:
-            return location
-        data = self._data
-        tag_start = self._last[1]
-        tag_end = data.find(b">", tag_start)
-        pattern = re.compile(rb"\s" + re.escape(name.encode("utf-8")) + rb"\s*=")
-        match = pattern.search(data, tag_start, tag_end if tag_end >= 0 else len(data))
+        match = self._attribute_match(location, name)
         if match is None:
             return location
         line, column = self._position(match.start() + 1)

@@ -122,6 +122,9 @@ class ReaderBase:
     ) -> list[float] | None:
         """``count`` numbers separated by spaces; None (and a finding) when malformed."""
         value = el.get(attr, "")
+        if self.locator.raw_whitespace:
+            # XML made the file's tabs and line breaks spaces; urdfdom sees them as written.
+            value = self.locator.raw_attribute(at, attr) or value
         # urdfdom splits on spaces and drops empty pieces.
         pieces = value.split(" ")
         if "" in pieces:

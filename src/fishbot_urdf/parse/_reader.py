@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
+import re
+
 from lxml import etree
 
 from ..model import Joint, Link, Material, Robot
 from ._joints import JointReader
 
-# urdfdom knows only version 1.0; 1.1 is accepted by newer urdfdom releases.
-_VERSIONS = ("1.0", "1.1")
+# urdfdom reads "MAJOR.MINOR" as two integers and supports only 1.0 ("1.00" and "01.0" too).
+_VERSION = re.compile(r"\s*\+?([0-9]+)\.\+?([0-9]+)")
 
 
 class Reader(JointReader):
@@ -28,7 +30,8 @@ class Reader(JointReader):
         if not name:
             self.error("robot-name", "<robot> has no name", at, 'write <robot name="my_robot">')
         version = el.get("version")
-        if version is not None and version not in _VERSIONS:
+        parts = _VERSION.fullmatch(version) if version is not None else None
+        if version is not None and (parts is None or (int(parts[1]), int(parts[2])) != (1, 0)):
             self.error(
                 "robot-version",
                 f'<robot version="{version}"> is not a URDF version this tool knows',
