@@ -103,7 +103,15 @@ class JointReader(LinkReader):
         )
 
     def axis(self, el: etree._Element, at: Location, owner: str) -> tuple[float, ...]:
-        return self.vector3(el, at, "xyz", owner, DEFAULT_AXIS, required=True)
+        if el.get("xyz") is None:
+            # urdfdom keeps the default then; the spec asks for xyz.
+            self.warn(
+                "missing-attribute",
+                f"{owner}: <axis> has no 'xyz' attribute, so the axis is 1 0 0",
+                at,
+                'write <axis xyz="x y z"/>',
+            )
+        return self.vector3(el, at, "xyz", owner, DEFAULT_AXIS)
 
     def limit(self, el: etree._Element, at: Location, owner: str) -> Limit:
         return Limit(
