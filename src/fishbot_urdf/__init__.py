@@ -15,7 +15,6 @@ from .diagnostics import Diagnostic, Severity
 from .errors import (
     FishbotUrdfError,
     InputError,
-    MissingDependencyError,
     RobotError,
     UnsupportedInputError,
     XmlSyntaxError,
@@ -68,7 +67,6 @@ __all__ = [
     "Material",
     "Mesh",
     "Mimic",
-    "MissingDependencyError",
     "Origin",
     "Parsed",
     "Robot",

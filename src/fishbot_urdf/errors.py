@@ -73,9 +73,3 @@ class RobotError(FishbotUrdfError):
             line=None if first is None else first.line,
             column=None if first is None else first.column,
         )
-
-
-class MissingDependencyError(FishbotUrdfError):
-    """An optional tool or package is needed for this operation and is not installed."""
-
-    rule = "missing-dependency"

@@ -1,0 +1,72 @@
+"""Each error class: its type, its rule id and its message."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+import fishbot_urdf
+from fishbot_urdf import (
+    FishbotUrdfError,
+    InputError,
+    RobotError,
+    UnsupportedInputError,
+    XmlSyntaxError,
+)
+
+
+def test_input_error(tmp_path: Path) -> None:
+    missing = tmp_path / "missing.urdf"
+    with pytest.raises(InputError) as info:
+        fishbot_urdf.load(missing)
+    error = info.value
+    assert isinstance(error, FishbotUrdfError)
+    assert error.rule == "io"
+    assert (error.path, error.line, error.message) == (str(missing), None, "no such file")
+    assert str(error) == f"{missing}: no such file"
+
+
+def test_xml_syntax_error() -> None:
+    with pytest.raises(XmlSyntaxError) as info:
+        fishbot_urdf.parse('<robot name="r">\n  <link name="a">\n</robot>', path="t.urdf")
+    error = info.value
+    assert error.rule == "xml-syntax"
+    assert (error.path, error.line) == ("t.urdf", 3)
+    assert (
+        error.message == "XML syntax error: Opening and ending tag mismatch: link line 2 and robot"
+    )
+
+
+def test_unsupported_input_error(tmp_path: Path) -> None:
+    path = tmp_path / "robot.urdf.xacro"
+    path.write_text("<robot/>")
+    with pytest.raises(UnsupportedInputError) as info:
+        fishbot_urdf.load(path)
+    assert info.value.rule == "unsupported-input"
+    assert info.value.message.startswith("this is a xacro file; xacro input is not supported yet")
+
+
+def test_robot_error_lists_every_finding() -> None:
+    text = '<robot name="r"><link name="a"><visual><geometry><box size="1 1"/></geometry></visual>'
+    text += "<collision><geometry><sphere/></geometry></collision></link></robot>"
+    with pytest.raises(RobotError) as info:
+        fishbot_urdf.parse(text, path="r.urdf")
+    error = info.value
+    assert error.rule == "invalid-robot"
+    assert [(d.rule, d.column) for d in error.diagnostics] == [
+        ("bad-vector", text.index('size="1 1"') + 1),
+        ("missing-attribute", text.index("<sphere") + 1),
+    ]
+    assert str(error) == (
+        f"r.urdf:1:{text.index('size=') + 1}: link 'a': <box size=\"1 1\"> has 2 values, "
+        "3 are needed [bad-vector] (and 1 more)"
+    )
+
+
+def test_base_error_from_tree_queries() -> None:
+    robot = fishbot_urdf.Robot("r", (fishbot_urdf.Link("a"), fishbot_urdf.Link("b")))
+    with pytest.raises(FishbotUrdfError) as info:
+        fishbot_urdf.root(robot)
+    assert info.value.rule == "error"
+    assert info.value.message == "robot 'r' has no single root link (roots: a, b)"
