@@ -111,7 +111,7 @@ def check(files: Sequence[str], fmt: str, strict: bool) -> None:
             continue
         _emit_findings(result.diagnostics)
         if not failed and result.robot is not None:
-            _write_chunks(tree_text(result.robot))
+            _write_chunks(tree_text(result.robot, result.topology))
     if fmt == "json":
         click.echo(json.dumps({"ok": status == EXIT_OK, "files": reports}, indent=2))
     sys.exit(status)

@@ -107,13 +107,16 @@ def root(robot: Robot) -> str:
     return topo.root
 
 
-def tree_text(robot: Robot) -> Iterator[str]:
+def tree_text(robot: Robot, topo: Topology | None = None) -> Iterator[str]:
     """Yield check_urdf's output for a valid robot, piece by piece (join them to get it all).
 
     The pieces are the header and one line per link, each ending in a newline; a link
-    appears once for every path to it, as in check_urdf.
+    appears once for every path to it, as in check_urdf. Pass ``topo`` if it is at hand.
     """
-    topo = _tree(robot)
+    if topo is None:
+        topo = _tree(robot)
+    elif topo.root is None:
+        topo = _tree(robot)  # raises, naming the roots
     top = topo.root
     assert top is not None
     yield f"robot name is: {robot.name}\n"
