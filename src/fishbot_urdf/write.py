@@ -44,6 +44,15 @@ def _sub(parent: etree._Element, tag: str, **attrs: str) -> etree._Element:
     return element
 
 
+def _numbers(parent: etree._Element, tag: str, item: object, names: Iterable[str]) -> None:
+    """<tag name="number" ...> for the attributes ``names`` of ``item`` that are not None."""
+    element = _sub(parent, tag)
+    for name in names:
+        value = getattr(item, name)
+        if value is not None:
+            element.set(name, _num(value))
+
+
 def _origin(parent: etree._Element, origin: Origin) -> None:
     if origin != Origin():
         _sub(parent, "origin", xyz=_nums(origin.xyz), rpy=_nums(origin.rpy))
@@ -80,17 +89,7 @@ def _inertial(parent: etree._Element, inertial: Inertial) -> None:
     element = _sub(parent, "inertial")
     _origin(element, inertial.origin)
     _sub(element, "mass", value=_num(inertial.mass))
-    i = inertial.inertia
-    _sub(
-        element,
-        "inertia",
-        ixx=_num(i.ixx),
-        ixy=_num(i.ixy),
-        ixz=_num(i.ixz),
-        iyy=_num(i.iyy),
-        iyz=_num(i.iyz),
-        izz=_num(i.izz),
-    )
+    _numbers(element, "inertia", inertial.inertia, ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"))
 
 
 def _shape(parent: etree._Element, tag: str, item: Visual | Collision) -> etree._Element:
@@ -122,47 +121,21 @@ def _joint(parent: etree._Element, joint: Joint) -> None:
     _sub(element, "child", link=joint.child)
     if joint.axis != DEFAULT_AXIS:
         _sub(element, "axis", xyz=_nums(joint.axis))
-    if joint.calibration is not None:
-        calibration = _sub(element, "calibration")
-        for key in ("rising", "falling"):
-            value = getattr(joint.calibration, key)
-            if value is not None:
-                calibration.set(key, _num(value))
-    if joint.dynamics is not None:
-        _sub(
-            element,
-            "dynamics",
-            damping=_num(joint.dynamics.damping),
-            friction=_num(joint.dynamics.friction),
-        )
-    if joint.limit is not None:
-        limit = joint.limit
-        _sub(
-            element,
-            "limit",
-            lower=_num(limit.lower),
-            upper=_num(limit.upper),
-            effort=_num(limit.effort),
-            velocity=_num(limit.velocity),
-        )
+    # Each optional part, with the attributes it writes, in the order the spec lists them.
+    parts = (
+        ("calibration", ("rising", "falling")),
+        ("dynamics", ("damping", "friction")),
+        ("limit", ("lower", "upper", "effort", "velocity")),
+        ("safety_controller", ("soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity")),
+    )
+    for tag, names in parts:
+        part = getattr(joint, tag)
+        if part is not None:
+            _numbers(element, tag, part, names)
     if joint.mimic is not None:
-        _sub(
-            element,
-            "mimic",
-            joint=joint.mimic.joint,
-            multiplier=_num(joint.mimic.multiplier),
-            offset=_num(joint.mimic.offset),
-        )
-    if joint.safety_controller is not None:
-        sc = joint.safety_controller
-        _sub(
-            element,
-            "safety_controller",
-            soft_lower_limit=_num(sc.soft_lower_limit),
-            soft_upper_limit=_num(sc.soft_upper_limit),
-            k_position=_num(sc.k_position),
-            k_velocity=_num(sc.k_velocity),
-        )
+        mimic = _sub(element, "mimic", joint=joint.mimic.joint)
+        mimic.set("multiplier", _num(joint.mimic.multiplier))
+        mimic.set("offset", _num(joint.mimic.offset))
     _extras(element, joint.extras)
 
 

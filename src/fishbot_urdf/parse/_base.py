@@ -60,14 +60,18 @@ class ReaderBase:
         self.locator.skip(el)
         return xml_text(el)
 
-    def ignored(self, el: etree._Element, owner: str, parent: str, allowed: str) -> None:
-        """Warn about an element that has no meaning where it stands, and pass over it."""
+    def passed_over(self, el: etree._Element, rule: str, message: str, hint: str) -> None:
+        """Warn about an element that is read no further, and skip what it holds."""
         at = self.locator.locate(el)
         self.locator.skip_children(el)
-        self.warn(
+        self.warn(rule, message, at, hint)
+
+    def ignored(self, el: etree._Element, owner: str, parent: str, allowed: str) -> None:
+        """Warn about an element that has no meaning where it stands, and pass over it."""
+        self.passed_over(
+            el,
             "unknown-element",
             f"{owner}: <{el.tag}> is not allowed inside <{parent}> and is ignored",
-            at,
             allowed,
         )
 

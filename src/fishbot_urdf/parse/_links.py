@@ -78,12 +78,10 @@ class LinkReader(ReaderBase):
             elif tag == "inertial" and inertial is None:
                 inertial = self.inertial(child, self.locator.locate(child), owner)
             elif tag == "inertial":
-                d_at = self.locator.locate(child)
-                self.locator.skip_children(child)
-                self.warn(
+                self.passed_over(
+                    child,
                     "duplicate-element",
                     f"{owner}: a second <inertial> is ignored",
-                    d_at,
                     "a link has at most one <inertial>",
                 )
                 extras.append(xml_text(child))
@@ -147,13 +145,19 @@ class LinkReader(ReaderBase):
             elif tag == "material" and visual:
                 material = self.material(child, self.locator.locate(child), owner)
             elif tag == "material":
-                self.warn(
+                self.passed_over(
+                    child,
                     "collision-material",
                     f"{owner}: <material> inside <collision> is ignored",
-                    self.locator.locate(child),
                     "colours belong in <visual>; move the <material> there",
                 )
-                self.locator.skip_children(child)
+            elif tag == "geometry":
+                self.passed_over(
+                    child,
+                    "duplicate-element",
+                    f"{owner}: a second <geometry> in one <{el.tag}> is ignored",
+                    f"use another <{el.tag}> for another shape",
+                )
             elif isinstance(tag, str):
                 allowed = (
                     "<origin>, <geometry> and <material>" if visual else ("<origin> and <geometry>")
