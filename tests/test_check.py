@@ -235,7 +235,7 @@ def test_rule(name: str, rule: str, severity: str, needle: str, message: str) ->
 
 
 def test_every_invalid_fixture_has_a_case() -> None:
-    named = {c[0] for c in CASES} | {"xml_syntax"}
+    named = {c[0] for c in CASES} | {"xml_syntax", "loop_from_root"}
     assert {p.stem for p in INVALID} == named
 
 
@@ -279,3 +279,12 @@ def test_unreachable_links_below_a_loop() -> None:
         ("cycle", 3),
     ]
     assert result.diagnostics[0].message == "link 'hanging' is not connected to the root"
+
+
+def test_loop_reached_from_the_root() -> None:
+    path = DATA / "invalid" / "loop_from_root.urdf"
+    found = [(d.rule, d.message) for d in check_file(path).diagnostics]
+    assert found == [
+        ("cycle", "joints 'a_to_b', 'b_to_a' form a loop: a -> b -> a"),
+        ("multiple-parents", "link 'a' is the child of 2 joints: 'base_to_a', 'b_to_a'"),
+    ]

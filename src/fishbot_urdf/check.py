@@ -9,7 +9,7 @@ from pathlib import Path
 
 from .diagnostics import Diagnostic, Severity, sort_key
 from .graph import Topology, topology
-from .model import Joint, Link, Location, Robot
+from .model import Joint, Location, Robot
 from .parse import read
 from .xmlsource import diagnostic
 
@@ -247,7 +247,6 @@ def _structure(robot: Robot, topo: Topology, path: str) -> Iterator[Diagnostic]:
             path,
             "connect every link but one to a parent with a joint",
         )
-    cut_off = [link.name for link in robot.links if link.name not in topo.reachable]
     if not topo.roots:
         yield _at(
             "no-root",
@@ -256,50 +255,58 @@ def _structure(robot: Robot, topo: Topology, path: str) -> Iterator[Diagnostic]:
             path,
             "one link must be no joint's child; look for a joint loop",
         )
-    if cut_off and len(topo.roots) <= 1:
-        yield from _cycles(cut_off, topo, by_name, path)
+    loops = _loops(robot, topo)
+    in_loop: set[str] = set()
+    for loop in loops:
+        links = [j.parent for j in loop]
+        in_loop.update(links)
+        first = min(loop, key=lambda j: j.source.line if j.source else 0)
+        yield _at(
+            "cycle",
+            f"joints {', '.join(repr(j.name) for j in loop)} form a loop: "
+            + " -> ".join([*links, links[0]]),
+            first.source,
+            path,
+            "URDF is a tree; break the loop or model it with a mimic joint",
+        )
+    if len(topo.roots) <= 1:
+        for link in robot.links:
+            if link.name not in topo.reachable and link.name not in in_loop:
+                yield _at(
+                    "unreachable-link",
+                    f"link {link.name!r} is not connected to the root",
+                    link.source,
+                    path,
+                    "it hangs below a joint loop",
+                )
 
 
-def _cycles(
-    cut_off: list[str], topo: Topology, by_name: dict[str, Link], path: str
-) -> Iterator[Diagnostic]:
-    """Report each loop once, and links hanging below a loop as unreachable."""
-    state: dict[str, int] = {}  # 1 on the current walk, 2 done
-    in_cycle: set[str] = set()
-    for start in cut_off:
-        walk: list[str] = []
-        name = start
-        while name not in state:
-            state[name] = 1
-            walk.append(name)
-            parents = topo.parents[name]
-            if not parents:
-                break
-            name = parents[0].parent
-        if state.get(name) == 1 and name in walk:
-            # The walk went child -> parent; reverse it to follow the joints' direction.
-            loop = list(reversed(walk[walk.index(name) :]))
-            first_link = loop.index(name)  # start where the walk entered the loop
-            loop = loop[first_link:] + loop[:first_link]
-            in_cycle.update(loop)
-            joints = [topo.parents[n][0] for n in loop[1:] + loop[:1]]
-            link_list = " -> ".join([*loop, loop[0]])
-            first = min(joints, key=lambda j: j.source.line if j.source else 0)
-            yield _at(
-                "cycle",
-                f"joints {', '.join(repr(j.name) for j in joints)} form a loop: {link_list}",
-                first.source,
-                path,
-                "URDF is a tree; break the loop or model it with a mimic joint",
-            )
-        for n in walk:
-            state[n] = 2
-    for name in cut_off:
-        if name not in in_cycle:
-            yield _at(
-                "unreachable-link",
-                f"link {name!r} is not connected to the root",
-                by_name[name].source,
-                path,
-                "it hangs below a joint loop",
-            )
+def _loops(robot: Robot, topo: Topology) -> list[list[Joint]]:
+    """Every joint loop, found once each by an iterative depth-first search over all links
+    (in file order), whether or not the root reaches it."""
+    state: dict[str, int] = {}  # 1 on the current path, 2 finished
+    loops: list[list[Joint]] = []
+    for start in (link.name for link in robot.links):
+        if start in state:
+            continue
+        state[start] = 1
+        path = [start]
+        via: list[Joint] = []  # via[i] is the joint from path[i] to path[i + 1]
+        pending = [iter(topo.children[start])]
+        while pending:
+            joint = next(pending[-1], None)
+            if joint is None:
+                state[path.pop()] = 2
+                pending.pop()
+                if via:
+                    via.pop()
+                continue
+            child = joint.child
+            if state.get(child) == 1:  # back to a link on the current path: a loop
+                loops.append([*via[path.index(child) :], joint])
+            elif child not in state:
+                state[child] = 1
+                path.append(child)
+                via.append(joint)
+                pending.append(iter(topo.children[child]))
+    return loops
