@@ -79,11 +79,16 @@ def _at(
     return diagnostic(rule, message, where, hint=hint, severity=severity, path=path)
 
 
+def _robot(robot: Robot) -> str:
+    """How findings name the robot (a nameless one is reported separately)."""
+    return f"robot {robot.name!r}" if robot.name else "the robot"
+
+
 def _names(robot: Robot, path: str) -> Iterator[Diagnostic]:
     if not robot.links:
         yield _at(
             "no-links",
-            f"robot {robot.name!r} has no links",
+            f"{_robot(robot)} has no links",
             robot.source,
             path,
             'a robot needs at least one <link name="...">',
@@ -242,7 +247,7 @@ def _structure(robot: Robot, topo: Topology, path: str) -> Iterator[Diagnostic]:
         listed = ", ".join(repr(r) for r in topo.roots)
         yield _at(
             "multiple-roots",
-            f"robot {robot.name!r} has {len(topo.roots)} root links: {listed}",
+            f"{_robot(robot)} has {len(topo.roots)} root links: {listed}",
             by_name[topo.roots[1]].source,
             path,
             "connect every link but one to a parent with a joint",
@@ -250,7 +255,7 @@ def _structure(robot: Robot, topo: Topology, path: str) -> Iterator[Diagnostic]:
     if not topo.roots:
         yield _at(
             "no-root",
-            f"robot {robot.name!r} has no root link: every link is some joint's child",
+            f"{_robot(robot)} has no root link: every link is some joint's child",
             robot.source,
             path,
             "one link must be no joint's child; look for a joint loop",
