@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from collections.abc import Callable
+from dataclasses import dataclass, field, fields
 from enum import Enum
+from typing import NamedTuple, TypeVar
 
+_T = TypeVar("_T")
 Vector3 = tuple[float, float, float]
 Rgba = tuple[float, float, float, float]
 
@@ -12,9 +15,12 @@ ZERO3: Vector3 = (0.0, 0.0, 0.0)
 DEFAULT_AXIS: Vector3 = (1.0, 0.0, 0.0)
 
 
-@dataclass(frozen=True, slots=True)
-class Location:
-    """Where an element starts in its source file (1-based line and column)."""
+class Location(NamedTuple):
+    """Where an element starts in its source file (1-based line and column).
+
+    A small immutable value like a vector, so a NamedTuple rather than a dataclass: a big
+    file has hundreds of thousands of them, and tuples are made three times faster.
+    """
 
     path: str
     line: int
@@ -272,3 +278,20 @@ class Robot:
             if joint.name == name:
                 return joint
         raise KeyError(name)
+
+
+def builder(cls: type[_T]) -> Callable[..., _T]:
+    """A constructor for the frozen dataclass ``cls`` taking every field, in order, by position.
+
+    It sets the slots directly, which is about twice as fast as the generated ``__init__``
+    (that goes through ``object.__setattr__`` for each field). Readers of big files use it.
+    """
+    names = [f.name for f in fields(cls)]  # type: ignore[arg-type]
+    scope: dict[str, object] = {"_new": object.__new__, "_cls": cls}
+    lines = [f"def build({', '.join(names)}):", "    obj = _new(_cls)"]
+    for index, name in enumerate(names):
+        scope[f"_set{index}"] = getattr(cls, name).__set__
+        lines.append(f"    _set{index}(obj, {name})")
+    lines.append("    return obj")
+    exec("\n".join(lines), scope)  # the dataclasses module builds __init__ the same way
+    return scope["build"]  # type: ignore[return-value]

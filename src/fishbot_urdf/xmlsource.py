@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import operator
 import re
+from itertools import accumulate, repeat
 from pathlib import Path
 
 from lxml import etree
@@ -95,6 +97,13 @@ _AFTER_TAG = frozenset(b" \t\r\n/>")
 _RAW_WHITESPACE = re.compile(rb"=\s*(?:\"[^\"<]*[\t\n\r][^\"<]*\"|'[^'<]*[\t\n\r][^'<]*')")
 
 
+_new_tuple = tuple.__new__  # builds a Location without the NamedTuple's Python-level __new__
+
+
+def _make_location(path: str, line: int, column: int) -> Location:
+    return _new_tuple(Location, (path, line, column))
+
+
 class Locator:
     """Exact line and column of every element's start tag, in linear time.
 
@@ -126,14 +135,18 @@ class Locator:
             self._starts = [m.start() for m in _MARKUP.finditer(data) if m.lastindex]
         else:
             self._starts = [m.start() for m in _START_TAG.finditer(data)]
-        self._index = 0  # next entry of _starts to hand out
         self._ascii = data.isascii()
+        self._tags: dict[str, bytes] = {}
+        self.raw_whitespace = _RAW_WHITESPACE.search(data) is not None
+        self.rewind()
+
+    def rewind(self) -> None:
+        """Start again from the top of the document."""
+        self._index = 0  # next entry of _starts to hand out
         self._pos = 0  # byte offset of the last element located
         self._line = 1  # its line
         self._line_start = 0  # byte offset where that line starts
         self._chars_at = (0, 0)  # (byte offset, characters since line start), non-ASCII only
-        self._tags: dict[str, bytes] = {}
-        self.raw_whitespace = _RAW_WHITESPACE.search(data) is not None
         self._last: tuple[Location, int] | None = None  # the last element found, and its offset
 
     def _position(self, offset: int) -> tuple[int, int]:
@@ -170,10 +183,33 @@ class Locator:
             if data.startswith(name, offset) and data[offset + size] in _AFTER_TAG:
                 self._index = index + 1
                 line, column = self._position(offset)
-                location = Location(self.path, line, column)
+                location = _make_location(self.path, line, column)
                 self._last = (location, offset)
                 return location
         return self._fallback(element)
+
+    @property
+    def element_count(self) -> int:
+        """How many start tags the scan found (the document's element count, unless a
+        processing instruction holds something that looks like a tag)."""
+        return len(self._starts)
+
+    def locations(self) -> list[Location]:
+        """The location of every start tag, in document order, all at once: for a reader
+        that visits every element in order and has checked ``element_count`` first."""
+        starts, data = self._starts, self._data
+        if not self._ascii:
+            self.rewind()
+            places = [self._position(offset) for offset in starts]
+            self.rewind()
+            return [_make_location(self.path, line, column) for line, column in places]
+        # The loops run in C: line = 1 + newlines before the tag; column = bytes after the
+        # last newline before it.
+        newline = repeat(b"\n")
+        lines = accumulate(map(data.count, newline, [0, *starts[:-1]], starts), initial=1)
+        next(lines)
+        columns = map(operator.sub, starts, map(data.rfind, newline, repeat(0), starts))
+        return list(map(_new_tuple, repeat(Location), zip(repeat(self.path), lines, columns)))
 
     def _fallback(self, element: etree._Element) -> Location:
         # Only reached if the scan and lxml disagree: lxml's line is close enough then.
