@@ -7,23 +7,33 @@ import sys
 from pathlib import Path
 
 
+def _value(base: float, i: int) -> str:
+    # Every link gets its own numbers, as in a robot exported from CAD (a reader cannot
+    # reuse the value it parsed for the link before).
+    return f"{base * (1 + i * 1e-6):.9g}"
+
+
 def _link(i: int) -> str:
+    mass, moment = _value(0.1, i), _value(1e-4, i)
+    width, height = _value(0.05, i), _value(0.1, i)
     return (
         f'  <link name="link_{i}">\n'
-        '    <inertial><mass value="0.1"/>'
-        '<inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" iyz="0" izz="1e-4"/></inertial>\n'
-        '    <visual><geometry><box size="0.05 0.05 0.1"/></geometry></visual>\n'
-        '    <collision><geometry><box size="0.05 0.05 0.1"/></geometry></collision>\n'
+        f'    <inertial><mass value="{mass}"/><inertia ixx="{moment}" ixy="0" ixz="0" '
+        f'iyy="{moment}" iyz="0" izz="{moment}"/></inertial>\n'
+        f'    <visual><geometry><box size="{width} {width} {height}"/></geometry></visual>\n'
+        f'    <collision><geometry><box size="{width} {width} {height}"/></geometry></collision>\n'
         "  </link>\n"
     )
 
 
 def _joint(i: int, parent: int) -> str:
+    offset, turn = _value(0.1, i), _value(0.1, i + 1)
     return (
         f'  <joint name="joint_{i}" type="revolute">\n'
         f'    <parent link="link_{parent}"/>\n    <child link="link_{i}"/>\n'
-        '    <origin xyz="0 0 0.1" rpy="0 0 0.1"/>\n    <axis xyz="0 0 1"/>\n'
-        '    <limit lower="-1" upper="1" effort="10" velocity="1"/>\n'
+        f'    <origin xyz="0 0 {offset}" rpy="0 0 {turn}"/>\n    <axis xyz="0 0 1"/>\n'
+        f'    <limit lower="-{_value(1, i)}" upper="{_value(1, i)}" effort="{_value(10, i)}" '
+        f'velocity="{_value(1, i)}"/>\n'
         "  </joint>\n"
     )
 
