@@ -1,0 +1,216 @@
+"""ROS package names -> folders, without ROS: for ``$(find pkg)`` and ``package://pkg/...``.
+
+Places are searched in this order, and the first that knows the package wins:
+
+1. ``packages``: names given explicitly (``--package NAME=PATH``).
+2. The folders around the file being read, walking up to the nearest ``package.xml`` whose
+   ``<name>`` is the package.
+3. The folders listed in ``ROS_PACKAGE_PATH``, in order, each searched for a ``package.xml``
+   of that name (the shallowest one wins in a folder; packages are not searched inside).
+4. ``share/NAME`` under each prefix of ``AMENT_PREFIX_PATH`` (an installed ROS 2 package).
+5. The ``src/`` folder of the colcon workspace around the file, searched like 3.
+6. ``ament_index_python``, when it can be imported (a sourced ROS 2 install).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections import deque
+from collections.abc import Iterator, Mapping
+from pathlib import Path
+
+from .errors import FishbotUrdfError
+
+__all__ = ["PackageNotFoundError", "find_package", "package_name", "resolve_package_uri"]
+
+_IGNORE_MARKERS = ("COLCON_IGNORE", "AMENT_IGNORE", "CATKIN_IGNORE")
+_COMMENT = re.compile(r"<!--.*?-->", re.S)
+_NAME = re.compile(r"<name(?:\s[^>]*)?>([^<]*)</name>")
+_SKIP_DIRS = frozenset(("build", "install", "log", "node_modules", "__pycache__"))
+
+
+class PackageNotFoundError(FishbotUrdfError):
+    """No place knows the package; ``searched`` lists every place looked at, in order."""
+
+    rule = "package-not-found"
+
+    def __init__(
+        self,
+        package: str,
+        searched: tuple[str, ...],
+        *,
+        path: str | None = None,
+        line: int | None = None,
+        column: int | None = None,
+    ) -> None:
+        self.package = package
+        self.searched = searched
+        places = "; ".join(searched) if searched else "nowhere"
+        super().__init__(
+            f"package '{package}' not found (searched: {places}); "
+            f"name its folder with --package {package}=PATH",
+            path=path,
+            line=line,
+            column=column,
+        )
+
+
+def package_name(package_xml: str | Path) -> str | None:
+    """The ``<name>`` of a package.xml, or None if it has none or cannot be read."""
+    try:
+        text = Path(package_xml).read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return None
+    match = _NAME.search(_COMMENT.sub("", text))
+    if match is None:
+        return None
+    return match.group(1).strip() or None
+
+
+def find_package(
+    name: str,
+    *,
+    near: str | Path | None = None,
+    packages: Mapping[str, str | Path] | None = None,
+    environ: Mapping[str, str] | None = None,
+) -> Path:
+    """The folder of ROS package ``name`` (its share folder when installed).
+
+    Args:
+        name: The package name, as in ``$(find name)``.
+        near: The file being read: its folders and its workspace are searched.
+        packages: Explicit ``name -> folder`` entries, searched first.
+        environ: The environment to read ROS_PACKAGE_PATH and AMENT_PREFIX_PATH from
+            (default ``os.environ``).
+
+    Raises:
+        PackageNotFoundError: No place knows the package.
+    """
+    env = os.environ if environ is None else environ
+    searched: list[str] = []
+    for found in _candidates(name, near, packages or {}, env, searched):
+        return found
+    raise PackageNotFoundError(name, tuple(searched))
+
+
+def resolve_package_uri(
+    uri: str,
+    *,
+    near: str | Path | None = None,
+    packages: Mapping[str, str | Path] | None = None,
+) -> Path:
+    """The file a ``package://pkg/path`` or ``file://`` URI names (other text: a plain path,
+    relative to ``near``'s folder).
+
+    Raises:
+        PackageNotFoundError: The package is not found.
+    """
+    if uri.startswith("package://"):
+        package, _, rest = uri[len("package://") :].partition("/")
+        return find_package(package, near=near, packages=packages) / rest
+    if uri.startswith("file://"):
+        return Path(uri[len("file://") :])
+    path = Path(uri)
+    if not path.is_absolute() and near is not None:
+        return Path(near).parent / path
+    return path
+
+
+def _candidates(
+    name: str,
+    near: str | Path | None,
+    packages: Mapping[str, str | Path],
+    env: Mapping[str, str],
+    searched: list[str],
+) -> Iterator[Path]:
+    if name in packages:
+        yield Path(packages[name])
+    given = ", ".join(sorted(packages))
+    searched.append(f"--package ({given})" if given else "--package (none given)")
+
+    start = Path(near).resolve().parent if near is not None else None
+    if start is not None:
+        for folder in (start, *start.parents):
+            if (folder / "package.xml").is_file() and package_name(folder / "package.xml") == name:
+                yield folder
+        searched.append(f"the folders above {start}")
+
+    for entry in _path_list(env.get("ROS_PACKAGE_PATH", "")):
+        found = _crawl(Path(entry), name)
+        if found is not None:
+            yield found
+    searched.append("ROS_PACKAGE_PATH" + _shown(env.get("ROS_PACKAGE_PATH", "")))
+
+    for prefix in _path_list(env.get("AMENT_PREFIX_PATH", "")):
+        share = Path(prefix) / "share" / name
+        marker = Path(prefix) / "share" / "ament_index" / "resource_index" / "packages" / name
+        if marker.is_file() or (share / "package.xml").is_file():
+            yield share
+    searched.append("AMENT_PREFIX_PATH" + _shown(env.get("AMENT_PREFIX_PATH", "")))
+
+    if start is not None:
+        workspace = _workspace_src(start)
+        if workspace is not None:
+            found = _crawl(workspace, name)
+            if found is not None:
+                yield found
+            searched.append(f"the workspace {workspace}")
+
+    try:
+        from ament_index_python.packages import (  # type: ignore[import-not-found]
+            get_package_share_directory,
+        )
+    except ImportError:
+        searched.append("ament_index_python (not installed)")
+    else:
+        try:
+            yield Path(get_package_share_directory(name))
+        except Exception:  # its PackageNotFoundError, or a broken install
+            searched.append("ament_index_python")
+
+
+def _path_list(value: str) -> list[str]:
+    return [entry for entry in value.split(os.pathsep) if entry]
+
+
+def _shown(value: str) -> str:
+    return f" ({value})" if value else " (not set)"
+
+
+def _workspace_src(start: Path) -> Path | None:
+    """The ``src`` folder of the nearest colcon workspace holding ``start``."""
+    for folder in (start, *start.parents):
+        if folder.name == "src" and folder.parent != folder:
+            return folder
+        if (folder / "src").is_dir() and any(
+            (folder / marker).is_dir() for marker in ("build", "install", "log")
+        ):
+            return folder / "src"
+    return None
+
+
+def _crawl(top: Path, name: str) -> Path | None:
+    """The shallowest package called ``name`` under ``top`` (breadth first, names sorted)."""
+    queue = deque([top])
+    while queue:
+        folder = queue.popleft()
+        try:
+            entries = sorted(os.scandir(folder), key=lambda e: e.name)
+        except OSError:
+            continue
+        names = {entry.name for entry in entries}
+        if "package.xml" in names:
+            if package_name(folder / "package.xml") == name:
+                return folder
+            continue  # packages do not nest
+        if any(marker in names for marker in _IGNORE_MARKERS):
+            continue
+        for entry in entries:
+            if (
+                entry.is_dir(follow_symlinks=False)
+                and not entry.name.startswith(".")
+                and entry.name not in _SKIP_DIRS
+            ):
+                queue.append(Path(entry.path))
+    return None

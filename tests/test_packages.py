@@ -1,0 +1,146 @@
+"""ROS package resolution without ROS: each place in its order, and the failures."""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+import pytest
+
+from fishbot_urdf.packages import (
+    PackageNotFoundError,
+    find_package,
+    package_name,
+    resolve_package_uri,
+)
+
+
+def _package(folder: Path, name: str | None) -> Path:
+    folder.mkdir(parents=True, exist_ok=True)
+    inner = f"<name>{name}</name>" if name is not None else ""
+    (folder / "package.xml").write_text(
+        f'<?xml version="1.0"?>\n<package format="3">\n  <!-- <name>not_this</name> -->\n'
+        f"  {inner}\n  <version>0.1.0</version>\n</package>\n"
+    )
+    return folder
+
+
+@pytest.fixture(autouse=True)
+def _no_ros(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
+    monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
+    # not importable here, whatever the machine has
+    monkeypatch.setitem(sys.modules, "ament_index_python", None)
+    monkeypatch.setitem(sys.modules, "ament_index_python.packages", None)
+
+
+def test_package_name_skips_comments(tmp_path: Path) -> None:
+    assert package_name(_package(tmp_path / "a", "real_name") / "package.xml") == "real_name"
+    assert package_name(_package(tmp_path / "b", None) / "package.xml") is None
+    assert package_name(tmp_path / "missing.xml") is None
+
+
+def test_explicit_packages_come_first(tmp_path: Path) -> None:
+    own = _package(tmp_path / "pkg", "fishbot_description")
+    given = tmp_path / "given"
+    given.mkdir()
+    found = find_package(
+        "fishbot_description",
+        near=own / "urdf" / "x.xacro",
+        packages={"fishbot_description": given},
+    )
+    assert found == given
+
+
+def test_walking_up_from_the_file(tmp_path: Path) -> None:
+    own = _package(tmp_path / "fishbot_description", "fishbot_description")
+    near = own / "urdf" / "fishbot" / "fishbot.urdf.xacro"
+    assert find_package("fishbot_description", near=near) == own.resolve()
+
+
+def test_ros_package_path_in_order(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    first = _package(tmp_path / "one" / "deep" / "wheel_description", "wheel_description")
+    _package(tmp_path / "two" / "wheel_description", "wheel_description")
+    monkeypatch.setenv(
+        "ROS_PACKAGE_PATH", os.pathsep.join([str(tmp_path / "one"), str(tmp_path / "two")])
+    )
+    assert find_package("wheel_description", near=tmp_path / "robot.xacro") == first
+
+
+def test_the_shallower_of_two_packages_wins(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    near = _package(tmp_path / "root" / "a" / "wheel_description", "wheel_description")
+    _package(tmp_path / "root" / "b" / "c" / "wheel_description", "wheel_description")
+    monkeypatch.setenv("ROS_PACKAGE_PATH", str(tmp_path / "root"))
+    assert find_package("wheel_description") == near
+
+
+def test_packages_are_not_searched_inside(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    outer = _package(tmp_path / "root" / "outer", "outer")
+    _package(outer / "inner", "inner")
+    (tmp_path / "root" / "ignored").mkdir()
+    (tmp_path / "root" / "ignored" / "COLCON_IGNORE").touch()
+    _package(tmp_path / "root" / "ignored" / "hidden", "hidden")
+    monkeypatch.setenv("ROS_PACKAGE_PATH", str(tmp_path / "root"))
+    for name in ("inner", "hidden"):
+        with pytest.raises(PackageNotFoundError):
+            find_package(name)
+
+
+def test_ament_prefix_path(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    prefix = tmp_path / "install"
+    share = prefix / "share" / "lidar_description"
+    share.mkdir(parents=True)
+    marker = prefix / "share" / "ament_index" / "resource_index" / "packages"
+    marker.mkdir(parents=True)
+    (marker / "lidar_description").touch()
+    monkeypatch.setenv("AMENT_PREFIX_PATH", os.pathsep.join([str(tmp_path / "none"), str(prefix)]))
+    assert find_package("lidar_description") == share
+
+
+def test_colcon_workspace_around_the_file(tmp_path: Path) -> None:
+    workspace = tmp_path / "ws"
+    own = _package(workspace / "src" / "robot_bringup", "robot_bringup")
+    other = _package(workspace / "src" / "parts" / "camera_description", "camera_description")
+    (workspace / "build").mkdir()
+    near = own / "urdf" / "robot.urdf.xacro"
+    assert find_package("camera_description", near=near) == other
+
+
+def test_ament_index_python_last(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    stub = Path(__file__).resolve().parent / "ament_stub"
+    monkeypatch.delitem(sys.modules, "ament_index_python")
+    monkeypatch.delitem(sys.modules, "ament_index_python.packages")
+    monkeypatch.syspath_prepend(str(stub))
+    monkeypatch.setenv("FISHBOT_TEST_PACKAGES", f"sourced_description={tmp_path}")
+    assert find_package("sourced_description") == tmp_path
+    with pytest.raises(PackageNotFoundError) as info:
+        find_package("not_sourced")
+    assert info.value.searched[-1] == "ament_index_python"
+
+
+def test_a_package_without_a_name_is_not_a_match(tmp_path: Path) -> None:
+    nameless = _package(tmp_path / "fishbot_description", None)
+    with pytest.raises(PackageNotFoundError) as info:
+        find_package("fishbot_description", near=nameless / "urdf" / "x.xacro")
+    assert info.value.searched == (
+        "--package (none given)",
+        f"the folders above {(nameless / 'urdf').resolve()}",
+        "ROS_PACKAGE_PATH (not set)",
+        "AMENT_PREFIX_PATH (not set)",
+        "ament_index_python (not installed)",
+    )
+
+
+def test_package_uris(tmp_path: Path) -> None:
+    own = _package(tmp_path / "fishbot_description", "fishbot_description")
+    near = own / "urdf" / "robot.urdf"
+    assert resolve_package_uri("package://fishbot_description/meshes/a.stl", near=near) == (
+        own.resolve() / "meshes" / "a.stl"
+    )
+    assert resolve_package_uri("file:///abs/b.stl") == Path("/abs/b.stl")
+    assert resolve_package_uri("meshes/c.stl", near=near) == own / "urdf" / "meshes" / "c.stl"
+    with pytest.raises(PackageNotFoundError):
+        resolve_package_uri("package://elsewhere/x.stl", near=near)
