@@ -36,16 +36,18 @@ def run_check_urdf(path: Path) -> subprocess.CompletedProcess[bytes]:
     return subprocess.run([tool, str(path)], capture_output=True, timeout=120, check=False)
 
 
-def corpus() -> list[Path]:
-    """Every URDF shipped by the example-robot-data package (a test dependency)."""
+def corpus(pattern: str = "*.urdf") -> list[Path]:
+    """Every file matching ``pattern`` shipped by example-robot-data (a test dependency)."""
     import sysconfig
 
     roots = {Path(sysconfig.get_paths()[key]) for key in ("purelib", "platlib")}
     found: list[Path] = []
     for root in roots:
         share = root / "cmeel.prefix" / "share" / "example-robot-data" / "robots"
-        found.extend(sorted(share.rglob("*.urdf")))
+        found.extend(sorted(share.rglob(pattern)))
     return found
 
 
 CORPUS = corpus()
+# Whole robots written in xacro (files that only define macros are read through these).
+XACRO_CORPUS = corpus("*.urdf.xacro")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -85,15 +86,48 @@ def test_no_file_is_exit_2() -> None:
     assert "Missing argument 'FILES...'" in err
 
 
-def test_xacro_says_expand_is_coming(tmp_path: Path) -> None:
+def test_check_a_xacro_file_points_at_the_xacro_source(tmp_path: Path) -> None:
+    ns = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+    (tmp_path / "wheel.xacro").write_text(
+        f"""<robot {ns}>
+  <xacro:macro name="wheel" params="side">
+    <link name="${{side}}_wheel"/>
+    <joint name="${{side}}_joint" type="continuous">
+      <parent link="base"/>
+      <child link="${{side}}_wheel"/>
+    </joint>
+  </xacro:macro>
+</robot>
+"""
+    )
     path = tmp_path / "robot.urdf.xacro"
-    path.write_text("<robot/>")
+    path.write_text(
+        f"""<robot name="r" {ns}>
+  <xacro:include filename="wheel.xacro"/>
+  <link name="base_link"/>
+  <xacro:wheel side="left"/>
+</robot>
+"""
+    )
     status, out, err = run("check", str(path))
-    assert (status, out) == (2, "")
-    assert err.startswith(f"{path}: error: this is a xacro file;")
-    assert "`fishbot expand` is coming" in err
-    assert err.endswith("[unsupported-input]\n")
-    assert err.count("\n") == 1
+    assert (status, out) == (1, "")
+    wheel = os.path.relpath(tmp_path / "wheel.xacro")
+    shown = wheel if not wheel.startswith("..") else str(tmp_path / "wheel.xacro")
+    assert err == (
+        f"{shown}:5:7: error: joint 'left_joint': parent link 'base' is not defined "
+        "(did you mean 'base_link'? links: base_link, left_wheel) [undefined-link]\n"
+    )
+
+
+def test_check_a_xacro_file_with_arguments(tmp_path: Path) -> None:
+    path = tmp_path / "robot.urdf.xacro"
+    path.write_text(
+        '<robot name="$(arg name)" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:arg name="name" default="x"/><link name="only"/></robot>'
+    )
+    status, out, err = run("check", str(path), "name:=given")
+    assert (status, err) == (0, "")
+    assert out.startswith("robot name is: given\n")
 
 
 def test_many_files_worst_status_wins() -> None:

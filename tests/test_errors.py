@@ -10,8 +10,9 @@ import fishbot_urdf
 from fishbot_urdf import (
     FishbotUrdfError,
     InputError,
+    PackageNotFoundError,
     RobotError,
-    UnsupportedInputError,
+    XacroError,
     XmlSyntaxError,
 )
 
@@ -38,13 +39,29 @@ def test_xml_syntax_error() -> None:
     )
 
 
-def test_unsupported_input_error(tmp_path: Path) -> None:
+def test_xacro_error(tmp_path: Path) -> None:
     path = tmp_path / "robot.urdf.xacro"
-    path.write_text("<robot/>")
-    with pytest.raises(UnsupportedInputError) as info:
+    path.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n<xacro:nope/></robot>'
+    )
+    with pytest.raises(XacroError) as info:
         fishbot_urdf.load(path)
-    assert info.value.rule == "unsupported-input"
-    assert info.value.message.startswith("this is a xacro file; xacro input is not supported yet")
+    error = info.value
+    assert isinstance(error, FishbotUrdfError)
+    assert (error.rule, error.line, error.column) == ("xacro-undefined", 2, 1)
+    assert error.message == "macro 'nope' is not defined"
+
+
+def test_package_not_found_error(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
+    monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
+    with pytest.raises(PackageNotFoundError) as info:
+        fishbot_urdf.find_package("ghost_description", near=tmp_path / "robot.xacro")
+    error = info.value
+    assert isinstance(error, FishbotUrdfError)
+    assert (error.rule, error.package) == ("package-not-found", "ghost_description")
+    assert error.searched[0] == "--package (none given)"
+    assert error.message.startswith("package 'ghost_description' not found (searched: ")
 
 
 def test_robot_error_lists_every_finding() -> None:

@@ -16,9 +16,9 @@ from .errors import (
     FishbotUrdfError,
     InputError,
     RobotError,
-    UnsupportedInputError,
     XmlSyntaxError,
 )
+from .expand import Expansion, XacroError, expand
 from .graph import Topology, chain, leaves, root, subtree, to_networkx, topology, tree_text
 from .model import (
     Box,
@@ -43,6 +43,7 @@ from .model import (
     Sphere,
     Visual,
 )
+from .packages import PackageNotFoundError, find_package, resolve_package_uri
 from .parse import Parsed, load, parse, read
 from .write import to_urdf
 
@@ -54,6 +55,7 @@ __all__ = [
     "Cylinder",
     "Diagnostic",
     "Dynamics",
+    "Expansion",
     "FishbotUrdfError",
     "Geometry",
     "Inertia",
@@ -68,6 +70,7 @@ __all__ = [
     "Mesh",
     "Mimic",
     "Origin",
+    "PackageNotFoundError",
     "Parsed",
     "Robot",
     "RobotError",
@@ -75,17 +78,20 @@ __all__ = [
     "Severity",
     "Sphere",
     "Topology",
-    "UnsupportedInputError",
     "Visual",
+    "XacroError",
     "XmlSyntaxError",
     "__version__",
     "chain",
     "check",
     "check_file",
+    "expand",
+    "find_package",
     "leaves",
     "load",
     "parse",
     "read",
+    "resolve_package_uri",
     "root",
     "subtree",
     "to_networkx",

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import difflib
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -38,15 +38,25 @@ class CheckResult:
         return self.robot is not None and not any(d.is_error for d in self.diagnostics)
 
 
-def check_file(source: str | Path | bytes, *, path: str | None = None) -> CheckResult:
-    """Read and check one URDF, collecting every finding.
+def check_file(
+    source: str | Path | bytes,
+    *,
+    path: str | None = None,
+    args: Mapping[str, str] | None = None,
+    packages: Mapping[str, str | Path] | None = None,
+) -> CheckResult:
+    """Read and check one URDF or xacro file, collecting every finding.
+
+    A xacro file is expanded with ``args`` and ``packages`` first; findings then point at the
+    xacro source.
 
     Raises:
         InputError: The file cannot be read.
         XmlSyntaxError: The file is not well-formed XML.
-        UnsupportedInputError: The file is a .xacro file.
+        XacroError: The xacro file cannot be expanded.
+        PackageNotFoundError: The xacro file names a package that is not found.
     """
-    parsed = read(source, path=path)
+    parsed = read(source, path=path, args=args, packages=packages)
     if parsed.robot is None:
         return CheckResult(parsed.path, None, parsed.diagnostics, None)
     topo = topology(parsed.robot)

@@ -14,7 +14,7 @@ from typing import IO, Any, NoReturn
 import click
 
 from .diagnostics import Diagnostic, Severity, has_errors
-from .errors import FishbotUrdfError, InputError, UnsupportedInputError
+from .errors import FishbotUrdfError, InputError
 
 EXIT_OK, EXIT_INVALID, EXIT_USAGE = 0, 1, 2
 
@@ -42,9 +42,42 @@ def _emit_findings(diagnostics: Iterable[Diagnostic]) -> None:
 
 def _fail(exc: FishbotUrdfError) -> Diagnostic:
     """One finding for an exception that stopped a file from being read."""
+    hint = getattr(exc, "hint", None)
     return Diagnostic(
-        exc.rule, Severity.ERROR, exc.message, exc.path or "<input>", exc.line, exc.column
+        exc.rule, Severity.ERROR, exc.message, exc.path or "<input>", exc.line, exc.column, hint
     )
+
+
+def _status(exc: FishbotUrdfError) -> int:
+    """Exit status for an error that stopped a file: 2 when the input or the setup is at
+    fault (a file cannot be read, a package is not found), 1 when the robot is."""
+    from .packages import PackageNotFoundError
+
+    return EXIT_USAGE if isinstance(exc, (InputError, PackageNotFoundError)) else EXIT_INVALID
+
+
+def _packages(items: Sequence[str]) -> dict[str, str]:
+    packages: dict[str, str] = {}
+    for item in items:
+        name, sep, folder = item.partition("=")
+        if not sep or not name or not folder:
+            raise click.BadParameter(f"'{item}' is not NAME=PATH", param_hint="--package")
+        if not os.path.isdir(folder):
+            raise click.BadParameter(f"{folder} is not a folder", param_hint="--package")
+        packages[name] = folder
+    return packages
+
+
+def _xacro_args(items: Sequence[str]) -> dict[str, str]:
+    from .expand import parse_args
+
+    try:
+        return parse_args(list(items))
+    except ValueError as exc:
+        raise click.BadParameter(str(exc), param_hint="ARGS") from None
+
+
+_PACKAGE_HELP = "Where ROS package NAME is, for $(find NAME) (repeatable)."
 
 
 @click.group(name="fishbot", context_settings={"help_option_names": ["-h", "--help"]})
@@ -56,6 +89,7 @@ def cli() -> None:
     Examples:
       fishbot check robots/fishbot/urdf/first_robot.urdf
       fishbot check --format json robot.urdf
+      fishbot expand robot.urdf.xacro -o robot.urdf
     """
 
 
@@ -70,38 +104,40 @@ def cli() -> None:
     help="text: check_urdf's output; json: a report for machines.",
 )
 @click.option("--strict", is_flag=True, help="Warnings fail too (exit 1).")
-def check(files: Sequence[str], fmt: str, strict: bool) -> None:
-    """Check URDF files, like check_urdf, and more strictly.
+@click.option("--package", "package_items", multiple=True, metavar="NAME=PATH", help=_PACKAGE_HELP)
+def check(files: Sequence[str], fmt: str, strict: bool, package_items: Sequence[str]) -> None:
+    """Check URDF or xacro files, like check_urdf, and more strictly.
 
     On a valid robot, prints exactly what check_urdf prints (the robot's name and its link
     tree). Every finding goes to stderr as one line, path:line:col: error: ... [rule].
-    FILE may be - to read standard input. Exit status: 0 valid (warnings allowed), 1 the
-    robot has errors, 2 a file could not be read or the command line is wrong.
+    A .xacro file is expanded first (name:=value arguments go to it) and findings point
+    at the xacro source. FILE may be - to read standard input (URDF). Exit status: 0 valid
+    (warnings allowed), 1 the robot has errors, 2 a file could not be read, a package was
+    not found or the command line is wrong.
 
     \b
     Examples:
       fishbot check robots/fishbot/urdf/first_robot.urdf
-      fishbot check --strict a.urdf b.urdf
+      fishbot check robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
+      fishbot check --strict a.urdf robot.urdf.xacro use_gpu:=false
       xacro robot.urdf.xacro | fishbot check -
     """
     from .check import check_file
     from .graph import tree_text
 
+    args = _xacro_args([f for f in files if ":=" in f])
+    packages = _packages(package_items)
     status = EXIT_OK
     reports: list[dict[str, Any]] = []
-    for name in files:
+    for name in (f for f in files if ":=" not in f):
         try:
             if name == "-":
                 result = check_file(sys.stdin.buffer.read(), path="<stdin>")
             else:
-                result = check_file(name)
-        except (InputError, UnsupportedInputError) as exc:
-            _report_failure(fmt, exc, reports)
-            status = max(status, EXIT_USAGE)
-            continue
+                result = check_file(name, args=args, packages=packages)
         except FishbotUrdfError as exc:
             _report_failure(fmt, exc, reports)
-            status = max(status, EXIT_INVALID)
+            status = max(status, _status(exc))
             continue
         failed = result.robot is None or has_errors(result.diagnostics, strict=strict)
         if failed:
@@ -115,6 +151,57 @@ def check(files: Sequence[str], fmt: str, strict: bool) -> None:
     if fmt == "json":
         click.echo(json.dumps({"ok": status == EXIT_OK, "files": reports}, indent=2))
     sys.exit(status)
+
+
+@cli.command()
+@click.argument("file", type=click.Path(dir_okay=False))
+@click.argument("args", nargs=-1)
+@click.option(
+    "-o",
+    "--output",
+    default="-",
+    show_default=True,
+    help="Where to write the URDF; - is standard output. Folders are made as needed.",
+)
+@click.option("--deps", is_flag=True, help="Print the files the expansion reads instead.")
+@click.option("--package", "package_items", multiple=True, metavar="NAME=PATH", help=_PACKAGE_HELP)
+def expand(
+    file: str, args: Sequence[str], output: str, deps: bool, package_items: Sequence[str]
+) -> None:
+    """Expand a xacro file to URDF, as ROS's xacro command does, without ROS.
+
+    ARGS are name:=value values for <xacro:arg>. $(find PKG) is resolved without ROS:
+    --package first, then the package.xml above the file, ROS_PACKAGE_PATH,
+    AMENT_PREFIX_PATH, the colcon workspace around the file, and ament_index_python.
+    Errors point at the xacro source and the macro calls that led there. Exit status: 0
+    done, 1 xacro refuses the input, 2 a file could not be read or written, a package was
+    not found, or the command line is wrong.
+
+    \b
+    Examples:
+      fishbot expand robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
+      fishbot expand robot.urdf.xacro use_gpu:=false -o build/robot.urdf
+      fishbot expand robot.urdf.xacro --package my_description=src/my_description
+      fishbot expand robot.urdf.xacro --deps
+    """
+    from .expand import expand as run
+    from .output import write_atomic
+
+    values = _xacro_args(args)
+    packages = _packages(package_items)
+    try:
+        expansion = run(file, args=values, packages=packages)
+        text = " ".join(expansion.dependencies) + "\n" if deps else expansion.text
+        if output == "-":
+            click.echo(text, nl=False)
+        else:
+            write_atomic(output, text, inputs=[file, *expansion.dependencies])
+    except FishbotUrdfError as exc:
+        _emit_findings([_fail(exc)])
+        sys.exit(_status(exc))
+    for message in expansion.messages:
+        click.echo(f"{file}: warning: {message.removeprefix('warning: ')} [xacro]", err=True)
+    sys.exit(EXIT_OK)
 
 
 def _report_failure(fmt: str, exc: FishbotUrdfError, reports: list[dict[str, Any]]) -> None:

@@ -49,12 +49,6 @@ class XmlSyntaxError(FishbotUrdfError):
     rule = "xml-syntax"
 
 
-class UnsupportedInputError(FishbotUrdfError):
-    """The input is of a kind this version cannot read yet (for example a .xacro file)."""
-
-    rule = "unsupported-input"
-
-
 class RobotError(FishbotUrdfError):
     """The robot description has errors; ``diagnostics`` lists every one of them."""
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import operator
 import re
+from collections.abc import Sequence
 from itertools import accumulate, repeat
 from pathlib import Path
 
@@ -121,6 +122,7 @@ class Locator:
         "_last",
         "_line",
         "_line_start",
+        "_origins",
         "_pos",
         "_starts",
         "_tags",
@@ -128,7 +130,7 @@ class Locator:
         "raw_whitespace",
     )
 
-    def __init__(self, data: bytes, path: str) -> None:
+    def __init__(self, data: bytes, path: str, origins: Sequence[Location] | None = None) -> None:
         self._data = data
         self.path = path
         if b"<!" in data:
@@ -136,6 +138,11 @@ class Locator:
         else:
             self._starts = [m.start() for m in _START_TAG.finditer(data)]
         self._ascii = data.isascii()
+        # Where each element was written when ``data`` was generated (an expanded xacro file):
+        # reported instead of the element's place in ``data``.
+        self._origins = (
+            origins if origins is not None and len(origins) == len(self._starts) else None
+        )
         self._tags: dict[str, bytes] = {}
         self.raw_whitespace = _RAW_WHITESPACE.search(data) is not None
         self.rewind()
@@ -182,8 +189,11 @@ class Locator:
             offset = starts[index]
             if data.startswith(name, offset) and data[offset + size] in _AFTER_TAG:
                 self._index = index + 1
-                line, column = self._position(offset)
-                location = _make_location(self.path, line, column)
+                if self._origins is not None:
+                    location = self._origins[index]
+                else:
+                    line, column = self._position(offset)
+                    location = _make_location(self.path, line, column)
                 self._last = (location, offset)
                 return location
         return self._fallback(element)
@@ -198,6 +208,8 @@ class Locator:
         """The location of every start tag, in document order, all at once: for a reader
         that visits every element in order and has checked ``element_count`` first."""
         starts, data = self._starts, self._data
+        if self._origins is not None:
+            return list(self._origins)
         if not self._ascii:
             self.rewind()
             places = [self._position(offset) for offset in starts]
@@ -252,7 +264,7 @@ class Locator:
         otherwise the element's own location.
         """
         match = self._attribute_match(location, name)
-        if match is None:
+        if match is None or self._origins is not None:
             return location
         line, column = self._position(match.start() + 1)
         return Location(self.path, line, column)

@@ -8,13 +8,13 @@ from __future__ import annotations
 
 import gc
 import re
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..diagnostics import Diagnostic
-from ..errors import RobotError, UnsupportedInputError
+from ..errors import RobotError
 from ..model import Robot
 from ..xmlsource import STRING_PATH, Locator, parse_xml, read_bytes
 from ._fast import fast_robot
@@ -44,32 +44,44 @@ def is_xacro_path(path: str | Path) -> bool:
     return str(path).lower().endswith(".xacro")
 
 
-def read(source: str | Path | bytes, *, path: str | None = None) -> Parsed:
-    """Read a URDF leniently, collecting every finding instead of stopping at the first.
+def read(
+    source: str | Path | bytes,
+    *,
+    path: str | None = None,
+    args: Mapping[str, str] | None = None,
+    packages: Mapping[str, str | Path] | None = None,
+) -> Parsed:
+    """Read a URDF (or xacro) file leniently, collecting every finding instead of stopping at
+    the first.
+
+    A ``.xacro`` file is expanded first (see :func:`fishbot_urdf.expand`), and the robot's
+    elements keep the place they were written in the xacro files.
 
     Args:
         source: A file path, or the document itself as bytes.
         path: The name to report (default: the file path, or ``<string>`` for bytes).
+        args: ``<xacro:arg>`` values, for a xacro file.
+        packages: Package folders for ``$(find NAME)``, for a xacro file.
 
     Raises:
         InputError: The file cannot be read.
         XmlSyntaxError: The file is not well-formed XML.
-        UnsupportedInputError: The file is a .xacro file.
+        XacroError: The xacro file cannot be expanded.
+        PackageNotFoundError: The xacro file names a package that is not found.
     """
+    origins = None
     if isinstance(source, bytes):
         data, name = source, path or STRING_PATH
+    elif is_xacro_path(source):
+        from ..expand import expand
+
+        expansion = expand(source, args=args, packages=packages)
+        data, name, origins = expansion.text.encode("utf-8"), path or str(source), expansion.sources
     else:
         name = path or str(source)
-        if is_xacro_path(source):
-            raise UnsupportedInputError(
-                "this is a xacro file; xacro input is not supported yet "
-                "(expand it to URDF first, e.g. `xacro robot.urdf.xacro > robot.urdf`; "
-                "`fishbot expand` is coming)",
-                path=name,
-            )
         data = read_bytes(source)
     root = parse_xml(data, name)
-    locator = Locator(data, name)
+    locator = Locator(data, name, origins)
     with paused_gc():
         robot = fast_robot(root, locator, data)
         if robot is not None:
@@ -111,8 +123,13 @@ def parse(text: str | bytes, *, path: str | None = None) -> Robot:
     return _strict(read(data, path=path or STRING_PATH))
 
 
-def load(path: str | Path) -> Robot:
-    """Load a URDF file into a Robot.
+def load(
+    path: str | Path,
+    *,
+    args: Mapping[str, str] | None = None,
+    packages: Mapping[str, str | Path] | None = None,
+) -> Robot:
+    """Load a URDF file (or a xacro file, expanded with ``args`` and ``packages``) into a Robot.
 
     The tree's structure (undefined links, loops, ...) is checked by ``fishbot_urdf.check``.
 
@@ -121,7 +138,7 @@ def load(path: str | Path) -> Robot:
         XmlSyntaxError: The file is not well-formed XML.
         RobotError: An element is malformed (``.diagnostics`` lists every finding).
     """
-    return _strict(read(path))
+    return _strict(read(path, args=args, packages=packages))
 
 
 def _strict(parsed: Parsed) -> Robot:

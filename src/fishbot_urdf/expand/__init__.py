@@ -1,0 +1,131 @@
+"""Xacro -> URDF without ROS, with the PyPI ``xacro`` package as the engine.
+
+This package is the only place that imports xacro. xacro keeps its state in module globals
+(the file and macro stacks, the list of files read, the substitution arguments) and prints
+its warnings, so every expansion here runs alone, under a lock, with that state reset
+before and restored after, the engine's hooks patched in for the run only, and its messages
+captured instead of printed. The hooks:
+
+- ``$(find pkg)`` resolves through :func:`fishbot_urdf.packages.find_package`;
+- every element remembers the file, line and column it was written at (kept through the
+  clones a macro call makes), so errors and findings point at the xacro source, with the
+  chain of macro calls that led there;
+- ``$(dirname)`` works (xacro 2.1.1 never tells it the current file);
+- ``<xacro:attribute>`` with a number value is written out (xacro 2.1.1 crashes on it).
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import FishbotUrdfError, InputError
+from ..model import Location
+
+__all__ = ["Expansion", "XacroError", "expand", "parse_args"]
+
+_LOCK = threading.RLock()
+
+
+class XacroError(FishbotUrdfError):
+    """A xacro file could not be expanded.
+
+    Attributes:
+        rule: ``xacro-include`` (an include names no file), ``xacro-undefined`` (a name,
+            macro, parameter or argument that is not defined), ``xacro-namespace`` (the
+            ``xacro:`` prefix is not declared), ``xacro-syntax`` (not well-formed XML), or
+            ``xacro`` (anything else xacro refuses).
+        hint: What to do, or the closest defined names.
+        calls: The macro calls that led to the error, innermost first, as
+            (macro name, where it was called).
+    """
+
+    def __init__(
+        self,
+        message: str,
+        *,
+        rule: str = "xacro",
+        hint: str | None = None,
+        where: Location | None = None,
+        calls: tuple[tuple[str, Location | None], ...] = (),
+    ) -> None:
+        self.rule = rule
+        self.hint = hint
+        self.calls = calls
+        for name, site in calls:
+            message += f", in macro {name} called from {_place(site)}"
+        super().__init__(
+            message,
+            path=where.path if where else None,
+            line=where.line if where else None,
+            column=where.column if where else None,
+        )
+
+
+@dataclass(frozen=True, slots=True)
+class Expansion:
+    """A xacro file expanded to URDF.
+
+    Attributes:
+        path: The input file, as named by the caller.
+        text: The URDF document, exactly as the ``xacro`` command prints it.
+        dependencies: Every other file the expansion read (includes, YAML), in the order
+            first read.
+        sources: Where each element of ``text`` was written, in document order.
+        messages: The warnings xacro gave, one per entry.
+    """
+
+    path: str
+    text: str
+    dependencies: tuple[str, ...]
+    sources: tuple[Location, ...]
+    messages: tuple[str, ...]
+
+
+def parse_args(items: list[str] | tuple[str, ...]) -> dict[str, str]:
+    """``["name:=value", ...]`` -> ``{"name": "value"}``, as the xacro command reads them.
+
+    Raises:
+        ValueError: An item has no ``:=`` or no name.
+    """
+    args: dict[str, str] = {}
+    for item in items:
+        name, sep, value = item.partition(":=")
+        if not sep or not name:
+            raise ValueError(f"'{item}' is not an argument: write name:=value")
+        args[name] = value
+    return args
+
+
+def expand(
+    path: str | Path,
+    args: Mapping[str, str] | None = None,
+    packages: Mapping[str, str | Path] | None = None,
+) -> Expansion:
+    """Expand a xacro file to URDF.
+
+    Args:
+        path: The xacro file. Its name appears in the banner as given, as xacro does.
+        args: Values for ``<xacro:arg>``, like ``name:=value`` on xacro's command line.
+        packages: Package folders for ``$(find NAME)``, searched first (see
+            :mod:`fishbot_urdf.packages` for the rest of the search).
+
+    Raises:
+        InputError: The file cannot be read.
+        PackageNotFoundError: ``$(find NAME)`` names a package no place knows.
+        XacroError: xacro refuses the input (the message says where and why).
+    """
+    name = str(path)
+    if not Path(name).is_file():
+        reason = "is a folder" if Path(name).is_dir() else "does not exist"
+        raise InputError(f"{name} {reason}", path=name)
+    from ._engine import Run  # xacro and minidom load here, not with the package
+
+    with _LOCK, Run(name, dict(args or {}), dict(packages or {})) as run:
+        return run.expand()
+
+
+def _place(site: Location | None) -> str:
+    return "?" if site is None else f"{site.path}:{site.line}"

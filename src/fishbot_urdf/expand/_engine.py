@@ -1,0 +1,217 @@
+"""The run of one expansion: xacro's state reset and its hooks patched in, then restored."""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import os
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+from xml.dom import expatbuilder, minidom
+from xml.parsers.expat import ExpatError
+
+from ..model import Location
+from ..packages import PackageNotFoundError, find_package
+from . import Expansion, XacroError
+from ._errors import SOURCE_KEY, Explaining, shown_path, source
+
+
+class _KeepOnClone:
+    """Copies an element's source location to its clones (DOM user-data handler)."""
+
+    def handle(self, operation: int, key: str, data: Any, src: Any, dst: Any) -> None:
+        if dst is not None:
+            dst.setUserData(key, data, self)
+
+
+_KEEP = _KeepOnClone()
+
+
+class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
+    """minidom's builder, also noting where each element starts."""
+
+    def __init__(self, path: str) -> None:
+        super().__init__()
+        self._path = path
+
+    def start_element_handler(self, name: str, attributes: Any) -> None:
+        parser = self.getParser()
+        line, column = parser.CurrentLineNumber, parser.CurrentColumnNumber + 1
+        super().start_element_handler(name, attributes)
+        self.curNode.setUserData(SOURCE_KEY, Location(self._path, line, column), _KEEP)
+
+    # The first element goes through another handler, which then calls the one above.
+
+
+class Run(Explaining):
+    """One expansion: xacro's state reset, its hooks in place, for the time of a ``with``."""
+
+    def __init__(self, path: str, args: dict[str, str], packages: dict[str, str | Path]) -> None:
+        import xacro  # type: ignore[import-untyped]
+        import xacro.substitution_args as subst  # type: ignore[import-untyped]
+
+        self.xacro, self.subst = xacro, subst
+        self.path, self.args, self.packages = path, args, packages
+        self.node: Any = None  # the element being worked on
+        self.calls: list[tuple[str, Location | None]] = []  # macro calls, outermost first
+        self.symbols: Any = None  # the symbol table of a failed expression
+        self.macros: Any = None  # the macro table at the last macro call
+        self.parsing: str | None = None  # the file being parsed
+        self._saved: list[tuple[Any, str, Any]] = []
+        self._stderr = io.StringIO()
+        self._redirect = contextlib.redirect_stderr(self._stderr)
+
+    # -- the hooks -------------------------------------------------------------------------
+    def __enter__(self) -> Run:
+        x, subst = self.xacro, self.subst
+        for name in ("eval_all", "process_include", "grab_property", "grab_macro"):
+            self._patch(x, name, self._tracked(getattr(x, name)))
+        self._patch(x, "check_attrs", self._tracked(x.check_attrs))
+        self._patch(x, "reqd_attrs", self._tracked(x.reqd_attrs))
+        self._patch(x, "handle_macro_call", self._macro_call(x.handle_macro_call))
+        self._patch(x, "safe_eval", self._safe_eval(x.safe_eval))
+        self._patch(x, "eval_extension", self._extension(x.eval_extension))
+        self._patch(x, "parse", self._parse)
+        self._patch(x, "print_location", lambda: None)
+        self._patch(subst, "_eval_find", self._find)
+        self._patch(subst._eval_dict, "find", self._find)
+        # the state a previous run may have left
+        self._patch(x, "all_includes", [])
+        self._patch(x, "root_dir", os.curdir)
+        self._patch(x, "verbosity", 1)
+        self._patch(x, "substitution_args_context", {})
+        x.init_stacks(None)
+        self._redirect.__enter__()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._redirect.__exit__(None, None, None)
+        for owner, name, value in reversed(self._saved):
+            if isinstance(owner, dict):
+                owner[name] = value
+            else:
+                setattr(owner, name, value)
+        self.xacro.init_stacks(None)
+
+    def _patch(self, owner: Any, name: str, value: Any) -> None:
+        if isinstance(owner, dict):
+            self._saved.append((owner, name, owner[name]))
+            owner[name] = value
+        else:
+            self._saved.append((owner, name, getattr(owner, name)))
+            setattr(owner, name, value)
+
+    def _tracked(self, function: Callable[..., Any]) -> Callable[..., Any]:
+        def run(node: Any, *rest: Any) -> Any:
+            outer = self.node
+            self.node = node
+            result = function(node, *rest)
+            self.node = outer  # on an error, the failing element stays
+            return result
+
+        return run
+
+    def _macro_call(self, function: Callable[..., Any]) -> Callable[..., Any]:
+        def run(node: Any, macros: Any, symbols: Any) -> Any:
+            tag = node.tagName
+            if not tag.startswith("xacro:"):
+                return False
+            outer = self.node
+            self.node, self.macros = node, macros
+            self.calls.append((tag[6:], source(node)))
+            result = function(node, macros, symbols)
+            self.calls.pop()
+            self.node = outer
+            return result
+
+        return run
+
+    def _safe_eval(self, function: Callable[..., Any]) -> Callable[..., Any]:
+        def run(expr: str, globals: Any, locals: Any = None) -> Any:
+            try:
+                return function(expr, globals, locals)
+            except NameError:
+                self.symbols = globals
+                raise
+
+        return run
+
+    def _extension(self, function: Callable[[str], Any]) -> Callable[[str], Any]:
+        def run(text: str) -> Any:
+            # xacro 2.1.1 never tells $(dirname) which file it is in.
+            stack = self.xacro.filestack
+            if stack and stack[-1]:
+                self.xacro.substitution_args_context["filename"] = stack[-1]
+            return function(text)
+
+        return run
+
+    def _find(self, package: str) -> str:
+        stack = self.xacro.filestack
+        near = stack[-1] if stack and stack[-1] else self.path
+        return str(find_package(package, near=near, packages=self.packages))
+
+    def _parse(self, inp: Any, filename: str | None = None) -> Any:
+        if inp is not None:
+            return minidom.parseString(inp) if isinstance(inp, str) else inp
+        assert filename is not None
+        full = os.path.join(self.xacro.root_dir, filename)
+        try:
+            data = Path(full).read_bytes()
+        except OSError as exc:
+            self.xacro.filestack.pop()  # as xacro does: the include, not the file, is at fault
+            raise self.xacro.XacroException(f"{exc.strerror}: {full}", exc=exc) from exc
+        self.parsing = filename
+        document = _LocatingBuilder(shown_path(filename)).parseString(data)
+        self.parsing = None
+        return document
+
+    # -- the run ---------------------------------------------------------------------------
+    def expand(self) -> Expansion:
+        x = self.xacro
+        try:
+            document = x.process_file(self.path, mappings=dict(self.args))
+            _stringify_attributes(document.documentElement)
+            text = document.toprettyxml(indent="  ")
+        except ExpatError as exc:
+            raise self._syntax_error(exc) from exc
+        except PackageNotFoundError as exc:
+            raise self._located(exc) from exc
+        except x.XacroException as exc:
+            raise self._xacro_error(exc) from exc
+        except RecursionError as exc:
+            raise XacroError(
+                "macros or properties call each other without end", where=source(self.node)
+            ) from exc
+        seen: dict[str, None] = {}
+        for name in x.all_includes:
+            seen.setdefault(name, None)
+        messages = tuple(line for line in self._stderr.getvalue().splitlines() if line.strip())
+        return Expansion(
+            self.path, text, tuple(seen), tuple(_sources(document, self.path)), messages
+        )
+
+
+def _stringify_attributes(root: Any) -> None:
+    """Attribute values must be text when written; ``<xacro:attribute>`` can leave a number."""
+    stack = [root]
+    while stack:
+        node = stack.pop()
+        attributes = node.attributes
+        if attributes is not None:
+            for attr in list(attributes.values()):
+                if not isinstance(attr.value, str):
+                    attr.value = str(attr.value)
+        stack.extend(child for child in node.childNodes if child.nodeType == node.ELEMENT_NODE)
+
+
+def _sources(document: Any, path: str) -> Iterator[Location]:
+    """Each element's source location, in document order."""
+    fallback = Location(path, 1, 1)
+    stack = [document.documentElement]
+    while stack:
+        node = stack.pop()
+        yield source(node) or fallback
+        children = [c for c in node.childNodes if c.nodeType == c.ELEMENT_NODE]
+        stack.extend(reversed(children))

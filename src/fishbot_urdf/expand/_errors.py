@@ -1,0 +1,229 @@
+"""Turning what xacro raises into errors that say where, why and what to do."""
+
+from __future__ import annotations
+
+import difflib
+import os
+from pathlib import Path
+from typing import Any
+from xml.parsers.expat import ExpatError
+
+from ..errors import FishbotUrdfError
+from ..model import Location
+from ..packages import PackageNotFoundError
+from . import XacroError
+
+_XACRO_NS = "http://www.ros.org/wiki/xacro"
+
+
+def shown_path(name: str) -> str:
+    """A path as the user would write it: relative to the current folder when inside it."""
+    try:
+        relative = os.path.relpath(name)
+    except ValueError:  # another drive (Windows)
+        return name
+    return name if relative.startswith("..") else relative
+
+
+def source(node: Any) -> Location | None:
+    """Where an element was written, if the reader noted it."""
+    if node is None or node.nodeType != node.ELEMENT_NODE:
+        return None
+    location = node.getUserData(SOURCE_KEY)
+    return location if isinstance(location, Location) else None
+
+
+SOURCE_KEY = "fishbot_urdf.source"
+
+
+class Explaining:
+    """The error side of a run: what the run noted, turned into one clear error."""
+
+    xacro: Any
+    subst: Any
+    path: str
+    node: Any
+    calls: list[tuple[str, Location | None]]
+    symbols: Any
+    macros: Any
+    parsing: str | None
+
+    # ----------------------------------------------------------------------------
+    def _calls(self) -> tuple[tuple[str, Location | None], ...]:
+        return tuple(reversed(self.calls))
+
+    def _located(self, exc: PackageNotFoundError) -> PackageNotFoundError:
+        where = source(self.node)
+        if where is None:
+            return exc
+        return PackageNotFoundError(
+            exc.package, exc.searched, path=where.path, line=where.line, column=where.column
+        )
+
+    def _syntax_error(self, exc: ExpatError) -> XacroError:
+        name = self.parsing or self.path
+        shown = shown_path(name)
+        where = Location(shown, exc.lineno, exc.offset + 1)
+        reason = str(exc).split(":", 1)[0]
+        if reason == "unbound prefix":
+            line = _line_of(os.path.join(self.xacro.root_dir, name), exc.lineno)
+            prefix = line[exc.offset + 1 :].split(":", 1)[0]
+            if prefix == "xacro":
+                return XacroError(
+                    "the xacro: prefix is used but not declared",
+                    rule="xacro-namespace",
+                    hint=f'add xmlns:xacro="{_XACRO_NS}" to the root element',
+                    where=where,
+                )
+            return XacroError(
+                f"the {prefix}: prefix is used but not declared",
+                rule="xacro-namespace",
+                hint=f'declare it on the root element: xmlns:{prefix}="..."',
+                where=where,
+            )
+        return XacroError(f"not well-formed XML: {reason}", rule="xacro-syntax", where=where)
+
+    def _xacro_error(self, exc: Any) -> FishbotUrdfError:
+        inner = exc.exc
+        where = source(self.node)
+        calls = self._calls()
+        if isinstance(inner, PackageNotFoundError):
+            return self._located(inner)
+        if isinstance(inner, OSError) and self.node is not None:
+            if self.node.tagName == "xacro:include":
+                return _missing_include(inner, where, calls)
+            if getattr(inner, "filename", None):
+                return XacroError(
+                    f"cannot read {inner.filename}: {inner.strerror}",
+                    rule="xacro-include",
+                    where=where,
+                    calls=calls,
+                )
+        if isinstance(inner, NameError):
+            return self._undefined_name(inner, exc, where, calls)
+        if isinstance(inner, self.subst.ArgException):
+            known = sorted(self.xacro.substitution_args_context.get("arg", {}))
+            missing = str(inner)
+            return XacroError(
+                f"argument '{missing}' is not declared",
+                rule="xacro-undefined",
+                hint=_closest(missing, known, "arguments")
+                or f'declare it with <xacro:arg name="{missing}" default="..."/>',
+                where=where,
+                calls=calls,
+            )
+        text = str(exc).strip()
+        if text.startswith("unknown macro name: "):
+            unknown = text.removeprefix("unknown macro name: ").removeprefix("xacro:")
+            calls = calls[1:] if calls and calls[0][0] == unknown else calls
+            return XacroError(
+                f"macro '{unknown}' is not defined",
+                rule="xacro-undefined",
+                hint=_closest(unknown, _table_names(self.macros), "macros"),
+                where=where,
+                calls=calls,
+            )
+        macro = exc.macros[0] if getattr(exc, "macros", None) else None
+        if (
+            macro is not None
+            and calls
+            and text.startswith(("Invalid parameter ", "Undefined parameters "))
+        ):
+            called, calls = calls[0][0], calls[1:]  # the call itself is at fault
+            if text.startswith("Invalid parameter "):
+                param = text.removeprefix("Invalid parameter ").strip('"')
+                return XacroError(
+                    f"macro {called} has no parameter '{param}'",
+                    rule="xacro-undefined",
+                    hint=_closest(param, _params(macro), "parameters"),
+                    where=where,
+                    calls=calls,
+                )
+            missing = text.removeprefix("Undefined parameters ").strip("[]")
+            return XacroError(
+                f"the call of macro {called} gives no value for {missing}",
+                rule="xacro-undefined",
+                hint="its parameters: " + ", ".join(_params(macro)),
+                where=where,
+                calls=calls,
+            )
+        return XacroError(" ".join(text.split()), where=where, calls=calls)
+
+    def _undefined_name(
+        self,
+        inner: NameError,
+        exc: Any,
+        where: Location | None,
+        calls: tuple[tuple[str, Location | None], ...],
+    ) -> XacroError:
+        name: str | None = getattr(inner, "name", None)
+        if not isinstance(name, str):  # raised by hand: "name 'x' is not defined"
+            parts = str(inner).split("'")
+            name = parts[1] if len(parts) > 2 else str(inner)
+        expression = str(exc.suffix or "").strip().removeprefix("when evaluating expression ")
+        return XacroError(
+            f"'{name}' is not defined in ${{{expression.strip(chr(39))}}}",
+            rule="xacro-undefined",
+            hint=_closest(name, _table_names(self.symbols), "properties"),
+            where=where,
+            calls=calls,
+        )
+
+
+def _line_of(path: str, number: int) -> str:
+    try:
+        lines = Path(path).read_text(encoding="utf-8", errors="replace").splitlines()
+    except OSError:
+        return ""
+    return lines[number - 1] if 0 < number <= len(lines) else ""
+
+
+def _missing_include(
+    error: OSError, where: Location | None, calls: tuple[tuple[str, Location | None], ...]
+) -> XacroError:
+    target = Path(str(error.filename))
+    folder = target.parent
+    if not folder.is_dir():
+        return XacroError(
+            f"included file {shown_path(str(target))} does not exist",
+            rule="xacro-include",
+            hint=f"there is no folder {shown_path(str(folder))}",
+            where=where,
+            calls=calls,
+        )
+    names = sorted(p.name for p in folder.iterdir() if p.is_file())
+    close = difflib.get_close_matches(target.name, names, n=1, cutoff=0.6)
+    hint = f"did you mean '{close[0]}'?" if close else None
+    return XacroError(
+        f"included file {shown_path(str(target))} does not exist",
+        rule="xacro-include",
+        hint=hint,
+        where=where,
+        calls=calls,
+    )
+
+
+def _closest(name: str, candidates: list[str], what: str) -> str | None:
+    if not candidates:
+        return None
+    close = difflib.get_close_matches(name, candidates, n=3, cutoff=0.6)
+    if close:
+        return "did you mean " + " or ".join(f"'{c}'" for c in close) + "?"
+    shown = candidates if len(candidates) <= 8 else [*candidates[:8], "..."]
+    return f"defined {what}: " + ", ".join(shown)
+
+
+def _table_names(table: Any) -> list[str]:
+    """Every name a xacro symbol or macro table defines, its parents' included (the global
+    symbols, Python's and math's, are left out)."""
+    names: set[str] = set()
+    while isinstance(table, dict) and hasattr(table, "parent"):
+        names.update(key for key in dict.keys(table) if not key.startswith("*"))
+        if table.parent is getattr(table, "root", None):
+            break
+        table = table.parent
+    return sorted(names)
+
+
+def _params(macro: Any) -> list[str]:
+    return [p.lstrip("*") for p in macro.params]

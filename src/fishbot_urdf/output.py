@@ -1,0 +1,54 @@
+"""Writing output files safely: whole or not at all, never over an input."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from collections.abc import Iterable
+from pathlib import Path
+
+from .errors import InputError
+
+__all__ = ["write_atomic"]
+
+
+def write_atomic(path: str | Path, data: bytes | str, *, inputs: Iterable[str | Path] = ()) -> Path:
+    """Write ``data`` to ``path`` through a temporary file and a rename, making parent folders.
+
+    A reader never sees half a file, and an existing file is only replaced by a complete new
+    one. Text is written as UTF-8.
+
+    Raises:
+        InputError: ``path`` is one of ``inputs``, or cannot be written.
+    """
+    target = Path(path)
+    for source in inputs:
+        if _same_file(target, Path(source)):
+            raise InputError(f"refusing to write over the input {source}", path=str(path))
+    payload = data.encode("utf-8") if isinstance(data, str) else data
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.")
+    except OSError as exc:
+        raise InputError(f"cannot write {path}: {exc.strerror}", path=str(path)) from exc
+    try:
+        with os.fdopen(handle, "wb") as stream:
+            stream.write(payload)
+        if target.exists():
+            os.chmod(temporary, target.stat().st_mode & 0o7777)
+        else:
+            umask = os.umask(0)
+            os.umask(umask)
+            os.chmod(temporary, 0o666 & ~umask)
+        os.replace(temporary, target)
+    except OSError as exc:
+        Path(temporary).unlink(missing_ok=True)
+        raise InputError(f"cannot write {path}: {exc.strerror}", path=str(path)) from exc
+    return target
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    try:
+        return a.exists() and b.exists() and a.samefile(b)
+    except OSError:
+        return False

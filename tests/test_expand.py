@@ -1,0 +1,664 @@
+"""`fishbot_urdf.expand` and `fishbot expand`: the xacro command's document, without ROS."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+from conftest import DATA, FISHBOT, XACRO_CORPUS
+
+import fishbot_urdf
+from fishbot_urdf.cli import cli
+from fishbot_urdf.expand import XacroError, expand, parse_args
+from fishbot_urdf.expand._errors import shown_path
+
+STUB = Path(__file__).resolve().parent / "ament_stub"
+FISHBOT_XACRO = FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"
+NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+
+
+def xacro_command(
+    path: str | Path,
+    *args: str,
+    cwd: Path | None = None,
+    packages: dict[str, Path] | None = None,
+) -> subprocess.CompletedProcess[str]:
+    """Run the real xacro command (the PyPI package's), with $(find) answered by the stand-in."""
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join([str(STUB), env.get("PYTHONPATH", "")])
+    env["FISHBOT_TEST_PACKAGES"] = os.pathsep.join(
+        f"{name}={folder}" for name, folder in (packages or {}).items()
+    )
+    code = "import sys, xacro; sys.exit(xacro.main())"
+    return subprocess.run(
+        [sys.executable, "-c", code, str(path), *args],
+        capture_output=True,
+        text=True,
+        cwd=cwd,
+        env=env,
+        timeout=300,
+        check=False,
+    )
+
+
+def _write(folder: Path, files: dict[str, str]) -> None:
+    for name, text in files.items():
+        target = folder / name
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_text(text, encoding="utf-8")
+
+
+def _same_as_xacro(folder: Path, top: str, *args: str, **packages: Path) -> str:
+    """Expand ``top`` (in ``folder``) with both tools; assert equal output; return it."""
+    reference = xacro_command(top, *args, cwd=folder, packages=packages)
+    assert reference.returncode == 0, reference.stderr
+    here = Path.cwd()
+    os.chdir(folder)
+    try:
+        values = parse_args(list(args))
+        ours = expand(top, args=values, packages=packages)
+    finally:
+        os.chdir(here)
+    assert ours.text == reference.stdout
+    return ours.text
+
+
+# -- every xacro feature, against the real command --------------------------------------------
+
+FEATURES: dict[str, tuple[dict[str, str], tuple[str, ...]]] = {
+    "properties-lazy-and-scoped": (
+        {
+            "robot.xacro": f"""<robot name="p" {NS}>
+  <xacro:property name="b" value="${{a * 2}}"/>
+  <xacro:property name="a" value="3"/>
+  <xacro:property name="words" value="hello world"/>
+  <xacro:macro name="m" params="">
+    <xacro:property name="a" value="10"/>
+    <xacro:property name="up" value="7" scope="parent"/>
+    <link name="inner_${{a}}"/>
+  </xacro:macro>
+  <xacro:m/>
+  <link name="outer_${{a}}_${{b}}_${{up}}" note="${{words}}"/>
+  <xacro:property name="block"><origin xyz="1 2 3"/></xacro:property>
+  <link name="with_block"><xacro:insert_block name="block"/></link>
+</robot>
+"""
+        },
+        (),
+    ),
+    "math": (
+        {
+            "robot.xacro": f"""<robot name="m" {NS}>
+  <xacro:property name="r" value="0.032"/>
+  <link name="l">
+    <inertial>
+      <mass value="${{0.1 + 0.2}}"/>
+      <inertia ixx="${{1/12 * 0.1 * (3 * r**2 + 0.04**2)}}" ixy="0" ixz="0"
+               iyy="${{pi/2}}" iyz="${{radians(90)}}" izz="${{sqrt(2) * cos(0)}}"/>
+    </inertial>
+  </link>
+  <joint name="j" type="fixed"><origin rpy="${{-pi/2}} 0 ${{int(7/2)}}"/>
+    <parent link="l"/><child link="l2"/></joint>
+  <link name="l2" big="${{1e20}}" small="${{1e-7}}" neg="${{-0.0}}"/>
+</robot>
+"""
+        },
+        (),
+    ),
+    "macros-defaults-caret-blocks": (
+        {
+            "robot.xacro": f"""<robot name="mb" {NS}>
+  <xacro:property name="size" value="0.5"/>
+  <xacro:macro name="box" params="name size:=^ mass:=^|1.5 *origin **extra">
+    <link name="${{name}}">
+      <visual><xacro:insert_block name="origin"/>
+        <geometry><box size="${{size}} ${{size}} ${{size}}"/></geometry></visual>
+      <xacro:insert_block name="extra"/>
+      <inertial><mass value="${{mass}}"/>
+        <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
+    </link>
+  </xacro:macro>
+  <xacro:box name="a">
+    <origin xyz="0 0 1"/>
+    <extra><collision><geometry><sphere radius="1"/></geometry></collision></extra>
+  </xacro:box>
+  <xacro:box name="b" size="2" mass="3">
+    <origin xyz="0 0 2"/>
+    <extra/>
+  </xacro:box>
+</robot>
+"""
+        },
+        (),
+    ),
+    "if-unless": (
+        {
+            "robot.xacro": f"""<robot name="c" {NS}>
+  <xacro:property name="on" value="true"/>
+  <xacro:if value="${{on}}"><link name="yes"/></xacro:if>
+  <xacro:unless value="${{on}}"><link name="no"/></xacro:unless>
+  <xacro:if value="${{1 == 2}}"><link name="never"/></xacro:if>
+  <xacro:if value="1"><link name="one"/></xacro:if>
+  <xacro:unless value="false"><link name="unless_false"/></xacro:unless>
+</robot>
+"""
+        },
+        (),
+    ),
+    "include-ns-relative": (
+        {
+            "robot.xacro": f"""<robot name="i" {NS}>
+  <xacro:include filename="parts/wheel.xacro"/>
+  <xacro:include filename="parts/wheel.xacro" ns="other"/>
+  <xacro:include filename="parts/missing.xacro" optional="true"/>
+  <xacro:wheel side="left"/>
+  <xacro:other.wheel side="right"/>
+  <link name="r_${{other.radius}}"/>
+</robot>
+""",
+            "parts/wheel.xacro": f"""<?xml version="1.0"?>
+<robot {NS}>
+  <xacro:include filename="common.xacro"/>
+  <xacro:property name="radius" value="${{base_radius}}"/>
+  <xacro:macro name="wheel" params="side">
+    <!-- a wheel -->
+    <link name="${{side}}_wheel"/>
+  </xacro:macro>
+</robot>
+""",
+            "parts/common.xacro": f"""<robot {NS}>
+  <xacro:property name="base_radius" value="0.032"/>
+</robot>
+""",
+        },
+        (),
+    ),
+    "args-env-optenv-eval": (
+        {
+            "robot.xacro": f"""<robot name="$(arg name)" {NS}>
+  <xacro:arg name="name" default="argbot"/>
+  <xacro:arg name="use_lidar" default="false"/>
+  <xacro:arg name="scale" default="2"/>
+  <link name="home_$(optenv FISHBOT_TEST_UNSET fallback value)"/>
+  <link name="shell_$(env FISHBOT_TEST_SET)"/>
+  <link name="eval_$(eval 2 * scale + 1)"/>
+  <xacro:if value="$(arg use_lidar)"><link name="lidar"/></xacro:if>
+  <link name="xacro_arg_${{xacro.arg('scale')}}"/>
+</robot>
+"""
+        },
+        ("name:=mybot", "use_lidar:=true"),
+    ),
+    "load-yaml": (
+        {
+            "robot.xacro": f"""<robot name="y" {NS}>
+  <xacro:property name="cfg" value="${{xacro.load_yaml('config/wheels.yaml')}}"/>
+  <link name="w_${{cfg['radius']}}_${{cfg['names'][1]}}_${{cfg.nested.value}}"/>
+</robot>
+""",
+            "config/wheels.yaml": "radius: 0.032\nnames: [left, right]\nnested:\n  value: 7\n",
+        },
+        (),
+    ),
+    "comments-and-text": (
+        {
+            "robot.xacro": f"""<?xml version="1.0"?>
+<!-- top comment -->
+<robot name="t" {NS}>
+  <!-- kept -->
+  <xacro:property name="x" value="1"/>
+  <!-- xacro:eval-comments -->
+  <!-- evaluated ${{x + 1}} -->
+  <link name="a"><note>text ${{x}} &amp; more</note></link>
+</robot>
+"""
+        },
+        (),
+    ),
+    "element-and-call": (
+        {
+            "robot.xacro": f"""<robot name="e" {NS}>
+  <xacro:property name="tag" value="link"/>
+  <xacro:macro name="named" params="n"><link name="${{n}}"/></xacro:macro>
+  <xacro:element xacro:name="${{tag}}" name="made"/>
+  <xacro:call macro="named" n="called"/>
+</robot>
+"""
+        },
+        (),
+    ),
+}
+
+
+@pytest.mark.parametrize("case", sorted(FEATURES))
+def test_feature_matches_the_xacro_command(
+    case: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    files, args = FEATURES[case]
+    _write(tmp_path, files)
+    monkeypatch.setenv("FISHBOT_TEST_SET", "from_env")
+    monkeypatch.delenv("FISHBOT_TEST_UNSET", raising=False)
+    text = _same_as_xacro(tmp_path, "robot.xacro", *args)
+    assert "<robot" in text
+
+
+def test_the_fishbot_matches_the_xacro_command(monkeypatch: pytest.MonkeyPatch) -> None:
+    # run from the repository, the way the README does
+    root = FISHBOT.parent.parent
+    monkeypatch.chdir(root)
+    top = str(FISHBOT_XACRO.relative_to(root))
+    reference = xacro_command(top, cwd=root, packages={"fishbot_description": FISHBOT})
+    assert reference.returncode == 0, reference.stderr
+    ours = expand(top)  # the package is found by walking up from the file
+    assert ours.text == reference.stdout
+    assert "base_footprint" in ours.text
+
+
+def test_first_robot_xacro_matches(monkeypatch: pytest.MonkeyPatch) -> None:
+    folder = FISHBOT / "urdf"
+    monkeypatch.chdir(folder)
+    reference = xacro_command("first_robot.urdf.xacro", cwd=folder)
+    assert reference.returncode == 0, reference.stderr
+    assert expand("first_robot.urdf.xacro").text == reference.stdout
+
+
+@pytest.mark.parametrize(
+    "path", XACRO_CORPUS, ids=[p.name for p in XACRO_CORPUS] if XACRO_CORPUS else None
+)
+def test_real_robot_xacro_matches(path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(path.parent)
+    reference = xacro_command(path.name, cwd=path.parent)
+    assert reference.returncode == 0, reference.stderr
+    assert expand(path.name).text == reference.stdout
+
+
+def test_the_corpus_is_there() -> None:
+    assert len(XACRO_CORPUS) >= 2
+
+
+# -- state does not leak between expansions ----------------------------------------------------
+
+
+def test_two_expansions_do_not_leak(tmp_path: Path) -> None:
+    _write(
+        tmp_path,
+        {
+            "a.xacro": f"""<robot name="a" {NS}>
+  <xacro:include filename="part.xacro"/>
+  <xacro:property name="only_in_a" value="1" scope="global"/>
+  <xacro:arg name="colour" default="red"/>
+  <link name="a_$(arg colour)"/>
+</robot>
+""",
+            "part.xacro": f'<robot {NS}><xacro:property name="p" value="1"/></robot>',
+            "b.xacro": f"""<robot name="b" {NS}>
+  <link name="b_${{only_in_a}}"/>
+</robot>
+""",
+            "c.xacro": f"""<robot name="c" {NS}>
+  <link name="c_$(arg colour)"/>
+</robot>
+""",
+        },
+    )
+    first = expand(tmp_path / "a.xacro", args={"colour": "blue"})
+    assert first.dependencies == (str(tmp_path / "part.xacro"),)
+    assert 'name="a_blue"' in first.text
+    with pytest.raises(XacroError) as info:
+        expand(tmp_path / "b.xacro")
+    assert "'only_in_a' is not defined" in info.value.message
+    with pytest.raises(XacroError) as info:
+        expand(tmp_path / "c.xacro")  # the argument of the first run is gone
+    assert "argument 'colour' is not declared" in info.value.message
+    again = expand(tmp_path / "a.xacro")
+    assert again.dependencies == first.dependencies
+    assert 'name="a_red"' in again.text
+
+
+def test_xacro_module_state_is_restored(tmp_path: Path) -> None:
+    import xacro
+
+    before = (xacro.eval_all, xacro.parse, xacro.all_includes, sys.stdout, sys.stderr)
+    _write(tmp_path, {"r.xacro": f'<robot name="r" {NS}><link name="l"/></robot>'})
+    expand(tmp_path / "r.xacro")
+    with pytest.raises(XacroError):
+        _write(tmp_path, {"bad.xacro": f'<robot name="r" {NS}><xacro:nope/></robot>'})
+        expand(tmp_path / "bad.xacro")
+    after = (xacro.eval_all, xacro.parse, xacro.all_includes, sys.stdout, sys.stderr)
+    assert after == before
+
+
+# -- what xacro 2.1.1 gets wrong ---------------------------------------------------------------
+
+
+def test_dirname_works(tmp_path: Path) -> None:
+    _write(
+        tmp_path,
+        {
+            "r.xacro": f"""<robot name="r" {NS}>
+  <xacro:include filename="sub/part.xacro"/>
+  <link name="top"><visual><geometry><mesh filename="$(dirname)/a.stl"/></geometry></visual></link>
+</robot>
+""",
+            "sub/part.xacro": f"""<robot {NS}>
+  <link name="part" where="$(dirname)"/>
+</robot>
+""",
+        },
+    )
+    broken = xacro_command("r.xacro", cwd=tmp_path)
+    assert broken.returncode != 0 and "dirname" in broken.stderr  # still broken upstream
+    text = expand(tmp_path / "r.xacro").text
+    assert f'filename="{tmp_path}/a.stl"' in text
+    assert f'where="{tmp_path / "sub"}"' in text
+
+
+def test_attribute_with_a_number_value(tmp_path: Path) -> None:
+    _write(
+        tmp_path,
+        {
+            "r.xacro": f"""<robot name="r" {NS}>
+  <link name="l"><xacro:attribute name="weight" value="${{1 + 1}}"/></link>
+</robot>
+"""
+        },
+    )
+    broken = xacro_command("r.xacro", cwd=tmp_path)
+    assert broken.returncode != 0 and "Traceback" in broken.stderr  # still broken upstream
+    assert '<link name="l" weight="2"/>' in expand(tmp_path / "r.xacro").text
+
+
+# -- errors point at the xacro source ----------------------------------------------------------
+
+
+def _error(tmp_path: Path, files: dict[str, str], top: str = "robot.xacro") -> XacroError:
+    _write(tmp_path, files)
+    with pytest.raises(XacroError) as info:
+        expand(tmp_path / top)
+    return info.value
+
+
+def test_missing_include_suggests_the_real_name() -> None:
+    folder = DATA / "xacro" / "missing_include"
+    with pytest.raises(XacroError) as info:
+        expand(folder / "robot.urdf.xacro")
+    error = info.value
+    assert error.rule == "xacro-include"
+    lines = (folder / "robot.urdf.xacro").read_text().splitlines()
+    assert "base_urdf.xacro" in lines[error.line - 1]  # type: ignore[operator]
+    assert "base_urdf.xacro does not exist" in error.message
+    assert error.hint == "did you mean 'base.urdf.xacro'?"
+
+
+def test_missing_namespace_declaration() -> None:
+    path = DATA / "xacro" / "no_xmlns" / "robot.urdf.xacro"
+    with pytest.raises(XacroError) as info:
+        expand(path)
+    error = info.value
+    assert error.rule == "xacro-namespace"
+    assert error.message == "the xacro: prefix is used but not declared"
+    assert error.hint == 'add xmlns:xacro="http://www.ros.org/wiki/xacro" to the root element'
+    line = path.read_text().splitlines()[error.line - 1]  # type: ignore[operator]
+    assert line[error.column - 1 :].startswith("<xacro:")  # type: ignore[operator]
+
+
+def test_undefined_property_in_a_macro_names_the_call(tmp_path: Path) -> None:
+    error = _error(
+        tmp_path,
+        {
+            "robot.xacro": f"""<robot name="r" {NS}>
+  <xacro:property name="wheel_radius" value="0.032"/>
+  <xacro:include filename="wheel.xacro"/>
+  <xacro:wheel_xacro side="left"/>
+</robot>
+""",
+            "wheel.xacro": f"""<robot {NS}>
+  <xacro:macro name="wheel_xacro" params="side">
+    <link name="${{side}}_wheel">
+      <visual><geometry>
+        <cylinder radius="${{wheel_radus}}" length="0.04"/>
+      </geometry></visual>
+    </link>
+  </xacro:macro>
+</robot>
+""",
+        },
+    )
+    assert error.rule == "xacro-undefined"
+    assert (Path(error.path or "").name, error.line, error.column) == ("wheel.xacro", 5, 9)
+    assert error.message.startswith("'wheel_radus' is not defined in ${wheel_radus}")
+    assert error.message.endswith("in macro wheel_xacro called from " + _at(tmp_path, 4))
+    assert error.hint == "did you mean 'wheel_radius'?"
+    assert [name for name, _ in error.calls] == ["wheel_xacro"]
+
+
+def _at(folder: Path, line: int) -> str:
+    return f"{shown_path(str(folder / 'robot.xacro'))}:{line}"
+
+
+def test_nested_macro_calls_are_listed_innermost_first(tmp_path: Path) -> None:
+    error = _error(
+        tmp_path,
+        {
+            "robot.xacro": f"""<robot name="r" {NS}>
+  <xacro:macro name="inner" params="">
+    <link name="${{nope}}"/>
+  </xacro:macro>
+  <xacro:macro name="outer" params="">
+    <xacro:inner/>
+  </xacro:macro>
+  <xacro:outer/>
+</robot>
+"""
+        },
+    )
+    assert error.line == 3
+    assert [name for name, _ in error.calls] == ["inner", "outer"]
+    assert [site.line for _, site in error.calls if site] == [6, 8]
+    assert error.message.endswith(
+        f"in macro inner called from {_at(tmp_path, 6)}, "
+        f"in macro outer called from {_at(tmp_path, 8)}"
+    )
+
+
+def test_unknown_macro_suggests_close_names(tmp_path: Path) -> None:
+    error = _error(
+        tmp_path,
+        {
+            "robot.xacro": f"""<robot name="r" {NS}>
+  <xacro:macro name="wheel" params="side"><link name="${{side}}"/></xacro:macro>
+  <xacro:wheels side="a"/>
+</robot>
+"""
+        },
+    )
+    assert (error.rule, error.line, error.column) == ("xacro-undefined", 3, 3)
+    assert error.message == "macro 'wheels' is not defined"
+    assert error.hint == "did you mean 'wheel'?"
+
+
+def test_wrong_and_missing_macro_parameters(tmp_path: Path) -> None:
+    macro = f"""<robot name="r" {NS}>
+  <xacro:macro name="wheel" params="side radius"><link name="${{side}}"/></xacro:macro>
+  CALL
+</robot>
+"""
+    wrong = _error(
+        tmp_path, {"robot.xacro": macro.replace("CALL", '<xacro:wheel side="a" radus="1"/>')}
+    )
+    assert (wrong.line, wrong.message) == (3, "macro wheel has no parameter 'radus'")
+    assert wrong.hint == "did you mean 'radius'?"
+    missing = _error(tmp_path, {"robot.xacro": macro.replace("CALL", '<xacro:wheel side="a"/>')})
+    assert (missing.line, missing.message) == (
+        3,
+        "the call of macro wheel gives no value for radius",
+    )
+    assert missing.hint == "its parameters: side, radius"
+
+
+def test_undeclared_argument(tmp_path: Path) -> None:
+    error = _error(
+        tmp_path,
+        {
+            "robot.xacro": f"""<robot name="r" {NS}>
+  <xacro:arg name="use_gpu" default="false"/>
+  <link name="$(arg use_gpus)"/>
+</robot>
+"""
+        },
+    )
+    assert (error.rule, error.line) == ("xacro-undefined", 3)
+    assert error.message == "argument 'use_gpus' is not declared"
+    assert error.hint == "did you mean 'use_gpu'?"
+
+
+def test_missing_package_lists_every_place(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
+    monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
+    _write(
+        tmp_path,
+        {
+            "robot.xacro": f"""<robot name="r" {NS}>
+  <xacro:include filename="$(find no_such_description)/urdf/x.xacro"/>
+</robot>
+"""
+        },
+    )
+    with pytest.raises(fishbot_urdf.PackageNotFoundError) as info:
+        expand(tmp_path / "robot.xacro")
+    error = info.value
+    assert (error.package, error.line, error.column) == ("no_such_description", 2, 3)
+    assert error.message.startswith("package 'no_such_description' not found (searched: --package")
+    assert "ROS_PACKAGE_PATH (not set)" in error.message
+    assert "AMENT_PREFIX_PATH (not set)" in error.message
+    assert error.message.endswith("name its folder with --package no_such_description=PATH")
+
+
+def test_syntax_error_in_an_included_file(tmp_path: Path) -> None:
+    error = _error(
+        tmp_path,
+        {
+            "robot.xacro": (
+                f'<robot name="r" {NS}>\n  <xacro:include filename="part.xacro"/>\n</robot>\n'
+            ),
+            "part.xacro": f"<robot {NS}>\n  <link name='a'>\n</robot>\n",
+        },
+    )
+    assert (Path(error.path or "").name, error.line, error.rule) == (
+        "part.xacro",
+        3,
+        "xacro-syntax",
+    )
+    assert error.message == "not well-formed XML: mismatched tag"
+
+
+def test_external_entities_are_not_read(tmp_path: Path) -> None:
+    secret = tmp_path / "secret.txt"
+    secret.write_text("TOP-SECRET")
+    _write(
+        tmp_path,
+        {
+            "robot.xacro": f"""<?xml version="1.0"?>
+<!DOCTYPE robot [<!ENTITY leak SYSTEM "file://{secret}">]>
+<robot name="r" {NS}><link name="l">&leak;</link></robot>
+"""
+        },
+    )
+    try:
+        text = expand(tmp_path / "robot.xacro").text
+    except XacroError:
+        return
+    assert "TOP-SECRET" not in text
+
+
+# -- the command -------------------------------------------------------------------------------
+
+
+def test_expand_command_to_stdout_and_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(FISHBOT.parent.parent)
+    top = str(FISHBOT_XACRO.relative_to(FISHBOT.parent.parent))
+    runner = CliRunner()
+    shown = runner.invoke(cli, ["expand", top])
+    assert shown.exit_code == 0
+    assert shown.output == expand(top).text
+    out = tmp_path / "new" / "folder" / "fishbot.urdf"
+    written = runner.invoke(cli, ["expand", top, "-o", str(out)])
+    assert (written.exit_code, written.output) == (0, "")
+    assert out.read_text(encoding="utf-8") == shown.output
+    assert [p.name for p in out.parent.iterdir()] == ["fishbot.urdf"]  # no temporary left
+
+
+def test_expand_command_deps(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(FISHBOT.parent.parent)
+    top = str(FISHBOT_XACRO.relative_to(FISHBOT.parent.parent))
+    result = CliRunner().invoke(cli, ["expand", top, "--deps"])
+    assert result.exit_code == 0
+    reference = xacro_command(top, "--deps", packages={"fishbot_description": FISHBOT})
+    assert set(result.output.split()) == set(reference.stdout.split())
+    assert len(result.output.split()) == 7
+
+
+def test_expand_command_args_and_packages(tmp_path: Path) -> None:
+    pkg = tmp_path / "elsewhere" / "my_parts"
+    _write(pkg, {"part.xacro": f'<robot {NS}><link name="from_pkg"/></robot>'})
+    _write(
+        tmp_path,
+        {
+            "robot.xacro": f"""<robot name="$(arg name)" {NS}>
+  <xacro:arg name="name" default="x"/>
+  <xacro:include filename="$(find my_parts)/part.xacro"/>
+</robot>
+"""
+        },
+    )
+    runner = CliRunner()
+    args = ["expand", str(tmp_path / "robot.xacro"), "name:=given"]
+    result = runner.invoke(cli, [*args, "--package", f"my_parts={pkg}"])
+    assert result.exit_code == 0, result.output
+    assert '<robot name="given">' in result.output and 'name="from_pkg"' in result.output
+    missing = runner.invoke(cli, args)
+    assert missing.exit_code == 2
+    assert "package 'my_parts' not found" in missing.output
+    bad_arg = runner.invoke(cli, [*args, "oops"])
+    assert bad_arg.exit_code == 2
+    assert "'oops' is not an argument: write name:=value" in bad_arg.output
+
+
+def test_expand_command_errors(tmp_path: Path) -> None:
+    runner = CliRunner()
+    folder = DATA / "xacro" / "missing_include"
+    result = runner.invoke(cli, ["expand", str(folder / "robot.urdf.xacro")])
+    assert result.exit_code == 1
+    [line] = result.output.splitlines()
+    assert line.endswith(
+        "error: included file "
+        f"{os.path.relpath(folder / 'base_urdf.xacro')} does not exist "
+        "(did you mean 'base.urdf.xacro'?) [xacro-include]"
+    )
+    gone = runner.invoke(cli, ["expand", str(tmp_path / "nope.xacro")])
+    assert gone.exit_code == 2
+    assert (
+        gone.output
+        == f"{tmp_path / 'nope.xacro'}: error: {tmp_path / 'nope.xacro'} does not exist [io]\n"
+    )
+
+
+def test_expand_never_writes_over_an_input(tmp_path: Path) -> None:
+    _write(tmp_path, {"r.xacro": f'<robot name="r" {NS}><link name="l"/></robot>'})
+    before = (tmp_path / "r.xacro").read_bytes()
+    result = CliRunner().invoke(
+        cli, ["expand", str(tmp_path / "r.xacro"), "-o", str(tmp_path / "r.xacro")]
+    )
+    assert result.exit_code == 2
+    assert "refusing to write over the input" in result.output
+    assert (tmp_path / "r.xacro").read_bytes() == before
+
+
+def test_expand_help_has_an_example() -> None:
+    result = CliRunner().invoke(cli, ["expand", "--help"])
+    assert result.exit_code == 0
+    assert "fishbot expand robots/fishbot/urdf/fishbot/fishbot.urdf.xacro" in result.output
