@@ -36,18 +36,30 @@ def run_check_urdf(path: Path) -> subprocess.CompletedProcess[bytes]:
     return subprocess.run([tool, str(path)], capture_output=True, timeout=120, check=False)
 
 
-def corpus(pattern: str = "*.urdf") -> list[Path]:
-    """Every file matching ``pattern`` shipped by example-robot-data (a test dependency)."""
+def _site_packages() -> set[Path]:
     import sysconfig
 
-    roots = {Path(sysconfig.get_paths()[key]) for key in ("purelib", "platlib")}
+    return {Path(sysconfig.get_paths()[key]) for key in ("purelib", "platlib")}
+
+
+def corpus() -> list[Path]:
+    """Every URDF shipped by example-robot-data (a test dependency)."""
     found: list[Path] = []
-    for root in roots:
+    for root in _site_packages():
         share = root / "cmeel.prefix" / "share" / "example-robot-data" / "robots"
-        found.extend(sorted(share.rglob(pattern)))
+        found.extend(sorted(share.rglob("*.urdf")))
+    return found
+
+
+def xacro_corpus() -> list[Path]:
+    """Every xacro file of the real robot packages in the test dependencies
+    (example-robot-data, hpp-environments, cookie-description)."""
+    found: list[Path] = []
+    for root in _site_packages():
+        found.extend(sorted((root / "cmeel.prefix" / "share").rglob("*.xacro")))
+        found.extend(sorted((root / "cookie_description").rglob("*.xacro")))
     return found
 
 
 CORPUS = corpus()
-# Whole robots written in xacro (files that only define macros are read through these).
-XACRO_CORPUS = corpus("*.urdf.xacro")
+XACRO_CORPUS = xacro_corpus()

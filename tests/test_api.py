@@ -97,3 +97,19 @@ def test_first_robot_example_output() -> None:
         "  joint imu_joint  fixed      base_link -> imu_link at (0, 0, 0.03) m",
         "check: ok",
     ]
+
+
+def test_expand_example_output() -> None:
+    proc = subprocess.run(
+        [sys.executable, str(ROOT / "examples" / "expand_fishbot.py")],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    lines = proc.stdout.splitlines()
+    # ten links (the fishbot's parts), read from the seven files fishbot.urdf.xacro includes
+    assert lines[0] == "robot fishbot: 10 links from 7 files"
+    links = [line.split()[1] for line in lines if line.startswith("  link ")]
+    assert links[:2] == ["base_footprint", "base_link"]
+    assert {"left_wheel_link", "right_wheel_link", "laser_link", "imu_link"} <= set(links)
+    assert "  joint left_wheel_joint     continuous base_link -> left_wheel_link" in lines

@@ -266,18 +266,25 @@ def test_first_robot_xacro_matches(monkeypatch: pytest.MonkeyPatch) -> None:
     assert expand("first_robot.urdf.xacro").text == reference.stdout
 
 
-@pytest.mark.parametrize(
-    "path", XACRO_CORPUS, ids=[p.name for p in XACRO_CORPUS] if XACRO_CORPUS else None
-)
+@pytest.mark.parametrize("path", XACRO_CORPUS, ids=[p.name for p in XACRO_CORPUS])
 def test_real_robot_xacro_matches(path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.chdir(path.parent)
     reference = xacro_command(path.name, cwd=path.parent)
-    assert reference.returncode == 0, reference.stderr
+    if reference.returncode != 0:
+        # the same verdict: example-robot-data's quadrotor_base.xacro includes a
+        # package:// path, which xacro does not resolve in includes
+        with pytest.raises(fishbot_urdf.FishbotUrdfError):
+            expand(path.name)
+        return
     assert expand(path.name).text == reference.stdout
 
 
 def test_the_corpus_is_there() -> None:
-    assert len(XACRO_CORPUS) >= 2
+    assert len(XACRO_CORPUS) >= 19
+    robots = [p for p in XACRO_CORPUS if p.name in ("cookie.xacro", "desk.urdf.xacro")]
+    assert len(robots) == 2
+    for path in robots:  # whole robots, not only macros
+        assert len(fishbot_urdf.load(path).links) > 10
 
 
 # -- state does not leak between expansions ----------------------------------------------------

@@ -91,7 +91,8 @@ class Explaining:
             return self._located(inner)
         if isinstance(inner, OSError) and self.node is not None:
             if self.node.tagName == "xacro:include":
-                return _missing_include(inner, where, calls)
+                spec = self.node.getAttribute("filename")
+                return _missing_include(inner, spec, where, calls)
             if getattr(inner, "filename", None):
                 return XacroError(
                     f"cannot read {inner.filename}: {inner.strerror}",
@@ -179,10 +180,22 @@ def _line_of(path: str, number: int) -> str:
 
 
 def _missing_include(
-    error: OSError, where: Location | None, calls: tuple[tuple[str, Location | None], ...]
+    error: OSError,
+    spec: str,
+    where: Location | None,
+    calls: tuple[tuple[str, Location | None], ...],
 ) -> XacroError:
     target = Path(str(error.filename))
     folder = target.parent
+    if "package://" in spec:
+        package = spec.split("package://", 1)[1].split("/", 1)[0]
+        return XacroError(
+            f"cannot include {spec}: xacro reads include paths as files, not package:// URIs",
+            rule="xacro-include",
+            hint=f"write $(find {package})/... instead",
+            where=where,
+            calls=calls,
+        )
     if not folder.is_dir():
         return XacroError(
             f"included file {shown_path(str(target))} does not exist",
