@@ -21,8 +21,9 @@ class _KeepOnClone:
     """Copies an element's source location to its clones (DOM user-data handler)."""
 
     def handle(self, operation: int, key: str, data: Any, src: Any, dst: Any) -> None:
-        if dst is not None:
-            dst.setUserData(key, data, self)
+        # The clone shares the original's user data: it only ever holds this one entry and
+        # is never changed (a macro call clones thousands of elements, so this is hot).
+        dst._user_data = src._user_data
 
 
 _KEEP = _KeepOnClone()
@@ -58,6 +59,7 @@ class Run(Explaining):
         self.symbols: Any = None  # the symbol table of a failed expression
         self.macros: Any = None  # the macro table at the last macro call
         self.parsing: str | None = None  # the file being parsed
+        self.given_attributes: list[Any] = []  # elements an <xacro:attribute> wrote to
         self._saved: list[tuple[Any, str, Any]] = []
         self._stderr = io.StringIO()
         self._redirect = contextlib.redirect_stderr(self._stderr)
@@ -68,7 +70,7 @@ class Run(Explaining):
         for name in ("eval_all", "process_include", "grab_property", "grab_macro"):
             self._patch(x, name, self._tracked(getattr(x, name)))
         self._patch(x, "check_attrs", self._tracked(x.check_attrs))
-        self._patch(x, "reqd_attrs", self._tracked(x.reqd_attrs))
+        self._patch(x, "reqd_attrs", self._attributes(self._tracked(x.reqd_attrs)))
         self._patch(x, "handle_macro_call", self._macro_call(x.handle_macro_call))
         self._patch(x, "safe_eval", self._safe_eval(x.safe_eval))
         self._patch(x, "eval_extension", self._extension(x.eval_extension))
@@ -109,6 +111,14 @@ class Run(Explaining):
             result = function(node, *rest)
             self.node = outer  # on an error, the failing element stays
             return result
+
+        return run
+
+    def _attributes(self, function: Callable[..., Any]) -> Callable[..., Any]:
+        def run(node: Any, names: Any) -> Any:
+            if node.tagName == "xacro:attribute":
+                self.given_attributes.append(node.parentNode)
+            return function(node, names)
 
         return run
 
@@ -172,7 +182,7 @@ class Run(Explaining):
         x = self.xacro
         try:
             document = x.process_file(self.path, mappings=dict(self.args))
-            _stringify_attributes(document.documentElement)
+            _stringify_attributes(self.given_attributes)
             text = document.toprettyxml(indent="  ")
         except ExpatError as exc:
             raise self._syntax_error(exc) from exc
@@ -193,17 +203,12 @@ class Run(Explaining):
         )
 
 
-def _stringify_attributes(root: Any) -> None:
+def _stringify_attributes(elements: list[Any]) -> None:
     """Attribute values must be text when written; ``<xacro:attribute>`` can leave a number."""
-    stack = [root]
-    while stack:
-        node = stack.pop()
-        attributes = node.attributes
-        if attributes is not None:
-            for attr in list(attributes.values()):
-                if not isinstance(attr.value, str):
-                    attr.value = str(attr.value)
-        stack.extend(child for child in node.childNodes if child.nodeType == node.ELEMENT_NODE)
+    for element in elements:
+        for attr in list(element.attributes.values()):
+            if not isinstance(attr.value, str):
+                attr.value = str(attr.value)
 
 
 def _sources(document: Any, path: str) -> Iterator[Location]:
