@@ -669,3 +669,26 @@ def test_expand_help_has_an_example() -> None:
     result = CliRunner().invoke(cli, ["expand", "--help"])
     assert result.exit_code == 0
     assert "fishbot expand robots/fishbot/urdf/fishbot/fishbot.urdf.xacro" in result.output
+
+
+def test_xacro_warnings_become_findings(tmp_path: Path) -> None:
+    _write(
+        tmp_path,
+        {
+            "robot.xacro": f"""<robot name="w" {NS}>
+  <xacro:property name="pi" value="3"/>
+  <link name="l"/>
+</robot>
+"""
+        },
+    )
+    path = str(tmp_path / "robot.xacro")
+    warning = f"{path}: warning: redefining global symbol: pi [xacro]\n"
+    assert expand(path).messages == ("warning: redefining global symbol: pi",)
+    runner = CliRunner()
+    expanded = runner.invoke(cli, ["expand", path, "-o", str(tmp_path / "out.urdf")])
+    assert (expanded.exit_code, expanded.output) == (0, warning)
+    checked = runner.invoke(cli, ["check", path])
+    assert checked.exit_code == 0
+    assert checked.output.startswith(warning + "robot name is: w\n")
+    assert runner.invoke(cli, ["check", "--strict", path]).exit_code == 1

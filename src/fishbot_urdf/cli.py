@@ -199,8 +199,9 @@ def expand(
     except FishbotUrdfError as exc:
         _emit_findings([_fail(exc)])
         sys.exit(_status(exc))
-    for message in expansion.messages:
-        click.echo(f"{file}: warning: {message.removeprefix('warning: ')} [xacro]", err=True)
+    from .parse import xacro_warning
+
+    _emit_findings(xacro_warning(message, file) for message in expansion.messages)
     sys.exit(EXIT_OK)
 
 

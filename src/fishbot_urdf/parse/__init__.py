@@ -13,7 +13,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..diagnostics import Diagnostic
+from ..diagnostics import Diagnostic, Severity
 from ..errors import RobotError
 from ..model import Robot
 from ..xmlsource import STRING_PATH, Locator, parse_xml, read_bytes
@@ -70,6 +70,7 @@ def read(
         PackageNotFoundError: The xacro file names a package that is not found.
     """
     origins = None
+    notes: tuple[Diagnostic, ...] = ()
     if isinstance(source, bytes):
         data, name = source, path or STRING_PATH
     elif is_xacro_path(source):
@@ -77,6 +78,7 @@ def read(
 
         expansion = expand(source, args=args, packages=packages)
         data, name, origins = expansion.text.encode("utf-8"), path or str(source), expansion.sources
+        notes = tuple(xacro_warning(message, name) for message in expansion.messages)
     else:
         name = path or str(source)
         data = read_bytes(source)
@@ -85,11 +87,16 @@ def read(
     with paused_gc():
         robot = fast_robot(root, locator, data)
         if robot is not None:
-            return Parsed(name, robot, ())
+            return Parsed(name, robot, notes)
         locator.rewind()
         reader = Reader(locator)
         robot = reader.robot(root)
-    return Parsed(name, robot, tuple(reader.diagnostics))
+    return Parsed(name, robot, notes + tuple(reader.diagnostics))
+
+
+def xacro_warning(message: str, path: str) -> Diagnostic:
+    """A warning xacro gave while expanding ``path``, as a finding about the file."""
+    return Diagnostic("xacro", Severity.WARNING, message.removeprefix("warning: ").strip(), path)
 
 
 @contextmanager
