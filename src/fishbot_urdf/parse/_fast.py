@@ -221,6 +221,18 @@ class _Pass:
 
     def visual(self, el: etree._Element) -> Visual:
         at = self.at()
+        geometry, origin, material = self.shape_parts(el, with_material=True)
+        return _visual(geometry, origin, material, el.get("name"), at)
+
+    def collision(self, el: etree._Element) -> Collision:
+        at = self.at()
+        geometry, origin, _ = self.shape_parts(el, with_material=False)
+        return _collision(geometry, origin, el.get("name"), at)
+
+    def shape_parts(
+        self, el: etree._Element, *, with_material: bool
+    ) -> tuple[Geometry, Origin, Material | None]:
+        """The geometry, origin and (in a visual) material of a visual or collision."""
         origin = _NO_ORIGIN
         geometry: Geometry | None = None
         material: Material | None = None
@@ -230,29 +242,13 @@ class _Pass:
                 geometry = self.geometry(child)
             elif tag == "origin":
                 origin = self.origin(child)
-            elif tag == "material":
+            elif tag == "material" and with_material:
                 material = self.material(child)
             elif isinstance(tag, str):
-                raise _GiveUp
+                raise _GiveUp  # a second geometry, a material in a collision, an unknown tag
         if geometry is None:
             raise _GiveUp
-        return _visual(geometry, origin, material, el.get("name"), at)
-
-    def collision(self, el: etree._Element) -> Collision:
-        at = self.at()
-        origin = _NO_ORIGIN
-        geometry: Geometry | None = None
-        for child in el:
-            tag = child.tag
-            if tag == "geometry" and geometry is None:
-                geometry = self.geometry(child)
-            elif tag == "origin":
-                origin = self.origin(child)
-            elif isinstance(tag, str):
-                raise _GiveUp
-        if geometry is None:
-            raise _GiveUp
-        return _collision(geometry, origin, el.get("name"), at)
+        return geometry, origin, material
 
     def geometry(self, el: etree._Element) -> Geometry:
         self.at()
