@@ -219,9 +219,9 @@ def _missing_include(
 def _closest(name: str, candidates: list[str], what: str) -> str | None:
     if not candidates:
         return None
-    close = difflib.get_close_matches(name, candidates, n=3, cutoff=0.6)
+    close = difflib.get_close_matches(name, candidates, n=1, cutoff=0.6)
     if close:
-        return "did you mean " + " or ".join(f"'{c}'" for c in close) + "?"
+        return f"did you mean '{close[0]}'?"
     shown = candidates if len(candidates) <= 8 else [*candidates[:8], "..."]
     return f"defined {what}: " + ", ".join(shown)
 
