@@ -692,3 +692,113 @@ def test_xacro_warnings_become_findings(tmp_path: Path) -> None:
     assert checked.exit_code == 0
     assert checked.output.startswith(warning + "robot name is: w\n")
     assert runner.invoke(cli, ["check", "--strict", path]).exit_code == 1
+
+
+def test_arguments_are_read_like_the_xacro_command(tmp_path: Path) -> None:
+    _write(
+        tmp_path,
+        {
+            "robot.xacro": f"""<robot name="a" {NS}>
+  <xacro:arg name="radius" default="0.1"/>
+  <xacro:arg name="prefix" default="p_"/>
+  <link name="$(arg prefix)base" r="$(arg radius)"/>
+</robot>
+"""
+        },
+    )
+    text = _same_as_xacro(tmp_path, "robot.xacro", "radius:=", " prefix := x_ ", "_private:=1")
+    assert '<link name="x_base" r="0.1"/>' in text
+    with pytest.raises(ValueError):
+        parse_args(["a:=b:=c"])
+
+
+def test_condition_errors_point_at_the_condition(tmp_path: Path) -> None:
+    error = _error(
+        tmp_path,
+        {
+            "robot.xacro": f"""<robot name="r" {NS}>
+  <link name="a"/>
+  <xacro:if value="${{use_imu}}">
+    <link name="imu"/>
+  </xacro:if>
+</robot>
+"""
+        },
+    )
+    assert (error.line, error.column) == (3, 3)
+    assert error.message == "'use_imu' is not defined in ${use_imu}"
+    assert error.hint is None or "__builtins__" not in error.hint
+
+
+def test_circular_property_points_at_its_definition(tmp_path: Path) -> None:
+    error = _error(
+        tmp_path,
+        {
+            "robot.xacro": f"""<robot name="r" {NS}>
+  <xacro:property name="a" value="${{b + 1}}"/>
+  <xacro:property name="b" value="${{a * 2}}"/>
+  <link name="l" x="${{a}}"/>
+</robot>
+"""
+        },
+    )
+    assert (error.rule, error.line) == ("xacro-circular", 2)
+    assert error.message == "property 'a' is defined in terms of itself: a -> b -> a"
+
+
+def test_including_a_folder(tmp_path: Path) -> None:
+    (tmp_path / "parts").mkdir()
+    error = _error(
+        tmp_path,
+        {"robot.xacro": f'<robot name="r" {NS}>\n  <xacro:include filename="parts"/>\n</robot>'},
+    )
+    assert (error.rule, error.line) == ("xacro-include", 2)
+    assert error.message.endswith("parts is a folder, not a file")
+
+
+def test_relative_package_folders(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    pkg = tmp_path / "pkgs" / "my_parts"
+    _write(
+        pkg,
+        {
+            "part.xacro": f'<robot {NS}><link name="from_pkg"/></robot>',
+            "package.xml": "<package><name>my_parts</name></package>",
+        },
+    )
+    _write(
+        tmp_path,
+        {
+            "robots/robot.xacro": f"""<robot name="r" {NS}>
+  <xacro:include filename="$(find my_parts)/part.xacro"/>
+</robot>
+"""
+        },
+    )
+    monkeypatch.chdir(tmp_path)
+    given = expand("robots/robot.xacro", packages={"my_parts": "pkgs/my_parts"})
+    assert 'name="from_pkg"' in given.text
+    monkeypatch.setenv("ROS_PACKAGE_PATH", "pkgs")
+    assert expand("robots/robot.xacro").text == given.text
+
+
+def test_output_goes_through_links_and_into_devices(tmp_path: Path) -> None:
+    _write(tmp_path, {"r.xacro": f'<robot name="r" {NS}><link name="l"/></robot>'})
+    real = tmp_path / "real.urdf"
+    real.write_text("old")
+    (tmp_path / "link.urdf").symlink_to(real)
+    runner = CliRunner()
+    result = runner.invoke(
+        cli, ["expand", str(tmp_path / "r.xacro"), "-o", str(tmp_path / "link.urdf")]
+    )
+    assert result.exit_code == 0
+    assert (tmp_path / "link.urdf").is_symlink()
+    assert real.read_text().startswith("<?xml")
+    devnull = runner.invoke(cli, ["expand", str(tmp_path / "r.xacro"), "-o", os.devnull])
+    assert devnull.exit_code == 0
+    assert not Path(os.devnull).is_file()  # still the device
+    nothing = runner.invoke(cli, ["expand", str(tmp_path / "r.xacro"), "--deps"])
+    assert (nothing.exit_code, nothing.output) == (0, "")
+    for bad in ("", str(tmp_path)):
+        refused = runner.invoke(cli, ["expand", str(tmp_path / "r.xacro"), "-o", bad])
+        assert refused.exit_code == 2
+        assert refused.output.count("\n") == 1

@@ -144,3 +144,13 @@ def test_package_uris(tmp_path: Path) -> None:
     assert resolve_package_uri("meshes/c.stl", near=near) == own / "urdf" / "meshes" / "c.stl"
     with pytest.raises(PackageNotFoundError):
         resolve_package_uri("package://elsewhere/x.stl", near=near)
+
+
+def test_linked_packages_are_followed(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    real = _package(tmp_path / "elsewhere" / "fishbot_description", "fishbot_description")
+    src = tmp_path / "ws" / "src"
+    src.mkdir(parents=True)
+    (src / "fishbot_description").symlink_to(real, target_is_directory=True)
+    (src / "loop").symlink_to(src, target_is_directory=True)  # a cycle is walked once
+    monkeypatch.setenv("ROS_PACKAGE_PATH", str(src))
+    assert find_package("fishbot_description") == src / "fishbot_description"

@@ -154,7 +154,7 @@ def check(files: Sequence[str], fmt: str, strict: bool, package_items: Sequence[
 
 
 @cli.command()
-@click.argument("file", type=click.Path(dir_okay=False))
+@click.argument("file", type=click.Path())
 @click.argument("args", nargs=-1)
 @click.option(
     "-o",
@@ -191,7 +191,10 @@ def expand(
     packages = _packages(package_items)
     try:
         expansion = run(file, args=values, packages=packages)
-        text = " ".join(expansion.dependencies) + "\n" if deps else expansion.text
+        if deps:  # like xacro's, but one line in the order first read
+            text = " ".join(expansion.dependencies) + "\n" if expansion.dependencies else ""
+        else:
+            text = expansion.text
         if output == "-":
             click.echo(text, nl=False)
         else:

@@ -16,16 +16,28 @@ def write_atomic(path: str | Path, data: bytes | str, *, inputs: Iterable[str | 
     """Write ``data`` to ``path`` through a temporary file and a rename, making parent folders.
 
     A reader never sees half a file, and an existing file is only replaced by a complete new
-    one. Text is written as UTF-8.
+    one. A link is written through (its target is replaced); a device or a pipe
+    (``/dev/null``, a FIFO) is written to directly. Text is written as UTF-8.
 
     Raises:
-        InputError: ``path`` is one of ``inputs``, or cannot be written.
+        InputError: ``path`` is one of ``inputs``, a folder, or cannot be written.
     """
-    target = Path(path)
+    if not str(path):
+        raise InputError("the output file name is empty", path="<output>")
+    target = Path(os.path.realpath(path))
     for source in inputs:
         if _same_file(target, Path(source)):
             raise InputError(f"refusing to write over the input {source}", path=str(path))
+    if target.is_dir():
+        raise InputError(f"{path} is a folder (name a file in it)", path=str(path))
     payload = data.encode("utf-8") if isinstance(data, str) else data
+    if target.exists() and not target.is_file():
+        try:  # a device or a pipe: there is nothing to replace
+            with open(target, "wb") as stream:
+                stream.write(payload)
+        except OSError as exc:
+            raise InputError(f"cannot write {path}: {exc.strerror}", path=str(path)) from exc
+        return target
     try:
         target.parent.mkdir(parents=True, exist_ok=True)
         handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.")

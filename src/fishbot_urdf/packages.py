@@ -125,7 +125,7 @@ def _candidates(
     searched: list[str],
 ) -> Iterator[Path]:
     if name in packages:
-        yield Path(packages[name])
+        yield Path(os.path.abspath(packages[name]))
     given = ", ".join(sorted(packages))
     searched.append(f"--package ({given})" if given else "--package (none given)")
 
@@ -137,14 +137,15 @@ def _candidates(
         searched.append(f"the folders above {start}")
 
     for entry in _path_list(env.get("ROS_PACKAGE_PATH", "")):
-        found = _crawl(Path(entry), name)
+        found = _crawl(Path(os.path.abspath(entry)), name)
         if found is not None:
             yield found
     searched.append("ROS_PACKAGE_PATH" + _shown(env.get("ROS_PACKAGE_PATH", "")))
 
-    for prefix in _path_list(env.get("AMENT_PREFIX_PATH", "")):
-        share = Path(prefix) / "share" / name
-        marker = Path(prefix) / "share" / "ament_index" / "resource_index" / "packages" / name
+    for entry in _path_list(env.get("AMENT_PREFIX_PATH", "")):
+        prefix = Path(os.path.abspath(entry))
+        share = prefix / "share" / name
+        marker = prefix / "share" / "ament_index" / "resource_index" / "packages" / name
         if marker.is_file() or (share / "package.xml").is_file():
             yield share
     searched.append("AMENT_PREFIX_PATH" + _shown(env.get("AMENT_PREFIX_PATH", "")))
@@ -165,7 +166,7 @@ def _candidates(
         searched.append("ament_index_python (not installed)")
     else:
         try:
-            yield Path(get_package_share_directory(name))
+            yield Path(os.path.abspath(get_package_share_directory(name)))
         except Exception:  # its PackageNotFoundError, or a broken install
             searched.append("ament_index_python")
 
@@ -191,10 +192,19 @@ def _workspace_src(start: Path) -> Path | None:
 
 
 def _crawl(top: Path, name: str) -> Path | None:
-    """The shallowest package called ``name`` under ``top`` (breadth first, names sorted)."""
+    """The shallowest package called ``name`` under ``top`` (breadth first, names sorted).
+
+    Linked folders are followed (a workspace often links its packages into ``src/``), each
+    real folder once.
+    """
     queue = deque([top])
+    seen: set[str] = set()
     while queue:
         folder = queue.popleft()
+        real = os.path.realpath(folder)
+        if real in seen:
+            continue
+        seen.add(real)
         try:
             entries = sorted(os.scandir(folder), key=lambda e: e.name)
         except OSError:
@@ -207,10 +217,6 @@ def _crawl(top: Path, name: str) -> Path | None:
         if any(marker in names for marker in _IGNORE_MARKERS):
             continue
         for entry in entries:
-            if (
-                entry.is_dir(follow_symlinks=False)
-                and not entry.name.startswith(".")
-                and entry.name not in _SKIP_DIRS
-            ):
+            if entry.is_dir() and not entry.name.startswith(".") and entry.name not in _SKIP_DIRS:
                 queue.append(Path(entry.path))
     return None

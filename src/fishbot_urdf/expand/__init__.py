@@ -85,17 +85,21 @@ class Expansion:
 
 
 def parse_args(items: list[str] | tuple[str, ...]) -> dict[str, str]:
-    """``["name:=value", ...]`` -> ``{"name": "value"}``, as the xacro command reads them.
+    """``["name:=value", ...]`` -> ``{"name": "value"}``, read as the xacro command reads them:
+    spaces around name and value are dropped, and an empty value (``name:=``) or a ROS
+    private parameter (``_name:=value``) is ignored.
 
     Raises:
-        ValueError: An item has no ``:=`` or no name.
+        ValueError: An item has no ``:=``, more than one, or no name.
     """
     args: dict[str, str] = {}
     for item in items:
-        name, sep, value = item.partition(":=")
-        if not sep or not name:
+        pieces = [piece.strip() for piece in item.split(":=")]
+        if len(pieces) != 2 or not pieces[0]:
             raise ValueError(f"'{item}' is not an argument: write name:=value")
-        args[name] = value
+        name, value = pieces
+        if value and not (len(name) > 1 and name[0] == "_" and name[1] != "_"):
+            args[name] = value
     return args
 
 

@@ -60,6 +60,7 @@ class Run(Explaining):
         self.macros: Any = None  # the macro table at the last macro call
         self.parsing: str | None = None  # the file being parsed
         self.given_attributes: list[Any] = []  # elements an <xacro:attribute> wrote to
+        self.properties: dict[str, Location | None] = {}  # where each property was defined
         self._saved: list[tuple[Any, str, Any]] = []
         self._stderr = io.StringIO()
         self._redirect = contextlib.redirect_stderr(self._stderr)
@@ -67,10 +68,13 @@ class Run(Explaining):
     # -- the hooks -------------------------------------------------------------------------
     def __enter__(self) -> Run:
         x, subst = self.xacro, self.subst
-        for name in ("eval_all", "process_include", "grab_property", "grab_macro"):
+        for name in ("eval_all", "process_include", "grab_macro"):
             self._patch(x, name, self._tracked(getattr(x, name)))
-        self._patch(x, "check_attrs", self._tracked(x.check_attrs))
-        self._patch(x, "reqd_attrs", self._attributes(self._tracked(x.reqd_attrs)))
+        self._patch(x, "grab_property", self._property(self._tracked(x.grab_property)))
+        # <xacro:if>, <xacro:arg>, <xacro:attribute> read their attributes through these and
+        # then evaluate them: the element stays the one at fault until another takes over.
+        self._patch(x, "check_attrs", self._noted(x.check_attrs))
+        self._patch(x, "reqd_attrs", self._attributes(self._noted(x.reqd_attrs)))
         self._patch(x, "handle_macro_call", self._macro_call(x.handle_macro_call))
         self._patch(x, "safe_eval", self._safe_eval(x.safe_eval))
         self._patch(x, "eval_extension", self._extension(x.eval_extension))
@@ -111,6 +115,20 @@ class Run(Explaining):
             result = function(node, *rest)
             self.node = outer  # on an error, the failing element stays
             return result
+
+        return run
+
+    def _noted(self, function: Callable[..., Any]) -> Callable[..., Any]:
+        def run(node: Any, *rest: Any) -> Any:
+            self.node = node
+            return function(node, *rest)
+
+        return run
+
+    def _property(self, function: Callable[..., Any]) -> Callable[..., Any]:
+        def run(node: Any, table: Any) -> Any:
+            self.properties[node.getAttribute("name")] = source(node)
+            return function(node, table)
 
         return run
 

@@ -47,6 +47,7 @@ class Explaining:
     symbols: Any
     macros: Any
     parsing: str | None
+    properties: dict[str, Location | None]
 
     # ----------------------------------------------------------------------------
     def _calls(self) -> tuple[tuple[str, Location | None], ...]:
@@ -83,10 +84,23 @@ class Explaining:
             )
         return XacroError(f"not well-formed XML: {reason}", rule="xacro-syntax", where=where)
 
-    def _xacro_error(self, exc: Any) -> FishbotUrdfError:
+    def _xacro_error(self, outer: Any) -> FishbotUrdfError:
+        exc = outer  # xacro wraps its errors in each other: the innermost says what happened
+        while isinstance(exc.exc, self.xacro.XacroException):
+            exc = exc.exc
         inner = exc.exc
         where = source(self.node)
         calls = self._calls()
+        own = str(exc.args[0]) if exc.args and exc.args[0] else ""
+        if own.startswith("circular variable definition: "):
+            chain = own.removeprefix("circular variable definition: ").splitlines()[0]
+            first = chain.split(" -> ")[0]
+            return XacroError(
+                f"property '{first}' is defined in terms of itself: {chain}",
+                rule="xacro-circular",
+                hint="give one property in the loop a value that does not refer back",
+                where=self.properties.get(first) or where,
+            )
         if isinstance(inner, PackageNotFoundError):
             return self._located(inner)
         if isinstance(inner, OSError) and self.node is not None:
@@ -113,7 +127,8 @@ class Explaining:
                 where=where,
                 calls=calls,
             )
-        text = str(exc).strip()
+        text = " ".join(part for part in (own, "" if inner is None else str(inner)) if part)
+        text = " ".join(text.split())
         if text.startswith("unknown macro name: "):
             unknown = text.removeprefix("unknown macro name: ").removeprefix("xacro:")
             calls = calls[1:] if calls and calls[0][0] == unknown else calls
@@ -140,7 +155,7 @@ class Explaining:
                     where=where,
                     calls=calls,
                 )
-            missing = text.removeprefix("Undefined parameters ").strip("[]")
+            missing = ", ".join(text.removeprefix("Undefined parameters ").strip("[]").split(","))
             return XacroError(
                 f"the call of macro {called} gives no value for {missing}",
                 rule="xacro-undefined",
@@ -148,7 +163,7 @@ class Explaining:
                 where=where,
                 calls=calls,
             )
-        return XacroError(" ".join(text.split()), where=where, calls=calls)
+        return XacroError(text or repr(outer), where=where, calls=calls)
 
     def _undefined_name(
         self,
@@ -187,6 +202,14 @@ def _missing_include(
 ) -> XacroError:
     target = Path(str(error.filename))
     folder = target.parent
+    if target.is_dir():
+        return XacroError(
+            f"included path {shown_path(str(target))} is a folder, not a file",
+            rule="xacro-include",
+            hint="name a file in it",
+            where=where,
+            calls=calls,
+        )
     if "package://" in spec:
         package = spec.split("package://", 1)[1].split("/", 1)[0]
         return XacroError(
@@ -231,7 +254,7 @@ def _table_names(table: Any) -> list[str]:
     symbols, Python's and math's, are left out)."""
     names: set[str] = set()
     while isinstance(table, dict) and hasattr(table, "parent"):
-        names.update(key for key in dict.keys(table) if not key.startswith("*"))
+        names.update(key for key in dict.keys(table) if not key.startswith(("*", "__")))
         if table.parent is getattr(table, "root", None):
             break
         table = table.parent
