@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import difflib
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
-from .diagnostics import Diagnostic, Severity, sort_key
+from .diagnostics import Diagnostic, Severity, closest, listing, sort_key
 from .graph import Topology, topology
 from .model import Joint, Location, Robot
 from .parse import read
@@ -127,11 +126,10 @@ def _names(robot: Robot, path: str) -> Iterator[Diagnostic]:
 
 
 def _suggest(name: str, candidates: Iterable[str]) -> str:
-    names = sorted(set(candidates))
-    close = difflib.get_close_matches(name, names, n=1)
-    listed = ", ".join(names[:8]) + (", ..." if len(names) > 8 else "")
-    guess = f"did you mean {close[0]!r}? " if close else ""
-    return f"{guess}links: {listed}" if names else "the robot defines no links"
+    names = set(candidates)
+    close = closest(name, names)
+    guess = f"did you mean {close!r}? " if close else ""
+    return f"{guess}links: {listing(names)}" if names else "the robot defines no links"
 
 
 def _joints(robot: Robot, path: str) -> Iterator[Diagnostic]:
@@ -170,13 +168,13 @@ def _joints(robot: Robot, path: str) -> Iterator[Diagnostic]:
             )
         if joint.mimic is not None and joint.mimic.joint:
             if joint.mimic.joint not in joint_names:
-                close = difflib.get_close_matches(joint.mimic.joint, sorted(joint_names), n=1)
+                close = closest(joint.mimic.joint, joint_names)
                 yield _at(
                     "undefined-mimic",
                     f"{owner}: mimics joint {joint.mimic.joint!r}, which is not defined",
                     joint.mimic.source,
                     path,
-                    f"did you mean {close[0]!r}?" if close else "name an existing joint",
+                    f"did you mean {close!r}?" if close else "name an existing joint",
                 )
             elif joint.mimic.joint == joint.name:
                 yield _at(

@@ -68,6 +68,20 @@ class Diagnostic:
         }
 
 
+def closest(name: str, candidates: Iterable[str]) -> str | None:
+    """The candidate that looks most like ``name`` (a likely misspelling), if any does."""
+    import difflib
+
+    close = difflib.get_close_matches(name, sorted(set(candidates)), n=1)
+    return close[0] if close else None
+
+
+def listing(names: Iterable[str], most: int = 8) -> str:
+    """Sorted names, comma-separated, the first ``most`` of them then '...'."""
+    ordered = sorted(set(names))
+    return ", ".join(ordered[:most]) + (", ..." if len(ordered) > most else "")
+
+
 def has_errors(diagnostics: Iterable[Diagnostic], *, strict: bool = False) -> bool:
     """True when any finding is an error (or, with ``strict``, a warning)."""
     failing = {Severity.ERROR, Severity.WARNING} if strict else {Severity.ERROR}

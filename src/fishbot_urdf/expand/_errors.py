@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import difflib
 import os
 from pathlib import Path
 from typing import Any
 from xml.parsers.expat import ExpatError
 
+from ..diagnostics import closest, listing
 from ..errors import FishbotUrdfError
 from ..model import Location
 from ..packages import PackageNotFoundError
@@ -91,6 +91,10 @@ class Explaining:
         inner = exc.exc
         where = source(self.node)
         calls = self._calls()
+
+        def undefined(message: str, hint: str | None, chain: tuple[Any, ...] = calls) -> XacroError:
+            return XacroError(message, rule="xacro-undefined", hint=hint, where=where, calls=chain)
+
         own = str(exc.args[0]) if exc.args and exc.args[0] else ""
         if own.startswith("circular variable definition: "):
             chain = own.removeprefix("circular variable definition: ").splitlines()[0]
@@ -119,25 +123,19 @@ class Explaining:
         if isinstance(inner, self.subst.ArgException):
             known = sorted(self.xacro.substitution_args_context.get("arg", {}))
             missing = str(inner)
-            return XacroError(
+            return undefined(
                 f"argument '{missing}' is not declared",
-                rule="xacro-undefined",
-                hint=_closest(missing, known, "arguments")
+                _closest(missing, known, "arguments")
                 or f'declare it with <xacro:arg name="{missing}" default="..."/>',
-                where=where,
-                calls=calls,
             )
         text = " ".join(part for part in (own, "" if inner is None else str(inner)) if part)
         text = " ".join(text.split())
         if text.startswith("unknown macro name: "):
             unknown = text.removeprefix("unknown macro name: ").removeprefix("xacro:")
-            calls = calls[1:] if calls and calls[0][0] == unknown else calls
-            return XacroError(
+            return undefined(
                 f"macro '{unknown}' is not defined",
-                rule="xacro-undefined",
-                hint=_closest(unknown, _table_names(self.macros), "macros"),
-                where=where,
-                calls=calls,
+                _closest(unknown, _table_names(self.macros), "macros"),
+                calls[1:] if calls and calls[0][0] == unknown else calls,
             )
         macro = exc.macros[0] if getattr(exc, "macros", None) else None
         if (
@@ -145,23 +143,19 @@ class Explaining:
             and calls
             and text.startswith(("Invalid parameter ", "Undefined parameters "))
         ):
-            called, calls = calls[0][0], calls[1:]  # the call itself is at fault
+            called, outer_calls = calls[0][0], calls[1:]  # the call itself is at fault
             if text.startswith("Invalid parameter "):
                 param = text.removeprefix("Invalid parameter ").strip('"')
-                return XacroError(
+                return undefined(
                     f"macro {called} has no parameter '{param}'",
-                    rule="xacro-undefined",
-                    hint=_closest(param, _params(macro), "parameters"),
-                    where=where,
-                    calls=calls,
+                    _closest(param, _params(macro), "parameters"),
+                    outer_calls,
                 )
             missing = ", ".join(text.removeprefix("Undefined parameters ").strip("[]").split(","))
-            return XacroError(
+            return undefined(
                 f"the call of macro {called} gives no value for {missing}",
-                rule="xacro-undefined",
-                hint="its parameters: " + ", ".join(_params(macro)),
-                where=where,
-                calls=calls,
+                "its parameters: " + ", ".join(_params(macro)),
+                outer_calls,
             )
         return XacroError(text or repr(outer), where=where, calls=calls)
 
@@ -227,9 +221,8 @@ def _missing_include(
             where=where,
             calls=calls,
         )
-    names = sorted(p.name for p in folder.iterdir() if p.is_file())
-    close = difflib.get_close_matches(target.name, names, n=1, cutoff=0.6)
-    hint = f"did you mean '{close[0]}'?" if close else None
+    close = closest(target.name, (p.name for p in folder.iterdir() if p.is_file()))
+    hint = f"did you mean '{close}'?" if close else None
     return XacroError(
         f"included file {shown_path(str(target))} does not exist",
         rule="xacro-include",
@@ -242,11 +235,8 @@ def _missing_include(
 def _closest(name: str, candidates: list[str], what: str) -> str | None:
     if not candidates:
         return None
-    close = difflib.get_close_matches(name, candidates, n=1, cutoff=0.6)
-    if close:
-        return f"did you mean '{close[0]}'?"
-    shown = candidates if len(candidates) <= 8 else [*candidates[:8], "..."]
-    return f"defined {what}: " + ", ".join(shown)
+    close = closest(name, candidates)
+    return f"did you mean '{close}'?" if close else f"defined {what}: {listing(candidates)}"
 
 
 def _table_names(table: Any) -> list[str]:
