@@ -82,7 +82,8 @@ class Explaining:
                 hint=f'declare it on the root element: xmlns:{prefix}="..."',
                 where=where,
             )
-        return XacroError(f"not well-formed XML: {reason}", rule="xacro-syntax", where=where)
+        detail = reason.removeprefix("not well-formed ").strip("()")
+        return XacroError(f"not well-formed XML: {detail}", rule="xacro-syntax", where=where)
 
     def _xacro_error(self, outer: Any) -> FishbotUrdfError:
         exc = outer  # xacro wraps its errors in each other: the innermost says what happened
