@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import shutil
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -14,6 +15,7 @@ DATA = Path(__file__).resolve().parent / "data"
 VALID = sorted((DATA / "valid").glob("*.urdf"))
 INVALID = sorted((DATA / "invalid").glob("*.urdf"))
 FISHBOT = ROOT / "robots" / "fishbot"
+STUB = Path(__file__).resolve().parent / "ament_stub"
 
 # Set in CI: a missing tool is then a failure, never a skip.
 REQUIRE_TOOLS = os.environ.get("FISHBOT_REQUIRE_TOOLS") == "1"
@@ -34,6 +36,30 @@ def run_check_urdf(path: Path) -> subprocess.CompletedProcess[bytes]:
     """Run the real check_urdf on ``path``."""
     tool = require_tool("check_urdf", "liburdfdom-tools")
     return subprocess.run([tool, str(path)], capture_output=True, timeout=120, check=False)
+
+
+def xacro_command(
+    path: str | Path,
+    *args: str,
+    cwd: Path | None = None,
+    packages: dict[str, Path] | None = None,
+) -> subprocess.CompletedProcess[str]:
+    """Run the real xacro command (the PyPI package's), with $(find) answered by the stand-in."""
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join([str(STUB), env.get("PYTHONPATH", "")])
+    env["FISHBOT_TEST_PACKAGES"] = os.pathsep.join(
+        f"{name}={folder}" for name, folder in (packages or {}).items()
+    )
+    code = "import sys, xacro; sys.exit(xacro.main())"
+    return subprocess.run(
+        [sys.executable, "-c", code, str(path), *args],
+        capture_output=True,
+        text=True,
+        cwd=cwd,
+        env=env,
+        timeout=300,
+        check=False,
+    )
 
 
 def _site_packages() -> set[Path]:

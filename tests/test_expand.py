@@ -3,46 +3,20 @@
 from __future__ import annotations
 
 import os
-import subprocess
 import sys
 from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from conftest import DATA, FISHBOT, XACRO_CORPUS
+from conftest import DATA, FISHBOT, XACRO_CORPUS, xacro_command
 
 import fishbot_urdf
 from fishbot_urdf.cli import cli
 from fishbot_urdf.expand import XacroError, expand, parse_args
 from fishbot_urdf.expand._errors import shown_path
 
-STUB = Path(__file__).resolve().parent / "ament_stub"
 FISHBOT_XACRO = FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"
 NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
-
-
-def xacro_command(
-    path: str | Path,
-    *args: str,
-    cwd: Path | None = None,
-    packages: dict[str, Path] | None = None,
-) -> subprocess.CompletedProcess[str]:
-    """Run the real xacro command (the PyPI package's), with $(find) answered by the stand-in."""
-    env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join([str(STUB), env.get("PYTHONPATH", "")])
-    env["FISHBOT_TEST_PACKAGES"] = os.pathsep.join(
-        f"{name}={folder}" for name, folder in (packages or {}).items()
-    )
-    code = "import sys, xacro; sys.exit(xacro.main())"
-    return subprocess.run(
-        [sys.executable, "-c", code, str(path), *args],
-        capture_output=True,
-        text=True,
-        cwd=cwd,
-        env=env,
-        timeout=300,
-        check=False,
-    )
 
 
 def _write(folder: Path, files: dict[str, str]) -> None:

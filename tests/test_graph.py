@@ -89,8 +89,7 @@ def test_to_networkx() -> None:
     assert graph.graph["name"] == "everything"
     assert set(graph.nodes) == {link.name for link in robot.links}
     assert graph.number_of_edges() == len(robot.joints)
-    edge = graph.edges["base_link", "arm"]
-    assert edge["name"] == "shoulder"
+    edge = graph.edges["base_link", "arm", "shoulder"]
     assert edge["type"] == "revolute"
     assert edge["joint"] is robot.joint("shoulder")
     assert graph.nodes["arm"]["link"] is robot.link("arm")

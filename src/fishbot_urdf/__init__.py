@@ -12,14 +12,17 @@ from typing import Any
 
 from .check import CheckResult, check, check_file
 from .diagnostics import Diagnostic, Severity
+from .dot import draw, render, to_dot
 from .errors import (
     FishbotUrdfError,
     InputError,
     RobotError,
+    ToolNotFoundError,
     XmlSyntaxError,
 )
 from .expand import Expansion, XacroError, expand
 from .graph import Topology, chain, leaves, root, subtree, to_networkx, topology, tree_text
+from .mermaid import to_mermaid
 from .model import (
     Box,
     Calibration,
@@ -77,6 +80,7 @@ __all__ = [
     "SafetyController",
     "Severity",
     "Sphere",
+    "ToolNotFoundError",
     "Topology",
     "Visual",
     "XacroError",
@@ -85,15 +89,19 @@ __all__ = [
     "chain",
     "check",
     "check_file",
+    "draw",
     "expand",
     "find_package",
     "leaves",
     "load",
     "parse",
     "read",
+    "render",
     "resolve_package_uri",
     "root",
     "subtree",
+    "to_dot",
+    "to_mermaid",
     "to_networkx",
     "to_urdf",
     "topology",

@@ -14,7 +14,7 @@ from typing import IO, Any, NoReturn
 import click
 
 from .diagnostics import Diagnostic, Severity, has_errors
-from .errors import FishbotUrdfError, InputError
+from .errors import FishbotUrdfError, InputError, ToolNotFoundError
 
 EXIT_OK, EXIT_INVALID, EXIT_USAGE = 0, 1, 2
 
@@ -50,10 +50,12 @@ def _fail(exc: FishbotUrdfError) -> Diagnostic:
 
 def _status(exc: FishbotUrdfError) -> int:
     """Exit status for an error that stopped a file: 2 when the input or the setup is at
-    fault (a file cannot be read, a package is not found), 1 when the robot is."""
+    fault (a file cannot be read or written, a package or a program is not found), 1 when
+    the robot is."""
     from .packages import PackageNotFoundError
 
-    return EXIT_USAGE if isinstance(exc, (InputError, PackageNotFoundError)) else EXIT_INVALID
+    setup = (InputError, PackageNotFoundError, ToolNotFoundError)
+    return EXIT_USAGE if isinstance(exc, setup) else EXIT_INVALID
 
 
 def _packages(items: Sequence[str]) -> dict[str, str]:
@@ -90,6 +92,7 @@ def cli() -> None:
       fishbot check robots/fishbot/urdf/first_robot.urdf
       fishbot check --format json robot.urdf
       fishbot expand robot.urdf.xacro -o robot.urdf
+      fishbot graph robot.urdf.xacro -o tree.pdf
     """
 
 
@@ -206,6 +209,128 @@ def expand(
 
     _emit_findings(xacro_warning(message, file) for message in expansion.messages)
     sys.exit(EXIT_OK)
+
+
+_GRAPH_FORMATS = ("gv", "dot", "pdf", "svg", "png", "mmd")
+
+
+@cli.command()
+@click.argument("file", type=click.Path(allow_dash=True))
+@click.argument("args", nargs=-1)
+@click.option(
+    "-o",
+    "--output",
+    help="The file to write, its format from its extension; - writes DOT to standard output.",
+)
+@click.option(
+    "--format",
+    "fmt",
+    type=click.Choice(_GRAPH_FORMATS),
+    help="The output format, whatever the extension: gv/dot DOT, mmd Mermaid, or pdf/svg/png.",
+)
+@click.option(
+    "--detail",
+    is_flag=True,
+    help="Also show joint types (one colour each), axes, limits, mimics, and link masses.",
+)
+@click.option("--package", "package_items", multiple=True, metavar="NAME=PATH", help=_PACKAGE_HELP)
+def graph(
+    file: str,
+    args: Sequence[str],
+    output: str | None,
+    fmt: str | None,
+    detail: bool,
+    package_items: Sequence[str],
+) -> None:
+    """Draw the link/joint tree of a URDF or xacro file, like urdf_to_graphviz.
+
+    With no -o, writes ROBOT_NAME.gv and ROBOT_NAME.pdf in the current folder, as
+    urdf_to_graphviz does, and the .gv is byte for byte the same. With -o the format
+    follows the extension: .gv/.dot DOT text, .mmd a Mermaid flowchart for Markdown,
+    .pdf/.svg/.png drawn by Graphviz's dot program. Names with quotes, joints named like
+    links and links the root does not reach are drawn correctly (links the root does not
+    reach in red). The robot's findings go to stderr as in `fishbot check`. Exit status: 0
+    drawn, 1 the robot has errors (drawn as far as it could be read), 2 a file could not be
+    read or written, Graphviz is missing, or the command line is wrong.
+
+    \b
+    Examples:
+      fishbot graph robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
+      fishbot graph robot.urdf -o tree.svg
+      fishbot graph robot.urdf.xacro use_gpu:=false -o tree.png --detail
+      fishbot graph robot.urdf -o - | dot -Tpng -o tree.png
+      fishbot graph robot.urdf -o README-tree.mmd
+    """
+    from .check import check_file
+
+    values = _xacro_args(args)
+    packages = _packages(package_items)
+    try:
+        if file == "-":
+            result = check_file(sys.stdin.buffer.read(), path="<stdin>")
+        else:
+            result = check_file(file, args=values, packages=packages)
+    except FishbotUrdfError as exc:
+        _emit_findings([_fail(exc)])
+        sys.exit(_status(exc))
+    _emit_findings(result.diagnostics)
+    robot = result.robot
+    if robot is None:
+        sys.exit(EXIT_INVALID)
+    status = EXIT_INVALID if has_errors(result.diagnostics) else EXIT_OK
+    try:
+        _draw_all(robot, _graph_outputs(robot.name, output, fmt), detail, file)
+    except FishbotUrdfError as exc:
+        _emit_findings([_fail(exc)])
+        sys.exit(_status(exc))
+    sys.exit(status)
+
+
+def _graph_outputs(robot: str, output: str | None, fmt: str | None) -> list[tuple[str, str]]:
+    """The files to write, as (path, format): urdf_to_graphviz's pair when -o is not given."""
+    if output is None:
+        if not robot or robot in (".", "..") or "/" in robot or "\\" in robot:
+            raise click.UsageError(f"the robot's name {robot!r} is no file name: give -o FILE")
+        if fmt is not None:
+            return [(f"{robot}.{fmt}", fmt)]
+        return [(f"{robot}.gv", "gv"), (f"{robot}.pdf", "pdf")]
+    if output == "-":
+        return [(output, fmt or "gv")]
+    chosen = fmt or os.path.splitext(output)[1].lstrip(".").lower()
+    if chosen not in _GRAPH_FORMATS:
+        raise click.BadParameter(
+            f"cannot tell the format of {output!r} (extensions: {', '.join(_GRAPH_FORMATS)}; "
+            "or give --format)",
+            param_hint="-o",
+        )
+    return [(output, chosen)]
+
+
+def _draw_all(robot: Any, outputs: list[tuple[str, str]], detail: bool, source: str) -> None:
+    """Write each output, saying "Created file" only for files really written."""
+    from .dot import pipe_dot, to_dot
+    from .output import write_atomic
+
+    dot_text: str | None = None
+    for path, fmt in outputs:
+        if fmt == "mmd":
+            from .mermaid import to_mermaid
+
+            data = to_mermaid(robot, detail=detail).encode("utf-8")
+        else:
+            if dot_text is None:
+                dot_text = to_dot(robot, detail=detail)
+            try:
+                data = dot_text.encode("utf-8") if fmt in ("gv", "dot") else pipe_dot(dot_text, fmt)
+            except FishbotUrdfError as exc:
+                exc.path = path  # the finding is about the file that could not be made
+                raise
+        if path == "-":
+            sys.stdout.buffer.write(data)
+            sys.stdout.buffer.flush()
+            continue
+        write_atomic(path, data, inputs=[] if source == "-" else [source])
+        click.echo(f"Created file {path}")
 
 
 def _report_failure(fmt: str, exc: FishbotUrdfError, reports: list[dict[str, Any]]) -> None:

@@ -43,6 +43,17 @@ class InputError(FishbotUrdfError):
     rule = "io"
 
 
+class ToolNotFoundError(FishbotUrdfError):
+    """A program the job needs (Graphviz's `dot`) is not installed; ``hint`` says how to get it."""
+
+    rule = "tool-missing"
+
+    def __init__(self, message: str, *, tool: str, hint: str, path: str | None = None) -> None:
+        super().__init__(message, path=path)
+        self.tool = tool
+        self.hint = hint
+
+
 class XmlSyntaxError(FishbotUrdfError):
     """The input is not well-formed XML (or uses XML features URDF never needs, like entities)."""
 

@@ -201,21 +201,27 @@ def chain(robot: Robot, start: str, end: str) -> list[str]:
     raise FishbotUrdfError(f"links {start!r} and {end!r} are not connected")
 
 
-def to_networkx(robot: Robot) -> nx.DiGraph[str]:
-    """A DiGraph with a node per link and an edge parent -> child per joint.
+def to_networkx(robot: Robot) -> nx.MultiDiGraph[str]:
+    """A MultiDiGraph with a node per link and an edge parent -> child per joint.
 
-    Node attributes: ``link`` (the Link). Edge attributes: ``joint`` (the Joint), ``name``,
-    ``type`` (the JointType value). The graph attribute ``name`` is the robot's name.
-    Joints naming links that do not exist still add their nodes, so a faulty robot can
-    be inspected too.
+    Node attributes: ``link`` (the Link). Edges are keyed by joint name, with attributes
+    ``joint`` (the Joint) and ``type`` (the JointType value):
+    ``graph.edges["base_link", "imu_link", "imu_joint"]["joint"]``. Links come in file
+    order and each link's out-edges in joint-name order, which is urdfdom's order of
+    children, so a depth-first search visits the tree as check_urdf prints it. The graph
+    attribute ``name`` is the robot's name.
+
+    Nothing is dropped, so a faulty robot can be inspected too: a joint naming a link that
+    does not exist adds a node without a ``link`` attribute, and two joints between the
+    same links are two edges.
     """
     import networkx as nx  # ~200 ms to import: only when asked for
 
-    graph: nx.DiGraph[str] = nx.DiGraph(name=robot.name)
+    graph: nx.MultiDiGraph[str] = nx.MultiDiGraph(name=robot.name)
     for link in robot.links:
         graph.add_node(link.name, link=link)
-    for joint in robot.joints:
+    for joint in sorted(robot.joints, key=_joint_name):
         graph.add_edge(
-            joint.parent, joint.child, joint=joint, name=joint.name, type=joint.type.value
+            joint.parent, joint.child, key=joint.name, joint=joint, type=joint.type.value
         )
     return graph

@@ -1,0 +1,305 @@
+"""Robot -> DOT text as urdf_to_graphviz writes it, and rendering through Graphviz's `dot`.
+
+The DOT text is built from ``to_networkx``'s graph. For a robot urdfdom accepts it is
+byte for byte what urdf_to_graphviz writes; beyond that, names are escaped, a joint named
+like a link gets its own node, and links the root does not reach are drawn too, marked.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from .errors import FishbotUrdfError, ToolNotFoundError
+from .graph import to_networkx
+from .model import Joint, JointType, Link, Robot, Vector3
+
+if TYPE_CHECKING:
+    import networkx as nx
+
+__all__ = ["FORMATS", "Drawing", "draw", "drawing", "pipe_dot", "render", "to_dot"]
+
+#: Output formats by file extension: DOT text, Mermaid, and what `dot` renders.
+FORMATS = {"gv": "DOT", "dot": "DOT", "mmd": "Mermaid", "pdf": "PDF", "svg": "SVG", "png": "PNG"}
+RENDERED = ("pdf", "svg", "png")
+
+#: Joint colours of the detailed drawing (names both Graphviz and CSS know).
+JOINT_COLORS = {
+    JointType.REVOLUTE: "blue",
+    JointType.CONTINUOUS: "darkgreen",
+    JointType.PRISMATIC: "darkorange",
+    JointType.FIXED: "dimgray",
+    JointType.FLOATING: "purple",
+    JointType.PLANAR: "brown",
+}
+
+INSTALL_GRAPHVIZ = (
+    "install Graphviz: apt install graphviz, brew install graphviz, winget install graphviz, "
+    "or conda install -c conda-forge graphviz"
+)
+
+
+@dataclass(frozen=True, slots=True)
+class Edge:
+    """One joint as drawn: its parent and child link, its name and its DOT node id."""
+
+    parent: str
+    child: str
+    joint: Joint
+    name: str
+    node: str
+
+
+@dataclass(frozen=True, slots=True)
+class Drawing:
+    """What a drawing shows, in drawing order, worked out once from ``to_networkx``.
+
+    Attributes:
+        robot: The robot's name.
+        links: Link names in urdf_to_graphviz's order (depth-first from the root, children
+            by joint name), then the other trees and the links only loops reach.
+        edges: The joints in the same depth-first order.
+        defined: For each link name, its Link, or None when a joint names a missing link.
+        unreachable: Links the root does not reach (all of them when there is no root).
+    """
+
+    robot: str
+    links: tuple[str, ...]
+    edges: tuple[Edge, ...]
+    defined: dict[str, Link | None]
+    unreachable: frozenset[str]
+
+
+def drawing(robot: Robot) -> Drawing:
+    """Work out what to draw and in which order, in time linear in the robot's size."""
+    graph = to_networkx(robot)
+    defined: dict[str, Link | None] = {n: data.get("link") for n, data in graph.nodes(data=True)}
+    roots = [n for n in graph if defined[n] is not None and not _has_parent(graph, defined, n)]
+    # The root's tree first, then the other trees, then links only loops reach.
+    starts = [*roots, *(n for n in graph if graph.in_degree(n) == 0), *graph]
+    links: list[str] = []
+    order: list[tuple[str, str, str]] = []
+    seen: set[str] = set()
+    reached: frozenset[str] | None = None
+    for start in starts:
+        if start in seen:
+            continue
+        seen.add(start)
+        links.append(start)
+        stack = [iter(graph.out_edges(start, keys=True))]
+        while stack:
+            for parent, child, key in stack[-1]:
+                order.append((parent, child, key))
+                if child not in seen:
+                    seen.add(child)
+                    links.append(child)
+                    stack.append(iter(graph.out_edges(child, keys=True)))
+                    break
+            else:
+                stack.pop()
+        if reached is None:
+            reached = frozenset(links) if roots else frozenset()
+    taken = set(graph)
+    edges = []
+    for parent, child, key in order:
+        node = key
+        count = 0
+        while node in taken:  # a joint named like a link (or a duplicate joint name)
+            count += 1
+            node = f"{key} (joint)" if count == 1 else f"{key} (joint {count})"
+        taken.add(node)
+        joint = graph.edges[parent, child, key]["joint"]
+        edges.append(Edge(parent, child, joint, key, node))
+    return Drawing(
+        robot=robot.name,
+        links=tuple(links),
+        edges=tuple(edges),
+        defined=defined,
+        unreachable=frozenset(links) - (reached or frozenset()),
+    )
+
+
+def _has_parent(graph: nx.MultiDiGraph[str], defined: dict[str, Link | None], name: str) -> bool:
+    # As in urdfdom's tree: a joint from a missing link or from the link itself is no parent.
+    return any(p != name and defined[p] is not None for p in graph.predecessors(name))
+
+
+def to_dot(robot: Robot, detail: bool = False) -> str:
+    """The robot's kinematic tree as Graphviz DOT text.
+
+    Without ``detail`` it is what urdf_to_graphviz writes: links as boxes, joints as blue
+    ellipses, each joint's origin on the edge from its parent (xyz in metres, rpy in radians
+    as urdfdom recovers them from the rotation). With ``detail``, joints show their type
+    (one colour per type), axis, limits and mimic, and links their visuals, collisions and
+    mass.
+    """
+    return "".join(_dot_lines(drawing(robot), detail))
+
+
+def _dot_lines(plan: Drawing, detail: bool) -> Iterator[str]:
+    yield "digraph G {\n"
+    yield "node [shape=box];\n"
+    for name in plan.links:
+        link = plan.defined[name]
+        label = name if not detail or link is None else "\n".join([name, *link_facts(link)])
+        extra = ""
+        if link is None:
+            label += "\n(not defined)"
+            extra = ", style=dotted, color=red, fontcolor=red"
+        elif name in plan.unreachable:
+            label += "\n(not reached from the root)"
+            extra = ", style=dashed, color=red, fontcolor=red"
+        yield f'"{_quote(name)}" [label="{_label(label)}"{extra}];\n'
+    yield "node [shape=ellipse, color=blue, fontcolor=blue];\n"
+    for edge in plan.edges:
+        joint = edge.joint
+        if detail:
+            color = JOINT_COLORS[joint.type]
+            label = "\n".join([edge.name, *joint_facts(joint)])
+            yield f'"{_quote(edge.node)}" [label="{_label(label)}", color={color}, '
+            yield f"fontcolor={color}];\n"
+        elif edge.node != edge.name:
+            yield f'"{_quote(edge.node)}" [label="{_label(edge.name)}"];\n'
+        xyz, rpy = origin_numbers(joint)
+        yield f'"{_quote(edge.parent)}" -> "{_quote(edge.node)}" '
+        yield f'[label="xyz: {xyz} \\nrpy: {rpy}"]\n'
+        yield f'"{_quote(edge.node)}" -> "{_quote(edge.child)}"\n'
+    yield "}\n"
+
+
+def _quote(text: str) -> str:
+    """Text inside a DOT double-quoted string: a backslash or a quote must not end it."""
+    return text.replace("\\", "\\\\").replace('"', '\\"')
+
+
+def _label(text: str) -> str:
+    return _quote(text).replace("\n", "\\n")
+
+
+def numbers(values: Vector3) -> str:
+    # C++ iostream's default for a double is printf's %g: 6 significant digits.
+    return " ".join(f"{v:g}" for v in values)
+
+
+def origin_numbers(joint: Joint) -> tuple[str, str]:
+    """A joint's origin as urdf_to_graphviz prints it: xyz, and rpy as urdfdom recovers it."""
+    return numbers(joint.origin.xyz), numbers(urdfdom_rpy(joint.origin.rpy))
+
+
+def urdfdom_rpy(rpy: Vector3) -> Vector3:
+    """Roll, pitch, yaw as urdfdom gives them back after storing them as a quaternion.
+
+    The same operations in the same order as urdfdom's Rotation::setFromRPY, normalize and
+    getRPY, so the printed numbers match urdf_to_graphviz's, down to the sign of a zero
+    pitch (``0 0 0`` comes back as ``0 -0 0``) and the gimbal-lock cases.
+    """
+    phi, the, psi = rpy[0] / 2.0, rpy[1] / 2.0, rpy[2] / 2.0
+    sin, cos = math.sin, math.cos
+    x = sin(phi) * cos(the) * cos(psi) - cos(phi) * sin(the) * sin(psi)
+    y = cos(phi) * sin(the) * cos(psi) + sin(phi) * cos(the) * sin(psi)
+    z = cos(phi) * cos(the) * sin(psi) - sin(phi) * sin(the) * cos(psi)
+    w = cos(phi) * cos(the) * cos(psi) + sin(phi) * sin(the) * sin(psi)
+    s = math.sqrt(x * x + y * y + z * z + w * w)
+    if s == 0.0:
+        x, y, z, w = 0.0, 0.0, 0.0, 1.0
+    else:
+        x, y, z, w = x / s, y / s, z / s, w / s
+    sqx, sqy, sqz, sqw = x * x, y * y, z * z, w * w
+    sarg = -2 * (x * z - w * y)
+    if sarg <= -0.99999:
+        return 0.0, -math.pi / 2, 2 * math.atan2(x, -y)
+    if sarg >= 0.99999:
+        return 0.0, math.pi / 2, 2 * math.atan2(-x, y)
+    return (
+        math.atan2(2 * (y * z + w * x), sqw - sqx - sqy + sqz),
+        math.asin(sarg),
+        math.atan2(2 * (x * y + w * z), sqw + sqx - sqy - sqz),
+    )
+
+
+def link_facts(link: Link) -> list[str]:
+    visuals, collisions = len(link.visuals), len(link.collisions)
+    facts = [
+        f"{visuals} visual{'' if visuals == 1 else 's'}, "
+        f"{collisions} collision{'' if collisions == 1 else 's'}"
+    ]
+    facts.append("no inertial" if link.inertial is None else f"mass {link.inertial.mass:g} kg")
+    return facts
+
+
+def joint_facts(joint: Joint) -> list[str]:
+    facts = [joint.type.value]
+    if joint.type.uses_axis:
+        facts.append(f"axis {numbers(joint.axis)}")
+    limit = joint.limit
+    if limit is not None:
+        span = f"{limit.lower:g} .. {limit.upper:g}, " if joint.type.needs_limit else ""
+        facts.append(f"limit {span}effort {limit.effort:g}, velocity {limit.velocity:g}")
+    if joint.mimic is not None:
+        mimic = joint.mimic
+        facts.append(f"mimic {mimic.joint} x{mimic.multiplier:g} {mimic.offset:+g}")
+    return facts
+
+
+def pipe_dot(text: str, format: str) -> bytes:
+    """Render DOT text with Graphviz's `dot` to ``format`` (``pdf``, ``svg`` or ``png``).
+
+    Raises:
+        ToolNotFoundError: `dot` is not installed (the message says how to install it).
+        FishbotUrdfError: `dot` failed.
+    """
+    import graphviz  # only when something is rendered
+
+    try:
+        data: bytes = graphviz.pipe("dot", format, text.encode("utf-8"), quiet=True)
+    except graphviz.ExecutableNotFound as exc:
+        raise ToolNotFoundError(
+            f"Graphviz's dot program is needed for {format.upper()} output and was not found",
+            tool="dot",
+            hint=INSTALL_GRAPHVIZ,
+        ) from exc
+    except graphviz.CalledProcessError as exc:
+        lines = (exc.stderr or b"").decode("utf-8", "replace").strip().splitlines()
+        reason = lines[0] if lines else f"exit status {exc.returncode}"
+        raise FishbotUrdfError(f"dot could not render {format.upper()}: {reason}") from exc
+    return data
+
+
+def draw(robot: Robot, format: str, *, detail: bool = False) -> bytes:
+    """The robot's graph as the bytes of a file in ``format`` (a key of ``FORMATS``)."""
+    if format not in FORMATS:
+        raise ValueError(f"unknown format {format!r} (formats: {', '.join(FORMATS)})")
+    if format == "mmd":
+        from .mermaid import to_mermaid
+
+        return to_mermaid(robot, detail=detail).encode("utf-8")
+    text = to_dot(robot, detail=detail)
+    return text.encode("utf-8") if format in ("gv", "dot") else pipe_dot(text, format)
+
+
+def render(
+    robot: Robot, path: str | Path, *, format: str | None = None, detail: bool = False
+) -> Path:
+    """Write the robot's graph to ``path``, in the format its extension names.
+
+    ``.gv``/``.dot`` DOT text, ``.mmd`` a Mermaid flowchart, ``.pdf``/``.svg``/``.png``
+    rendered by Graphviz's `dot`; ``format`` overrides the extension. The file is written
+    whole or not at all, never over the file the robot was read from.
+
+    Returns:
+        The path written.
+
+    Raises:
+        ValueError: The format is not known.
+        ToolNotFoundError: Rendering needs `dot`, and it is not installed.
+        InputError: The file cannot be written.
+    """
+    from .output import write_atomic
+
+    chosen = format or Path(path).suffix.lstrip(".").lower()
+    data = draw(robot, chosen, detail=detail)
+    inputs = [robot.source.path] if robot.source is not None else []
+    return write_atomic(path, data, inputs=inputs)

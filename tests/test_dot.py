@@ -1,0 +1,465 @@
+"""`fishbot graph` and `fishbot_urdf.to_dot` against the real urdf_to_graphviz, run live.
+
+Where urdfdom accepts a robot, the DOT must be urdf_to_graphviz's byte for byte, except
+for the bugs we fix on purpose: a joint named like a link gets its own node, and links the
+root does not reach are drawn too. ``_undo_fixes`` takes exactly those out of our DOT, and
+what is left must still be identical.
+"""
+
+from __future__ import annotations
+
+import re
+import subprocess
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+from conftest import CORPUS, DATA, FISHBOT, INVALID, VALID, require_tool, xacro_command
+
+import fishbot_urdf
+from fishbot_urdf.cli import cli
+from fishbot_urdf.dot import drawing
+
+FIRST = FISHBOT / "urdf" / "first_robot.urdf"
+FISHBOT_XACRO = FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"
+ESCAPE = DATA / "valid" / "names_to_escape.urdf"
+ROTATIONS = DATA / "valid" / "rotations.urdf"
+# urdf_to_graphviz, like check_urdf, never finishes on these loops.
+ENDLESS = ("self_loop", "loop_from_root")
+
+
+def urdf_to_graphviz(path: Path, folder: Path, env: dict[str, str] | None = None) -> Path | None:
+    """Run the real urdf_to_graphviz; the .gv it wrote, or None when it refused the robot."""
+    tool = require_tool("urdf_to_graphviz", "liburdfdom-tools")
+    folder.mkdir(parents=True, exist_ok=True)
+    subprocess.run(
+        [tool, str(path), "real"],
+        cwd=folder,
+        capture_output=True,
+        timeout=300,
+        env=env,
+        check=False,
+    )
+    out = folder / "real.gv"
+    return out if out.exists() else None
+
+
+def ours(path: Path, *args: str) -> tuple[int, bytes, str]:
+    result = CliRunner().invoke(cli, ["graph", str(path), "-o", "-", *args])
+    return result.exit_code, result.stdout_bytes, result.stderr
+
+
+def _undo_fixes(text: str, robot: fishbot_urdf.Robot) -> str:
+    """Our DOT with the deliberate fixes taken out, as urdf_to_graphviz would write it."""
+    plan = drawing(robot)
+    renamed = {f'"{e.node}"': f'"{e.name}"' for e in plan.edges if e.node != e.name}
+    hidden = {f'"{n}"' for n in plan.unreachable}
+    hidden |= {f'"{e.node}"' for e in plan.edges if e.parent in plan.unreachable}
+    kept = []
+    for line in text.splitlines(keepends=True):
+        quoted = re.findall(r'"[^"]*"', line.split(" [label=")[0])
+        if any(q in hidden for q in quoted):
+            continue
+        if quoted and quoted[0] in renamed and " [label=" in line and " -> " not in line:
+            continue  # the declaration of a joint's own node
+        for new, old in renamed.items():
+            line = line.replace(new, old)
+        kept.append(line)
+    return "".join(kept)
+
+
+def _compare(path: Path, tmp_path: Path) -> None:
+    real = urdf_to_graphviz(path, tmp_path)
+    status, out, err = ours(path)
+    if real is None:
+        # urdfdom refuses the robot: so do we (and still draw what could be read).
+        assert status == 1, err
+        return
+    expected = real.read_bytes()
+    if out == expected:
+        return
+    result = fishbot_urdf.check_file(path)
+    assert result.robot is not None
+    fixed = _undo_fixes(out.decode("utf-8"), result.robot)
+    assert fixed.encode("utf-8") == expected
+    assert status == (0 if result.ok else 1), err
+
+
+# These two show urdf_to_graphviz's bugs, each in its own test below.
+OWN_TESTS = ("multiple_parents", "names_to_escape")
+FIXTURES = [p for p in VALID + INVALID if p.stem not in ENDLESS + OWN_TESTS]
+
+
+@pytest.mark.parametrize("path", FIXTURES, ids=[p.name for p in FIXTURES])
+def test_fixture_parity(path: Path, tmp_path: Path) -> None:
+    _compare(path, tmp_path)
+
+
+@pytest.mark.parametrize("path", CORPUS, ids=[f"{p.parent.parent.name}/{p.name}" for p in CORPUS])
+def test_corpus_parity(path: Path, tmp_path: Path) -> None:
+    _compare(path, tmp_path)
+
+
+def test_fishbot_parity_urdf_and_xacro(tmp_path: Path) -> None:
+    real = urdf_to_graphviz(FIRST, tmp_path / "first")
+    assert real is not None
+    assert ours(FIRST) == (0, real.read_bytes(), "")
+    # The xacro: the real xacro command expands it, urdf_to_graphviz draws the result; we
+    # read the .xacro ourselves.
+    expanded = xacro_command(FISHBOT_XACRO, packages={"fishbot_description": FISHBOT})
+    assert expanded.returncode == 0, expanded.stderr
+    urdf = tmp_path / "fishbot.urdf"
+    urdf.write_text(expanded.stdout)
+    real = urdf_to_graphviz(urdf, tmp_path / "xacro")
+    assert real is not None
+    assert ours(FISHBOT_XACRO) == (0, real.read_bytes(), "")
+    assert fishbot_urdf.to_dot(fishbot_urdf.load(FISHBOT_XACRO)).encode() == real.read_bytes()
+
+
+def test_the_numbers_are_printed_as_urdf_to_graphviz_prints_them(tmp_path: Path) -> None:
+    """Gimbal lock, angles near pi, negative zeros, exponents, 7 significant digits."""
+    real = urdf_to_graphviz(ROTATIONS, tmp_path)
+    assert real is not None
+    status, out, _ = ours(ROTATIONS)
+    assert status == 0
+    assert out == real.read_bytes()
+    text = out.decode()
+    assert '"base" -> "pitch_up_joint" [label="xyz: 0 0 0 \\nrpy: 0 1.5708 -0"]' in text
+    assert "xyz: 0.123457 -1e-07 1e+300 \\nrpy: 0 -0 0" in text
+
+
+def test_default_output_is_urdf_to_graphviz_s_pair_of_files(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    real_folder, our_folder = tmp_path / "real", tmp_path / "ours"
+    tool = require_tool("urdf_to_graphviz", "liburdfdom-tools")
+    real_folder.mkdir()
+    real = subprocess.run(
+        [tool, str(FIRST)], cwd=real_folder, capture_output=True, timeout=60, check=True
+    )
+    our_folder.mkdir()
+    monkeypatch.chdir(our_folder)
+    result = CliRunner().invoke(cli, ["graph", str(FIRST)])
+    assert result.exit_code == 0, result.stderr
+    assert result.stdout_bytes == real.stdout
+    assert result.stdout == "Created file first_robot.gv\nCreated file first_robot.pdf\n"
+    gv = "first_robot.gv"
+    assert (our_folder / gv).read_bytes() == (real_folder / gv).read_bytes()
+    assert _pdf_pages(our_folder / "first_robot.pdf") >= 1
+
+
+def _pdf_pages(path: Path) -> int:
+    from pypdf import PdfReader
+
+    return len(PdfReader(path).pages)
+
+
+# ----------------------------------------------------------------------------- rendering
+
+
+@pytest.fixture()
+def in_tmp(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
+    monkeypatch.chdir(tmp_path)
+    return tmp_path
+
+
+@pytest.fixture()
+def fishbot_robot() -> fishbot_urdf.Robot:
+    return fishbot_urdf.load(FISHBOT_XACRO)
+
+
+LINKS = [
+    "base_footprint",
+    "base_link",
+    "imu_link",
+    "camera_link",
+    "laser_cylinder_link",
+    "laser_link",
+    "left_wheel_link",
+    "right_wheel_link",
+    "front_caster_link",
+    "back_caster_link",
+]
+
+
+def test_pdf_opens(in_tmp: Path) -> None:
+    require_tool("dot", "graphviz")
+    result = CliRunner().invoke(cli, ["graph", str(FISHBOT_XACRO), "-o", "tree.pdf"])
+    assert result.exit_code == 0, result.stderr
+    assert result.stdout == "Created file tree.pdf\n"
+    assert _pdf_pages(in_tmp / "tree.pdf") == 1
+
+
+def test_svg_parses_and_names_every_link(in_tmp: Path) -> None:
+    require_tool("dot", "graphviz")
+    result = CliRunner().invoke(cli, ["graph", str(FISHBOT_XACRO), "-o", "tree.svg"])
+    assert result.exit_code == 0, result.stderr
+    from lxml import etree
+
+    svg = etree.parse(str(in_tmp / "tree.svg"), etree.XMLParser(resolve_entities=False))
+    ns = {"svg": "http://www.w3.org/2000/svg"}
+    titles = {t.text for t in svg.iterfind(".//svg:g[@class='node']/svg:title", ns)}
+    assert titles == {*LINKS, *(j.name for j in fishbot_urdf.load(FISHBOT_XACRO).joints)}
+    texts = {t.text for t in svg.iterfind(".//svg:text", ns)}
+    assert set(LINKS) <= texts
+
+
+def test_png_decodes(in_tmp: Path) -> None:
+    require_tool("dot", "graphviz")
+    result = CliRunner().invoke(cli, ["graph", str(FISHBOT_XACRO), "-o", "tree.png"])
+    assert result.exit_code == 0, result.stderr
+    from PIL import Image
+
+    with Image.open(in_tmp / "tree.png") as image:
+        image.load()
+        width, height = image.size
+    assert width > 500 and height > 300  # ten links and nine joints, four levels deep
+
+
+def test_render_and_draw_in_the_library(tmp_path: Path, fishbot_robot: fishbot_urdf.Robot) -> None:
+    require_tool("dot", "graphviz")
+    written = fishbot_urdf.render(fishbot_robot, tmp_path / "tree.svg")
+    assert written == tmp_path / "tree.svg"
+    assert written.read_bytes().lstrip().startswith(b"<?xml")
+    gv = fishbot_urdf.render(fishbot_robot, tmp_path / "tree.txt", format="gv")
+    assert gv.read_text() == fishbot_urdf.to_dot(fishbot_robot)
+    assert fishbot_urdf.draw(fishbot_robot, "png").startswith(b"\x89PNG\r\n\x1a\n")
+    with pytest.raises(ValueError, match="unknown format 'jpg'"):
+        fishbot_urdf.draw(fishbot_robot, "jpg")
+
+
+def test_render_never_writes_over_the_robot_s_own_file(tmp_path: Path) -> None:
+    source = tmp_path / "robot.gv"
+    source.write_bytes(FIRST.read_bytes())
+    robot = fishbot_urdf.load(source)
+    with pytest.raises(fishbot_urdf.InputError, match="refusing to write over the input"):
+        fishbot_urdf.render(robot, source)
+    assert source.read_bytes() == FIRST.read_bytes()
+
+
+# ---------------------------------------------------------------- urdf_to_graphviz's bugs
+
+
+def _dot_nodes(dot_text: bytes) -> tuple[int, list[str]] | None:
+    """Run `dot -Tplain`: the node count and labels, or None when dot refuses the text."""
+    tool = require_tool("dot", "graphviz")
+    run = subprocess.run([tool, "-Tplain"], input=dot_text, capture_output=True, check=False)
+    if run.returncode != 0:
+        return None
+    nodes = [line for line in run.stdout.decode().splitlines() if line.startswith("node ")]
+    return len(nodes), nodes
+
+
+def test_names_are_escaped(tmp_path: Path) -> None:
+    real = urdf_to_graphviz(ESCAPE, tmp_path)
+    assert real is not None
+    assert _dot_nodes(real.read_bytes()) is None  # dot: syntax error
+    status, out, _ = ours(ESCAPE)
+    assert status == 0
+    assert '"say \\"hi\\"" [label="say \\"hi\\""];' in out.decode()
+    assert '"back\\\\slash\\\\" [label="back\\\\slash\\\\"];' in out.decode()
+    parsed = _dot_nodes(out)
+    assert parsed is not None
+    # 4 links and 3 joints, each its own node.
+    assert parsed[0] == 7
+
+
+def test_a_joint_named_like_a_link_gets_its_own_node(tmp_path: Path) -> None:
+    so100 = next(p for p in CORPUS if p.name == "so100.urdf")
+    real = urdf_to_graphviz(so100, tmp_path)
+    assert real is not None
+    robot = fishbot_urdf.load(so100)
+    size = len(robot.links) + len(robot.joints)
+    real_nodes = _dot_nodes(real.read_bytes())
+    assert real_nodes is not None and real_nodes[0] == size - 1  # merged
+    status, out, _ = ours(so100)
+    assert status == 0
+    text = out.decode()
+    assert '"gripper (joint)" [label="gripper"];' in text
+    # The joint "gripper" goes from the link "gripper" to the jaw.
+    assert '"gripper" -> "gripper (joint)" [label=' in text
+    assert '"gripper (joint)" -> "jaw"\n' in text
+    our_nodes = _dot_nodes(out)
+    assert our_nodes is not None and our_nodes[0] == size
+
+
+def test_a_link_with_two_parents_keeps_both_joints(tmp_path: Path) -> None:
+    path = DATA / "invalid" / "multiple_parents.urdf"
+    real = urdf_to_graphviz(path, tmp_path)
+    assert real is not None
+    real_text = real.read_text()
+    # urdf_to_graphviz draws the link twice and one of its two joints twice.
+    assert real_text.count('"bar" [label="bar"];') == 2
+    assert "bar_left" not in real_text
+    status, out, err = ours(path)
+    assert status == 1 and "[multiple-parents]" in err
+    text = out.decode()
+    assert text.count('"bar" [label="bar"];') == 1
+    assert '"left" -> "bar_left" [label=' in text and '"right" -> "bar_right" [label=' in text
+
+
+def test_links_behind_a_loop_are_drawn_and_marked(tmp_path: Path) -> None:
+    path = DATA / "invalid" / "cycle.urdf"
+    real = urdf_to_graphviz(path, tmp_path)
+    assert real is not None
+    assert '"a"' not in real.read_text()
+    status, out, err = ours(path)
+    assert status == 1 and "[cycle]" in err
+    text = out.decode()
+    for name in "abc":
+        assert f'"{name}" [label="{name}\\n(not reached from the root)", style=dashed' in text
+    assert '"c" -> "c_to_a" [label=' in text and '"c_to_a" -> "a"' in text
+
+
+def test_a_missing_link_is_drawn_and_marked() -> None:
+    status, out, err = ours(DATA / "invalid" / "undefined_parent.urdf")
+    assert status == 1 and "[undefined-link]" in err
+    assert '[label="base\\n(not defined)", style=dotted, color=red, fontcolor=red];' in (
+        out.decode()
+    )
+
+
+def test_every_fixture_draws_as_valid_dot() -> None:
+    require_tool("dot", "graphviz")
+    for path in [*VALID, *INVALID]:
+        _, out, _ = ours(path)
+        if not out:
+            continue  # not even a <robot> to draw
+        assert _dot_nodes(out) is not None, path
+        assert _dot_nodes(ours(path, "--detail")[1]) is not None, path
+
+
+# ----------------------------------------------------------------------- the command line
+
+
+def test_dot_missing_still_writes_the_gv_and_claims_nothing_else(
+    in_tmp: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    empty = in_tmp / "bin"
+    empty.mkdir()
+    # The real tool says it made a PDF it did not make.
+    tool = require_tool("urdf_to_graphviz", "liburdfdom-tools")
+    real = subprocess.run(
+        [tool, str(FIRST), "real"], cwd=in_tmp, capture_output=True, env={"PATH": str(empty)}
+    )
+    assert b"Created file real.pdf" in real.stdout and not (in_tmp / "real.pdf").exists()
+    monkeypatch.setenv("PATH", str(empty))
+    result = CliRunner().invoke(cli, ["graph", str(FIRST)])
+    assert result.exit_code == 2
+    assert result.stdout == "Created file first_robot.gv\n"
+    assert (in_tmp / "first_robot.gv").exists() and not (in_tmp / "first_robot.pdf").exists()
+    (line,) = result.stderr.splitlines()
+    assert line == (
+        "first_robot.pdf: error: Graphviz's dot program is needed for PDF output and was not "
+        "found (install Graphviz: apt install graphviz, brew install graphviz, winget install "
+        "graphviz, or conda install -c conda-forge graphviz) [tool-missing]"
+    )
+    # An existing picture is left as it was.
+    (in_tmp / "old.svg").write_text("old")
+    result = CliRunner().invoke(cli, ["graph", str(FIRST), "-o", "old.svg"])
+    assert result.exit_code == 2 and result.stdout == ""
+    assert (in_tmp / "old.svg").read_text() == "old"
+    assert [p.name for p in in_tmp.iterdir() if p.name.startswith(".")] == []
+    # DOT and Mermaid need no Graphviz.
+    assert CliRunner().invoke(cli, ["graph", str(FIRST), "-o", "t.gv"]).exit_code == 0
+    assert CliRunner().invoke(cli, ["graph", str(FIRST), "-o", "t.mmd"]).exit_code == 0
+    with pytest.raises(fishbot_urdf.ToolNotFoundError) as caught:
+        fishbot_urdf.draw(fishbot_urdf.load(FIRST), "png")
+    assert caught.value.rule == "tool-missing" and caught.value.tool == "dot"
+
+
+def test_unwritable_output_folder(in_tmp: Path) -> None:
+    (in_tmp / "taken").write_text("a file, not a folder")
+    result = CliRunner().invoke(cli, ["graph", str(FIRST), "-o", "taken/tree.gv"])
+    assert result.exit_code == 2
+    assert result.stdout == ""
+    (line,) = result.stderr.splitlines()
+    assert line.startswith("taken/tree.gv: error: cannot write taken/tree.gv: ")
+    assert line.endswith("[io]")
+
+
+def test_stdout_and_format(in_tmp: Path, fishbot_robot: fishbot_urdf.Robot) -> None:
+    runner = CliRunner()
+    result = runner.invoke(cli, ["graph", str(FISHBOT_XACRO), "-o", "-"])
+    assert result.exit_code == 0 and result.stderr == ""
+    assert result.stdout == fishbot_urdf.to_dot(fishbot_robot)
+    result = runner.invoke(cli, ["graph", str(FISHBOT_XACRO), "-o", "-", "--format", "mmd"])
+    assert result.stdout == fishbot_urdf.to_mermaid(fishbot_robot)
+    result = runner.invoke(cli, ["graph", str(FISHBOT_XACRO), "-o", "tree.txt", "--format", "dot"])
+    assert result.exit_code == 0
+    assert (in_tmp / "tree.txt").read_text() == fishbot_urdf.to_dot(fishbot_robot)
+    result = runner.invoke(cli, ["graph", str(FISHBOT_XACRO), "--format", "mmd"])
+    assert result.stdout == "Created file fishbot.mmd\n"
+    result = runner.invoke(cli, ["graph", str(FISHBOT_XACRO), "-o", "tree.jpg"])
+    assert result.exit_code == 2
+    assert "cannot tell the format of 'tree.jpg' (extensions: gv, dot, pdf, svg, png, mmd" in (
+        result.stderr
+    )
+    assert not (in_tmp / "tree.jpg").exists()
+
+
+def test_xacro_arguments_and_stdin(in_tmp: Path) -> None:
+    (in_tmp / "r.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:arg name="second" default="b"/>'
+        '<link name="a"/><link name="$(arg second)"/>'
+        '<joint name="j" type="fixed"><parent link="a"/><child link="$(arg second)"/></joint>'
+        "</robot>"
+    )
+    result = CliRunner().invoke(cli, ["graph", "r.urdf.xacro", "second:=wheel", "-o", "-"])
+    assert result.exit_code == 0, result.stderr
+    assert '"j" -> "wheel"' in result.stdout
+    piped = CliRunner().invoke(cli, ["graph", "-", "-o", "-"], input=FIRST.read_bytes())
+    assert piped.exit_code == 0
+    assert piped.stdout == fishbot_urdf.to_dot(fishbot_urdf.load(FIRST))
+
+
+def test_never_writes_over_the_input(in_tmp: Path) -> None:
+    robot = in_tmp / "robot.gv"
+    robot.write_bytes(FIRST.read_bytes())
+    result = CliRunner().invoke(cli, ["graph", "robot.gv", "-o", "robot.gv"])
+    assert result.exit_code == 2
+    assert "refusing to write over the input robot.gv" in result.stderr
+    assert robot.read_bytes() == FIRST.read_bytes()
+
+
+def test_a_robot_name_that_is_no_file_name_needs_o(in_tmp: Path) -> None:
+    (in_tmp / "r.urdf").write_text('<robot name="../up"><link name="a"/></robot>')
+    result = CliRunner().invoke(cli, ["graph", "r.urdf"])
+    assert result.exit_code == 2
+    assert "the robot's name '../up' is no file name: give -o FILE" in result.stderr
+    assert sorted(p.name for p in in_tmp.iterdir()) == ["r.urdf"]
+
+
+def test_unreadable_robot(in_tmp: Path) -> None:
+    result = CliRunner().invoke(cli, ["graph", "missing.urdf"])
+    assert result.exit_code == 2 and result.stdout == ""
+    assert result.stderr.count("\n") == 1
+    result = CliRunner().invoke(cli, ["graph", str(DATA / "invalid" / "xml_syntax.urdf")])
+    assert result.exit_code == 1 and result.stdout == ""
+    assert sorted(in_tmp.iterdir()) == []
+
+
+def test_detail() -> None:
+    """What all_elements.urdf declares, shown: types, axes, limits, counts, masses."""
+    status, out, _ = ours(DATA / "valid" / "all_elements.urdf", "--detail")
+    assert status == 0
+    lines = out.decode().splitlines()
+    assert '"arm" [label="arm\\n1 visual, 0 collisions\\nno inertial"];' in lines
+    assert '"base_link" [label="base_link\\n2 visuals, 2 collisions\\nmass 2.5 kg"];' in lines
+    assert (
+        '"shoulder" [label="shoulder\\nrevolute\\naxis 0 1 0\\nlimit -1.57 .. 1.57, effort 30, '
+        'velocity 2", color=blue, fontcolor=blue];'
+    ) in lines
+    assert any(line.endswith("color=dimgray, fontcolor=dimgray];") for line in lines)
+    assert any("\\nmimic finger_a_joint x1 +0" in line for line in lines)
+    # The edges are the same as without --detail.
+    plain = ours(DATA / "valid" / "all_elements.urdf")[1].decode().splitlines()
+    assert [line for line in lines if " -> " in line] == [line for line in plain if " -> " in line]
+    assert "revolute" not in "".join(plain)
+
+
+def test_help_has_an_example() -> None:
+    result = CliRunner().invoke(cli, ["graph", "--help"])
+    assert result.exit_code == 0
+    assert "fishbot graph robots/fishbot/urdf/fishbot/fishbot.urdf.xacro" in result.stdout
