@@ -113,3 +113,26 @@ def test_expand_example_output() -> None:
     assert links[:2] == ["base_footprint", "base_link"]
     assert {"left_wheel_link", "right_wheel_link", "laser_link", "imu_link"} <= set(links)
     assert "  joint left_wheel_joint     continuous base_link -> left_wheel_link" in lines
+
+
+def test_chain_example_output() -> None:
+    proc = subprocess.run(
+        [sys.executable, str(ROOT / "examples" / "fishbot_chain.py")],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    lines = proc.stdout.splitlines()
+    assert lines[:3] == [
+        "fishbot: 10 links, 9 joints",
+        "tree: yes",
+        "chain base_footprint -> laser_link:",
+    ]
+    hops = [line.split()[0] for line in lines[3:-1]]
+    assert hops == ["base_footprint", "base_link", "laser_cylinder_link"]
+    assert lines[-2].endswith("--> laser_link")
+    # fishbot.urdf.xacro: the body (base_length 0.12) sits on wheels of radius 0.032 sunk
+    # 0.001 into the ground; the post is placed 0.10 above the body's centre and the laser
+    # half a post (post_length 0.10) above the post's centre.
+    height = (0.12 / 2 + 0.032 - 0.001) + 0.10 + 0.10 / 2
+    assert lines[-1] == f"laser_link sits at (0, 0, {height:g}) m in base_footprint"

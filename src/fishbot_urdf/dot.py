@@ -11,14 +11,10 @@ import math
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from .errors import FishbotUrdfError, ToolNotFoundError
 from .graph import to_networkx
 from .model import Joint, JointType, Link, Robot, Vector3
-
-if TYPE_CHECKING:
-    import networkx as nx
 
 __all__ = ["FORMATS", "Drawing", "draw", "drawing", "pipe_dot", "render", "to_dot"]
 
@@ -77,11 +73,21 @@ def drawing(robot: Robot) -> Drawing:
     """Work out what to draw and in which order, in time linear in the robot's size."""
     graph = to_networkx(robot)
     defined: dict[str, Link | None] = {n: data.get("link") for n, data in graph.nodes(data=True)}
-    roots = [n for n in graph if defined[n] is not None and not _has_parent(graph, defined, n)]
+    # One pass over the edges (networkx's per-node views cost more than the whole walk).
+    children: dict[str, list[tuple[str, str, Joint]]] = {name: [] for name in defined}
+    parents: dict[str, int] = dict.fromkeys(defined, 0)
+    has_parent: set[str] = set()
+    for parent, child, key, data in graph.edges(keys=True, data=True):
+        children[parent].append((child, key, data["joint"]))
+        parents[child] += 1
+        # As in urdfdom's tree: a joint from a missing link or from the link itself is no parent.
+        if parent != child and defined[parent] is not None:
+            has_parent.add(child)
+    roots = [n for n, link in defined.items() if link is not None and n not in has_parent]
     # The root's tree first, then the other trees, then links only loops reach.
-    starts = [*roots, *(n for n in graph if graph.in_degree(n) == 0), *graph]
+    starts = [*roots, *(n for n, count in parents.items() if not count), *defined]
     links: list[str] = []
-    order: list[tuple[str, str, str]] = []
+    order: list[tuple[str, str, str, Joint]] = []
     seen: set[str] = set()
     reached: frozenset[str] | None = None
     for start in starts:
@@ -89,14 +95,15 @@ def drawing(robot: Robot) -> Drawing:
             continue
         seen.add(start)
         links.append(start)
-        stack = [iter(graph.out_edges(start, keys=True))]
+        stack = [(start, iter(children[start]))]
         while stack:
-            for parent, child, key in stack[-1]:
-                order.append((parent, child, key))
+            parent, below = stack[-1]
+            for child, key, joint in below:
+                order.append((parent, child, key, joint))
                 if child not in seen:
                     seen.add(child)
                     links.append(child)
-                    stack.append(iter(graph.out_edges(child, keys=True)))
+                    stack.append((child, iter(children[child])))
                     break
             else:
                 stack.pop()
@@ -104,14 +111,13 @@ def drawing(robot: Robot) -> Drawing:
             reached = frozenset(links) if roots else frozenset()
     taken = set(graph)
     edges = []
-    for parent, child, key in order:
+    for parent, child, key, joint in order:
         node = key
         count = 0
         while node in taken:  # a joint named like a link (or a duplicate joint name)
             count += 1
             node = f"{key} (joint)" if count == 1 else f"{key} (joint {count})"
         taken.add(node)
-        joint = graph.edges[parent, child, key]["joint"]
         edges.append(Edge(parent, child, joint, key, node))
     return Drawing(
         robot=robot.name,
@@ -120,11 +126,6 @@ def drawing(robot: Robot) -> Drawing:
         defined=defined,
         unreachable=frozenset(links) - (reached or frozenset()),
     )
-
-
-def _has_parent(graph: nx.MultiDiGraph[str], defined: dict[str, Link | None], name: str) -> bool:
-    # As in urdfdom's tree: a joint from a missing link or from the link itself is no parent.
-    return any(p != name and defined[p] is not None for p in graph.predecessors(name))
 
 
 def to_dot(robot: Robot, detail: bool = False) -> str:
