@@ -36,7 +36,12 @@ def timed(args: Sequence[str], cwd: Path, repeat: int, env: dict[str, str] | Non
     for _ in range(repeat):
         start = time.perf_counter()
         subprocess.run(
-            args, cwd=cwd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=False
+            args,
+            cwd=cwd,
+            env=env,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+            check=False,
         )
         times.append(time.perf_counter() - start)
     return min(times)
@@ -45,7 +50,9 @@ def timed(args: Sequence[str], cwd: Path, repeat: int, env: dict[str, str] | Non
 def main(quick: bool) -> None:
     tool = shutil.which("urdf_to_graphviz")
     if tool is None:
-        sys.exit("urdf_to_graphviz is not installed (Debian/Ubuntu: apt-get install liburdfdom-tools)")
+        sys.exit(
+            "urdf_to_graphviz is not installed (Debian/Ubuntu: apt-get install liburdfdom-tools)"
+        )
     sizes = (100, 1000) if quick else (100, 1000, 10000)
     with tempfile.TemporaryDirectory() as name:
         folder = Path(name)

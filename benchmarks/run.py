@@ -20,9 +20,9 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from lxml import etree
-from robots import write_all
 
 import fishbot_urdf
+from robots import write_all
 
 HERE = Path(__file__).resolve().parent
 FIRST = HERE.parent / "robots" / "fishbot" / "urdf" / "first_robot.urdf"
@@ -55,8 +55,10 @@ def corpus() -> list[Path]:
 def main() -> None:
     check_urdf = shutil.which("check_urdf")
     with tempfile.TemporaryDirectory() as folder:
-        print("| robot | links | check_urdf (s) | fishbot check (s) | ratio | lxml parse (s) | "
-              "fishbot_urdf.load (s) | load / lxml |")
+        print(
+            "| robot | links | check_urdf (s) | fishbot check (s) | ratio | lxml parse (s) | "
+            "fishbot_urdf.load (s) | load / lxml |"
+        )
         print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
         for path in write_all(Path(folder)):
             kind, size = path.stem.split("_")
@@ -65,24 +67,38 @@ def main() -> None:
             theirs = process([check_urdf, str(path)], repeat) if check_urdf else float("nan")
             data = path.read_bytes()
             parser = etree.XMLParser(resolve_entities=False, no_network=True)
-            bare = best(lambda d=data: etree.fromstring(d, parser), repeat)
+            bare = best(lambda d=data, x=parser: etree.fromstring(d, x), repeat)
             load = best(lambda p=path: fishbot_urdf.load(p), repeat)
-            print(f"| {kind} | {int(size):,} | {theirs:.3f} | {ours:.3f} | {theirs / ours:.2f}x | "
-                  f"{bare:.3f} | {load:.3f} | {load / bare:.1f}x |")
+            print(
+                f"| {kind} | {int(size):,} | {theirs:.3f} | {ours:.3f} | {theirs / ours:.2f}x | "
+                f"{bare:.3f} | {load:.3f} | {load / bare:.1f}x |"
+            )
     print()
     pass_time = process([sys.executable, "-c", "pass"], 15)
     small = process([*FISHBOT, "check", str(FIRST)], 15)
     small_real = process([check_urdf, str(FIRST)], 15) if check_urdf else float("nan")
-    print(f"- first_robot.urdf: `fishbot check` {small * 1000:.0f} ms, check_urdf "
-          f"{small_real * 1000:.0f} ms, `python3 -c pass` {pass_time * 1000:.0f} ms "
-          f"({small / pass_time:.1f}x)")
+    print(
+        f"- first_robot.urdf: `fishbot check` {small * 1000:.0f} ms, check_urdf "
+        f"{small_real * 1000:.0f} ms, `python3 -c pass` {pass_time * 1000:.0f} ms "
+        f"({small / pass_time:.1f}x)"
+    )
     files = [str(p) for p in corpus()]
     if files:
         many = process([*FISHBOT, "check", *files], 3)
-        each = best(lambda: [subprocess.run([check_urdf, f], capture_output=True, check=False)
-                             for f in files], 3) if check_urdf else float("nan")
-        print(f"- {len(files)} corpus files: one `fishbot check` {many:.2f} s, one check_urdf "
-              f"per file {each:.2f} s")
+        each = (
+            best(
+                lambda: [
+                    subprocess.run([check_urdf, f], capture_output=True, check=False) for f in files
+                ],
+                3,
+            )
+            if check_urdf
+            else float("nan")
+        )
+        print(
+            f"- {len(files)} corpus files: one `fishbot check` {many:.2f} s, one check_urdf "
+            f"per file {each:.2f} s"
+        )
     print(f"- machine: {os.cpu_count()} cores, Python {sys.version.split()[0]}")
 
 

@@ -5,6 +5,7 @@ Run from the repository root:  python examples/fishbot_chain.py
 
 from __future__ import annotations
 
+from itertools import pairwise
 from pathlib import Path
 
 import networkx as nx
@@ -24,11 +25,11 @@ def main() -> None:
     print("chain base_footprint -> laser_link:")
     offset = [0.0, 0.0, 0.0]
     rotated = False
-    for parent, child in zip(path, path[1:]):
+    for parent, child in pairwise(path):
         (joint,) = (data["joint"] for data in graph[parent][child].values())
         xyz = joint.origin.xyz
         rotated = rotated or any(joint.origin.rpy)
-        offset = [a + b for a, b in zip(offset, xyz)]
+        offset = [a + b for a, b in zip(offset, xyz, strict=True)]
         print(
             f"  {parent} --[{joint.name}, {joint.type.value}, "
             f"xyz {xyz[0]:g} {xyz[1]:g} {xyz[2]:g}]--> {child}"
