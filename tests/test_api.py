@@ -136,3 +136,18 @@ def test_chain_example_output() -> None:
     # half a post (post_length 0.10) above the post's centre.
     height = (0.12 / 2 + 0.032 - 0.001) + 0.10 + 0.10 / 2
     assert lines[-1] == f"laser_link sits at (0, 0, {height:g}) m in base_footprint"
+
+
+def test_readme_shows_the_fishbot_graph_made_by_the_tool() -> None:
+    readme = (ROOT / "README.md").read_text()
+    command = (
+        "fishbot graph robots/fishbot/urdf/fishbot/fishbot.urdf.xacro -o docs/fishbot-graph.png"
+    )
+    assert command in readme.replace("\n", " ")
+    assert "](docs/fishbot-graph.png)" in readme
+    from PIL import Image
+
+    with Image.open(ROOT / "docs" / "fishbot-graph.png") as image:
+        image.load()
+        assert image.format == "PNG"
+        assert image.width > image.height > 300  # a wide tree: nine joints under one base

@@ -12,6 +12,7 @@ from fishbot_urdf import (
     InputError,
     PackageNotFoundError,
     RobotError,
+    ToolNotFoundError,
     XacroError,
     XmlSyntaxError,
 )
@@ -87,3 +88,16 @@ def test_base_error_from_tree_queries() -> None:
         fishbot_urdf.root(robot)
     assert info.value.rule == "error"
     assert info.value.message == "robot 'r' has no single root link (roots: a, b)"
+
+
+def test_tool_not_found_error(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("PATH", str(tmp_path))  # no `dot` here
+    robot = fishbot_urdf.Robot("r", (fishbot_urdf.Link("a"),))
+    with pytest.raises(ToolNotFoundError) as info:
+        fishbot_urdf.render(robot, tmp_path / "r.svg")
+    error = info.value
+    assert isinstance(error, FishbotUrdfError)
+    assert (error.rule, error.tool) == ("tool-missing", "dot")
+    assert error.message == "Graphviz's dot program is needed for SVG output and was not found"
+    assert error.hint.startswith("install Graphviz: apt install graphviz, brew install graphviz")
+    assert not (tmp_path / "r.svg").exists()
