@@ -83,13 +83,14 @@ def test_example_runs(example: Path) -> None:
     assert proc.stderr == ""
 
 
-def test_first_robot_example_output() -> None:
-    proc = subprocess.run(
-        [sys.executable, str(ROOT / "examples" / "inspect_first_robot.py")],
-        capture_output=True,
-        text=True,
-        check=True,
+def _run_example(name: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, str(ROOT / "examples" / name)], capture_output=True, text=True, check=True
     )
+
+
+def test_first_robot_example_output() -> None:
+    proc = _run_example("inspect_first_robot.py")
     assert proc.stdout.splitlines() == [
         "robot first_robot: 2 links, 1 joints",
         "  link  base_link  cylinder",
@@ -100,12 +101,7 @@ def test_first_robot_example_output() -> None:
 
 
 def test_expand_example_output() -> None:
-    proc = subprocess.run(
-        [sys.executable, str(ROOT / "examples" / "expand_fishbot.py")],
-        capture_output=True,
-        text=True,
-        check=True,
-    )
+    proc = _run_example("expand_fishbot.py")
     lines = proc.stdout.splitlines()
     # ten links (the fishbot's parts), read from the seven files fishbot.urdf.xacro includes
     assert lines[0] == "robot fishbot: 10 links from 7 files"
@@ -116,12 +112,7 @@ def test_expand_example_output() -> None:
 
 
 def test_chain_example_output() -> None:
-    proc = subprocess.run(
-        [sys.executable, str(ROOT / "examples" / "fishbot_chain.py")],
-        capture_output=True,
-        text=True,
-        check=True,
-    )
+    proc = _run_example("fishbot_chain.py")
     lines = proc.stdout.splitlines()
     assert lines[:3] == [
         "fishbot: 10 links, 9 joints",

@@ -262,6 +262,12 @@ def test_names_are_escaped(tmp_path: Path) -> None:
     assert parsed is not None
     # 4 links and 3 joints, each its own node.
     assert parsed[0] == 7
+    # And the picture shows the names as they are.
+    from lxml import etree
+
+    svg = etree.fromstring(fishbot_urdf.draw(fishbot_urdf.load(ESCAPE), "svg"))
+    texts = {t.text for t in svg.iter("{http://www.w3.org/2000/svg}text")}
+    assert {'say "hi"', "back\\slash\\", "slash\\joint", "arm", "base"} <= texts
 
 
 def test_a_joint_named_like_a_link_gets_its_own_node(tmp_path: Path) -> None:

@@ -9,12 +9,16 @@ import json
 import os
 import sys
 from collections.abc import Iterable, Sequence
-from typing import IO, Any, NoReturn
+from typing import IO, TYPE_CHECKING, Any, NoReturn
 
 import click
 
 from .diagnostics import Diagnostic, Severity, has_errors
 from .errors import FishbotUrdfError, InputError, ToolNotFoundError
+
+if TYPE_CHECKING:
+    from .check import CheckResult
+    from .model import Robot
 
 EXIT_OK, EXIT_INVALID, EXIT_USAGE = 0, 1, 2
 
@@ -79,6 +83,15 @@ def _xacro_args(items: Sequence[str]) -> dict[str, str]:
         raise click.BadParameter(str(exc), param_hint="ARGS") from None
 
 
+def _check_input(name: str, args: dict[str, str], packages: dict[str, str]) -> CheckResult:
+    """Read and check FILE (- is standard input, read as URDF)."""
+    from .check import check_file
+
+    if name == "-":
+        return check_file(sys.stdin.buffer.read(), path="<stdin>")
+    return check_file(name, args=args, packages=packages)
+
+
 _PACKAGE_HELP = "Where ROS package NAME is, for $(find NAME) (repeatable)."
 
 
@@ -125,7 +138,6 @@ def check(files: Sequence[str], fmt: str, strict: bool, package_items: Sequence[
       fishbot check --strict a.urdf robot.urdf.xacro use_gpu:=false
       xacro robot.urdf.xacro | fishbot check -
     """
-    from .check import check_file
     from .graph import tree_text
 
     args = _xacro_args([f for f in files if ":=" in f])
@@ -134,10 +146,7 @@ def check(files: Sequence[str], fmt: str, strict: bool, package_items: Sequence[
     reports: list[dict[str, Any]] = []
     for name in (f for f in files if ":=" not in f):
         try:
-            if name == "-":
-                result = check_file(sys.stdin.buffer.read(), path="<stdin>")
-            else:
-                result = check_file(name, args=args, packages=packages)
+            result = _check_input(name, args, packages)
         except FishbotUrdfError as exc:
             _report_failure(fmt, exc, reports)
             status = max(status, _status(exc))
@@ -261,15 +270,10 @@ def graph(
       fishbot graph robot.urdf -o - | dot -Tpng -o tree.png
       fishbot graph robot.urdf -o README-tree.mmd
     """
-    from .check import check_file
-
     values = _xacro_args(args)
     packages = _packages(package_items)
     try:
-        if file == "-":
-            result = check_file(sys.stdin.buffer.read(), path="<stdin>")
-        else:
-            result = check_file(file, args=values, packages=packages)
+        result = _check_input(file, values, packages)
     except FishbotUrdfError as exc:
         _emit_findings([_fail(exc)])
         sys.exit(_status(exc))
@@ -306,7 +310,7 @@ def _graph_outputs(robot: str, output: str | None, fmt: str | None) -> list[tupl
     return [(output, chosen)]
 
 
-def _draw_all(robot: Any, outputs: list[tuple[str, str]], detail: bool, source: str) -> None:
+def _draw_all(robot: Robot, outputs: list[tuple[str, str]], detail: bool, source: str) -> None:
     """Write each output, saying "Created file" only for files really written."""
     from .dot import pipe_dot, to_dot
     from .output import write_atomic

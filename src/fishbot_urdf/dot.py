@@ -20,7 +20,6 @@ __all__ = ["FORMATS", "Drawing", "draw", "drawing", "pipe_dot", "render", "to_do
 
 #: Output formats by file extension: DOT text, Mermaid, and what `dot` renders.
 FORMATS = {"gv": "DOT", "dot": "DOT", "mmd": "Mermaid", "pdf": "PDF", "svg": "SVG", "png": "PNG"}
-RENDERED = ("pdf", "svg", "png")
 
 #: Joint colours of the detailed drawing (names both Graphviz and CSS know).
 JOINT_COLORS = {
@@ -40,13 +39,17 @@ INSTALL_GRAPHVIZ = (
 
 @dataclass(frozen=True, slots=True)
 class Edge:
-    """One joint as drawn: its parent and child link, its name and its DOT node id."""
+    """One joint as drawn: its parent and child link, and its DOT node id."""
 
     parent: str
     child: str
     joint: Joint
-    name: str
     node: str
+
+    @property
+    def name(self) -> str:
+        """The joint's name (the node's label)."""
+        return self.joint.name
 
 
 @dataclass(frozen=True, slots=True)
@@ -118,7 +121,7 @@ def drawing(robot: Robot) -> Drawing:
             count += 1
             node = f"{key} (joint)" if count == 1 else f"{key} (joint {count})"
         taken.add(node)
-        edges.append(Edge(parent, child, joint, key, node))
+        edges.append(Edge(parent, child, joint, node))
     return Drawing(
         robot=robot.name,
         links=tuple(links),
