@@ -229,6 +229,7 @@ _GRAPH_FORMATS = ("gv", "dot", "pdf", "svg", "png", "mmd")
 @click.option(
     "-o",
     "--output",
+    metavar="FILE",
     help="The file to write, its format from its extension; - writes DOT to standard output.",
 )
 @click.option(
