@@ -22,6 +22,7 @@ from .errors import (
 )
 from .expand import Expansion, XacroError, expand
 from .graph import Topology, chain, leaves, root, subtree, to_networkx, topology, tree_text
+from .inertia import box_inertia, cylinder_inertia, geometry_inertia, sphere_inertia
 from .mermaid import to_mermaid
 from .model import (
     Box,
@@ -86,12 +87,15 @@ __all__ = [
     "XacroError",
     "XmlSyntaxError",
     "__version__",
+    "box_inertia",
     "chain",
     "check",
     "check_file",
+    "cylinder_inertia",
     "draw",
     "expand",
     "find_package",
+    "geometry_inertia",
     "leaves",
     "load",
     "parse",
@@ -99,6 +103,7 @@ __all__ = [
     "render",
     "resolve_package_uri",
     "root",
+    "sphere_inertia",
     "subtree",
     "to_dot",
     "to_mermaid",
