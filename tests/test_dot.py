@@ -8,6 +8,7 @@ what is left must still be identical.
 
 from __future__ import annotations
 
+import os
 import re
 import subprocess
 from pathlib import Path
@@ -433,7 +434,7 @@ def test_a_robot_name_that_is_no_file_name_needs_o(in_tmp: Path) -> None:
     (in_tmp / "r.urdf").write_text('<robot name="../up"><link name="a"/></robot>')
     result = CliRunner().invoke(cli, ["graph", "r.urdf"])
     assert result.exit_code == 2
-    assert "the robot's name '../up' is no file name: give -o FILE" in result.stderr
+    assert "the robot's name '../up' is no file name: give OUT or -o FILE" in result.stderr
     assert sorted(p.name for p in in_tmp.iterdir()) == ["r.urdf"]
 
 
@@ -469,3 +470,105 @@ def test_help_has_an_example() -> None:
     result = CliRunner().invoke(cli, ["graph", "--help"])
     assert result.exit_code == 0
     assert "fishbot graph robots/fishbot/urdf/fishbot/fishbot.urdf.xacro" in result.stdout
+
+
+# ------------------------------------------------------------- found in a new-user review
+
+
+def test_the_out_form_of_urdf_to_graphviz(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """`urdf_to_graphviz ROBOT OUT` (its form that is not deprecated) writes OUT.gv, OUT.pdf."""
+    tool = require_tool("urdf_to_graphviz", "liburdfdom-tools")
+    (tmp_path / "real").mkdir()
+    real = subprocess.run(
+        [tool, str(FIRST), "tree"], cwd=tmp_path / "real", capture_output=True, check=True
+    )
+    monkeypatch.chdir(tmp_path)
+    result = CliRunner().invoke(cli, ["graph", str(FIRST), "ours/tree"])
+    assert result.exit_code == 0, result.stderr
+    assert result.stdout == real.stdout.decode().replace("tree", "ours/tree")
+    assert (tmp_path / "ours" / "tree.gv").read_bytes() == (
+        tmp_path / "real" / "tree.gv"
+    ).read_bytes()
+    assert _pdf_pages(tmp_path / "ours" / "tree.pdf") >= 1
+    both = CliRunner().invoke(cli, ["graph", str(FIRST), "tree", "-o", "x.gv"])
+    assert both.exit_code == 2 and "give one OUT" in both.stderr
+
+
+def test_never_writes_over_a_file_the_xacro_includes(in_tmp: Path) -> None:
+    (in_tmp / "inc.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="a"/></robot>'
+    )
+    (in_tmp / "r.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="inc.xacro"/></robot>'
+    )
+    before = (in_tmp / "inc.xacro").read_bytes()
+    result = CliRunner().invoke(cli, ["graph", "r.urdf.xacro", "-o", "inc.xacro", "--format", "gv"])
+    assert result.exit_code == 2 and result.stdout == ""
+    assert "refusing to write over the input" in result.stderr
+    robot = fishbot_urdf.load(in_tmp / "r.urdf.xacro")
+    with pytest.raises(fishbot_urdf.InputError, match="refusing to write over the input"):
+        fishbot_urdf.render(robot, in_tmp / "inc.xacro", format="gv")
+    assert (in_tmp / "inc.xacro").read_bytes() == before
+
+
+def test_long_names(in_tmp: Path) -> None:
+    # 250 bytes is a legal file name once ".gv" is added: the temporary file must fit too.
+    (in_tmp / "long.urdf").write_text(f'<robot name="{"y" * 250}"><link name="a"/></robot>')
+    result = CliRunner().invoke(cli, ["graph", "long.urdf", "--format", "gv"])
+    assert result.exit_code == 0, result.stderr
+    assert (in_tmp / f"{'y' * 250}.gv").exists()
+    # Too long for any file system: one line, no traceback.
+    result = CliRunner().invoke(cli, ["graph", "long.urdf", "-o", "z" * 260 + ".gv"])
+    assert result.exit_code == 2, result.output
+    (line,) = result.stderr.splitlines()
+    assert line.endswith("File name too long [io]")
+
+
+def test_dot_failing_is_a_tool_problem(in_tmp: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    fake = in_tmp / "bin" / "dot"
+    fake.parent.mkdir()
+    fake.write_text("#!/bin/sh\necho 'Format: \"pdf\" not recognized' >&2\nexit 1\n")
+    fake.chmod(0o755)
+    monkeypatch.setenv("PATH", f"{fake.parent}{os.pathsep}{os.environ['PATH']}")
+    result = CliRunner().invoke(cli, ["graph", str(FIRST), "-o", "x.pdf"])
+    assert result.exit_code == 2
+    (line,) = result.stderr.splitlines()
+    assert (
+        line == 'x.pdf: error: dot could not render PDF: Format: "pdf" not recognized [tool-failed]'
+    )
+    assert not (in_tmp / "x.pdf").exists()
+
+
+def test_an_output_naming_a_folder(in_tmp: Path) -> None:
+    result = CliRunner().invoke(cli, ["graph", str(FIRST), "-o", "newdir/", "--format", "gv"])
+    assert result.exit_code == 2
+    assert "newdir/ names a folder (name a file in it) [io]" in result.stderr
+    assert not (in_tmp / "newdir").exists()
+
+
+def test_a_closed_pipe_stops_quietly(tmp_path: Path) -> None:
+    import sys
+
+    for command in (["graph", str(FISHBOT_XACRO), "-o", "-"], ["check", str(FISHBOT_XACRO)]):
+        process = subprocess.Popen(
+            [sys.executable, "-m", "fishbot_urdf", *command],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+        )
+        assert process.stdout is not None and process.stderr is not None
+        process.stdout.close()  # the reader is gone before anything is written
+        with process.stderr:
+            assert process.wait(timeout=60) == 0
+            assert process.stderr.read() == b""
+
+
+def test_stdin_takes_no_xacro_arguments() -> None:
+    result = CliRunner().invoke(cli, ["graph", "-", "a:=b", "-o", "-"], input=FIRST.read_bytes())
+    assert result.exit_code == 2
+    assert "name:=value arguments are for a .xacro file, not standard input" in result.stderr
+
+
+def test_devnull_and_upper_case_formats(fishbot_robot: fishbot_urdf.Robot) -> None:
+    assert CliRunner().invoke(cli, ["graph", str(FIRST), "-o", os.devnull]).exit_code == 0
+    assert fishbot_urdf.draw(fishbot_robot, "GV") == fishbot_urdf.to_dot(fishbot_robot).encode()

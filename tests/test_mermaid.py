@@ -68,3 +68,8 @@ def test_detail_colours_joints_by_type() -> None:
     nodes = _nodes(text)
     wheel = next(label for label in nodes.values() if label.startswith("left_wheel_joint"))
     assert wheel == "left_wheel_joint<br>continuous<br>axis 0 1 0"
+
+
+def test_a_mermaid_directive_in_a_name_stays_a_name() -> None:
+    robot = fishbot_urdf.Robot("r", (fishbot_urdf.Link("%%{init: {}}%%"),))
+    assert '    L0["#37;#37;{init: {}}#37;#37;"]' in fishbot_urdf.to_mermaid(robot).splitlines()

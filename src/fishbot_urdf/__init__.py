@@ -17,6 +17,7 @@ from .errors import (
     FishbotUrdfError,
     InputError,
     RobotError,
+    ToolError,
     ToolNotFoundError,
     XmlSyntaxError,
 )
@@ -81,6 +82,7 @@ __all__ = [
     "SafetyController",
     "Severity",
     "Sphere",
+    "ToolError",
     "ToolNotFoundError",
     "Topology",
     "Visual",

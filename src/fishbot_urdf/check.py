@@ -24,12 +24,14 @@ class CheckResult:
         robot: The robot as read (possibly faulty), or None if there was no <robot>.
         diagnostics: Every finding, sorted by position.
         topology: The link structure, when there is a robot.
+        files: Every file the robot was read from (for xacro, with everything it includes).
     """
 
     path: str
     robot: Robot | None
     diagnostics: tuple[Diagnostic, ...]
     topology: Topology | None
+    files: tuple[str, ...] = ()
 
     @property
     def ok(self) -> bool:
@@ -57,11 +59,12 @@ def check_file(
     """
     parsed = read(source, path=path, args=args, packages=packages)
     if parsed.robot is None:
-        return CheckResult(parsed.path, None, parsed.diagnostics, None)
+        return CheckResult(parsed.path, None, parsed.diagnostics, None, parsed.files)
     topo = topology(parsed.robot)
     found = list(parsed.diagnostics)
     found.extend(_rules(parsed.robot, topo, parsed.path))
-    return CheckResult(parsed.path, parsed.robot, tuple(sorted(found, key=sort_key)), topo)
+    found.sort(key=sort_key)
+    return CheckResult(parsed.path, parsed.robot, tuple(found), topo, parsed.files)
 
 
 def check(robot: Robot) -> tuple[Diagnostic, ...]:

@@ -14,7 +14,7 @@ from typing import IO, TYPE_CHECKING, Any, NoReturn
 import click
 
 from .diagnostics import Diagnostic, Severity, has_errors
-from .errors import FishbotUrdfError, InputError, ToolNotFoundError
+from .errors import FishbotUrdfError, InputError, ToolError
 
 if TYPE_CHECKING:
     from .check import CheckResult
@@ -58,7 +58,7 @@ def _status(exc: FishbotUrdfError) -> int:
     the robot is."""
     from .packages import PackageNotFoundError
 
-    setup = (InputError, PackageNotFoundError, ToolNotFoundError)
+    setup = (InputError, PackageNotFoundError, ToolError)
     return EXIT_USAGE if isinstance(exc, setup) else EXIT_INVALID
 
 
@@ -208,7 +208,7 @@ def expand(
         else:
             text = expansion.text
         if output == "-":
-            click.echo(text, nl=False)
+            _to_stdout(text.encode("utf-8"))
         else:
             write_atomic(output, text, inputs=[file, *expansion.dependencies])
     except FishbotUrdfError as exc:
@@ -225,7 +225,7 @@ _GRAPH_FORMATS = ("gv", "dot", "pdf", "svg", "png", "mmd")
 
 @cli.command()
 @click.argument("file", type=click.Path(allow_dash=True))
-@click.argument("args", nargs=-1)
+@click.argument("args", nargs=-1, metavar="[OUT] [name:=value]...")
 @click.option(
     "-o",
     "--output",
@@ -254,25 +254,33 @@ def graph(
 ) -> None:
     """Draw the link/joint tree of a URDF or xacro file, like urdf_to_graphviz.
 
-    With no -o, writes ROBOT_NAME.gv and ROBOT_NAME.pdf in the current folder, as
-    urdf_to_graphviz does, and the .gv is byte for byte the same. With -o the format
+    As urdf_to_graphviz does, writes ROBOT_NAME.gv and ROBOT_NAME.pdf in the current
+    folder, or OUT.gv and OUT.pdf when OUT is given, and the .gv is byte for byte the same
+    (names with a quote or a backslash aside: they are escaped here). With -o the format
     follows the extension: .gv/.dot DOT text, .mmd a Mermaid flowchart for Markdown,
-    .pdf/.svg/.png drawn by Graphviz's dot program. Names with quotes, joints named like
-    links and links the root does not reach are drawn correctly (links the root does not
-    reach in red). The robot's findings go to stderr as in `fishbot check`. Exit status: 0
-    drawn, 1 the robot has errors (drawn as far as it could be read), 2 a file could not be
-    read or written, Graphviz is missing, or the command line is wrong.
+    .pdf/.svg/.png drawn by Graphviz's dot program. Joints named like links get their own
+    node, and links the root does not reach are drawn in red. The robot's findings go to
+    stderr as in `fishbot check`. Exit status: 0 drawn, 1 the robot has errors (drawn as far
+    as it could be read), 2 a file could not be read or written, Graphviz is missing or
+    failed, or the command line is wrong.
 
     \b
     Examples:
       fishbot graph robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
+      fishbot graph robot.urdf build/tree
       fishbot graph robot.urdf -o tree.svg
       fishbot graph robot.urdf.xacro use_gpu:=false -o tree.png --detail
       fishbot graph robot.urdf -o - | dot -Tpng -o tree.png
       fishbot graph robot.urdf -o README-tree.mmd
     """
-    values = _xacro_args(args)
+    names = [a for a in args if ":=" not in a]
+    if len(names) > 1 or (names and output is not None):
+        raise click.UsageError("give one OUT (as urdf_to_graphviz ROBOT OUT) or -o FILE, not both")
+    if file == "-" and len(names) < len(args):
+        raise click.UsageError("name:=value arguments are for a .xacro file, not standard input")
+    values = _xacro_args([a for a in args if ":=" in a])
     packages = _packages(package_items)
+    outputs = None if output is None else _graph_output(output, fmt)
     try:
         result = _check_input(file, values, packages)
     except FishbotUrdfError as exc:
@@ -283,23 +291,32 @@ def graph(
     if robot is None:
         sys.exit(EXIT_INVALID)
     status = EXIT_INVALID if has_errors(result.diagnostics) else EXIT_OK
+    if outputs is None:
+        outputs = _graph_pair(names[0] if names else _file_name(robot.name), fmt)
     try:
-        _draw_all(robot, _graph_outputs(robot.name, output, fmt), detail, file)
+        _draw_all(robot, outputs, detail, result.files)
     except FishbotUrdfError as exc:
         _emit_findings([_fail(exc)])
         sys.exit(_status(exc))
     sys.exit(status)
 
 
-def _graph_outputs(robot: str, output: str | None, fmt: str | None) -> list[tuple[str, str]]:
-    """The files to write, as (path, format): urdf_to_graphviz's pair when -o is not given."""
-    if output is None:
-        if not robot or robot in (".", "..") or "/" in robot or "\\" in robot:
-            raise click.UsageError(f"the robot's name {robot!r} is no file name: give -o FILE")
-        if fmt is not None:
-            return [(f"{robot}.{fmt}", fmt)]
-        return [(f"{robot}.gv", "gv"), (f"{robot}.pdf", "pdf")]
-    if output == "-":
+def _file_name(robot: str) -> str:
+    if not robot or robot in (".", "..") or "/" in robot or "\\" in robot:
+        raise click.UsageError(f"the robot's name {robot!r} is no file name: give OUT or -o FILE")
+    return robot
+
+
+def _graph_pair(stem: str, fmt: str | None) -> list[tuple[str, str]]:
+    """urdf_to_graphviz's files: STEM.gv and STEM.pdf (or STEM.FORMAT with --format)."""
+    if fmt is not None:
+        return [(f"{stem}.{fmt}", fmt)]
+    return [(f"{stem}.gv", "gv"), (f"{stem}.pdf", "pdf")]
+
+
+def _graph_output(output: str, fmt: str | None) -> list[tuple[str, str]]:
+    """-o FILE as (path, format): the format from --format, else from the extension."""
+    if output in ("-", os.devnull):
         return [(output, fmt or "gv")]
     chosen = fmt or os.path.splitext(output)[1].lstrip(".").lower()
     if chosen not in _GRAPH_FORMATS:
@@ -311,7 +328,9 @@ def _graph_outputs(robot: str, output: str | None, fmt: str | None) -> list[tupl
     return [(output, chosen)]
 
 
-def _draw_all(robot: Robot, outputs: list[tuple[str, str]], detail: bool, source: str) -> None:
+def _draw_all(
+    robot: Robot, outputs: list[tuple[str, str]], detail: bool, inputs: Sequence[str]
+) -> None:
     """Write each output, saying "Created file" only for files really written."""
     from .dot import pipe_dot, to_dot
     from .output import write_atomic
@@ -331,10 +350,9 @@ def _draw_all(robot: Robot, outputs: list[tuple[str, str]], detail: bool, source
                 exc.path = path  # the finding is about the file that could not be made
                 raise
         if path == "-":
-            sys.stdout.buffer.write(data)
-            sys.stdout.buffer.flush()
+            _to_stdout(data)
             continue
-        write_atomic(path, data, inputs=[] if source == "-" else [source])
+        write_atomic(path, data, inputs=inputs)
         click.echo(f"Created file {path}")
 
 
@@ -364,17 +382,35 @@ def _json_report(result: Any, failed: bool) -> dict[str, Any]:
 
 def _write_chunks(chunks: Iterable[str]) -> None:
     """Write text to stdout in large blocks (a deep tree prints hundreds of megabytes)."""
-    out = sys.stdout.buffer
     buffer: list[str] = []
     size = 0
     for chunk in chunks:
         buffer.append(chunk)
         size += len(chunk)
         if size > 1 << 20:
-            out.write("".join(buffer).encode("utf-8"))
+            _to_stdout("".join(buffer).encode("utf-8"), flush=False)
             buffer, size = [], 0
-    out.write("".join(buffer).encode("utf-8"))
-    out.flush()
+    _to_stdout("".join(buffer).encode("utf-8"))
+
+
+def _to_stdout(data: bytes, *, flush: bool = True) -> None:
+    """Write to stdout; when the reader has gone (`fishbot check big.urdf | head`), stop
+    quietly with status 0 rather than let click turn the broken pipe into status 1."""
+    try:
+        sys.stdout.buffer.write(data)
+        if flush:
+            sys.stdout.buffer.flush()
+    except BrokenPipeError:
+        _stop_quietly()
+
+
+def _stop_quietly() -> NoReturn:
+    try:  # nothing more may reach the closed pipe, not even the flush at exit
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):
+        pass  # stdout is no real file (a test runner's buffer)
+    sys.exit(EXIT_OK)
 
 
 def main(argv: Sequence[str] | None = None) -> NoReturn:
@@ -384,8 +420,5 @@ def main(argv: Sequence[str] | None = None) -> NoReturn:
             args=list(argv) if argv is not None else None, prog_name="fishbot", standalone_mode=True
         )
     except BrokenPipeError:
-        # The reader went away (`fishbot check big.urdf | head`): stop quietly.
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
-        sys.exit(EXIT_OK)
+        _stop_quietly()
     sys.exit(EXIT_OK)

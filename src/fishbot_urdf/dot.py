@@ -12,7 +12,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
-from .errors import FishbotUrdfError, ToolNotFoundError
+from .errors import ToolError, ToolNotFoundError
 from .graph import to_networkx
 from .model import Joint, JointType, Link, Robot, Vector3
 
@@ -253,7 +253,7 @@ def pipe_dot(text: str, format: str) -> bytes:
 
     Raises:
         ToolNotFoundError: `dot` is not installed (the message says how to install it).
-        FishbotUrdfError: `dot` failed.
+        ToolError: `dot` failed.
     """
     import graphviz  # only when something is rendered
 
@@ -268,12 +268,13 @@ def pipe_dot(text: str, format: str) -> bytes:
     except graphviz.CalledProcessError as exc:
         lines = (exc.stderr or b"").decode("utf-8", "replace").strip().splitlines()
         reason = lines[0] if lines else f"exit status {exc.returncode}"
-        raise FishbotUrdfError(f"dot could not render {format.upper()}: {reason}") from exc
+        raise ToolError(f"dot could not render {format.upper()}: {reason}", tool="dot") from exc
     return data
 
 
 def draw(robot: Robot, format: str, *, detail: bool = False) -> bytes:
     """The robot's graph as the bytes of a file in ``format`` (a key of ``FORMATS``)."""
+    format = format.lower()
     if format not in FORMATS:
         raise ValueError(f"unknown format {format!r} (formats: {', '.join(FORMATS)})")
     if format == "mmd":
@@ -291,7 +292,8 @@ def render(
 
     ``.gv``/``.dot`` DOT text, ``.mmd`` a Mermaid flowchart, ``.pdf``/``.svg``/``.png``
     rendered by Graphviz's `dot`; ``format`` overrides the extension. The file is written
-    whole or not at all, never over the file the robot was read from.
+    whole or not at all, and never over a file the robot was read from (as far as its
+    elements' locations tell).
 
     Returns:
         The path written.
@@ -299,11 +301,16 @@ def render(
     Raises:
         ValueError: The format is not known.
         ToolNotFoundError: Rendering needs `dot`, and it is not installed.
+        ToolError: `dot` failed.
         InputError: The file cannot be written.
     """
     from .output import write_atomic
 
-    chosen = format or Path(path).suffix.lstrip(".").lower()
+    chosen = format or Path(path).suffix.lstrip(".")
     data = draw(robot, chosen, detail=detail)
-    inputs = [robot.source.path] if robot.source is not None else []
-    return write_atomic(path, data, inputs=inputs)
+    return write_atomic(path, data, inputs=_source_files(robot))
+
+
+def _source_files(robot: Robot) -> set[str]:
+    located: list[Robot | Link | Joint] = [robot, *robot.links, *robot.joints]
+    return {item.source.path for item in located if item.source is not None}

@@ -43,15 +43,23 @@ class InputError(FishbotUrdfError):
     rule = "io"
 
 
-class ToolNotFoundError(FishbotUrdfError):
-    """A program the job needs (Graphviz's `dot`) is not installed; ``hint`` says how to get it."""
+class ToolError(FishbotUrdfError):
+    """A program the job runs (Graphviz's `dot`) failed; ``tool`` names it."""
 
-    rule = "tool-missing"
+    rule = "tool-failed"
 
-    def __init__(self, message: str, *, tool: str, hint: str, path: str | None = None) -> None:
+    def __init__(
+        self, message: str, *, tool: str, hint: str | None = None, path: str | None = None
+    ) -> None:
         super().__init__(message, path=path)
         self.tool = tool
         self.hint = hint
+
+
+class ToolNotFoundError(ToolError):
+    """A program the job needs is not installed; ``hint`` says how to install it."""
+
+    rule = "tool-missing"
 
 
 class XmlSyntaxError(FishbotUrdfError):

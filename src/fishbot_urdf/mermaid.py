@@ -14,6 +14,7 @@ __all__ = ["to_mermaid"]
 _ENTITIES = str.maketrans(
     {
         "#": "#35;",
+        "%": "#37;",
         '"': "#quot;",
         "&": "#amp;",
         "<": "#lt;",

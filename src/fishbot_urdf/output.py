@@ -24,14 +24,20 @@ def write_atomic(path: str | Path, data: bytes | str, *, inputs: Iterable[str | 
     """
     if not str(path):
         raise InputError("the output file name is empty", path="<output>")
-    target = Path(os.path.realpath(path))
-    for source in inputs:
-        if _same_file(target, Path(source)):
-            raise InputError(f"refusing to write over the input {source}", path=str(path))
-    if target.is_dir():
-        raise InputError(f"{path} is a folder (name a file in it)", path=str(path))
+    if str(path).endswith(("/", os.sep)):
+        raise InputError(f"{path} names a folder (name a file in it)", path=str(path))
     payload = data.encode("utf-8") if isinstance(data, str) else data
-    if target.exists() and not target.is_file():
+    try:
+        target = Path(os.path.realpath(path))
+        for source in inputs:
+            if _same_file(target, Path(source)):
+                raise InputError(f"refusing to write over the input {source}", path=str(path))
+        if target.is_dir():
+            raise InputError(f"{path} is a folder (name a file in it)", path=str(path))
+        special = target.exists() and not target.is_file()
+    except OSError as exc:  # a name too long, a loop of links, ...
+        raise InputError(f"cannot write {path}: {exc.strerror}", path=str(path)) from exc
+    if special:
         try:  # a device or a pipe: there is nothing to replace
             with open(target, "wb") as stream:
                 stream.write(payload)
@@ -40,7 +46,9 @@ def write_atomic(path: str | Path, data: bytes | str, *, inputs: Iterable[str | 
         return target
     try:
         target.parent.mkdir(parents=True, exist_ok=True)
-        handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.")
+        # Short enough that a file name near the 255-byte limit still has room for it.
+        prefix = f".{target.name[:40]}."
+        handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=prefix)
     except OSError as exc:
         raise InputError(f"cannot write {path}: {exc.strerror}", path=str(path)) from exc
     try:

@@ -32,11 +32,14 @@ class Parsed:
         path: The file read ('<string>' for bytes).
         robot: The robot, possibly with faults; None if the file has no <robot>.
         diagnostics: Every finding made while reading, in document order.
+        files: Every file the robot was read from: the file itself and, for xacro, every
+            file its expansion read (empty for bytes).
     """
 
     path: str
     robot: Robot | None
     diagnostics: tuple[Diagnostic, ...]
+    files: tuple[str, ...] = ()
 
 
 def is_xacro_path(path: str | Path) -> bool:
@@ -71,6 +74,7 @@ def read(
     """
     origins = None
     notes: tuple[Diagnostic, ...] = ()
+    files: tuple[str, ...] = ()
     if isinstance(source, bytes):
         data, name = source, path or STRING_PATH
     elif is_xacro_path(source):
@@ -79,19 +83,21 @@ def read(
         expansion = expand(source, args=args, packages=packages)
         data, name, origins = expansion.text.encode("utf-8"), path or str(source), expansion.sources
         notes = tuple(xacro_warning(message, name) for message in expansion.messages)
+        files = (str(source), *expansion.dependencies)
     else:
         name = path or str(source)
         data = read_bytes(source)
+        files = (str(source),)
     root = parse_xml(data, name)
     locator = Locator(data, name, origins)
     with paused_gc():
         robot = fast_robot(root, locator, data)
         if robot is not None:
-            return Parsed(name, robot, notes)
+            return Parsed(name, robot, notes, files)
         locator.rewind()
         reader = Reader(locator)
         robot = reader.robot(root)
-    return Parsed(name, robot, notes + tuple(reader.diagnostics))
+    return Parsed(name, robot, notes + tuple(reader.diagnostics), files)
 
 
 def xacro_warning(message: str, path: str) -> Diagnostic:
