@@ -14,6 +14,7 @@ from typing import IO, TYPE_CHECKING, Any, NoReturn
 import click
 
 from .diagnostics import Diagnostic, Severity, has_errors
+from .dot import FORMATS
 from .errors import FishbotUrdfError, InputError, ToolError
 
 if TYPE_CHECKING:
@@ -220,7 +221,7 @@ def expand(
     sys.exit(EXIT_OK)
 
 
-_GRAPH_FORMATS = ("gv", "dot", "pdf", "svg", "png", "mmd")
+_GRAPH_FORMATS = tuple(FORMATS)
 
 
 @cli.command()
@@ -332,23 +333,15 @@ def _draw_all(
     robot: Robot, outputs: list[tuple[str, str]], detail: bool, inputs: Sequence[str]
 ) -> None:
     """Write each output, saying "Created file" only for files really written."""
-    from .dot import pipe_dot, to_dot
+    from .dot import draw
     from .output import write_atomic
 
-    dot_text: str | None = None
     for path, fmt in outputs:
-        if fmt == "mmd":
-            from .mermaid import to_mermaid
-
-            data = to_mermaid(robot, detail=detail).encode("utf-8")
-        else:
-            if dot_text is None:
-                dot_text = to_dot(robot, detail=detail)
-            try:
-                data = dot_text.encode("utf-8") if fmt in ("gv", "dot") else pipe_dot(dot_text, fmt)
-            except FishbotUrdfError as exc:
-                exc.path = path  # the finding is about the file that could not be made
-                raise
+        try:
+            data = draw(robot, fmt, detail=detail)
+        except FishbotUrdfError as exc:
+            exc.path = path  # the finding is about the file that could not be made
+            raise
         if path == "-":
             _to_stdout(data)
             continue

@@ -18,8 +18,8 @@ from .model import Joint, JointType, Link, Robot, Vector3
 
 __all__ = ["FORMATS", "Drawing", "draw", "drawing", "pipe_dot", "render", "to_dot"]
 
-#: Output formats by file extension: DOT text, Mermaid, and what `dot` renders.
-FORMATS = {"gv": "DOT", "dot": "DOT", "mmd": "Mermaid", "pdf": "PDF", "svg": "SVG", "png": "PNG"}
+#: Output formats by file extension: DOT text, what `dot` renders, and Mermaid.
+FORMATS = {"gv": "DOT", "dot": "DOT", "pdf": "PDF", "svg": "SVG", "png": "PNG", "mmd": "Mermaid"}
 
 #: Joint colours of the detailed drawing (names both Graphviz and CSS know).
 JOINT_COLORS = {
@@ -57,7 +57,6 @@ class Drawing:
     """What a drawing shows, in drawing order, worked out once from ``to_networkx``.
 
     Attributes:
-        robot: The robot's name.
         links: Link names in urdf_to_graphviz's order (depth-first from the root, children
             by joint name), then the other trees and the links only loops reach.
         edges: The joints in the same depth-first order.
@@ -65,7 +64,6 @@ class Drawing:
         unreachable: Links the root does not reach (all of them when there is no root).
     """
 
-    robot: str
     links: tuple[str, ...]
     edges: tuple[Edge, ...]
     defined: dict[str, Link | None]
@@ -123,7 +121,6 @@ def drawing(robot: Robot) -> Drawing:
         taken.add(node)
         edges.append(Edge(parent, child, joint, node))
     return Drawing(
-        robot=robot.name,
         links=tuple(links),
         edges=tuple(edges),
         defined=defined,
