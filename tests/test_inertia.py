@@ -133,3 +133,154 @@ def test_geometry_inertia_follows_urdf_axes() -> None:
     with pytest.raises(TypeError, match="no closed form for Mesh"):
         geometry_inertia(fishbot_urdf.Mesh("package://x/m.stl"), 1.0)
     assert math.isclose(sphere_inertia(1.0, 1.0).inertia.ixx, 0.4)
+
+
+# -- whole robots ---------------------------------------------------------------------------
+
+# The fishbot's parts as its xacro files place them: (mass kg, centre in base_footprint m,
+# the inertia macro's diagonal about that centre, turned by rpy about x). base_link is
+# 0.091 above the footprint; everything else hangs off base_link.
+_Z = 0.091
+FISHBOT_PARTS = [
+    (1.0, (0, 0, _Z), (1.0 / 12 * (3 * 0.1**2 + 0.12**2),) * 2 + (0.5 * 0.1**2,), 0.0),
+    (0.01, (0, 0, _Z + 0.02), (0.01 / 12 * 2 * 0.02**2,) * 3, 0.0),
+    (
+        0.01,
+        (0.10, 0, _Z + 0.075),
+        (0.01 / 12 * (0.1**2 + 0.02**2), 0.01 / 12 * 2 * 0.02**2, 0.01 / 12 * (0.1**2 + 0.02**2)),
+        0.0,
+    ),
+    (0.05, (0, 0, _Z + 0.10), (0.05 / 12 * (3e-4 + 0.01),) * 2 + (0.025 * 1e-4,), 0.0),
+    (0.1, (0, 0, _Z + 0.15), (0.1 / 12 * (3 * 4e-4 + 4e-4),) * 2 + (0.05 * 4e-4,), 0.0),
+    *[
+        (
+            0.1,
+            (0, y, _Z - 0.06),
+            (0.1 / 12 * (3 * 0.032**2 + 0.04**2),) * 2 + (0.05 * 0.032**2,),
+            1.57079,
+        )
+        for y in (0.1, -0.1)
+    ],
+    *[(0.02, (x, 0, _Z - 0.076), (0.4 * 0.02 * 0.016**2,) * 3, 0.0) for x in (0.08, -0.08)],
+]
+
+
+def test_the_fishbot_totals_against_a_hand_computation() -> None:
+    robot = fishbot_urdf.load(FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro")
+    found = fishbot_urdf.mass_properties(robot)
+    total = sum(m for m, _, _, _ in FISHBOT_PARTS)
+    assert total == pytest.approx(1.41)
+    assert found.mass == pytest.approx(total, rel=1e-12)
+    com = sum(m * np.array(c) for m, c, _, _ in FISHBOT_PARTS) / total
+    # By hand: x = (0.01 * 0.10 + 0.02 * 0.08 - 0.02 * 0.08) / 1.41, z = 0.13422 / 1.41.
+    assert com == pytest.approx([0.001 / 1.41, 0, 0.13422 / 1.41])
+    assert found.com == pytest.approx(tuple(com), abs=1e-12)
+    tensor = np.zeros((3, 3))
+    for m, c, diagonal, roll in FISHBOT_PARTS:
+        turn = np.array(
+            [[1, 0, 0], [0, math.cos(roll), -math.sin(roll)], [0, math.sin(roll), math.cos(roll)]]
+        )
+        d = np.array(c) - com
+        tensor += turn @ np.diag(diagonal) @ turn.T + m * (d @ d * np.eye(3) - np.outer(d, d))
+    assert np.allclose(np.array(found.inertia.matrix()), tensor, rtol=1e-9, atol=1e-15)
+    assert found.principal_moments == pytest.approx(tuple(np.linalg.eigvalsh(tensor)))
+
+
+def test_mass_properties_at_a_configuration() -> None:
+    # Two 1 kg points, one on a 1 m arm that turns about z: at 90 degrees it is at (0, 1, 0).
+    point = fishbot_urdf.Inertial(mass=1.0)
+    robot = fishbot_urdf.Robot(
+        "r",
+        links=(fishbot_urdf.Link("a", inertial=point), fishbot_urdf.Link("b", inertial=point)),
+        joints=(
+            fishbot_urdf.Joint(
+                "j",
+                fishbot_urdf.JointType.CONTINUOUS,
+                "a",
+                "b",
+                fishbot_urdf.Origin(rpy=(0, 0, 0)),
+                axis=(0, 0, 1),
+            ),
+        ),
+    )
+    moved = fishbot_urdf.Robot(
+        "r",
+        robot.links,
+        (fishbot_urdf.Joint("j", fishbot_urdf.JointType.CONTINUOUS, "a", "b", axis=(0, 0, 1)),),
+    )
+    assert fishbot_urdf.mass_properties(moved).com == (0.0, 0.0, 0.0)
+    arm = fishbot_urdf.Robot(
+        "r",
+        robot.links,
+        (
+            fishbot_urdf.Joint(
+                "j",
+                fishbot_urdf.JointType.CONTINUOUS,
+                "a",
+                "b",
+                fishbot_urdf.Origin(),
+                axis=(0, 0, 1),
+            ),
+        ),
+    )
+    assert fishbot_urdf.mass_properties(arm, {"j": 1.0}).mass == 2.0
+    offset = fishbot_urdf.Robot(
+        "r",
+        (
+            fishbot_urdf.Link("a", inertial=point),
+            fishbot_urdf.Link(
+                "b", inertial=fishbot_urdf.Inertial(mass=1.0, origin=fishbot_urdf.Origin((1, 0, 0)))
+            ),
+        ),
+        (fishbot_urdf.Joint("j", fishbot_urdf.JointType.CONTINUOUS, "a", "b", axis=(0, 0, 1)),),
+    )
+    turned = fishbot_urdf.mass_properties(offset, {"j": math.pi / 2})
+    assert turned.com == pytest.approx((0.0, 0.5, 0.0), abs=1e-12)
+    # Two 1 kg points 1 m apart about their middle: 2 * 0.5^2 = 0.5 about x and z, 0 about y.
+    assert turned.inertia.ixx == pytest.approx(0.5)
+    assert turned.inertia.iyy == pytest.approx(0.0, abs=1e-12)
+    assert turned.inertia.izz == pytest.approx(0.5)
+
+
+def test_mass_properties_need_one_root() -> None:
+    two = fishbot_urdf.Robot("r", (fishbot_urdf.Link("a"), fishbot_urdf.Link("b")))
+    with pytest.raises(ValueError, match="2 root links"):
+        fishbot_urdf.mass_properties(two)
+
+
+def test_volumes() -> None:
+    assert fishbot_urdf.volume(fishbot_urdf.Box((0.3, 0.2, 0.1))) == pytest.approx(0.006)
+    assert fishbot_urdf.volume(fishbot_urdf.Cylinder(0.1, 0.12)) == pytest.approx(
+        math.pi * 0.01 * 0.12
+    )
+    assert fishbot_urdf.volume(fishbot_urdf.Sphere(0.5)) == pytest.approx(math.pi / 6)
+
+
+def test_link_inertial_from_one_shape_is_the_closed_form_at_the_shape() -> None:
+    origin = fishbot_urdf.Origin(rpy=(1.57079, 0, 0))
+    wheel = fishbot_urdf.Link(
+        "wheel", collisions=(fishbot_urdf.Collision(fishbot_urdf.Cylinder(0.032, 0.04), origin),)
+    )
+    assert fishbot_urdf.link_inertial(wheel, mass=0.1) == cylinder_inertia(0.1, 0.032, 0.04, origin)
+    # 1000 kg/m^3 * pi 0.032^2 0.04 m^3
+    by_density = fishbot_urdf.link_inertial(wheel, density=1000.0)
+    assert by_density.mass == pytest.approx(1000 * math.pi * 0.032**2 * 0.04)
+    with pytest.raises(ValueError, match="not both"):
+        fishbot_urdf.link_inertial(wheel, mass=1.0, density=1.0)
+    with pytest.raises(ValueError, match="no collision shape"):
+        fishbot_urdf.link_inertial(fishbot_urdf.Link("bare"), mass=1.0)
+
+
+def test_two_half_boxes_make_one_box() -> None:
+    half = fishbot_urdf.Box((0.1, 0.1, 0.1))
+    link = fishbot_urdf.Link(
+        "two",
+        collisions=tuple(
+            fishbot_urdf.Collision(half, fishbot_urdf.Origin((x, 0.0, 0.3))) for x in (-0.05, 0.05)
+        ),
+    )
+    made = fishbot_urdf.link_inertial(link, mass=2.0)
+    whole = box_inertia(2.0, 0.2, 0.1, 0.1)
+    assert made.mass == 2.0
+    assert made.origin.xyz == pytest.approx((0.0, 0.0, 0.3))
+    assert np.allclose(_matrix(made), _matrix(whole), rtol=1e-12)

@@ -23,7 +23,19 @@ from .errors import (
 )
 from .expand import Expansion, XacroError, expand
 from .graph import Topology, chain, leaves, root, subtree, to_networkx, topology, tree_text
-from .inertia import box_inertia, cylinder_inertia, geometry_inertia, sphere_inertia
+from .inertia import (
+    MassProperties,
+    box_inertia,
+    combine,
+    cylinder_inertia,
+    geometry_inertia,
+    link_inertial,
+    mass_properties,
+    principal_moments,
+    sphere_inertia,
+    volume,
+)
+from .kinematics import joint_positions, link_poses
 from .mermaid import to_mermaid
 from .model import (
     Box,
@@ -50,7 +62,8 @@ from .model import (
 )
 from .packages import PackageNotFoundError, find_package, resolve_package_uri
 from .parse import Parsed, load, parse, read
-from .write import to_urdf
+from .spatial import Pose
+from .write import add_inertials, inertial_xml, to_urdf
 
 __all__ = [
     "Box",
@@ -71,12 +84,14 @@ __all__ = [
     "Limit",
     "Link",
     "Location",
+    "MassProperties",
     "Material",
     "Mesh",
     "Mimic",
     "Origin",
     "PackageNotFoundError",
     "Parsed",
+    "Pose",
     "Robot",
     "RobotError",
     "SafetyController",
@@ -89,18 +104,26 @@ __all__ = [
     "XacroError",
     "XmlSyntaxError",
     "__version__",
+    "add_inertials",
     "box_inertia",
     "chain",
     "check",
     "check_file",
+    "combine",
     "cylinder_inertia",
     "draw",
     "expand",
     "find_package",
     "geometry_inertia",
+    "inertial_xml",
+    "joint_positions",
     "leaves",
+    "link_inertial",
+    "link_poses",
     "load",
+    "mass_properties",
     "parse",
+    "principal_moments",
     "read",
     "render",
     "resolve_package_uri",
@@ -113,6 +136,7 @@ __all__ = [
     "to_urdf",
     "topology",
     "tree_text",
+    "volume",
 ]
 
 

@@ -7,9 +7,47 @@ frame: pass the ``origin`` of the visual or collision it belongs to.
 
 from __future__ import annotations
 
-from .model import Box, Cylinder, Geometry, Inertia, Inertial, Origin, Sphere
+import math
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
 
-__all__ = ["box_inertia", "cylinder_inertia", "geometry_inertia", "sphere_inertia"]
+from .kinematics import link_poses
+from .model import (
+    ZERO3,
+    Box,
+    Cylinder,
+    Geometry,
+    Inertia,
+    Inertial,
+    Link,
+    Origin,
+    Robot,
+    Sphere,
+    Vector3,
+)
+from .spatial import (
+    Matrix3,
+    Pose,
+    add,
+    eigh,
+    mat_add,
+    point_mass_tensor,
+    rotate_tensor,
+    scale,
+)
+
+__all__ = [
+    "MassProperties",
+    "box_inertia",
+    "combine",
+    "cylinder_inertia",
+    "geometry_inertia",
+    "link_inertial",
+    "mass_properties",
+    "principal_moments",
+    "sphere_inertia",
+    "volume",
+]
 
 _AT_LINK = Origin()
 
@@ -59,3 +97,127 @@ def geometry_inertia(geometry: Geometry, mass: float, origin: Origin = _AT_LINK)
     if isinstance(geometry, Sphere):
         return sphere_inertia(mass, geometry.radius, origin)
     raise TypeError(f"no closed form for {type(geometry).__name__} (box, cylinder, sphere)")
+
+
+def principal_moments(inertia: Inertia) -> Vector3:
+    """The eigenvalues of the inertia matrix, smallest first (kg*m^2)."""
+    return eigh(inertia.matrix())[0]
+
+
+def _inertia(m: Matrix3) -> Inertia:
+    return Inertia(ixx=m[0][0], ixy=m[0][1], ixz=m[0][2], iyy=m[1][1], iyz=m[1][2], izz=m[2][2])
+
+
+@dataclass(frozen=True, slots=True)
+class MassProperties:
+    """The mass properties of several bodies taken together.
+
+    Attributes:
+        mass: Total mass (kg).
+        com: Centre of mass (m), in the frame the bodies were given in.
+        inertia: Inertia about the centre of mass, axes of that frame (kg*m^2).
+    """
+
+    mass: float
+    com: Vector3
+    inertia: Inertia
+
+    @property
+    def principal_moments(self) -> Vector3:
+        """The eigenvalues of ``inertia``, smallest first (kg*m^2)."""
+        return principal_moments(self.inertia)
+
+
+def combine(parts: Iterable[tuple[Inertial, Pose]]) -> MassProperties:
+    """Add up inertials, each placed by a pose (the frame of the link it belongs to).
+
+    The centre of mass is the mass-weighted mean of the parts'; the inertia is the sum of
+    each part's, turned into the common frame and moved to the common centre of mass
+    (parallel axis theorem). With zero total mass the centre is the origin.
+    """
+    placed: list[tuple[float, Vector3, Matrix3]] = []
+    for inertial, pose in parts:
+        frame = pose.then(Pose.of(inertial.origin))
+        tensor = rotate_tensor(frame.rotation, inertial.inertia.matrix())
+        placed.append((inertial.mass, frame.translation, tensor))
+    mass = math.fsum(m for m, _, _ in placed)
+    com = ZERO3
+    if mass != 0.0:
+        com = tuple(math.fsum(m * c[k] for m, c, _ in placed) / mass for k in range(3))  # type: ignore[assignment]
+    total: Matrix3 = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+    for m, c, tensor in placed:
+        total = mat_add(total, mat_add(tensor, point_mass_tensor(m, add(c, scale(com, -1.0)))))
+    return MassProperties(mass, com, _inertia(total))
+
+
+def mass_properties(robot: Robot, positions: Mapping[str, float] | None = None) -> MassProperties:
+    """Total mass, centre of mass and inertia about it of a whole robot, in its root frame.
+
+    Args:
+        robot: A robot with one root link.
+        positions: Joint positions by name (rad or m); the rest are zero.
+
+    Raises:
+        ValueError: The robot has no root or several, or ``positions`` names a joint that
+            does not exist or does not move.
+    """
+    children = {joint.child for joint in robot.joints}
+    roots = [link.name for link in robot.links if link.name not in children]
+    if len(roots) != 1:
+        raise ValueError(f"robot {robot.name!r} has {len(roots)} root links; it needs one")
+    poses = link_poses(robot, positions)
+    return combine(
+        (link.inertial, poses[link.name])
+        for link in robot.links
+        if link.inertial is not None and link.name in poses
+    )
+
+
+def volume(geometry: Geometry) -> float:
+    """The volume of a URDF box, cylinder or sphere (m^3).
+
+    Raises:
+        TypeError: The geometry is a mesh.
+    """
+    if isinstance(geometry, Box):
+        x, y, z = geometry.size
+        return x * y * z
+    if isinstance(geometry, Cylinder):
+        return math.pi * geometry.radius**2 * geometry.length
+    if isinstance(geometry, Sphere):
+        return 4.0 / 3.0 * math.pi * geometry.radius**3
+    raise TypeError(f"no closed form for {type(geometry).__name__} (box, cylinder, sphere)")
+
+
+def link_inertial(
+    link: Link, *, density: float | None = None, mass: float | None = None
+) -> Inertial:
+    """The inertial of a link filled uniformly, from its collision shapes.
+
+    Give the ``density`` (kg/m^3) or the link's total ``mass`` (kg, shared among its shapes
+    by volume). One shape gives the closed form about the shape's own origin (the numbers
+    common_inertia.xacro gives); several are added up about their joint centre of mass.
+
+    Raises:
+        ValueError: The link has no collision shape, or neither or both of density and mass
+            are given, or a shape has no volume.
+        TypeError: A collision shape is a mesh.
+    """
+    if (density is None) == (mass is None):
+        raise ValueError("give the density or the mass, not both")
+    shapes = [(c, volume(c.geometry)) for c in link.collisions]
+    if not shapes:
+        raise ValueError(f"link {link.name!r} has no collision shape")
+    total = math.fsum(v for _, v in shapes)
+    if total <= 0.0:
+        raise ValueError(f"link {link.name!r}: its collision shapes have no volume")
+    masses = [density * v if density is not None else mass * v / total for _, v in shapes]  # type: ignore[operator]
+    if len(shapes) == 1:
+        collision = shapes[0][0]
+        return geometry_inertia(collision.geometry, masses[0], collision.origin)
+    parts = [
+        (geometry_inertia(c.geometry, m, c.origin), Pose())
+        for (c, _), m in zip(shapes, masses, strict=True)
+    ]
+    together = combine(parts)
+    return Inertial(mass=together.mass, inertia=together.inertia, origin=Origin(xyz=together.com))

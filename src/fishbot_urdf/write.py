@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 
 from lxml import etree
 
@@ -22,9 +22,9 @@ from .model import (
     Sphere,
     Visual,
 )
-from .xmlsource import parse_xml
+from .xmlsource import STRING_PATH, parse_xml
 
-__all__ = ["to_urdf"]
+__all__ = ["add_inertials", "inertial_xml", "to_urdf"]
 
 
 def _num(value: float) -> str:
@@ -157,3 +157,62 @@ def to_urdf(robot: Robot) -> str:
     etree.indent(root, space="  ")
     body = etree.tostring(root, encoding="unicode")
     return f'<?xml version="1.0"?>\n{body}\n'
+
+
+def inertial_xml(inertial: Inertial) -> str:
+    """An ``<inertial>`` element as text, indented by two spaces, ready to paste in a link.
+
+    The numbers are written exactly (the shortest text that reads back as the same float).
+    """
+    holder = etree.Element("link")
+    _inertial(holder, inertial)
+    element = holder[0]
+    if len(element) and element[0].tag != "origin":
+        # Always say where the centre of mass is, even at the link origin.
+        element.insert(0, etree.Element("origin", xyz="0 0 0", rpy="0 0 0"))
+    etree.indent(element, space="  ")
+    return etree.tostring(element, encoding="unicode") + "\n"
+
+
+def add_inertials(data: bytes, inertials: Mapping[str, Inertial], path: str = STRING_PATH) -> str:
+    """The URDF text ``data`` with an ``<inertial>`` added as the first child of each link
+    named in ``inertials``; everything else (comments, order, spacing) is kept.
+
+    Raises:
+        XmlSyntaxError: ``data`` is not well-formed XML.
+        KeyError: A name in ``inertials`` is no top-level link of the robot.
+    """
+    root = parse_xml(data, path)
+    links = {element.get("name"): element for element in root if element.tag == "link"}
+    for name, inertial in inertials.items():
+        link = links[name]
+        inner = link.text if link.text and not link.text.strip() else "\n    "
+        holder = etree.Element("link")
+        _inertial(holder, inertial)
+        element = holder[0]
+        etree.indent(element, space="  ", level=0)
+        _shift(element, inner)
+        element.tail = inner
+        link.insert(0, element)
+        link.text = inner
+    # Top-level comments keep a line each (the parser drops the breaks between them).
+    nodes = [*reversed(list(root.itersiblings(preceding=True))), root, *root.itersiblings()]
+    head = ['<?xml version="1.0"?>'] if data.lstrip().startswith(b"<?xml") else []
+    for node in nodes:
+        node.tail = None
+    return "\n".join(head + [etree.tostring(n, encoding="unicode") for n in nodes]) + "\n"
+
+
+def _shift(element: etree._Element, indent: str) -> None:
+    """Indent an element's children for an element that itself starts after ``indent``."""
+    for child in element.iter():
+        if child is element:
+            if len(child):
+                child.text = indent + "  "
+            continue
+        parent = child.getparent()
+        last = parent is not None and child is parent[-1]
+        depth = sum(1 for _ in child.iterancestors()) - sum(1 for _ in element.iterancestors())
+        child.tail = indent + "  " * (depth - 1 if last else depth)
+        if len(child):
+            child.text = indent + "  " * (depth + 1)

@@ -1,0 +1,94 @@
+"""Forward kinematics: where every link's frame is, at a joint configuration."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+from .model import Joint, JointType, Robot
+from .spatial import Pose, axis_angle, scale
+
+__all__ = ["joint_positions", "link_poses"]
+
+_MOVING = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)
+
+
+def joint_positions(robot: Robot, positions: Mapping[str, float] | None = None) -> dict[str, float]:
+    """The position of every revolute, continuous and prismatic joint (rad or m).
+
+    Joints not named in ``positions`` are at zero, except mimic joints, which follow their
+    leader: multiplier * leader + offset.
+
+    Raises:
+        ValueError: ``positions`` names a joint the robot does not have, or a fixed,
+            floating or planar joint (whose pose is not one number).
+    """
+    given = dict(positions or {})
+    by_name = {joint.name: joint for joint in robot.joints}
+    for name in given:
+        joint = by_name.get(name)
+        if joint is None:
+            raise ValueError(f"no joint {name!r} in robot {robot.name!r}")
+        if joint.type not in _MOVING:
+            raise ValueError(f"joint {name!r} is {joint.type.value}: it takes no position")
+    values: dict[str, float] = {}
+
+    def value(joint: Joint, depth: int = 0) -> float:
+        if joint.name in values:
+            return values[joint.name]
+        result = given.get(joint.name, 0.0)
+        mimic = joint.mimic
+        leader = by_name.get(mimic.joint) if mimic else None
+        if mimic and leader and joint.name not in given and depth < len(by_name):
+            result = mimic.multiplier * value(leader, depth + 1) + mimic.offset
+        values[joint.name] = result
+        return result
+
+    for joint in robot.joints:
+        if joint.type in _MOVING:
+            value(joint)
+    return values
+
+
+def joint_motion(joint: Joint, position: float) -> Pose:
+    """The child frame relative to the joint frame when the joint is at ``position``."""
+    if joint.type in (JointType.REVOLUTE, JointType.CONTINUOUS):
+        return Pose(rotation=axis_angle(joint.axis, position))
+    if joint.type is JointType.PRISMATIC and position:
+        norm = sum(a * a for a in joint.axis) ** 0.5
+        return Pose(translation=scale(joint.axis, position / norm) if norm else (0.0, 0.0, 0.0))
+    return Pose()
+
+
+def link_poses(robot: Robot, positions: Mapping[str, float] | None = None) -> dict[str, Pose]:
+    """The pose of every link reached from a root, in that root's frame.
+
+    Args:
+        robot: The robot.
+        positions: Joint positions by name (rad for revolute and continuous, m for
+            prismatic); the rest are zero (mimic joints follow their leader).
+
+    Returns:
+        Link name -> Pose in the frame of its root link (roots map to the identity). Links
+        in a joint loop, which no root reaches, are left out.
+
+    Raises:
+        ValueError: ``positions`` names a joint that does not exist or does not move.
+    """
+    values = joint_positions(robot, positions)
+    below: dict[str, list[Joint]] = {}
+    for joint in robot.joints:
+        below.setdefault(joint.parent, []).append(joint)
+    children = {joint.child for joint in robot.joints}
+    poses = {link.name: Pose() for link in robot.links if link.name not in children}
+    stack = list(poses)
+    while stack:  # iterative: a 10k-link chain is fine
+        name = stack.pop()
+        for joint in below.get(name, ()):
+            if joint.child in poses:  # a second parent: the first one wins
+                continue
+            pose = poses[name].then(Pose.of(joint.origin))
+            if joint.name in values:
+                pose = pose.then(joint_motion(joint, values[joint.name]))
+            poses[joint.child] = pose
+            stack.append(joint.child)
+    return poses

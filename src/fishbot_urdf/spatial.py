@@ -1,0 +1,165 @@
+"""Rotations, poses and symmetric 3x3 matrices in plain Python (no numpy: `check` stays light)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .model import ZERO3, Origin, Vector3
+
+__all__ = ["IDENTITY", "Matrix3", "Pose", "eigh", "rpy_matrix"]
+
+Matrix3 = tuple[Vector3, Vector3, Vector3]
+
+IDENTITY: Matrix3 = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+
+
+def rpy_matrix(rpy: Vector3) -> Matrix3:
+    """The rotation of URDF's ``rpy``: roll about x, then pitch about y, then yaw about z,
+    all about the fixed axes (R = Rz(yaw) Ry(pitch) Rx(roll))."""
+    roll, pitch, yaw = rpy
+    if roll == pitch == yaw == 0.0:
+        return IDENTITY
+    cr, sr = math.cos(roll), math.sin(roll)
+    cp, sp = math.cos(pitch), math.sin(pitch)
+    cy, sy = math.cos(yaw), math.sin(yaw)
+    return (
+        (cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
+        (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
+        (-sp, cp * sr, cp * cr),
+    )
+
+
+def axis_angle(axis: Vector3, angle: float) -> Matrix3:
+    """The rotation by ``angle`` (radians) about ``axis`` (normalised here; Rodrigues)."""
+    norm = math.sqrt(dot(axis, axis))
+    if norm == 0.0 or angle == 0.0:
+        return IDENTITY
+    x, y, z = (a / norm for a in axis)
+    c, s = math.cos(angle), math.sin(angle)
+    t = 1.0 - c
+    return (
+        (t * x * x + c, t * x * y - s * z, t * x * z + s * y),
+        (t * x * y + s * z, t * y * y + c, t * y * z - s * x),
+        (t * x * z - s * y, t * y * z + s * x, t * z * z + c),
+    )
+
+
+def dot(a: Vector3, b: Vector3) -> float:
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def add(a: Vector3, b: Vector3) -> Vector3:
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+
+def scale(a: Vector3, k: float) -> Vector3:
+    return (a[0] * k, a[1] * k, a[2] * k)
+
+
+def mat_vec(m: Matrix3, v: Vector3) -> Vector3:
+    return (dot(m[0], v), dot(m[1], v), dot(m[2], v))
+
+
+def transpose(m: Matrix3) -> Matrix3:
+    return (
+        (m[0][0], m[1][0], m[2][0]),
+        (m[0][1], m[1][1], m[2][1]),
+        (m[0][2], m[1][2], m[2][2]),
+    )
+
+
+def mat_mul(a: Matrix3, b: Matrix3) -> Matrix3:
+    bt = transpose(b)
+    return (
+        (dot(a[0], bt[0]), dot(a[0], bt[1]), dot(a[0], bt[2])),
+        (dot(a[1], bt[0]), dot(a[1], bt[1]), dot(a[1], bt[2])),
+        (dot(a[2], bt[0]), dot(a[2], bt[1]), dot(a[2], bt[2])),
+    )
+
+
+def mat_add(a: Matrix3, b: Matrix3) -> Matrix3:
+    return (add(a[0], b[0]), add(a[1], b[1]), add(a[2], b[2]))
+
+
+def rotate_tensor(r: Matrix3, tensor: Matrix3) -> Matrix3:
+    """``R T R^T``: a tensor given in a frame rotated by ``R``, expressed in the outer frame."""
+    return mat_mul(mat_mul(r, tensor), transpose(r))
+
+
+def point_mass_tensor(mass: float, offset: Vector3) -> Matrix3:
+    """The parallel-axis term m (|d|^2 E - d d^T) of a point mass at ``offset``."""
+    x, y, z = offset
+    return (
+        (mass * (y * y + z * z), -mass * x * y, -mass * x * z),
+        (-mass * x * y, mass * (x * x + z * z), -mass * y * z),
+        (-mass * x * z, -mass * y * z, mass * (x * x + y * y)),
+    )
+
+
+@dataclass(frozen=True, slots=True)
+class Pose:
+    """A rigid transform: a point p in this frame is ``rotation @ p + translation`` outside."""
+
+    rotation: Matrix3 = IDENTITY
+    translation: Vector3 = ZERO3
+
+    @classmethod
+    def of(cls, origin: Origin) -> Pose:
+        """The transform of a URDF ``<origin>``."""
+        return cls(rpy_matrix(origin.rpy), origin.xyz)
+
+    def then(self, inner: Pose) -> Pose:
+        """This pose followed by ``inner`` (a frame given relative to this one)."""
+        return Pose(
+            mat_mul(self.rotation, inner.rotation),
+            add(mat_vec(self.rotation, inner.translation), self.translation),
+        )
+
+    def apply(self, point: Vector3) -> Vector3:
+        """Where ``point`` (in this frame) lies in the outer frame."""
+        return add(mat_vec(self.rotation, point), self.translation)
+
+    def matrix(self) -> list[list[float]]:
+        """The 4x4 homogeneous matrix, rows (``numpy.array(pose.matrix())`` for numpy)."""
+        r, t = self.rotation, self.translation
+        return [[*r[0], t[0]], [*r[1], t[1]], [*r[2], t[2]], [0.0, 0.0, 0.0, 1.0]]
+
+
+def eigh(m: Matrix3) -> tuple[Vector3, Matrix3]:
+    """Eigenvalues (ascending) and unit eigenvectors (the columns) of a symmetric 3x3 matrix.
+
+    Cyclic Jacobi rotations: exact to rounding for the small matrices of inertia work, and
+    free of the cancellation of the closed-form cubic when two moments are equal.
+    """
+    a = [list(row) for row in m]
+    v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+    for _ in range(50):
+        off = a[0][1] ** 2 + a[0][2] ** 2 + a[1][2] ** 2
+        size = a[0][0] ** 2 + a[1][1] ** 2 + a[2][2] ** 2
+        if off <= 1e-30 * size or off == 0.0:
+            break
+        for p, q in ((0, 1), (0, 2), (1, 2)):
+            if a[p][q] == 0.0:
+                continue
+            theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q])
+            t = math.copysign(1.0, theta) / (abs(theta) + math.sqrt(theta * theta + 1.0))
+            c = 1.0 / math.sqrt(t * t + 1.0)
+            s = t * c
+            for k in range(3):  # columns p and q
+                akp, akq = a[k][p], a[k][q]
+                a[k][p], a[k][q] = c * akp - s * akq, s * akp + c * akq
+            for k in range(3):  # rows p and q
+                apk, aqk = a[p][k], a[q][k]
+                a[p][k], a[q][k] = c * apk - s * aqk, s * apk + c * aqk
+            for k in range(3):
+                vkp, vkq = v[k][p], v[k][q]
+                v[k][p], v[k][q] = c * vkp - s * vkq, s * vkp + c * vkq
+    order = sorted(range(3), key=lambda i: a[i][i])
+    values = (a[order[0]][order[0]], a[order[1]][order[1]], a[order[2]][order[2]])
+    vectors = (
+        (v[0][order[0]], v[0][order[1]], v[0][order[2]]),
+        (v[1][order[0]], v[1][order[1]], v[1][order[2]]),
+        (v[2][order[0]], v[2][order[1]], v[2][order[2]]),
+    )
+    return values, vectors
