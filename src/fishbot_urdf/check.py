@@ -10,6 +10,7 @@ from .diagnostics import Diagnostic, Severity, closest, listing, sort_key
 from .graph import Topology, topology
 from .model import Joint, Location, Robot
 from .parse import read
+from .physics import GROUND_TOLERANCE, physics
 from .xmlsource import diagnostic
 
 __all__ = ["CheckResult", "check", "check_file"]
@@ -45,11 +46,13 @@ def check_file(
     path: str | None = None,
     args: Mapping[str, str] | None = None,
     packages: Mapping[str, str | Path] | None = None,
+    ground_tolerance: float = GROUND_TOLERANCE,
 ) -> CheckResult:
     """Read and check one URDF or xacro file, collecting every finding.
 
     A xacro file is expanded with ``args`` and ``packages`` first; findings then point at the
-    xacro source.
+    xacro source. ``ground_tolerance`` (m) is how far the lowest collision point may lie
+    below or above the ground (z = 0 of a footprint root link) before it is reported.
 
     Raises:
         InputError: The file cannot be read.
@@ -62,22 +65,28 @@ def check_file(
         return CheckResult(parsed.path, None, parsed.diagnostics, None, parsed.files)
     topo = topology(parsed.robot)
     found = list(parsed.diagnostics)
-    found.extend(_rules(parsed.robot, topo, parsed.path))
+    found.extend(_rules(parsed.robot, topo, parsed.path, ground_tolerance))
     found.sort(key=sort_key)
     return CheckResult(parsed.path, parsed.robot, tuple(found), topo, parsed.files)
 
 
-def check(robot: Robot) -> tuple[Diagnostic, ...]:
-    """Check a robot's structure and values; returns every finding, sorted by position."""
+def check(robot: Robot, *, ground_tolerance: float = GROUND_TOLERANCE) -> tuple[Diagnostic, ...]:
+    """Check a robot's structure and values; returns every finding, sorted by position.
+
+    ``ground_tolerance`` (m): see `check_file`.
+    """
     path = robot.source.path if robot.source else "<robot>"
-    return tuple(sorted(_rules(robot, topology(robot), path), key=sort_key))
+    found = _rules(robot, topology(robot), path, ground_tolerance)
+    return tuple(sorted(found, key=sort_key))
 
 
-def _rules(robot: Robot, topo: Topology, path: str) -> Iterator[Diagnostic]:
+def _rules(
+    robot: Robot, topo: Topology, path: str, ground_tolerance: float = GROUND_TOLERANCE
+) -> Iterator[Diagnostic]:
     yield from _names(robot, path)
     yield from _joints(robot, path)
-    yield from _links(robot, path)
     yield from _structure(robot, topo, path)
+    yield from physics(robot, path, ground_tolerance=ground_tolerance)
 
 
 def _at(
@@ -218,19 +227,6 @@ def _limits(joint: Joint, owner: str, path: str) -> Iterator[Diagnostic]:
                 limit.source,
                 path,
                 f"{field} is a magnitude, >= 0",
-            )
-
-
-def _links(robot: Robot, path: str) -> Iterator[Diagnostic]:
-    for link in robot.links:
-        inertial = link.inertial
-        if inertial is not None and inertial.mass < 0:
-            yield _at(
-                "negative-mass",
-                f"link {link.name!r}: mass {inertial.mass:g} kg is negative",
-                inertial.source,
-                path,
-                "mass is >= 0 kg",
             )
 
 

@@ -1,0 +1,217 @@
+"""The mass, inertia and ground rules of `fishbot check`, on the learner's mistakes.
+
+Every expected number here is worked out by hand from the fixture's own values, in the
+comment beside it.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+from conftest import CORPUS, DATA, FISHBOT
+
+import fishbot_urdf
+from fishbot_urdf import check_file
+from fishbot_urdf.cli import cli
+from fishbot_urdf.inertia import cylinder_inertia
+from fishbot_urdf.model import Collision, Cylinder, Inertia, Inertial, Joint, JointType, Link, Robot
+
+PHYSICS = DATA / "physics"
+XACRO = FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"
+
+
+def _findings(path: Path, *args: str) -> tuple[int, list[str]]:
+    result = CliRunner().invoke(cli, ["check", str(path), *args])
+    return result.exit_code, result.stderr.splitlines()
+
+
+# (fixture, exit status, the one finding it must give: severity, rule, message)
+CASES = [
+    # base_joint z 0.076, wheel 0.06 below base_link, radius 0.032: 0.076 - 0.06 - 0.032
+    # = -0.016 m, for each wheel.
+    (
+        "wheels_under_ground",
+        0,
+        "warning",
+        "below-ground",
+        "link 'left_wheel_link' reaches 16.0 mm below the ground (z = 0 of 'base_footprint') "
+        "at the zero configuration",
+    ),
+    # 0.101 - 0.06 - 0.032 = 0.009 m above.
+    (
+        "floating",
+        0,
+        "warning",
+        "above-ground",
+        "the robot floats 9.0 mm above the ground (z = 0 of 'base_footprint') at the zero "
+        "configuration: its lowest point is on link 'left_wheel_link'",
+    ),
+    # cylinder_inertia(0.1, 0.032, 0.04) unrotated: the odd moment (m r^2 / 2) is about z,
+    # while the collision cylinder, turned 1.57079 about x, lies along y.
+    (
+        "wheel_inertia_unrotated",
+        0,
+        "warning",
+        "inertia-mismatch",
+        "link 'left_wheel_link': inertial matches a cylinder r=0.032 h=0.04 along the link's "
+        "z axis, but the collision cylinder lies along its y axis",
+    ),
+    # ixx = m/12 (h^2 + d^2) with w = 0.02 and h = 0.1 swapped: 6.67e-07 is what
+    # 0.01/12 (0.02^2 + 0.02^2) gives, i.e. a box 0.1 long in x.
+    (
+        "box_sides_swapped",
+        0,
+        "warning",
+        "inertia-mismatch",
+        "link 'camera_link': inertial matches a box 0.10 x 0.02 x 0.02, but the collision box "
+        "is 0.02 x 0.10 x 0.02",
+    ),
+    (
+        "negative_iyy",
+        1,
+        "error",
+        "inertia-not-positive",
+        "link 'camera_link': the inertia is not positive definite: principal moments "
+        "-6.67e-07, 8.67e-06, 8.67e-06 kg*m^2",
+    ),
+    (
+        "missing_inertial",
+        0,
+        "warning",
+        "missing-inertial",
+        "link 'left_wheel_link' has collision geometry and moves (joint 'left_wheel_joint' is "
+        "continuous) but no <inertial>",
+    ),
+    (
+        "massless_wheel",
+        1,
+        "error",
+        "massless-link",
+        "link 'left_wheel_link' moves (joint 'left_wheel_joint' is continuous) but its mass "
+        "is 0 kg",
+    ),
+    # 0.0001 + 0.0001 < 0.001
+    (
+        "triangle",
+        1,
+        "error",
+        "inertia-triangle",
+        "link 'left_wheel_link': principal moments 0.0001, 0.0001, 0.001 kg*m^2 break the "
+        "triangle inequality (0.0001 + 0.0001 < 0.001)",
+    ),
+]
+
+
+@pytest.mark.parametrize(("name", "status", "severity", "rule", "message"), CASES)
+def test_seed_mistake(name: str, status: int, severity: str, rule: str, message: str) -> None:
+    code, lines = _findings(PHYSICS / f"{name}.urdf")
+    assert code == status, lines
+    mine = [line for line in lines if line.endswith(f"[{rule}]")]
+    assert mine, lines
+    assert f": {severity}: {message} (" in mine[0]
+    # ... and nothing else but more of the same rule (both wheels sink).
+    assert {line.rsplit("[", 1)[1] for line in lines} == {f"{rule}]"}
+
+
+def test_every_physics_fixture_has_a_case() -> None:
+    assert {p.stem for p in PHYSICS.glob("*.urdf")} == {case[0] for case in CASES}
+
+
+def test_radius_is_length_says_what_the_inertia_matches() -> None:
+    # The notes' base.urdf.xacro: collision radius = length = 0.12, inertia for r = 0.10.
+    code, lines = _findings(DATA / "xacro" / "radius_is_length" / "robot.urdf.xacro")
+    assert code == 0
+    (line,) = [x for x in lines if x.endswith("[inertia-mismatch]")]
+    assert (
+        "common_inertia.xacro:5:5: warning: link 'base_link': inertial matches a cylinder "
+        "r=0.10 h=0.12, but the collision cylinder has r=0.12 (`fishbot inertia cylinder "
+        "--mass 1 --radius 0.12 --length 0.12` prints the one that matches the collision)"
+    ) in line
+
+
+def test_the_fishbot_is_clean_and_its_1_mm_sink_is_within_the_tolerance() -> None:
+    code, lines = _findings(XACRO)
+    assert (code, lines) == (0, [])
+    # 0.091 - 0.06 - 0.032 = -0.001 m: the wheels sink 1.0 mm, the casters
+    # (0.091 - 0.076 - 0.016) too.
+    code, lines = _findings(XACRO, "--ground-tolerance", "0.5")
+    assert code == 0
+    sinking = sorted(line.split("link '")[1].split("'")[0] for line in lines)
+    assert sinking == [
+        "back_caster_link",
+        "front_caster_link",
+        "left_wheel_link",
+        "right_wheel_link",
+    ]
+    assert all(" reaches 1.0 mm below the ground" in line for line in lines)
+
+
+def test_strict_makes_the_warnings_fail() -> None:
+    assert _findings(PHYSICS / "wheels_under_ground.urdf", "--strict")[0] == 1
+
+
+def test_a_negative_ground_tolerance_is_a_usage_error() -> None:
+    code, lines = _findings(XACRO, "--ground-tolerance", "-1")
+    assert code == 2
+    assert "--ground-tolerance" in "\n".join(lines)
+
+
+def _wheel(inertial: Inertial | None, joint: JointType = JointType.CONTINUOUS) -> Robot:
+    wheel = Link(
+        "wheel",
+        inertial=inertial,
+        collisions=(Collision(Cylinder(0.032, 0.04)),),
+    )
+    return Robot(
+        "r",
+        links=(Link("base", inertial=cylinder_inertia(1.0, 0.1, 0.1)), wheel),
+        joints=(Joint("j", joint, "base", "wheel", axis=(0.0, 1.0, 0.0)),),
+    )
+
+
+def _rules(robot: Robot) -> dict[str, str]:
+    return {d.rule: d.severity.value for d in fishbot_urdf.check(robot)}
+
+
+def test_a_massless_link_on_a_fixed_joint_is_a_frame_not_a_fault() -> None:
+    tool = Inertial(mass=0.0)
+    assert "massless-link" in _rules(_wheel(tool))
+    assert _rules(_wheel(tool, JointType.FIXED)) == {}
+
+
+def test_products_that_break_a_fixed_link_are_a_warning_when_the_merged_body_is_fine() -> None:
+    # Off-diagonal terms too large for the moments (tiago's antennas): the matrix
+    # [[1, 2, 0], [2, 1, 0], [0, 0, 1]] * 1e-6 has eigenvalues -1e-6, 1e-6, 3e-6.
+    odd = Inertial(mass=0.01, inertia=Inertia(ixx=1e-6, ixy=2e-6, iyy=1e-6, izz=1e-6))
+    assert _rules(_wheel(odd, JointType.FIXED)) == {"inertia-not-positive": "warning"}
+    assert _rules(_wheel(odd)) == {"inertia-not-positive": "error"}
+
+
+def test_a_non_finite_mass_built_in_code_is_reported() -> None:
+    rules = _rules(_wheel(Inertial(mass=float("nan"))))
+    assert rules == {"bad-number": "error"}
+
+
+def test_every_physics_error_in_the_corpus_is_confirmed_by_numpy() -> None:
+    # Independent of our eigen solver: numpy's eigvalsh on the link's own matrix.
+    seen = 0
+    for path in CORPUS:
+        result = check_file(path)
+        assert result.robot is not None
+        by_name = {link.name: link for link in result.robot.links}
+        for d in result.diagnostics:
+            if d.rule not in ("inertia-not-positive", "inertia-triangle") or not d.is_error:
+                continue
+            link = by_name[d.message.split("'")[1]]
+            assert link.inertial is not None
+            moments = np.linalg.eigvalsh(np.array(link.inertial.inertia.matrix()))
+            if d.rule == "inertia-not-positive":
+                assert moments[0] < 0
+            else:
+                assert moments[0] + moments[1] < moments[2]
+            seen += 1
+    if CORPUS:
+        assert seen > 0
