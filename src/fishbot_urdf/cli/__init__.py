@@ -13,13 +13,13 @@ from typing import IO, TYPE_CHECKING, Any, NoReturn
 
 import click
 
-from .diagnostics import Diagnostic, Severity, has_errors
-from .dot import FORMATS
-from .errors import FishbotUrdfError, InputError, ToolError
+from ..diagnostics import Diagnostic, Severity, has_errors
+from ..dot import FORMATS
+from ..errors import FishbotUrdfError, InputError, ToolError
 
 if TYPE_CHECKING:
-    from .check import CheckResult
-    from .model import Robot
+    from ..check import CheckResult
+    from ..model import Robot
 
 EXIT_OK, EXIT_INVALID, EXIT_USAGE = 0, 1, 2
 
@@ -57,7 +57,7 @@ def _status(exc: FishbotUrdfError) -> int:
     """Exit status for an error that stopped a file: 2 when the input or the setup is at
     fault (a file cannot be read or written, a package or a program is not found), 1 when
     the robot is."""
-    from .packages import PackageNotFoundError
+    from ..packages import PackageNotFoundError
 
     setup = (InputError, PackageNotFoundError, ToolError)
     return EXIT_USAGE if isinstance(exc, setup) else EXIT_INVALID
@@ -76,7 +76,7 @@ def _packages(items: Sequence[str]) -> dict[str, str]:
 
 
 def _xacro_args(items: Sequence[str]) -> dict[str, str]:
-    from .expand import parse_args
+    from ..expand import parse_args
 
     try:
         return parse_args(list(items))
@@ -84,13 +84,16 @@ def _xacro_args(items: Sequence[str]) -> dict[str, str]:
         raise click.BadParameter(str(exc), param_hint="ARGS") from None
 
 
-def _check_input(name: str, args: dict[str, str], packages: dict[str, str]) -> CheckResult:
+def _check_input(
+    name: str, args: dict[str, str], packages: dict[str, str], ground_mm: float = 2.0
+) -> CheckResult:
     """Read and check FILE (- is standard input, read as URDF)."""
-    from .check import check_file
+    from ..check import check_file
 
+    tolerance = ground_mm / 1000.0
     if name == "-":
-        return check_file(sys.stdin.buffer.read(), path="<stdin>")
-    return check_file(name, args=args, packages=packages)
+        return check_file(sys.stdin.buffer.read(), path="<stdin>", ground_tolerance=tolerance)
+    return check_file(name, args=args, packages=packages, ground_tolerance=tolerance)
 
 
 _PACKAGE_HELP = "Where ROS package NAME is, for $(find NAME) (repeatable)."
@@ -107,6 +110,8 @@ def cli() -> None:
       fishbot check --format json robot.urdf
       fishbot expand robot.urdf.xacro -o robot.urdf
       fishbot graph robot.urdf.xacro -o tree.pdf
+      fishbot inertia cylinder --mass 1 --radius 0.1 --length 0.12
+      fishbot inertia robot.urdf.xacro
     """
 
 
@@ -121,16 +126,30 @@ def cli() -> None:
     help="text: check_urdf's output; json: a report for machines.",
 )
 @click.option("--strict", is_flag=True, help="Warnings fail too (exit 1).")
+@click.option(
+    "--ground-tolerance",
+    "ground_mm",
+    type=click.FloatRange(min=0.0),
+    default=2.0,
+    show_default=True,
+    metavar="MM",
+    help="How far (millimetres) the lowest collision point may be below or above the ground "
+    "(z = 0 of a footprint root link) before a warning.",
+)
 @click.option("--package", "package_items", multiple=True, metavar="NAME=PATH", help=_PACKAGE_HELP)
-def check(files: Sequence[str], fmt: str, strict: bool, package_items: Sequence[str]) -> None:
+def check(
+    files: Sequence[str], fmt: str, strict: bool, ground_mm: float, package_items: Sequence[str]
+) -> None:
     """Check URDF or xacro files, like check_urdf, and more strictly.
 
     On a valid robot, prints exactly what check_urdf prints (the robot's name and its link
     tree). Every finding goes to stderr as one line, path:line:col: error: ... [rule].
     A .xacro file is expanded first (name:=value arguments go to it) and findings point
-    at the xacro source. FILE may be - to read standard input (URDF). Exit status: 0 valid
-    (warnings allowed), 1 the robot has errors, 2 a file could not be read, a package was
-    not found or the command line is wrong.
+    at the xacro source. Beyond check_urdf it checks masses and inertias (errors where a
+    simulator would refuse them), inertias against their collision shapes, and whether a
+    robot on a footprint root stands on the ground. FILE may be - to read standard input
+    (URDF). Exit status: 0 valid (warnings allowed), 1 the robot has errors, 2 a file could
+    not be read, a package was not found or the command line is wrong.
 
     \b
     Examples:
@@ -139,7 +158,7 @@ def check(files: Sequence[str], fmt: str, strict: bool, package_items: Sequence[
       fishbot check --strict a.urdf robot.urdf.xacro use_gpu:=false
       xacro robot.urdf.xacro | fishbot check -
     """
-    from .graph import tree_text
+    from ..graph import tree_text
 
     args = _xacro_args([f for f in files if ":=" in f])
     packages = _packages(package_items)
@@ -147,7 +166,7 @@ def check(files: Sequence[str], fmt: str, strict: bool, package_items: Sequence[
     reports: list[dict[str, Any]] = []
     for name in (f for f in files if ":=" not in f):
         try:
-            result = _check_input(name, args, packages)
+            result = _check_input(name, args, packages, ground_mm)
         except FishbotUrdfError as exc:
             _report_failure(fmt, exc, reports)
             status = max(status, _status(exc))
@@ -197,8 +216,8 @@ def expand(
       fishbot expand robot.urdf.xacro --package my_description=src/my_description
       fishbot expand robot.urdf.xacro --deps
     """
-    from .expand import expand as run
-    from .output import write_atomic
+    from ..expand import expand as run
+    from ..output import write_atomic
 
     values = _xacro_args(args)
     packages = _packages(package_items)
@@ -215,7 +234,7 @@ def expand(
     except FishbotUrdfError as exc:
         _emit_findings([_fail(exc)])
         sys.exit(_status(exc))
-    from .parse import xacro_warning
+    from ..parse import xacro_warning
 
     _emit_findings(xacro_warning(message, file) for message in expansion.messages)
     sys.exit(EXIT_OK)
@@ -333,8 +352,8 @@ def _draw_all(
     robot: Robot, outputs: list[tuple[str, str]], detail: bool, inputs: Sequence[str]
 ) -> None:
     """Write each output, saying "Created file" only for files really written."""
-    from .dot import draw
-    from .output import write_atomic
+    from ..dot import draw
+    from ..output import write_atomic
 
     for path, fmt in outputs:
         try:
@@ -415,3 +434,8 @@ def main(argv: Sequence[str] | None = None) -> NoReturn:
     except BrokenPipeError:
         _stop_quietly()
     sys.exit(EXIT_OK)
+
+
+from . import inertia as _inertia  # noqa: E402  (registers `fishbot inertia`)
+
+cli.add_command(_inertia.inertia)

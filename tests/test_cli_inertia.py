@@ -1,0 +1,308 @@
+"""`fishbot inertia`: shape blocks, the mass table, and --fill."""
+
+from __future__ import annotations
+
+import json
+import math
+import shutil
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner, Result
+from conftest import DATA, FISHBOT, xacro_command
+from lxml import etree
+
+import fishbot_urdf
+from fishbot_urdf.cli import cli
+from fishbot_urdf.inertia import box_inertia, cylinder_inertia, sphere_inertia
+
+PHYSICS = DATA / "physics"
+XACRO = FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"
+COMMON = FISHBOT / "urdf" / "fishbot" / "common_inertia.xacro"
+
+
+def run(*args: str, stdin: bytes | None = None) -> Result:
+    return CliRunner().invoke(cli, ["inertia", *args], input=stdin)
+
+
+def _macro_attributes(tmp_path: Path, call: str) -> dict[str, str]:
+    """The <inertia> attributes the real xacro command writes for a common_inertia call."""
+    source = tmp_path / "one.urdf.xacro"
+    source.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        f'<xacro:include filename="{COMMON}"/><link name="a">{call}</link></robot>'
+    )
+    done = xacro_command(source)
+    assert done.returncode == 0, done.stderr
+    element = etree.fromstring(done.stdout.encode()).find("link/inertial/inertia")
+    assert element is not None
+    return dict(element.attrib)
+
+
+@pytest.mark.parametrize(
+    ("args", "call"),
+    [
+        (
+            ["box", "--mass", "0.01", "--size", "0.02", "0.1", "0.02"],
+            '<xacro:box_inertia m="0.01" w="0.02" h="0.1" d="0.02"/>',
+        ),
+        (
+            ["cylinder", "--mass", "1.0", "--radius", "0.10", "--length", "0.12"],
+            '<xacro:cylinder_inertia m="1.0" r="0.10" h="0.12"/>',
+        ),
+        (
+            ["sphere", "--mass", "0.02", "--radius", "0.016"],
+            '<xacro:sphere_inertia m="0.02" r="0.016"/>',
+        ),
+    ],
+    ids=["box", "cylinder", "sphere"],
+)
+def test_shape_blocks_have_the_macros_numbers(tmp_path: Path, args: list[str], call: str) -> None:
+    result = run(*args)
+    assert result.exit_code == 0, result.output
+    printed = etree.fromstring(result.stdout.encode())
+    assert printed.tag == "inertial"
+    inertia = printed.find("inertia")
+    assert inertia is not None
+    real = _macro_attributes(tmp_path, call)
+    for name in ("ixx", "iyy", "izz"):
+        assert float(inertia.get(name, "nan")) == float(real[name])
+        assert inertia.get(name) == real[name]  # the very same text
+
+
+def test_cylinder_block_exactly() -> None:
+    result = run(
+        "cylinder",
+        "--mass",
+        "0.1",
+        "--radius",
+        "0.032",
+        "--length",
+        "0.04",
+        "--rpy",
+        "1.57079",
+        "0",
+        "0",
+    )
+    made = cylinder_inertia(0.1, 0.032, 0.04).inertia
+    assert result.exit_code == 0
+    assert result.stdout == (
+        "<inertial>\n"
+        '  <origin xyz="0 0 0" rpy="1.57079 0 0"/>\n'
+        '  <mass value="0.1"/>\n'
+        f'  <inertia ixx="{made.ixx!r}" ixy="0" ixz="0" iyy="{made.iyy!r}" iyz="0" '
+        f'izz="{made.izz!r}"/>\n'
+        "</inertial>\n"
+    )
+
+
+def test_shape_json() -> None:
+    result = run(
+        "sphere", "--mass", "2", "--radius", "0.5", "--xyz", "0", "0", "0.1", "--format", "json"
+    )
+    assert result.exit_code == 0
+    data = json.loads(result.stdout)
+    made = sphere_inertia(2.0, 0.5).inertia
+    assert data == {
+        "mass": 2.0,
+        "origin": {"xyz": [0.0, 0.0, 0.1], "rpy": [0.0, 0.0, 0.0]},
+        "inertia": {
+            "ixx": made.ixx,
+            "ixy": 0.0,
+            "ixz": 0.0,
+            "iyy": made.iyy,
+            "iyz": 0.0,
+            "izz": made.izz,
+        },
+    }
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["box", "--mass", "0", "--size", "1", "1", "1"],
+        ["box", "--mass", "1", "--size", "1", "1"],
+        ["cylinder", "--mass", "1", "--radius", "-0.1", "--length", "1"],
+        ["sphere", "--radius", "0.1"],
+        ["sphere", "--mass", "nan", "--radius", "0.1"],
+    ],
+)
+def test_bad_shape_arguments_are_usage_errors(args: list[str]) -> None:
+    result = run(*args)
+    assert result.exit_code == 2
+    assert "Traceback" not in result.output
+
+
+def test_help_lists_the_shapes_and_the_robot_form() -> None:
+    result = run("--help")
+    assert result.exit_code == 0
+    for word in ("box", "cylinder", "sphere", "--fill -o OUT", "--density", "Examples:"):
+        assert word in result.stdout
+    for shape in ("box", "cylinder", "sphere"):
+        assert "Example:" in run(shape, "--help").stdout
+
+
+def test_the_fishbot_mass_table() -> None:
+    result = run(str(XACRO))
+    assert result.exit_code == 0, result.output
+    lines = result.stdout.splitlines()
+    assert lines[0].split() == [
+        "link",
+        "mass",
+        "kg",
+        "com",
+        "x",
+        "y",
+        "z",
+        "(m)",
+        "principal",
+        "moments",
+        "(kg*m^2)",
+        "checks",
+    ]
+    rows = {line.split()[0]: line.split() for line in lines[1:-1]}
+    assert rows["base_footprint"] == ["base_footprint", "-", "-", "-", "ok"]
+    # cylinder_inertia(1, 0.1, 0.12): 1/12 (3 0.01 + 0.0144) = 0.0037, 1/2 0.01 = 0.005
+    assert rows["base_link"] == ["base_link", "1", "0", "0", "0", "0.0037", "0.0037", "0.005", "ok"]
+    # 1.41 kg; z = 0.13422 / 1.41 = 0.09519 (tests/test_inertia.py works it out)
+    assert lines[-1].startswith(
+        "total: 1.41 kg; centre of mass 0.0007092 0 0.09519 m in base_footprint"
+    )
+    assert result.stderr == ""
+
+
+def test_the_mass_table_as_json() -> None:
+    for flag in (["--format", "json"], ["--json"]):
+        result = run(str(XACRO), *flag)
+        assert result.exit_code == 0
+        data = json.loads(result.stdout)
+        assert data["robot"] == "fishbot"
+        assert len(data["links"]) == 10
+        assert data["total"]["mass"] == pytest.approx(1.41)
+        assert data["total"]["frame"] == "base_footprint"
+
+
+def test_a_robot_with_errors_is_tabled_with_its_findings() -> None:
+    result = run(str(PHYSICS / "massless_wheel.urdf"))
+    assert result.exit_code == 1
+    row = next(line for line in result.stdout.splitlines() if line.startswith("left_wheel_link"))
+    assert row.endswith("massless-link")
+    assert "[massless-link]" in result.stderr
+
+
+def _inertial_of(path: Path, link: str) -> fishbot_urdf.Inertial | None:
+    return fishbot_urdf.load(path).link(link).inertial
+
+
+def test_fill_adds_the_missing_inertial_and_keeps_the_input(tmp_path: Path) -> None:
+    source = tmp_path / "robot.urdf"
+    shutil.copy(PHYSICS / "missing_inertial.urdf", source)
+    before = source.read_bytes()
+    out = tmp_path / "filled.urdf"
+    result = run(str(source), "--fill", "--mass", "left_wheel_link=0.1", "-o", str(out))
+    assert result.exit_code == 0, result.output
+    assert result.stderr == f"Wrote {out}: <inertial> added to 1 links: left_wheel_link (0.1 kg)\n"
+    assert source.read_bytes() == before
+    expected = cylinder_inertia(0.1, 0.032, 0.04, fishbot_urdf.Origin(rpy=(1.57079, 0.0, 0.0)))
+    assert _inertial_of(out, "left_wheel_link") == expected
+    text = out.read_text()
+    assert "<!-- The left wheel has a collision shape" in text  # comments kept
+    checked = CliRunner().invoke(cli, ["check", str(out)])
+    assert (checked.exit_code, checked.stderr) == (0, "")
+
+
+def test_fill_by_density(tmp_path: Path) -> None:
+    out = tmp_path / "filled.urdf"
+    result = run(
+        str(PHYSICS / "missing_inertial.urdf"), "--fill", "--density", "1000", "-o", str(out)
+    )
+    assert result.exit_code == 0, result.output
+    made = _inertial_of(out, "left_wheel_link")
+    assert made is not None
+    assert made.mass == pytest.approx(1000 * math.pi * 0.032**2 * 0.04)
+
+
+def test_fill_to_stdout_from_stdin() -> None:
+    data = (PHYSICS / "missing_inertial.urdf").read_bytes()
+    result = run("-", "--fill", "--density", "1000", "-o", "-", stdin=data)
+    assert result.exit_code == 0, result.output
+    robot = fishbot_urdf.parse(result.stdout_bytes)
+    assert robot.link("left_wheel_link").inertial is not None
+    assert "standard output" in result.stderr
+
+
+def test_fill_never_writes_over_the_input_nor_its_includes(tmp_path: Path) -> None:
+    source = tmp_path / "robot.urdf"
+    shutil.copy(PHYSICS / "missing_inertial.urdf", source)
+    before = source.read_bytes()
+    result = run(str(source), "--fill", "--density", "1000", "-o", str(source))
+    assert result.exit_code == 2
+    assert "refusing to write over the input" in result.stderr
+    assert source.read_bytes() == before
+    copy = tmp_path / "fishbot"
+    shutil.copytree(FISHBOT / "urdf" / "fishbot", copy)
+    include = copy / "base.urdf.xacro"
+    before = include.read_bytes()
+    result = run(
+        str(copy / "fishbot.urdf.xacro"), "--fill", "--density", "1000", "-o", str(include)
+    )
+    assert result.exit_code == 2
+    assert include.read_bytes() == before
+
+
+def test_fill_from_xacro_writes_the_expanded_urdf(tmp_path: Path) -> None:
+    out = tmp_path / "fishbot.urdf"
+    result = run(str(XACRO), "--fill", "--density", "1000", "-o", str(out))
+    assert result.exit_code == 0, result.output
+    assert "added to 0 links: none needed one" in result.stderr
+    assert fishbot_urdf.load(out) == fishbot_urdf.load(XACRO)
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (["--fill", "-o", "x.urdf"], "--density"),
+        (["--density", "1"], "go with --fill"),
+        (["--fill", "--density", "1"], "give -o OUT"),
+        (["--fill", "--mass", "left_wheel=1", "-o", "x.urdf"], "did you mean 'left_wheel_link'"),
+        (["--fill", "--mass", "base_link=1", "-o", "x.urdf"], "already has an <inertial>"),
+        (["--fill", "--mass", "base_footprint=1", "-o", "x.urdf"], "no <collision> shape"),
+        (["--fill", "--mass", "left_wheel_link=-1", "-o", "x.urdf"], "LINK=KG with KG > 0"),
+    ],
+)
+def test_fill_usage_errors(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, args: list[str], words: str
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    result = CliRunner().invoke(cli, ["inertia", str(PHYSICS / "missing_inertial.urdf"), *args])
+    assert result.exit_code == 2
+    assert words in result.output
+    assert not (tmp_path / "x.urdf").exists()
+
+
+def test_fill_skips_a_mesh_and_says_so(tmp_path: Path) -> None:
+    source = tmp_path / "mesh.urdf"
+    source.write_text(
+        '<robot name="m"><link name="a"/><link name="b"><collision><geometry>'
+        '<mesh filename="package://demo/b.stl"/></geometry></collision></link>'
+        '<joint name="j" type="continuous"><parent link="a"/><child link="b"/></joint></robot>'
+    )
+    out = tmp_path / "out.urdf"
+    result = run(str(source), "--fill", "--density", "1000", "-o", str(out))
+    assert result.exit_code == 1
+    assert f"{source}:1:" in result.stderr
+    assert "link 'b': no <inertial> added (no closed form for Mesh" in result.stderr
+    assert "[fill-skipped]" in result.stderr
+    assert out.exists()  # the rest is written
+
+
+def test_box_inertia_is_the_one_fill_uses_for_a_box(tmp_path: Path) -> None:
+    source = tmp_path / "box.urdf"
+    source.write_text(
+        '<robot name="b"><link name="a"/><link name="b"><collision><geometry>'
+        '<box size="0.3 0.2 0.1"/></geometry></collision></link>'
+        '<joint name="j" type="continuous"><parent link="a"/><child link="b"/></joint></robot>'
+    )
+    out = tmp_path / "out.urdf"
+    assert run(str(source), "--fill", "--mass", "b=2", "-o", str(out)).exit_code == 0
+    assert _inertial_of(out, "b") == box_inertia(2.0, 0.3, 0.2, 0.1)
