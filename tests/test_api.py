@@ -142,3 +142,50 @@ def test_readme_shows_the_fishbot_graph_made_by_the_tool() -> None:
         image.load()
         assert image.format == "PNG"
         assert image.width > image.height > 300  # a wide tree: nine joints under one base
+
+
+def test_mass_example_output() -> None:
+    lines = _run_example("fishbot_mass.py").stdout.splitlines()
+    parts = {line.split()[0]: line.split()[1:] for line in lines[1:10]}
+    assert len(parts) == 9  # every link but the footprint has a mass
+    # left wheel: 0.1 kg, 0.1 m to the left, 0.091 - 0.06 = 0.031 m up
+    assert parts["left_wheel_link"] == ["0.1", "0.000", "0.100", "0.031"]
+    # By hand: 1.41 kg; x = 0.001 / 1.41, z = 0.13422 / 1.41 (see test_inertia.py).
+    assert (
+        lines[10]
+        == f"total 1.41 kg, centre of mass ({0.001 / 1.41:.4f}, 0.0000, {0.13422 / 1.41:.4f}) m"
+    )
+    assert lines[12] == "left wheel turned 60 degrees: centre of mass moves 0.0e+00 m"
+
+
+def _readme_sessions() -> list[tuple[str, list[str]]]:
+    """The README's ``$ fishbot ...`` blocks that run here as written: (command, lines)."""
+    found = []
+    for block in re.findall(r"```\n\$ (fishbot [^\n]*)\n(.*?)```", README, re.DOTALL):
+        command, output = block
+        paths = [a for a in command.split()[2:] if "/" in a]
+        if all((ROOT / p).exists() for p in paths):
+            found.append((command, output.splitlines()))
+    return found
+
+
+@pytest.mark.parametrize("command", [c for c, _ in _readme_sessions()])
+def test_readme_sessions_show_the_real_output(command: str) -> None:
+    lines = dict(_readme_sessions())[command]
+    proc = subprocess.run(
+        [sys.executable, "-m", "fishbot_urdf", *command.split()[1:]],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    real = proc.stderr.splitlines() + proc.stdout.splitlines()
+    shown = [line for line in lines if line != "..."]
+    if "..." in lines:
+        assert set(shown) <= set(real)
+    else:
+        assert sorted(shown) == sorted(real)
+
+
+def test_readme_sessions_are_found() -> None:
+    assert len(_readme_sessions()) >= 3
