@@ -25,8 +25,9 @@ from .model import (
     Origin,
     Robot,
     Sphere,
+    Vector3,
 )
-from .spatial import Matrix3, Pose, eigh, rotate_tensor, transpose
+from .spatial import Matrix3, Pose, eigh, rotate_tensor, rpy_matrix, transpose
 from .xmlsource import diagnostic
 
 __all__ = ["GROUND_TOLERANCE", "MISMATCH", "physics"]
@@ -68,8 +69,9 @@ class _Body:
     joint_type: JointType | None
 
     @property
-    def inertials(self) -> list[tuple[Inertial, Pose]]:
-        return [(link.inertial, pose) for link, pose in self.members if link.inertial]
+    def inertials(self) -> list[tuple[Link, Inertial, Pose]]:
+        """The members that have an inertial, with it."""
+        return [(link, link.inertial, pose) for link, pose in self.members if link.inertial]
 
 
 def _bodies(robot: Robot) -> list[_Body]:
@@ -112,10 +114,17 @@ def physics(
         ground_tolerance: How far (m) below or above z = 0 of a footprint root the lowest
             collision point may be.
     """
+    # Principal moments, once per link (they do not change when the inertia is turned).
+    moments = {
+        link.name: eigh(link.inertial.inertia.matrix())[0]
+        for link in robot.links
+        if link.inertial is not None and _finite(link.inertial)
+    }
     for body in _bodies(robot):
-        yield from _body(body, path)
+        yield from _body(body, path, moments)
     for link in robot.links:
-        yield from _mismatch(link, path)
+        if link.name in moments:
+            yield from _mismatch(link, path, moments[link.name])
     yield from _ground(robot, path, ground_tolerance)
 
 
@@ -126,28 +135,32 @@ def _at(
     return diagnostic(rule, message, where, hint=hint, severity=severity, path=path)
 
 
-def _body(body: _Body, path: str) -> Iterator[Diagnostic]:
-    parts = body.inertials
-    finite = all(
-        math.isfinite(v)
-        for inertial, _ in parts
-        for v in (inertial.mass, *(getattr(inertial.inertia, f) for f in _FIELDS))
+def _finite(inertial: Inertial) -> bool:
+    return all(
+        math.isfinite(v) for v in (inertial.mass, *(getattr(inertial.inertia, f) for f in _FIELDS))
     )
+
+
+def _body(body: _Body, path: str, moments: dict[str, Vector3]) -> Iterator[Diagnostic]:
+    having = body.inertials
+    parts = [(inertial, pose) for _, inertial, pose in having]
+    finite = all(link.name in moments for link, _, _ in having)
     # Fused with its fixed neighbours a body may be physical although one link's own numbers
     # are not: simulators that merge fixed links load it, so that is only a warning.
     merged = finite and len(parts) > 1 and _physical(combine(parts).principal_moments)
     for link, _ in body.members:
         inertial = link.inertial
         if inertial is not None:
-            yield from _inertial(link.name, inertial, path, merged)
+            yield from _inertial(link.name, inertial, path, merged, moments.get(link.name))
     if finite:
-        yield from _moving(body, path)
+        yield from _moving(body, having, path, moments)
 
 
-def _inertial(name: str, inertial: Inertial, path: str, merged: bool) -> Iterator[Diagnostic]:
+def _inertial(
+    name: str, inertial: Inertial, path: str, merged: bool, moments: Vector3 | None
+) -> Iterator[Diagnostic]:
     owner = f"link {name!r}"
-    values = (inertial.mass, *(getattr(inertial.inertia, f) for f in _FIELDS))
-    if not all(math.isfinite(v) for v in values):
+    if moments is None:  # not finite
         yield _at(
             "bad-number",
             f"{owner}: the mass or inertia is not finite",
@@ -166,7 +179,6 @@ def _inertial(name: str, inertial: Inertial, path: str, merged: bool) -> Iterato
         )
     where = inertial.inertia.source or inertial.source
     also = " (merged with its fixed links the body is physical)" if merged else ""
-    moments = eigh(inertial.inertia.matrix())[0]
     if moments[0] < -_tolerance(moments):
         # A negative moment written in the file is a sign slip, merged or not.
         slip = any(getattr(inertial.inertia, f) < 0 for f in ("ixx", "iyy", "izz"))
@@ -209,12 +221,17 @@ def _negative_hint(inertial: Inertial) -> str:
     return "the products ixy, ixz, iyz are too large for the moments ixx, iyy, izz"
 
 
-def _moving(body: _Body, path: str) -> Iterator[Diagnostic]:
+def _moving(
+    body: _Body,
+    having: list[tuple[Link, Inertial, Pose]],
+    path: str,
+    moments: dict[str, Vector3],
+) -> Iterator[Diagnostic]:
     if body.moved_by is None or body.joint_type is None:
         return
     moves = f"moves (joint {body.moved_by!r} is {body.joint_type.value})"
     owner = f"link {body.base.name!r}"
-    if not body.inertials:
+    if not having:
         with_shape = [link for link, _ in body.members if link.collisions]
         if with_shape:
             link = with_shape[0]
@@ -228,22 +245,26 @@ def _moving(body: _Body, path: str) -> Iterator[Diagnostic]:
                 error=False,
             )
         return
-    together = combine(body.inertials)
-    first = body.inertials[0][0]
-    if together.mass <= _TINY:
+    first = having[0][1]
+    if len(having) == 1:  # the link alone: its own mass and moments
+        mass, principal = first.mass, moments[having[0][0].name]
+    else:
+        together = combine((inertial, pose) for _, inertial, pose in having)
+        mass, principal = together.mass, together.principal_moments
+    if mass <= _TINY:
         yield _at(
             "massless-link",
-            f"{owner} {moves} but its mass is {together.mass:g} kg",
+            f"{owner} {moves} but its mass is {mass:g} kg",
             first.source,
             path,
             "a moving body needs a mass (MuJoCo: above 1e-15); give its real mass",
         )
-    elif -_tolerance(together.principal_moments) <= together.principal_moments[0] <= _TINY:
+    elif -_tolerance(principal) <= principal[0] <= _TINY:
         # (below that the link's own inertia is reported as not positive definite)
         yield _at(
             "massless-link",
             f"{owner} {moves} but has no inertia about some axis: principal moments "
-            f"{_moments(together.principal_moments)} kg*m^2",
+            f"{_moments(principal)} kg*m^2",
             first.source,
             path,
             "a moving body needs every moment above 1e-15 kg*m^2 (MuJoCo refuses it otherwise); "
@@ -254,7 +275,7 @@ def _moving(body: _Body, path: str) -> Iterator[Diagnostic]:
 # -- inertia against the collision shape --------------------------------------------------
 
 
-def _mismatch(link: Link, path: str) -> Iterator[Diagnostic]:
+def _mismatch(link: Link, path: str, moments: Vector3) -> Iterator[Diagnostic]:
     inertial = link.inertial
     if inertial is None or len(link.collisions) != 1 or not inertial.mass > 0:
         return
@@ -262,13 +283,13 @@ def _mismatch(link: Link, path: str) -> Iterator[Diagnostic]:
     shape = collision.geometry
     if not isinstance(shape, Box | Cylinder | Sphere):
         return
-    declared = rotate_tensor(Pose.of(inertial.origin).rotation, inertial.inertia.matrix())
-    moments = eigh(declared)[0]
     if moments[0] < -_tolerance(moments):
         return  # reported as not positive definite
-    turn = Pose.of(collision.origin).rotation
-    wanted = rotate_tensor(turn, geometry_inertia(shape, inertial.mass).inertia.matrix())
-    largest = max(eigh(wanted)[0])
+    declared = rotate_tensor(rpy_matrix(inertial.origin.rpy), inertial.inertia.matrix())
+    turn = rpy_matrix(collision.origin.rpy)
+    closed = geometry_inertia(shape, inertial.mass).inertia
+    wanted = rotate_tensor(turn, closed.matrix())
+    largest = max(closed.ixx, closed.iyy, closed.izz)  # diagonal: these are its moments
     if largest <= 0.0:
         return
     gap = max(abs(declared[i][j] - wanted[i][j]) for i in range(3) for j in range(3))
@@ -327,8 +348,8 @@ def _describe(
 ) -> str | None:
     """Which shape of the collision's kind the declared inertia (in the collision's frame)
     matches, against the collision itself; None when it matches none."""
-    moments = eigh(seen)[0]
     if isinstance(shape, Sphere):
+        moments = eigh(seen)[0]
         radius = math.sqrt(max(0.0, 5.0 * sum(moments) / 3.0 / (2.0 * mass)))
         if moments[2] - moments[0] <= MISMATCH * moments[2] and _differs(radius, shape.radius):
             return (

@@ -84,6 +84,8 @@ def mat_add(a: Matrix3, b: Matrix3) -> Matrix3:
 
 def rotate_tensor(r: Matrix3, tensor: Matrix3) -> Matrix3:
     """``R T R^T``: a tensor given in a frame rotated by ``R``, expressed in the outer frame."""
+    if r is IDENTITY:  # the common case: an origin without rpy
+        return tensor
     return mat_mul(mat_mul(r, tensor), transpose(r))
 
 
@@ -132,6 +134,14 @@ def eigh(m: Matrix3) -> tuple[Vector3, Matrix3]:
     Cyclic Jacobi rotations: exact to rounding for the small matrices of inertia work, and
     free of the cancellation of the closed-form cubic when two moments are equal.
     """
+    if m[0][1] == 0.0 and m[0][2] == 0.0 and m[1][2] == 0.0:  # most URDF inertias
+        order = sorted(range(3), key=lambda i: m[i][i])
+        unit = (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)
+        columns = [unit[i] for i in order]
+        return (
+            (m[order[0]][order[0]], m[order[1]][order[1]], m[order[2]][order[2]]),
+            transpose((columns[0], columns[1], columns[2])),
+        )
     a = [list(row) for row in m]
     v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
     for _ in range(50):
