@@ -291,7 +291,8 @@ def test_fill_skips_a_mesh_and_says_so(tmp_path: Path) -> None:
     result = run(str(source), "--fill", "--density", "1000", "-o", str(out))
     assert result.exit_code == 1
     assert f"{source}:1:" in result.stderr
-    assert "link 'b': no <inertial> added (no closed form for Mesh" in result.stderr
+    # package://demo is found nowhere: the mesh cannot be read.
+    assert "link 'b': no <inertial> added (package 'demo' not found" in result.stderr
     assert "[fill-skipped]" in result.stderr
     assert out.exists()  # the rest is written
 

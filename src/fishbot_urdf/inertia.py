@@ -8,9 +8,12 @@ frame: pass the ``origin`` of the visual or collision it belongs to.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
 
+from .errors import InputError, ToolNotFoundError
 from .kinematics import link_poses
 from .model import (
     ZERO3,
@@ -20,6 +23,7 @@ from .model import (
     Inertia,
     Inertial,
     Link,
+    Mesh,
     Origin,
     Robot,
     Sphere,
@@ -44,6 +48,7 @@ __all__ = [
     "geometry_inertia",
     "link_inertial",
     "mass_properties",
+    "mesh_inertia",
     "principal_moments",
     "sphere_inertia",
     "volume",
@@ -173,11 +178,14 @@ def mass_properties(robot: Robot, positions: Mapping[str, float] | None = None) 
     )
 
 
-def volume(geometry: Geometry) -> float:
-    """The volume of a URDF box, cylinder or sphere (m^3).
+def volume(geometry: Geometry, resolve: Callable[[Mesh], Path] | None = None) -> float:
+    """The volume of a URDF box, cylinder or sphere (m^3), or of a closed mesh file when
+    ``resolve`` says where it is and the optional trimesh package is installed.
 
     Raises:
-        TypeError: The geometry is a mesh.
+        TypeError: The geometry is a mesh and no ``resolve`` is given.
+        ValueError: The mesh is not closed.
+        ToolNotFoundError: trimesh is not installed.
     """
     if isinstance(geometry, Box):
         x, y, z = geometry.size
@@ -186,38 +194,100 @@ def volume(geometry: Geometry) -> float:
         return math.pi * geometry.radius**2 * geometry.length
     if isinstance(geometry, Sphere):
         return 4.0 / 3.0 * math.pi * geometry.radius**3
+    if isinstance(geometry, Mesh) and resolve is not None:
+        return float(_solid(resolve(geometry), geometry.scale).volume)
     raise TypeError(f"no closed form for {type(geometry).__name__} (box, cylinder, sphere)")
 
 
+def _solid(path: Path, scale: Vector3 | None) -> Any:
+    """A closed trimesh mesh read from ``path``, scaled."""
+    try:
+        import trimesh
+    except ImportError:
+        raise ToolNotFoundError(
+            "the inertia of a mesh needs the trimesh package",
+            tool="trimesh",
+            hint="pip install 'fishbot-urdf[mesh]'",
+        ) from None
+    try:
+        mesh: Any = trimesh.load(str(path), force="mesh")
+    except (OSError, ValueError) as exc:
+        raise InputError(f"cannot read the mesh {path}: {exc}", path=str(path)) from exc
+    if scale is not None:
+        mesh.apply_scale(scale)
+    if not mesh.is_watertight:
+        raise ValueError(f"the mesh {path} is not closed, so it has no volume")
+    return mesh
+
+
+def mesh_inertia(
+    path: str | Path,
+    mass: float,
+    origin: Origin = _AT_LINK,
+    scale: Vector3 | None = None,
+) -> Inertial:
+    """The inertia of a closed mesh file filled uniformly with ``mass`` (kg), about its
+    centre of mass, placed by ``origin`` (that of its collision). Needs trimesh
+    (``pip install 'fishbot-urdf[mesh]'``).
+
+    Raises:
+        ValueError: The mesh is not closed.
+        InputError: The file cannot be read as a mesh.
+        ToolNotFoundError: trimesh is not installed.
+    """
+    solid = _solid(Path(path), scale)
+    solid.density = mass / float(solid.volume)
+    frame = Pose.of(origin)
+    tensor = rotate_tensor(frame.rotation, _matrix3(solid.moment_inertia))
+    centre = frame.apply(tuple(float(c) for c in solid.center_mass))  # type: ignore[arg-type]
+    return Inertial(mass=mass, inertia=_inertia(tensor), origin=Origin(xyz=centre))
+
+
+def _matrix3(array: Any) -> Matrix3:
+    rows = [tuple(float(v) + 0.0 for v in row) for row in array]  # + 0.0: no -0
+    return (rows[0], rows[1], rows[2])  # type: ignore[return-value]
+
+
 def link_inertial(
-    link: Link, *, density: float | None = None, mass: float | None = None
+    link: Link,
+    *,
+    density: float | None = None,
+    mass: float | None = None,
+    resolve: Callable[[Mesh], Path] | None = None,
 ) -> Inertial:
     """The inertial of a link filled uniformly, from its collision shapes.
 
     Give the ``density`` (kg/m^3) or the link's total ``mass`` (kg, shared among its shapes
-    by volume). One shape gives the closed form about the shape's own origin (the numbers
-    common_inertia.xacro gives); several are added up about their joint centre of mass.
+    by volume). One box, cylinder or sphere gives the closed form about the shape's own
+    origin (the numbers common_inertia.xacro gives); several shapes are added up about
+    their joint centre of mass. Meshes count when ``resolve`` turns them into a file and
+    trimesh is installed.
 
     Raises:
         ValueError: The link has no collision shape, or neither or both of density and mass
             are given, or a shape has no volume.
-        TypeError: A collision shape is a mesh.
+        TypeError: A collision shape is a mesh and no ``resolve`` is given.
+        ToolNotFoundError: A mesh needs trimesh, which is not installed.
     """
     if (density is None) == (mass is None):
         raise ValueError("give the density or the mass, not both")
-    shapes = [(c, volume(c.geometry)) for c in link.collisions]
+    shapes = [(c, volume(c.geometry, resolve)) for c in link.collisions]
     if not shapes:
         raise ValueError(f"link {link.name!r} has no collision shape")
     total = math.fsum(v for _, v in shapes)
     if total <= 0.0:
         raise ValueError(f"link {link.name!r}: its collision shapes have no volume")
     masses = [density * v if density is not None else mass * v / total for _, v in shapes]  # type: ignore[operator]
-    if len(shapes) == 1:
-        collision = shapes[0][0]
-        return geometry_inertia(collision.geometry, masses[0], collision.origin)
-    parts = [
-        (geometry_inertia(c.geometry, m, c.origin), Pose())
-        for (c, _), m in zip(shapes, masses, strict=True)
-    ]
-    together = combine(parts)
+    parts = []
+    for (collision, _), part in zip(shapes, masses, strict=True):
+        shape = collision.geometry
+        if isinstance(shape, Mesh):
+            assert resolve is not None
+            made = mesh_inertia(resolve(shape), part, collision.origin, shape.scale)
+        else:
+            made = geometry_inertia(shape, part, collision.origin)
+        parts.append(made)
+    if len(parts) == 1:
+        return parts[0]
+    together = combine((made, Pose()) for made in parts)
     return Inertial(mass=together.mass, inertia=together.inertia, origin=Origin(xyz=together.com))

@@ -7,6 +7,7 @@ import json
 import math
 import sys
 from collections.abc import Sequence
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import click
@@ -17,7 +18,7 @@ from ..errors import FishbotUrdfError
 if TYPE_CHECKING:
     from ..check import CheckResult
     from ..inertia import MassProperties
-    from ..model import Inertial, Link, Vector3
+    from ..model import Inertial, Link, Mesh, Vector3
 
 _SHAPES = ("box", "cylinder", "sphere")
 
@@ -282,7 +283,7 @@ def robot(
         _emit_findings([_fail(exc)])
         sys.exit(_status(exc))
     if fill:
-        sys.exit(_fill(result, data or b"", output or "-", density, masses))
+        sys.exit(_fill(result, data or b"", packages, output or "-", density, masses))
     _emit_findings(result.diagnostics)
     if result.robot is None:
         sys.exit(EXIT_INVALID)
@@ -369,6 +370,7 @@ def _text(table: dict[str, Any]) -> str:
 def _fill(
     result: CheckResult,
     data: bytes,
+    packages: dict[str, str],
     output: str,
     density: float | None,
     masses: Sequence[str],
@@ -376,6 +378,7 @@ def _fill(
     from ..diagnostics import closest
     from ..inertia import link_inertial
     from ..output import write_atomic
+    from ..packages import resolve_package_uri
     from ..write import add_inertials
     from . import EXIT_INVALID, EXIT_OK, _emit_findings, _fail, _status, _to_stdout
 
@@ -385,6 +388,11 @@ def _fill(
         return EXIT_INVALID
     links = {link.name: link for link in robot.links}
     wanted = _link_masses(masses, links, closest)
+
+    def resolve(mesh: Mesh) -> Path:
+        near = mesh.source.path if mesh.source else result.path
+        return resolve_package_uri(mesh.filename, near=near, packages=packages)
+
     todo = [link for link in robot.links if link.collisions and link.inertial is None]
     for name in wanted:
         if links[name].inertial is not None:
@@ -405,10 +413,13 @@ def _fill(
             continue
         try:
             computed[link.name] = link_inertial(
-                link, mass=mass, density=None if mass is not None else density
+                link, mass=mass, density=None if mass is not None else density, resolve=resolve
             )
         except (TypeError, ValueError) as exc:
             skipped.append(_skip(link, str(exc)))
+        except FishbotUrdfError as exc:  # a mesh not found, or trimesh missing
+            hint = getattr(exc, "hint", None)
+            skipped.append(_skip(link, exc.message + (f"; {hint}" if hint else "")))
     _emit_findings(skipped)
     try:
         text = add_inertials(data, computed, path=result.path)
