@@ -206,7 +206,15 @@ def _print(inertial: Inertial, fmt: str) -> None:
     _to_stdout(text.encode("utf-8"))
 
 
-@inertia.command(hidden=True)
+class _RobotCommand(click.Command):
+    """The robot form, shown as `fishbot inertia ROBOT ...` (its name is only internal)."""
+
+    def format_usage(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        parent = ctx.parent.command_path if ctx.parent else "fishbot inertia"
+        formatter.write_usage(parent, "ROBOT [name:=value]... [OPTIONS]")
+
+
+@inertia.command(cls=_RobotCommand, hidden=True)
 @click.argument("file", type=click.Path(allow_dash=True))
 @click.argument("args", nargs=-1, metavar="[name:=value]...")
 @click.option(
@@ -244,7 +252,21 @@ def robot(
     masses: Sequence[str],
     package_items: Sequence[str],
 ) -> None:
-    """The mass table of ROBOT (see `fishbot inertia --help`)."""
+    """The mass table of ROBOT, a URDF or xacro file (- reads a URDF from standard input).
+
+    One line per link: mass, centre of mass, principal moments, and the `fishbot check`
+    rules that concern it; then the robot's total mass, centre of mass and principal
+    moments at the zero configuration. With --fill -o OUT, a copy in which each link with
+    collision shapes and no <inertial> gets one. Exit status: 0 done, 1 the robot has
+    errors or --fill left a link out, 2 a file could not be read or written, or the
+    command line is wrong.
+
+    \b
+    Examples:
+      fishbot inertia robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
+      fishbot inertia robot.urdf --json
+      fishbot inertia robot.urdf --fill --density 1000 -o robot_filled.urdf
+    """
     from . import (
         EXIT_INVALID,
         EXIT_OK,
