@@ -16,6 +16,7 @@ import click
 from ..diagnostics import Diagnostic, Severity, has_errors
 from ..dot import FORMATS
 from ..errors import FishbotUrdfError, InputError, ToolError
+from ._options import text_or_json
 
 if TYPE_CHECKING:
     from ..check import CheckResult
@@ -117,14 +118,7 @@ def cli() -> None:
 
 @cli.command()
 @click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=True, allow_dash=True))
-@click.option(
-    "--format",
-    "fmt",
-    type=click.Choice(["text", "json"]),
-    default="text",
-    show_default=True,
-    help="text: check_urdf's output; json: a report for machines.",
-)
+@text_or_json("text: check_urdf's output; json: a report for machines.")
 @click.option("--strict", is_flag=True, help="Warnings fail too (exit 1).")
 @click.option(
     "--ground-tolerance",

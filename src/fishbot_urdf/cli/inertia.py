@@ -6,7 +6,7 @@ from __future__ import annotations
 import json
 import math
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -14,6 +14,7 @@ import click
 
 from ..diagnostics import Diagnostic, Severity
 from ..errors import FishbotUrdfError
+from ._options import Wrapped, text_or_json
 
 if TYPE_CHECKING:
     from ..check import CheckResult
@@ -65,6 +66,12 @@ def inertia() -> None:
     """
 
 
+def _triple(name: str, metavar: str, text: str) -> Callable[[Wrapped], Wrapped]:
+    return click.option(
+        name, nargs=3, type=float, default=(0.0, 0.0, 0.0), metavar=metavar, help=text
+    )
+
+
 def _shape_options(func: Any) -> Any:
     options = [
         click.option(
@@ -73,22 +80,8 @@ def _shape_options(func: Any) -> Any:
             type=_MASS,
             help="Mass in kg.",
         ),
-        click.option(
-            "--xyz",
-            nargs=3,
-            type=float,
-            default=(0.0, 0.0, 0.0),
-            metavar="X Y Z",
-            help="Centre of the solid in the link (m): the <origin> of its visual/collision.",
-        ),
-        click.option(
-            "--rpy",
-            nargs=3,
-            type=float,
-            default=(0.0, 0.0, 0.0),
-            metavar="R P Y",
-            help="Rotation of the solid in the link (rad), as that <origin>'s rpy.",
-        ),
+        _triple("--xyz", "X Y Z", "Centre of the solid in the link (m): its <origin> xyz."),
+        _triple("--rpy", "R P Y", "Rotation of the solid in the link (rad): its <origin> rpy."),
         click.option(
             "--format",
             "fmt",
@@ -217,14 +210,7 @@ class _RobotCommand(click.Command):
 @inertia.command(cls=_RobotCommand, hidden=True)
 @click.argument("file", type=click.Path(allow_dash=True))
 @click.argument("args", nargs=-1, metavar="[name:=value]...")
-@click.option(
-    "--format",
-    "fmt",
-    type=click.Choice(["text", "json"]),
-    default="text",
-    show_default=True,
-    help="text: a table; json: the same numbers for machines.",
-)
+@text_or_json("text: a table; json: the same numbers for machines.")
 @click.option("--json", "as_json", is_flag=True, help="Same as --format json.")
 @click.option("--fill", is_flag=True, help="Write a copy with the missing inertials (needs -o).")
 @click.option("-o", "--output", metavar="OUT", help="Where --fill writes; - is standard output.")
