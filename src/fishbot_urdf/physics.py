@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator
-from dataclasses import dataclass
+from typing import NamedTuple
 
 from .diagnostics import Diagnostic, Severity
 from .inertia import combine, geometry_inertia
@@ -59,8 +59,7 @@ def _moments(values: tuple[float, float, float]) -> str:
     return ", ".join(f"{v:.3g}" for v in values)
 
 
-@dataclass(frozen=True, slots=True)
-class _Body:
+class _Body(NamedTuple):
     """Links welded together by fixed joints, and how each sits in the first one's frame."""
 
     base: Link
@@ -85,12 +84,16 @@ def _bodies(robot: Robot) -> list[_Body]:
         if joint.type is JointType.FIXED:
             fixed_below.setdefault(joint.parent, []).append((joint.child, Pose.of(joint.origin)))
     bodies: list[_Body] = []
+    alone = Pose()
     for link in robot.links:
         moved_by, joint_type = parent_joint.get(link.name, (None, None))
         if joint_type is JointType.FIXED:
             continue  # part of its parent's body
+        if link.name not in fixed_below:  # the common case: a body of one link
+            bodies.append(_Body(link, ((link, alone),), moved_by, joint_type))
+            continue
         members: list[tuple[Link, Pose]] = []
-        stack = [(link.name, Pose())]
+        stack = [(link.name, alone)]
         seen: set[str] = set()
         while stack:
             name, pose = stack.pop()
