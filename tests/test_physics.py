@@ -126,7 +126,8 @@ def test_radius_is_length_says_what_the_inertia_matches() -> None:
     assert code == 0
     (line,) = [x for x in lines if x.endswith("[inertia-mismatch]")]
     assert (
-        "common_inertia.xacro:5:5: warning: link 'base_link': inertial matches a cylinder "
+        # At the link, not at common_inertia.xacro's macro: the call is in the link.
+        "base.urdf.xacro:10:5: warning: link 'base_link': inertial matches a cylinder "
         "r=0.10 h=0.12, but the collision cylinder has r=0.12 (`fishbot inertia cylinder "
         "--mass 1 --radius 0.12 --length 0.12` prints the one that matches the collision)"
     ) in line

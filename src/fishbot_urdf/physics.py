@@ -154,15 +154,24 @@ def _body(body: _Body, path: str, moments: dict[str, Vector3]) -> Iterator[Diagn
     for link, _ in body.members:
         inertial = link.inertial
         if inertial is not None:
-            yield from _inertial(link.name, inertial, path, merged, moments.get(link.name))
+            yield from _inertial(link, inertial, path, merged, moments.get(link.name))
     if finite:
         yield from _moving(body, having, path, moments)
 
 
+def _place(link: Link, where: Location | None) -> Location | None:
+    """Where to report about a part of ``link``: the part itself, unless a xacro macro from
+    another file wrote it (common_inertia.xacro's inertia, say); then the link, which is
+    near the macro's call."""
+    if where is None or link.source is None or where.path == link.source.path:
+        return where or link.source
+    return link.source
+
+
 def _inertial(
-    name: str, inertial: Inertial, path: str, merged: bool, moments: Vector3 | None
+    link: Link, inertial: Inertial, path: str, merged: bool, moments: Vector3 | None
 ) -> Iterator[Diagnostic]:
-    owner = f"link {name!r}"
+    owner = f"link {link.name!r}"
     if moments is None:  # not finite
         yield _at(
             "bad-number",
@@ -180,7 +189,7 @@ def _inertial(
             path,
             "mass is >= 0 kg",
         )
-    where = inertial.inertia.source or inertial.source
+    where = _place(link, inertial.inertia.source or inertial.source)
     also = " (merged with its fixed links the body is physical)" if merged else ""
     if moments[0] < -_tolerance(moments):
         # A negative moment written in the file is a sign slip, merged or not.
@@ -258,7 +267,7 @@ def _moving(
         yield _at(
             "massless-link",
             f"{owner} {moves} but its mass is {mass:g} kg",
-            first.source,
+            _place(having[0][0], first.source),
             path,
             "a moving body needs a mass (MuJoCo: above 1e-15); give its real mass",
         )
@@ -268,7 +277,7 @@ def _moving(
             "massless-link",
             f"{owner} {moves} but has no inertia about some axis: principal moments "
             f"{_moments(principal)} kg*m^2",
-            first.source,
+            _place(having[0][0], first.source),
             path,
             "a moving body needs every moment above 1e-15 kg*m^2 (MuJoCo refuses it otherwise); "
             "compute them with `fishbot inertia box|cylinder|sphere`",
@@ -307,7 +316,7 @@ def _mismatch(link: Link, path: str, moments: Vector3) -> Iterator[Diagnostic]:
     yield _at(
         "inertia-mismatch",
         f"link {link.name!r}: {found}",
-        inertial.source,
+        _place(link, inertial.source),
         path,
         _command(shape, inertial.mass, collision.origin),
         error=False,
