@@ -201,7 +201,7 @@ def test_fill_adds_the_missing_inertial_and_keeps_the_input(tmp_path: Path) -> N
     out = tmp_path / "filled.urdf"
     result = run(str(source), "--fill", "--mass", "left_wheel_link=0.1", "-o", str(out))
     assert result.exit_code == 0, result.output
-    assert result.stderr == f"Wrote {out}: <inertial> added to 1 links: left_wheel_link (0.1 kg)\n"
+    assert result.stderr == f"Wrote {out}: <inertial> added to 1 link: left_wheel_link (0.1 kg)\n"
     assert source.read_bytes() == before
     expected = cylinder_inertia(0.1, 0.032, 0.04, fishbot_urdf.Origin(rpy=(1.57079, 0.0, 0.0)))
     assert _inertial_of(out, "left_wheel_link") == expected
@@ -254,7 +254,7 @@ def test_fill_from_xacro_writes_the_expanded_urdf(tmp_path: Path) -> None:
     out = tmp_path / "fishbot.urdf"
     result = run(str(XACRO), "--fill", "--density", "1000", "-o", str(out))
     assert result.exit_code == 0, result.output
-    assert "added to 0 links: none needed one" in result.stderr
+    assert result.stderr == f"Wrote {out}: no link needed an <inertial>\n"
     assert fishbot_urdf.load(out) == fishbot_urdf.load(XACRO)
 
 
@@ -293,8 +293,10 @@ def test_fill_skips_a_mesh_and_says_so(tmp_path: Path) -> None:
     assert f"{source}:1:" in result.stderr
     # package://demo is found nowhere: the mesh cannot be read.
     assert "link 'b': no <inertial> added (package 'demo' not found" in result.stderr
+    assert "error: link 'b': no <inertial> added (" in result.stderr
     assert "[fill-skipped]" in result.stderr
-    assert out.exists()  # the rest is written
+    assert "nothing written: no link could be filled" in result.stderr
+    assert not out.exists()
 
 
 def test_box_inertia_is_the_one_fill_uses_for_a_box(tmp_path: Path) -> None:
@@ -307,3 +309,117 @@ def test_box_inertia_is_the_one_fill_uses_for_a_box(tmp_path: Path) -> None:
     out = tmp_path / "out.urdf"
     assert run(str(source), "--fill", "--mass", "b=2", "-o", str(out)).exit_code == 0
     assert _inertial_of(out, "b") == box_inertia(2.0, 0.3, 0.2, 0.1)
+
+
+def test_options_may_come_before_the_robot() -> None:
+    result = run("--json", str(XACRO))
+    assert result.exit_code == 0
+    assert json.loads(result.stdout)["robot"] == "fishbot"
+
+
+@pytest.mark.parametrize(
+    ("word", "guess"), [("cube", ""), ("cylnder", "did you mean 'cylinder'? ")]
+)
+def test_a_mistyped_shape_is_named(word: str, guess: str) -> None:
+    result = run(word, "--mass", "1")
+    assert result.exit_code == 2
+    assert f"no shape or file {word!r} ({guess}shapes: box, cylinder, sphere)" in result.stderr
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["sphere", "--mass", "1", "--radius", "0"],
+        ["cylinder", "--mass", "1", "--radius", "0.1", "--length", "0"],
+        ["sphere", "--mass", "1", "--radius", "1e200"],
+        ["sphere", "--mass", "1", "--radius", "0.1", "--xyz", "nan", "0", "0"],
+        ["sphere", "--mass", "1", "--radius", "0.1", "--rpy", "inf", "0", "0"],
+    ],
+)
+def test_shapes_take_real_sizes_only(args: list[str]) -> None:
+    result = run(*args)
+    assert result.exit_code == 2
+    assert result.stdout == ""
+
+
+def test_degrees_for_rpy_draw_a_warning() -> None:
+    result = run("sphere", "--mass", "1", "--radius", "0.1", "--rpy", "90", "0", "0")
+    assert result.exit_code == 0
+    assert "if 90 0 0 are degrees, write --rpy 1.5708 0 0" in result.stderr
+
+
+def test_xacro_on_standard_input_is_refused_with_the_way_out() -> None:
+    result = run("-", stdin=XACRO.read_bytes())
+    assert result.exit_code == 2
+    assert "standard input is read as URDF, and this is xacro" in result.stderr
+    assert result.stdout == ""
+
+
+def test_a_robot_without_mass() -> None:
+    result = run(str(FISHBOT / "urdf" / "first_robot.urdf"))
+    assert result.exit_code == 0
+    assert result.stdout.splitlines()[-1] == "total: 0 kg (no link has a mass)"
+    data = json.loads(run(str(FISHBOT / "urdf" / "first_robot.urdf"), "--json").stdout)
+    assert data["total"]["com"] is None
+    assert data["ok"] is True
+    assert data["diagnostics"] == []
+
+
+def test_the_table_names_the_link_the_robot_floats_on() -> None:
+    result = run(str(PHYSICS / "floating.urdf"))
+    row = next(line for line in result.stdout.splitlines() if line.startswith("left_wheel_link"))
+    assert row.endswith("above-ground")
+
+
+def test_links_in_a_loop_are_said_to_be_left_out(tmp_path: Path) -> None:
+    path = tmp_path / "loop.urdf"
+    path.write_text(
+        '<robot name="l"><link name="a"><inertial><mass value="1"/><inertia ixx="1" ixy="0" '
+        'ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link><link name="b"/><link name="c"/>'
+        '<joint name="j1" type="fixed"><parent link="b"/><child link="c"/></joint>'
+        '<joint name="j2" type="fixed"><parent link="c"/><child link="b"/></joint></robot>'
+    )
+    result = run(str(path))
+    assert result.exit_code == 1
+    assert (
+        result.stdout.splitlines()[-1] == "left out of the total, not reached from the root: b, c"
+    )
+
+
+def test_fill_stops_on_a_robot_with_errors(tmp_path: Path) -> None:
+    out = tmp_path / "t.urdf"
+    result = run(str(PHYSICS / "triangle.urdf"), "--fill", "--density", "1000", "-o", str(out))
+    assert result.exit_code == 1
+    assert "[inertia-triangle]" in result.stderr
+    assert "nothing written: fix the errors above first" in result.stderr
+    assert not out.exists()
+
+
+def test_fill_refuses_json_and_a_link_given_twice(tmp_path: Path) -> None:
+    robot = str(PHYSICS / "missing_inertial.urdf")
+    out = str(tmp_path / "o.urdf")
+    assert run(robot, "--fill", "--density", "1", "-o", out, "--json").exit_code == 2
+    twice = run(
+        robot, "--fill", "--mass", "left_wheel_link=1", "--mass", "left_wheel_link=2", "-o", out
+    )
+    assert twice.exit_code == 2
+    assert "link 'left_wheel_link' is given twice" in twice.output
+
+
+def test_a_full_disk_is_one_line_and_status_2() -> None:
+    import subprocess
+    import sys
+
+    if not Path("/dev/full").exists():
+        pytest.skip("this system has no /dev/full to fill")
+    for args in (["inertia", "box", "--mass", "1", "--size", "1", "1", "1"], ["check", str(XACRO)]):
+        with open("/dev/full", "wb") as full:
+            proc = subprocess.run(
+                [sys.executable, "-m", "fishbot_urdf", *args],
+                stdout=full,
+                stderr=subprocess.PIPE,
+                text=True,
+                check=False,
+            )
+        assert proc.returncode == 2, proc.stderr
+        assert proc.stderr == "<stdout>: error: cannot write: No space left on device [io]\n"

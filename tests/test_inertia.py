@@ -284,3 +284,22 @@ def test_two_half_boxes_make_one_box() -> None:
     assert made.mass == 2.0
     assert made.origin.xyz == pytest.approx((0.0, 0.0, 0.3))
     assert np.allclose(_matrix(made), _matrix(whole), rtol=1e-12)
+
+
+def test_link_inertial_says_what_is_missing_or_wrong() -> None:
+    box = fishbot_urdf.Link("b", collisions=(fishbot_urdf.Collision(fishbot_urdf.Box((1, 1, 1))),))
+    with pytest.raises(ValueError, match=r"give the density or the mass$"):
+        fishbot_urdf.link_inertial(box)
+    for bad in (0.0, -1.0, float("nan")):
+        with pytest.raises(ValueError, match="finite number > 0"):
+            fishbot_urdf.link_inertial(box, mass=bad)
+
+
+def test_the_mass_asked_for_is_the_mass_written() -> None:
+    shapes = tuple(
+        fishbot_urdf.Collision(fishbot_urdf.Box((0.1, 0.1, 0.1)), fishbot_urdf.Origin((x, 0, 0)))
+        for x in (0.0, 0.3, 0.7)
+    )
+    assert (
+        fishbot_urdf.link_inertial(fishbot_urdf.Link("l", collisions=shapes), mass=2.0).mass == 2.0
+    )

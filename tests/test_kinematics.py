@@ -91,3 +91,8 @@ def test_a_long_chain_needs_no_recursion() -> None:
     )
     poses = link_poses(Robot("chain", links, joints))
     assert poses[f"l{n - 1}"].translation[0] == pytest.approx(0.001 * (n - 1))
+
+
+def test_positions_must_be_finite() -> None:
+    with pytest.raises(ValueError, match="not a finite number"):
+        link_poses(_arm(), {"shoulder": float("nan")})

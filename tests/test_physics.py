@@ -46,8 +46,8 @@ CASES = [
         0,
         "warning",
         "above-ground",
-        "the robot floats 9.0 mm above the ground (z = 0 of 'base_footprint') at the zero "
-        "configuration: its lowest point is on link 'left_wheel_link'",
+        "link 'left_wheel_link', the robot's lowest point, is 9.0 mm above the ground "
+        "(z = 0 of 'base_footprint') at the zero configuration",
     ),
     # cylinder_inertia(0.1, 0.032, 0.04) unrotated: the odd moment (m r^2 / 2) is about z,
     # while the collision cylinder, turned 1.57079 about x, lies along y.
@@ -128,8 +128,9 @@ def test_radius_is_length_says_what_the_inertia_matches() -> None:
     assert (
         # At the link, not at common_inertia.xacro's macro: the call is in the link.
         "base.urdf.xacro:10:5: warning: link 'base_link': inertial matches a cylinder "
-        "r=0.10 h=0.12, but the collision cylinder has r=0.12 (`fishbot inertia cylinder "
-        "--mass 1 --radius 0.12 --length 0.12` prints the one that matches the collision)"
+        "r=0.10 h=0.12, but the collision cylinder has r=0.12 (fix the one that is wrong; "
+        "`fishbot inertia cylinder --mass 1 --radius 0.12 --length 0.12` prints the "
+        "inertial of the collision)"
     ) in line
 
 
@@ -216,3 +217,90 @@ def test_every_physics_error_in_the_corpus_is_confirmed_by_numpy() -> None:
             seen += 1
     if CORPUS:
         assert seen > 0
+
+
+def _write(tmp_path: Path, name: str, text: str) -> Path:
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+_BOX = '<collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>'
+_MASS = (
+    '<inertial><mass value="1"/>'
+    '<inertia ixx="0.0017" ixy="0" ixz="0" iyy="0.0017" iyz="0" izz="0.0017"/></inertial>'
+)
+
+
+def test_a_robot_bolted_to_the_world_has_no_ground(tmp_path: Path) -> None:
+    # A table-top arm: world -> base 0.75 m up, an arm link on a revolute joint.
+    path = _write(
+        tmp_path,
+        "arm.urdf",
+        f'<robot name="arm"><link name="world"/><link name="base">{_BOX}{_MASS}</link>'
+        f'<link name="arm">{_BOX}{_MASS}</link>'
+        '<joint name="fix" type="fixed"><parent link="world"/><child link="base"/>'
+        '<origin xyz="0 0 0.75"/></joint>'
+        '<joint name="j" type="revolute"><parent link="base"/><child link="arm"/>'
+        '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>',
+    )
+    assert _findings(path, "--strict") == (0, [])
+
+
+def test_a_robot_on_legs_is_not_said_to_float(tmp_path: Path) -> None:
+    # The body 0.35 m up on a footprint, a leg on a revolute joint reaching the ground.
+    path = _write(
+        tmp_path,
+        "legs.urdf",
+        f'<robot name="legs"><link name="base_footprint"/><link name="body">{_BOX}{_MASS}</link>'
+        f'<link name="leg"><collision><origin xyz="0 0 -0.15"/><geometry>'
+        f'<box size="0.02 0.02 0.3"/></geometry></collision>{_MASS}</link>'
+        '<joint name="fix" type="fixed"><parent link="base_footprint"/><child link="body"/>'
+        '<origin xyz="0 0 0.35"/></joint>'
+        '<joint name="hip" type="revolute"><parent link="body"/><child link="leg"/>'
+        '<origin xyz="0 0 -0.05"/><limit lower="-1" upper="1" effort="1" velocity="1"/>'
+        "</joint></robot>",
+    )
+    _, lines = _findings(path)
+    assert not [line for line in lines if "ground" in line]
+
+
+def test_the_tolerance_is_met_to_the_micrometre() -> None:
+    # The casters sink 0.091 - 0.076 - 0.016 = 0.001 m (a float a hair above 1 mm), the
+    # wheels 1 mm and 0.0001 mm more (rpy 1.57079 is not quite pi/2): 1 mm passes both.
+    assert _findings(XACRO, "--ground-tolerance", "1") == (0, [])
+
+
+@pytest.mark.parametrize("value", ["nan", "inf", "abc", "-1"])
+def test_a_ground_tolerance_must_be_a_finite_number(value: str) -> None:
+    assert _findings(XACRO, "--ground-tolerance", value)[0] == 2
+
+
+def test_a_base_without_inertial_weighs_nothing(tmp_path: Path) -> None:
+    text = (PHYSICS / "floating.urdf").read_text()
+    start = text.index("<inertial>")
+    text = text[:start] + text[text.index("</inertial>") + len("</inertial>") :]
+    path = _write(tmp_path, "nobase.urdf", text.replace('xyz="0 0 0.101"', 'xyz="0 0 0.091"'))
+    code, lines = _findings(path)
+    assert code == 0
+    (line,) = lines
+    assert "warning: link 'base_link' has collision geometry but no <inertial>" in line
+    assert line.endswith("[missing-inertial]")
+
+
+def test_a_point_mass_is_no_mismatch() -> None:
+    robot = _wheel(Inertial(mass=0.1), JointType.FIXED)
+    assert _rules(robot) == {}
+
+
+def test_a_bad_mass_is_reported_once(tmp_path: Path) -> None:
+    wheel = (PHYSICS / "missing_inertial.urdf").read_text()
+    for value, rule in (("1kg", "bad-number"), ("-1", "negative-mass")):
+        inertial = (
+            f'<inertial><mass value="{value}"/>'
+            '<inertia ixx="1e-5" ixy="0" ixz="0" iyy="1e-5" iyz="0" izz="1e-5"/></inertial>'
+        )
+        text = wheel.replace("</collision>\n  </link>", "</collision>" + inertial + "</link>", 1)
+        code, lines = _findings(_write(tmp_path, "bad.urdf", text))
+        assert code == 1
+        assert [line.rsplit("[", 1)[1] for line in lines] == [f"{rule}]"], lines

@@ -65,7 +65,16 @@ def check_file(
         return CheckResult(parsed.path, None, parsed.diagnostics, None, parsed.files)
     topo = topology(parsed.robot)
     found = list(parsed.diagnostics)
-    found.extend(_rules(parsed.robot, topo, parsed.path, ground_tolerance))
+    # A link whose numbers could not be read has no trustworthy mass: its physics findings
+    # would only repeat the fault (a mass of "1kg" read as none is no "massless link").
+    unread = tuple(
+        d.message.split("'", 2)[1]
+        for d in parsed.diagnostics
+        if d.is_error and d.message.startswith("link '")
+    )
+    for finding in _rules(parsed.robot, topo, parsed.path, ground_tolerance):
+        if not (unread and finding.message.startswith(tuple(f"link {n!r}" for n in unread))):
+            found.append(finding)
     found.sort(key=sort_key)
     return CheckResult(parsed.path, parsed.robot, tuple(found), topo, parsed.files)
 

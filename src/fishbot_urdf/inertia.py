@@ -269,8 +269,13 @@ def link_inertial(
         TypeError: A collision shape is a mesh and no ``resolve`` is given.
         ToolNotFoundError: A mesh needs trimesh, which is not installed.
     """
-    if (density is None) == (mass is None):
+    if density is None and mass is None:
+        raise ValueError("give the density or the mass")
+    if density is not None and mass is not None:
         raise ValueError("give the density or the mass, not both")
+    given = density if density is not None else mass
+    if not (given is not None and math.isfinite(given) and given > 0):
+        raise ValueError(f"the density or mass must be a finite number > 0, not {given}")
     shapes = [(c, volume(c.geometry, resolve)) for c in link.collisions]
     if not shapes:
         raise ValueError(f"link {link.name!r} has no collision shape")
@@ -290,4 +295,6 @@ def link_inertial(
     if len(parts) == 1:
         return parts[0]
     together = combine((made, Pose()) for made in parts)
-    return Inertial(mass=together.mass, inertia=together.inertia, origin=Origin(xyz=together.com))
+    # The mass asked for, exactly (the sum of the shares may differ in the last digit).
+    whole = mass if mass is not None else together.mass
+    return Inertial(mass=whole, inertia=together.inertia, origin=Origin(xyz=together.com))

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 
 from .model import Joint, JointType, Robot
@@ -20,7 +21,8 @@ def joint_positions(robot: Robot, positions: Mapping[str, float] | None = None) 
 
     Raises:
         ValueError: ``positions`` names a joint the robot does not have, or a fixed,
-            floating or planar joint (whose pose is not one number).
+            floating or planar joint (whose pose is not one number), or a position that
+            is not a finite number.
     """
     given = dict(positions or {})
     by_name = {joint.name: joint for joint in robot.joints}
@@ -30,6 +32,8 @@ def joint_positions(robot: Robot, positions: Mapping[str, float] | None = None) 
             raise ValueError(f"no joint {name!r} in robot {robot.name!r}")
         if joint.type not in _MOVING:
             raise ValueError(f"joint {name!r} is {joint.type.value}: it takes no position")
+        if not math.isfinite(given[name]):
+            raise ValueError(f"joint {name!r}: position {given[name]} is not a finite number")
     values: dict[str, float] = {}
 
     def value(joint: Joint, depth: int = 0) -> float:

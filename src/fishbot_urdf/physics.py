@@ -56,7 +56,12 @@ def _fmt(value: float) -> str:
 
 
 def _moments(values: tuple[float, float, float]) -> str:
-    return ", ".join(f"{v:.3g}" for v in values)
+    """Principal moments for a message; rounding noise (-1e-22 next to 3e-06) shows as 0."""
+    return ", ".join(_moment(v, values) for v in values)
+
+
+def _moment(value: float, values: tuple[float, float, float]) -> str:
+    return "0" if abs(value) <= _tolerance(values) else f"{value:.3g}"
 
 
 class _Body(NamedTuple):
@@ -124,7 +129,7 @@ def physics(
         if link.inertial is not None and _finite(link.inertial)
     }
     for body in _bodies(robot):
-        yield from _body(body, path, moments)
+        yield from _body(body, path, moments, bool(robot.joints))
     for link in robot.links:
         if link.name in moments:
             yield from _mismatch(link, path, moments[link.name])
@@ -144,7 +149,9 @@ def _finite(inertial: Inertial) -> bool:
     )
 
 
-def _body(body: _Body, path: str, moments: dict[str, Vector3]) -> Iterator[Diagnostic]:
+def _body(
+    body: _Body, path: str, moments: dict[str, Vector3], jointed: bool
+) -> Iterator[Diagnostic]:
     having = body.inertials
     parts = [(inertial, pose) for _, inertial, pose in having]
     finite = all(link.name in moments for link, _, _ in having)
@@ -156,7 +163,7 @@ def _body(body: _Body, path: str, moments: dict[str, Vector3]) -> Iterator[Diagn
         if inertial is not None:
             yield from _inertial(link, inertial, path, merged, moments.get(link.name))
     if finite:
-        yield from _moving(body, having, path, moments)
+        yield from _moving(body, having, path, moments, jointed)
 
 
 def _place(link: Link, where: Location | None) -> Location | None:
@@ -190,7 +197,12 @@ def _inertial(
             "mass is >= 0 kg",
         )
     where = _place(link, inertial.inertia.source or inertial.source)
-    also = " (merged with its fixed links the body is physical)" if merged else ""
+    also = (
+        "; merged with the links fixed to it the body is physical, so simulators that merge "
+        "fixed links load it, but the numbers are still wrong"
+        if merged
+        else ""
+    )
     if moments[0] < -_tolerance(moments):
         # A negative moment written in the file is a sign slip, merged or not.
         slip = any(getattr(inertial.inertia, f) < 0 for f in ("ixx", "iyy", "izz"))
@@ -207,7 +219,8 @@ def _inertial(
         yield _at(
             "inertia-triangle",
             f"{owner}: principal moments {_moments(moments)} kg*m^2 break the triangle "
-            f"inequality ({moments[0]:.3g} + {moments[1]:.3g} < {moments[2]:.3g})",
+            f"inequality ({_moment(moments[0], moments)} + {_moment(moments[1], moments)} "
+            f"< {_moment(moments[2], moments)})",
             where,
             path,
             "no rigid body has one moment larger than the other two together; "
@@ -238,13 +251,27 @@ def _moving(
     having: list[tuple[Link, Inertial, Pose]],
     path: str,
     moments: dict[str, Vector3],
+    jointed: bool,
 ) -> Iterator[Diagnostic]:
+    with_shape = [link for link, _ in body.members if link.collisions]
+    fill = "`fishbot inertia ROBOT --fill -o OUT` adds one from its geometry"
     if body.moved_by is None or body.joint_type is None:
+        # The root's body: a mobile robot's base, unless the robot is bolted to the world.
+        if not having and with_shape and body.base.name != "world" and jointed:
+            link = with_shape[0]
+            yield _at(
+                "missing-inertial",
+                f"link {link.name!r} has collision geometry but no <inertial>, and nothing "
+                "it is fixed to has one: the robot's base weighs nothing",
+                link.source,
+                path,
+                f"Gazebo drops a link without an inertial; {fill}",
+                error=False,
+            )
         return
     moves = f"moves (joint {body.moved_by!r} is {body.joint_type.value})"
     owner = f"link {body.base.name!r}"
     if not having:
-        with_shape = [link for link, _ in body.members if link.collisions]
         if with_shape:
             link = with_shape[0]
             yield _at(
@@ -252,11 +279,12 @@ def _moving(
                 f"link {link.name!r} has collision geometry and {moves} but no <inertial>",
                 link.source,
                 path,
-                "simulators drop a link without mass or cannot move it; "
-                "`fishbot inertia ROBOT --fill -o OUT` adds one from its geometry",
+                f"simulators drop a link without mass or cannot move it; {fill}",
                 error=False,
             )
         return
+    if any(inertial.mass < 0 for _, inertial, _ in having):
+        return  # reported as a negative mass
     first = having[0][1]
     if len(having) == 1:  # the link alone: its own mass and moments
         mass, principal = first.mass, moments[having[0][0].name]
@@ -295,8 +323,8 @@ def _mismatch(link: Link, path: str, moments: Vector3) -> Iterator[Diagnostic]:
     shape = collision.geometry
     if not isinstance(shape, Box | Cylinder | Sphere):
         return
-    if moments[0] < -_tolerance(moments):
-        return  # reported as not positive definite
+    if moments[0] < -_tolerance(moments) or moments[2] <= _TINY:
+        return  # reported as not positive definite, or a point mass
     declared = rotate_tensor(rpy_matrix(inertial.origin.rpy), inertial.inertia.matrix())
     turn = rpy_matrix(collision.origin.rpy)
     closed = geometry_inertia(shape, inertial.mass).inertia
@@ -334,7 +362,9 @@ def _command(shape: Box | Cylinder | Sphere, mass: float, origin: Origin) -> str
     for name, values in (("xyz", origin.xyz), ("rpy", origin.rpy)):
         if any(values):
             words += f" --{name} {' '.join(f'{v:g}' for v in values)}"
-    return f"`fishbot inertia {words}` prints the one that matches the collision"
+    return (
+        f"fix the one that is wrong; `fishbot inertia {words}` prints the inertial of the collision"
+    )
 
 
 def _off_diagonal(m: Matrix3) -> bool:
@@ -441,6 +471,8 @@ def _ground(robot: Robot, path: str, tolerance: float) -> Iterator[Diagnostic]:
     if len(roots) != 1 or roots[0].visuals or roots[0].collisions or roots[0].inertial:
         return  # the ground is z = 0 of a footprint root, a bare frame
     root = roots[0]
+    if root.name == "world":
+        return  # Gazebo's name for the world itself: the robot is mounted, not standing
     # Only links the root holds through fixed joints and wheel axles: an arm's height at
     # the zero configuration says nothing about the ground.
     held = {root.name}
@@ -456,14 +488,17 @@ def _ground(robot: Robot, path: str, tolerance: float) -> Iterator[Diagnostic]:
                 stack.append(child)
     poses = link_poses(Robot(robot.name, robot.links, tuple(joints)))
     spans: list[tuple[float, float, Link, Collision]] = []
-    meshes = False
+    # Whether the robot may stand on something we cannot place: a mesh, or a leg or an
+    # arm (a link on a joint that is neither fixed nor a wheel's axle).
+    unknown = False
     for link in robot.links:
         if link.name not in held or link is root:
+            unknown = unknown or (link.name not in held and bool(link.collisions))
             continue
         for collision in link.collisions:
             span = _extent(collision, poses[link.name])
             if span is None:
-                meshes = True
+                unknown = True
             else:
                 spans.append((*span, link, collision))
     if not spans:
@@ -473,28 +508,42 @@ def _ground(robot: Robot, path: str, tolerance: float) -> Iterator[Diagnostic]:
     if top <= -bottom[0]:
         return  # the root sits inside the robot (a pelvis, a waist): not on the ground
     where = f"the ground (z = 0 of {root.name!r}) at the zero configuration"
+    passes = f"up to {tolerance * 1000:g} mm passes (--ground-tolerance)"
+    # Compared to the micrometre: a wheel turned by rpy 1.57079 rather than pi/2 sinks
+    # 0.0001 mm more than its radius says, which is no finding.
     reported: set[str] = set()
     for z, _, link, collision in sorted(spans, key=lambda item: item[0]):
-        if z < -tolerance and link.name not in reported:
+        if z < -tolerance - _MICROMETRE and link.name not in reported:
             reported.add(link.name)
+            depth = _mm(-z, tolerance)
             yield _at(
                 "below-ground",
-                f"link {link.name!r} reaches {-z * 1000:.1f} mm below {where}",
+                f"link {link.name!r} reaches {depth} mm below {where}",
                 collision.source or link.source,
                 path,
-                f"raise the joints above it or shorten the shape by {-z * 1000:.1f} mm; "
-                f"up to {tolerance * 1000:g} mm passes (--ground-tolerance)",
+                f"raise the joints above it or shorten the shape by {depth} mm; {passes}",
                 error=False,
             )
     z, _, link, collision = bottom
-    if z > tolerance and not meshes:
+    if z > tolerance + _MICROMETRE and not unknown:
+        height = _mm(z, tolerance)
         yield _at(
             "above-ground",
-            f"the robot floats {z * 1000:.1f} mm above {where}: "
-            f"its lowest point is on link {link.name!r}",
+            f"link {link.name!r}, the robot's lowest point, is {height} mm above {where}",
             collision.source or link.source,
             path,
-            f"lower the joint below {root.name!r} by {z * 1000:.1f} mm; "
-            f"up to {tolerance * 1000:g} mm passes (--ground-tolerance)",
+            f"the robot floats: lower the joint below {root.name!r} by {height} mm; {passes}",
             error=False,
         )
+
+
+_MICROMETRE = 1e-6
+
+
+def _mm(metres: float, tolerance: float) -> str:
+    """A distance in mm, with the digits that show it is beyond ``tolerance``."""
+    for digits in (1, 2, 3, 4):
+        text = f"{metres * 1000:.{digits}f}"
+        if float(text) != round(tolerance * 1000, digits):
+            return text
+    return f"{metres * 1000:.4f}"

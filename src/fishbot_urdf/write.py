@@ -160,7 +160,8 @@ def to_urdf(robot: Robot) -> str:
 
 
 def inertial_xml(inertial: Inertial) -> str:
-    """An ``<inertial>`` element as text, indented by two spaces, ready to paste in a link.
+    """An ``<inertial>`` element as text (its children indented by two spaces), ready to
+    paste in a link.
 
     The numbers are written exactly (the shortest text that reads back as the same float).
     """
@@ -174,18 +175,25 @@ def inertial_xml(inertial: Inertial) -> str:
     return etree.tostring(element, encoding="unicode") + "\n"
 
 
-def add_inertials(data: bytes, inertials: Mapping[str, Inertial], path: str = STRING_PATH) -> str:
-    """The URDF text ``data`` with an ``<inertial>`` added as the first child of each link
-    named in ``inertials``; everything else (comments, order, spacing) is kept.
+def add_inertials(
+    data: bytes | str, inertials: Mapping[str, Inertial], path: str = STRING_PATH
+) -> str:
+    """The URDF ``data`` (text or bytes) with an ``<inertial>`` added as the first child of
+    each link named in ``inertials``; everything else (comments, order, spacing) is kept.
 
     Raises:
         XmlSyntaxError: ``data`` is not well-formed XML.
         KeyError: A name in ``inertials`` is no top-level link of the robot.
+        ValueError: Such a link has an ``<inertial>`` already.
     """
+    if isinstance(data, str):
+        data = data.encode("utf-8")
     root = parse_xml(data, path)
     links = {element.get("name"): element for element in root if element.tag == "link"}
     for name, inertial in inertials.items():
         link = links[name]
+        if link.find("inertial") is not None:
+            raise ValueError(f"link {name!r} has an <inertial> already")
         inner = link.text if link.text and not link.text.strip() else "\n    "
         holder = etree.Element("link")
         _inertial(holder, inertial)

@@ -16,7 +16,7 @@ import click
 from ..diagnostics import Diagnostic, Severity, has_errors
 from ..dot import FORMATS
 from ..errors import FishbotUrdfError, InputError, ToolError
-from ._options import text_or_json
+from ._options import PACKAGE_HELP, Number, text_or_json
 
 if TYPE_CHECKING:
     from ..check import CheckResult
@@ -93,11 +93,23 @@ def _check_input(
 
     tolerance = ground_mm / 1000.0
     if name == "-":
-        return check_file(sys.stdin.buffer.read(), path="<stdin>", ground_tolerance=tolerance)
+        return check_file(_stdin_urdf(), path="<stdin>", ground_tolerance=tolerance)
     return check_file(name, args=args, packages=packages, ground_tolerance=tolerance)
 
 
-_PACKAGE_HELP = "Where ROS package NAME is, for $(find NAME) (repeatable)."
+_PACKAGE_HELP = PACKAGE_HELP
+
+
+def _stdin_urdf() -> bytes:
+    """Standard input, which must be URDF: xacro there has no folder for its includes."""
+    data = sys.stdin.buffer.read()
+    if b"xmlns:xacro" in data[:4096] or b"<xacro:" in data:
+        raise InputError(
+            "standard input is read as URDF, and this is xacro (give the .xacro file's "
+            "path, or pipe its expansion: fishbot expand FILE | fishbot check -)",
+            path="<stdin>",
+        )
+    return data
 
 
 @click.group(name="fishbot", context_settings={"help_option_names": ["-h", "--help"]})
@@ -123,7 +135,7 @@ def cli() -> None:
 @click.option(
     "--ground-tolerance",
     "ground_mm",
-    type=click.FloatRange(min=0.0),
+    type=Number(zero=True),
     default=2.0,
     show_default=True,
     metavar="MM",
@@ -175,7 +187,8 @@ def check(
         if not failed and result.robot is not None:
             _write_chunks(tree_text(result.robot, result.topology))
     if fmt == "json":
-        click.echo(json.dumps({"ok": status == EXIT_OK, "files": reports}, indent=2))
+        text = json.dumps({"ok": status == EXIT_OK, "files": reports}, indent=2) + "\n"
+        _to_stdout(text.encode("utf-8"))
     sys.exit(status)
 
 
@@ -359,7 +372,7 @@ def _draw_all(
             _to_stdout(data)
             continue
         write_atomic(path, data, inputs=inputs)
-        click.echo(f"Created file {path}")
+        _to_stdout(f"Created file {path}\n".encode())
 
 
 def _report_failure(fmt: str, exc: FishbotUrdfError, reports: list[dict[str, Any]]) -> None:
@@ -408,15 +421,20 @@ def _to_stdout(data: bytes, *, flush: bool = True) -> None:
             sys.stdout.buffer.flush()
     except BrokenPipeError:
         _stop_quietly()
+    except OSError as exc:  # a full disk, a closed terminal: one line, no traceback
+        _emit_findings(
+            [Diagnostic("io", Severity.ERROR, f"cannot write: {exc.strerror}", "<stdout>")]
+        )
+        _stop_quietly(EXIT_USAGE)
 
 
-def _stop_quietly() -> NoReturn:
+def _stop_quietly(status: int = EXIT_OK) -> NoReturn:
     try:  # nothing more may reach the closed pipe, not even the flush at exit
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
     except (OSError, ValueError):
         pass  # stdout is no real file (a test runner's buffer)
-    sys.exit(EXIT_OK)
+    sys.exit(status)
 
 
 def main(argv: Sequence[str] | None = None) -> NoReturn:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -14,7 +15,8 @@ import click
 
 from ..diagnostics import Diagnostic, Severity
 from ..errors import FishbotUrdfError
-from ._options import Wrapped, text_or_json
+from ._options import PACKAGE_HELP as _PACKAGE_HELP
+from ._options import Number, Wrapped, text_or_json
 
 if TYPE_CHECKING:
     from ..check import CheckResult
@@ -28,9 +30,25 @@ class _ShapeOrRobot(click.Group):
     """`fishbot inertia box ...` runs a shape; `fishbot inertia FILE ...` the robot table."""
 
     def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
-        if args and (args[0] == "-" or not args[0].startswith("-")) and args[0] not in _SHAPES:
-            args = ["robot", *args]
+        first = args[0] if args else None
+        if first is None or first in self.commands or first in ("-h", "--help"):
+            return super().parse_args(ctx, args)
+        if not any(a in _SHAPES for a in args) or first == "-" or not first.startswith("-"):
+            if not first.startswith("-") and _looks_like_a_shape(first):
+                from ..diagnostics import closest
+
+                guess = closest(first, _SHAPES)
+                hint = f"did you mean {guess!r}? " if guess else ""
+                raise click.UsageError(
+                    f"no shape or file {first!r} ({hint}shapes: {', '.join(_SHAPES)})", ctx
+                )
+            args = ["robot", *args]  # options may come before the file, as for check
         return super().parse_args(ctx, args)
+
+
+def _looks_like_a_shape(word: str) -> bool:
+    """A bare word that names no file: a mistyped shape (`cube`, `cylnder`)."""
+    return word.isalpha() and not os.path.exists(word)
 
 
 @click.group(cls=_ShapeOrRobot, no_args_is_help=True)
@@ -68,7 +86,7 @@ def inertia() -> None:
 
 def _triple(name: str, metavar: str, text: str) -> Callable[[Wrapped], Wrapped]:
     return click.option(
-        name, nargs=3, type=float, default=(0.0, 0.0, 0.0), metavar=metavar, help=text
+        name, nargs=3, type=Number(), default=(0.0, 0.0, 0.0), metavar=metavar, help=text
     )
 
 
@@ -96,30 +114,8 @@ def _shape_options(func: Any) -> Any:
     return func
 
 
-class _Positive(click.ParamType):  # type: ignore[type-arg]
-    """A finite number > 0 (or >= 0 with ``zero``): click's FloatRange lets nan through."""
-
-    name = "float"
-
-    def __init__(self, zero: bool = False) -> None:
-        self.zero = zero
-
-    def convert(
-        self, value: Any, param: click.Parameter | None, ctx: click.Context | None
-    ) -> float:
-        try:
-            number = float(value)
-        except (TypeError, ValueError):
-            self.fail(f"{value!r} is not a number", param, ctx)
-        if not math.isfinite(number) or number < 0 or (number == 0 and not self.zero):
-            self.fail(
-                f"{value!r} must be a finite number {'>=' if self.zero else '>'} 0", param, ctx
-            )
-        return number
-
-
-_SIZE = _Positive(zero=True)
-_MASS = _Positive()
+_SIZE = Number(positive=True)
+_MASS = Number(positive=True)
 
 
 @inertia.command()
@@ -176,6 +172,14 @@ def sphere(radius: float, mass: float, xyz: Vector3, rpy: Vector3, fmt: str) -> 
 def _origin(xyz: Vector3, rpy: Vector3) -> Any:
     from ..model import Origin
 
+    if any(abs(angle) > 2 * math.pi for angle in rpy):
+        turned = " ".join(f"{math.radians(a):.6g}" for a in rpy)
+        click.echo(
+            f"warning: --rpy is in radians; if {' '.join(f'{a:g}' for a in rpy)} are degrees, "
+            f"write --rpy {turned}",
+            err=True,
+        )
+
     return Origin(xyz=tuple(xyz), rpy=tuple(rpy))  # type: ignore[arg-type]
 
 
@@ -191,6 +195,10 @@ def _inertial_dict(inertial: Inertial) -> dict[str, Any]:
 def _print(inertial: Inertial, fmt: str) -> None:
     from ..write import inertial_xml
     from . import _to_stdout
+
+    tensor = inertial.inertia
+    if not all(math.isfinite(getattr(tensor, f)) for f in ("ixx", "iyy", "izz")):
+        raise click.UsageError("the moments overflow: give the sizes in metres")
 
     if fmt == "json":
         text = json.dumps(_inertial_dict(inertial), indent=2) + "\n"
@@ -226,7 +234,7 @@ class _RobotCommand(click.Command):
     metavar="LINK=KG",
     help="With --fill: the mass of one link (repeatable); it wins over --density.",
 )
-@click.option("--package", "package_items", multiple=True, metavar="NAME=PATH")
+@click.option("--package", "package_items", multiple=True, metavar="NAME=PATH", help=_PACKAGE_HELP)
 def robot(
     file: str,
     args: Sequence[str],
@@ -261,6 +269,8 @@ def robot(
         _fail,
         _packages,
         _status,
+        _stdin_urdf,
+        _to_stdout,
         _xacro_args,
     )
 
@@ -272,6 +282,8 @@ def robot(
         raise click.UsageError("-o, --density and --mass go with --fill")
     if fill and density is None and not masses:
         raise click.UsageError("--fill needs --density KG_PER_M3 or --mass LINK=KG")
+    if fill and (as_json or fmt == "json"):
+        raise click.UsageError("--fill writes a URDF: it takes no --json or --format")
     if file == "-" and args:
         raise click.UsageError("name:=value arguments are for a .xacro file, not standard input")
     values = _xacro_args(args)
@@ -281,7 +293,7 @@ def robot(
         if file == "-":  # read once: it is checked, then filled
             from ..check import check_file
 
-            data = sys.stdin.buffer.read()
+            data = _stdin_urdf()
             result = check_file(data, path="<stdin>")
         else:
             result = _check_input(file, values, packages)
@@ -291,15 +303,20 @@ def robot(
         _emit_findings([_fail(exc)])
         sys.exit(_status(exc))
     if fill:
+        errors = [d for d in result.diagnostics if d.is_error]
+        if result.robot is None or errors:  # the robot's own faults come first
+            _emit_findings(errors or result.diagnostics)
+            click.echo("nothing written: fix the errors above first", err=True)
+            sys.exit(EXIT_INVALID)
         sys.exit(_fill(result, data or b"", packages, output or "-", density, masses))
     _emit_findings(result.diagnostics)
     if result.robot is None:
         sys.exit(EXIT_INVALID)
     table = _table(result)
     if fmt == "json" or as_json:
-        click.echo(json.dumps(table, indent=2))
+        _to_stdout((json.dumps(table, indent=2) + "\n").encode("utf-8"))
     else:
-        click.echo(_text(table), nl=False)
+        _to_stdout(_text(table).encode("utf-8"))
     sys.exit(EXIT_INVALID if not result.ok else EXIT_OK)
 
 
@@ -322,17 +339,28 @@ def _table(result: CheckResult) -> dict[str, Any]:
             row.update(_inertial_dict(link.inertial))
             row["principal_moments"] = _vector(principal_moments(link.inertial.inertia))
         rows.append(row)
-    table: dict[str, Any] = {"robot": robot.name, "links": rows, "total": None}
+    table: dict[str, Any] = {
+        "robot": robot.name,
+        "ok": result.ok,
+        "links": rows,
+        "total": None,
+        "diagnostics": [d.to_dict() for d in result.diagnostics],
+    }
     try:
         total: MassProperties = mass_properties(robot)
     except ValueError as exc:
         table["total_error"] = str(exc)
         return table
+    from ..kinematics import link_poses
+
     children = {joint.child for joint in robot.joints}
+    placed = link_poses(robot)
     table["total"] = {
         "frame": next(link.name for link in robot.links if link.name not in children),
         "mass": total.mass,
-        "com": _vector(total.com),
+        "com": _vector(total.com) if total.mass > 0 else None,
+        # links in a joint loop are not placed, so not counted
+        "left_out": [link.name for link in robot.links if link.name not in placed],
         "inertia": {
             f: getattr(total.inertia, f) for f in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
         },
@@ -365,6 +393,8 @@ def _text(table: dict[str, Any]) -> str:
     total = table["total"]
     if total is None:
         out.append(f"total: {table['total_error']}")
+    elif total["com"] is None:
+        out.append("total: 0 kg (no link has a mass)")
     else:
         out.append(
             f"total: {_g(total['mass'])} kg; centre of mass "
@@ -372,6 +402,9 @@ def _text(table: dict[str, Any]) -> str:
             f"about it {' '.join(_g(v) for v in total['principal_moments'])} kg*m^2 "
             "(zero configuration)"
         )
+    if total is not None and total["left_out"]:
+        listed = ", ".join(total["left_out"])
+        out.append(f"left out of the total, not reached from the root: {listed}")
     return "\n".join(out) + "\n"
 
 
@@ -391,9 +424,7 @@ def _fill(
     from . import EXIT_INVALID, EXIT_OK, _emit_findings, _fail, _status, _to_stdout
 
     robot = result.robot
-    if robot is None:
-        _emit_findings(result.diagnostics)
-        return EXIT_INVALID
+    assert robot is not None
     links = {link.name: link for link in robot.links}
     wanted = _link_masses(masses, links, closest)
 
@@ -429,6 +460,9 @@ def _fill(
             hint = getattr(exc, "hint", None)
             skipped.append(_skip(link, exc.message + (f"; {hint}" if hint else "")))
     _emit_findings(skipped)
+    if skipped and not computed:
+        click.echo("nothing written: no link could be filled", err=True)
+        return EXIT_INVALID
     try:
         text = add_inertials(data, computed, path=result.path)
         if output == "-":
@@ -438,11 +472,14 @@ def _fill(
     except FishbotUrdfError as exc:
         _emit_findings([_fail(exc)])
         return _status(exc)
-    where = "standard output" if output == "-" else output
-    names = ", ".join(f"{n} ({computed[n].mass:g} kg)" for n in computed)
-    if not names:
-        names = "none could be" if skipped else "none needed one"
-    click.echo(f"Wrote {where}: <inertial> added to {len(computed)} links: {names}", err=True)
+    where = "the URDF to standard output" if output == "-" else output
+    if computed:
+        count = f"{len(computed)} link" + ("s" if len(computed) > 1 else "")
+        names = ", ".join(f"{n} ({computed[n].mass:g} kg)" for n in computed)
+        said = f"<inertial> added to {count}: {names}"
+    else:
+        said = "no link needed an <inertial>"
+    click.echo(f"Wrote {where}: {said}", err=True)
     return EXIT_INVALID if skipped else EXIT_OK
 
 
@@ -450,7 +487,7 @@ def _skip(link: Link, why: str) -> Diagnostic:
     where = link.source
     return Diagnostic(
         "fill-skipped",
-        Severity.WARNING,
+        Severity.ERROR,
         f"link {link.name!r}: no <inertial> added ({why})",
         where.path if where else "<input>",
         where.line if where else None,
@@ -468,6 +505,8 @@ def _link_masses(items: Sequence[str], links: dict[str, Link], closest: Any) -> 
             mass = -1.0
         if not sep or not name or not mass > 0 or not math.isfinite(mass):
             raise click.BadParameter(f"{item!r} is not LINK=KG with KG > 0", param_hint="--mass")
+        if name in wanted:
+            raise click.BadParameter(f"link {name!r} is given twice", param_hint="--mass")
         if name not in links:
             guess = closest(name, links)
             hint = f"; did you mean {guess!r}?" if guess else ""
