@@ -8,20 +8,18 @@ import math
 import os
 import sys
 from collections.abc import Callable, Sequence
-from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import click
 
-from ..diagnostics import Diagnostic, Severity
 from ..errors import FishbotUrdfError
+from ._fill import fill_copy, urdf_bytes
+from ._mass_table import inertial_dict, mass_table, table_text
 from ._options import PACKAGE_HELP as _PACKAGE_HELP
 from ._options import Number, Wrapped, text_or_json
 
 if TYPE_CHECKING:
-    from ..check import CheckResult
-    from ..inertia import MassProperties
-    from ..model import Inertial, Link, Mesh, Vector3
+    from ..model import Inertial, Vector3
 
 _SHAPES = ("box", "cylinder", "sphere")
 
@@ -183,15 +181,6 @@ def _origin(xyz: Vector3, rpy: Vector3) -> Any:
     return Origin(xyz=tuple(xyz), rpy=tuple(rpy))  # type: ignore[arg-type]
 
 
-def _inertial_dict(inertial: Inertial) -> dict[str, Any]:
-    tensor = inertial.inertia
-    return {
-        "mass": inertial.mass,
-        "origin": {"xyz": list(inertial.origin.xyz), "rpy": list(inertial.origin.rpy)},
-        "inertia": {f: getattr(tensor, f) for f in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")},
-    }
-
-
 def _print(inertial: Inertial, fmt: str) -> None:
     from ..write import inertial_xml
     from . import _to_stdout
@@ -201,7 +190,7 @@ def _print(inertial: Inertial, fmt: str) -> None:
         raise click.UsageError("the moments overflow: give the sizes in metres")
 
     if fmt == "json":
-        text = json.dumps(_inertial_dict(inertial), indent=2) + "\n"
+        text = json.dumps(inertial_dict(inertial), indent=2) + "\n"
     else:
         text = inertial_xml(inertial)
     _to_stdout(text.encode("utf-8"))
@@ -298,7 +287,7 @@ def robot(
         else:
             result = _check_input(file, values, packages)
         if fill and data is None and result.robot is not None:
-            data = _urdf_bytes(file, values, packages)
+            data = urdf_bytes(file, values, packages)
     except FishbotUrdfError as exc:
         _emit_findings([_fail(exc)])
         sys.exit(_status(exc))
@@ -308,224 +297,13 @@ def robot(
             _emit_findings(errors or result.diagnostics)
             click.echo("nothing written: fix the errors above first", err=True)
             sys.exit(EXIT_INVALID)
-        sys.exit(_fill(result, data or b"", packages, output or "-", density, masses))
+        sys.exit(fill_copy(result, data or b"", packages, output or "-", density, masses))
     _emit_findings(result.diagnostics)
     if result.robot is None:
         sys.exit(EXIT_INVALID)
-    table = _table(result)
+    table = mass_table(result)
     if fmt == "json" or as_json:
         _to_stdout((json.dumps(table, indent=2) + "\n").encode("utf-8"))
     else:
-        _to_stdout(_text(table).encode("utf-8"))
+        _to_stdout(table_text(table).encode("utf-8"))
     sys.exit(EXIT_INVALID if not result.ok else EXIT_OK)
-
-
-def _vector(values: Sequence[float]) -> list[float]:
-    return [float(v) for v in values]
-
-
-def _table(result: CheckResult) -> dict[str, Any]:
-    from ..inertia import mass_properties, principal_moments
-
-    robot = result.robot
-    assert robot is not None
-    rows: list[dict[str, Any]] = []
-    for link in robot.links:
-        findings = sorted(
-            {d.rule for d in result.diagnostics if d.message.startswith(f"link {link.name!r}")}
-        )
-        row: dict[str, Any] = {"link": link.name, "findings": findings}
-        if link.inertial is not None:
-            row.update(_inertial_dict(link.inertial))
-            row["principal_moments"] = _vector(principal_moments(link.inertial.inertia))
-        rows.append(row)
-    table: dict[str, Any] = {
-        "robot": robot.name,
-        "ok": result.ok,
-        "links": rows,
-        "total": None,
-        "diagnostics": [d.to_dict() for d in result.diagnostics],
-    }
-    try:
-        total: MassProperties = mass_properties(robot)
-    except ValueError as exc:
-        table["total_error"] = str(exc)
-        return table
-    from ..kinematics import link_poses
-
-    children = {joint.child for joint in robot.joints}
-    placed = link_poses(robot)
-    table["total"] = {
-        "frame": next(link.name for link in robot.links if link.name not in children),
-        "mass": total.mass,
-        "com": _vector(total.com) if total.mass > 0 else None,
-        # links in a joint loop are not placed, so not counted
-        "left_out": [link.name for link in robot.links if link.name not in placed],
-        "inertia": {
-            f: getattr(total.inertia, f) for f in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
-        },
-        "principal_moments": _vector(total.principal_moments),
-    }
-    return table
-
-
-def _g(value: float) -> str:
-    text = f"{value:.4g}"
-    return "0" if text in ("-0", "0") else text
-
-
-def _text(table: dict[str, Any]) -> str:
-    header = ("link", "mass kg", "com x y z (m)", "principal moments (kg*m^2)", "checks")
-    lines: list[tuple[str, ...]] = [header]
-    for row in table["links"]:
-        checks = ", ".join(row["findings"]) or "ok"
-        if "mass" not in row:
-            lines.append((row["link"], "-", "-", "-", checks))
-            continue
-        com = " ".join(_g(v) for v in row["origin"]["xyz"])
-        moments = " ".join(_g(v) for v in row["principal_moments"])
-        lines.append((row["link"], _g(row["mass"]), com, moments, checks))
-    widths = [max(len(line[k]) for line in lines) for k in range(len(header))]
-    out = [
-        "  ".join(cell.ljust(w) for cell, w in zip(line, widths, strict=True)).rstrip()
-        for line in lines
-    ]
-    total = table["total"]
-    if total is None:
-        out.append(f"total: {table['total_error']}")
-    elif total["com"] is None:
-        out.append("total: 0 kg (no link has a mass)")
-    else:
-        out.append(
-            f"total: {_g(total['mass'])} kg; centre of mass "
-            f"{' '.join(_g(v) for v in total['com'])} m in {total['frame']}; principal moments "
-            f"about it {' '.join(_g(v) for v in total['principal_moments'])} kg*m^2 "
-            "(zero configuration)"
-        )
-    if total is not None and total["left_out"]:
-        listed = ", ".join(total["left_out"])
-        out.append(f"left out of the total, not reached from the root: {listed}")
-    return "\n".join(out) + "\n"
-
-
-def _fill(
-    result: CheckResult,
-    data: bytes,
-    packages: dict[str, str],
-    output: str,
-    density: float | None,
-    masses: Sequence[str],
-) -> int:
-    from ..diagnostics import closest
-    from ..inertia import link_inertial
-    from ..output import write_atomic
-    from ..packages import resolve_package_uri
-    from ..write import add_inertials
-    from . import EXIT_INVALID, EXIT_OK, _emit_findings, _fail, _status, _to_stdout
-
-    robot = result.robot
-    assert robot is not None
-    links = {link.name: link for link in robot.links}
-    wanted = _link_masses(masses, links, closest)
-
-    def resolve(mesh: Mesh) -> Path:
-        near = mesh.source.path if mesh.source else result.path
-        return resolve_package_uri(mesh.filename, near=near, packages=packages)
-
-    todo = [link for link in robot.links if link.collisions and link.inertial is None]
-    for name in wanted:
-        if links[name].inertial is not None:
-            raise click.BadParameter(
-                f"link {name!r} already has an <inertial>", param_hint="--mass"
-            )
-        if not links[name].collisions:
-            raise click.BadParameter(
-                f"link {name!r} has no <collision> shape to compute an inertia from",
-                param_hint="--mass",
-            )
-    computed: dict[str, Inertial] = {}
-    skipped: list[Diagnostic] = []
-    for link in todo:
-        mass = wanted.get(link.name)
-        if mass is None and density is None:
-            skipped.append(_skip(link, f"give --mass {link.name}=KG or --density"))
-            continue
-        try:
-            computed[link.name] = link_inertial(
-                link, mass=mass, density=None if mass is not None else density, resolve=resolve
-            )
-        except (TypeError, ValueError) as exc:
-            skipped.append(_skip(link, str(exc)))
-        except FishbotUrdfError as exc:  # a mesh not found, or trimesh missing
-            hint = getattr(exc, "hint", None)
-            skipped.append(_skip(link, exc.message + (f"; {hint}" if hint else "")))
-    _emit_findings(skipped)
-    if skipped and not computed:
-        click.echo("nothing written: no link could be filled", err=True)
-        return EXIT_INVALID
-    try:
-        text = add_inertials(data, computed, path=result.path)
-        if output == "-":
-            _to_stdout(text.encode("utf-8"))
-        else:
-            write_atomic(output, text, inputs=result.files)
-    except FishbotUrdfError as exc:
-        _emit_findings([_fail(exc)])
-        return _status(exc)
-    where = "the URDF to standard output" if output == "-" else output
-    if computed:
-        count = f"{len(computed)} link" + ("s" if len(computed) > 1 else "")
-        names = ", ".join(f"{n} ({computed[n].mass:g} kg)" for n in computed)
-        said = f"<inertial> added to {count}: {names}"
-    else:
-        said = "no link needed an <inertial>"
-    click.echo(f"Wrote {where}: {said}", err=True)
-    return EXIT_INVALID if skipped else EXIT_OK
-
-
-def _skip(link: Link, why: str) -> Diagnostic:
-    where = link.source
-    return Diagnostic(
-        "fill-skipped",
-        Severity.ERROR,
-        f"link {link.name!r}: no <inertial> added ({why})",
-        where.path if where else "<input>",
-        where.line if where else None,
-        where.column if where else None,
-    )
-
-
-def _link_masses(items: Sequence[str], links: dict[str, Link], closest: Any) -> dict[str, float]:
-    wanted: dict[str, float] = {}
-    for item in items:
-        name, sep, kg = item.partition("=")
-        try:
-            mass = float(kg)
-        except ValueError:
-            mass = -1.0
-        if not sep or not name or not mass > 0 or not math.isfinite(mass):
-            raise click.BadParameter(f"{item!r} is not LINK=KG with KG > 0", param_hint="--mass")
-        if name in wanted:
-            raise click.BadParameter(f"link {name!r} is given twice", param_hint="--mass")
-        if name not in links:
-            guess = closest(name, links)
-            hint = f"; did you mean {guess!r}?" if guess else ""
-            raise click.BadParameter(f"no link {name!r}{hint}", param_hint="--mass")
-        wanted[name] = mass
-    return wanted
-
-
-def _urdf_bytes(file: str, values: dict[str, str], packages: dict[str, str]) -> bytes:
-    """The URDF text of FILE: the file itself, or the expansion of a xacro file."""
-    from ..errors import InputError
-    from ..parse import is_xacro_path
-
-    if is_xacro_path(file):
-        from ..expand import expand
-
-        return expand(file, args=values, packages=packages).text.encode("utf-8")
-    try:
-        with open(file, "rb") as handle:
-            return handle.read()
-    except OSError as exc:
-        raise InputError(f"cannot read {file}: {exc.strerror}", path=file) from exc
