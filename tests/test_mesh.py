@@ -112,3 +112,11 @@ def test_fill_says_which_package_is_missing(tmp_path: Path) -> None:
     assert result.exit_code == 1
     assert "link 'b': no <inertial> added (" in result.stderr
     assert "nowhere_pkg" in result.stderr
+
+
+def test_geometry_inertia_and_volume_read_a_mesh_from_its_filename(tmp_path: Path) -> None:
+    path = _box(tmp_path)
+    mesh = fishbot_urdf.Mesh(str(path), scale=(0.5, 0.5, 0.5))
+    # Half the size: sides 0.15 0.1 0.05.
+    _close(fishbot_urdf.geometry_inertia(mesh, 1.0), box_inertia(1.0, 0.15, 0.1, 0.05), 1e-6)
+    assert fishbot_urdf.volume(fishbot_urdf.Mesh(f"file://{path}")) == pytest.approx(0.006)

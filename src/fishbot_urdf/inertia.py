@@ -88,11 +88,24 @@ def sphere_inertia(m: float, r: float, origin: Origin = _AT_LINK) -> Inertial:
     return Inertial(mass=m, inertia=Inertia(ixx=moment, iyy=moment, izz=moment), origin=origin)
 
 
-def geometry_inertia(geometry: Geometry, mass: float, origin: Origin = _AT_LINK) -> Inertial:
-    """The inertia of a URDF box, cylinder or sphere filled uniformly with ``mass`` (kg).
+def geometry_inertia(
+    geometry: Geometry,
+    mass: float,
+    origin: Origin = _AT_LINK,
+    resolve: Callable[[Mesh], Path] | None = None,
+) -> Inertial:
+    """The inertia of a URDF box, cylinder or sphere filled uniformly with ``mass`` (kg),
+    or of a closed mesh when the optional trimesh package is installed.
+
+    A mesh's file is found by ``resolve``, or else from its filename: a path (relative to
+    the file the mesh was read from), ``file://``, or ``package://`` (see
+    `resolve_package_uri`).
 
     Raises:
-        TypeError: The geometry is a mesh (or anything but a box, cylinder or sphere).
+        TypeError: The geometry is not a box, cylinder, sphere or mesh.
+        ValueError: The mesh is not closed.
+        PackageNotFoundError: The mesh's package is not found.
+        ToolNotFoundError: The geometry is a mesh and trimesh is not installed.
     """
     if isinstance(geometry, Box):
         x, y, z = geometry.size
@@ -101,7 +114,16 @@ def geometry_inertia(geometry: Geometry, mass: float, origin: Origin = _AT_LINK)
         return cylinder_inertia(mass, geometry.radius, geometry.length, origin)
     if isinstance(geometry, Sphere):
         return sphere_inertia(mass, geometry.radius, origin)
+    if isinstance(geometry, Mesh):
+        where = resolve(geometry) if resolve is not None else _mesh_file(geometry)
+        return mesh_inertia(where, mass, origin, geometry.scale)
     raise TypeError(f"no closed form for {type(geometry).__name__} (box, cylinder, sphere)")
+
+
+def _mesh_file(mesh: Mesh) -> Path:
+    from .packages import resolve_package_uri
+
+    return resolve_package_uri(mesh.filename, near=mesh.source.path if mesh.source else None)
 
 
 def principal_moments(inertia: Inertia) -> Vector3:
@@ -179,13 +201,13 @@ def mass_properties(robot: Robot, positions: Mapping[str, float] | None = None) 
 
 
 def volume(geometry: Geometry, resolve: Callable[[Mesh], Path] | None = None) -> float:
-    """The volume of a URDF box, cylinder or sphere (m^3), or of a closed mesh file when
-    ``resolve`` says where it is and the optional trimesh package is installed.
+    """The volume of a URDF box, cylinder or sphere (m^3), or of a closed mesh when the
+    optional trimesh package is installed (found as `geometry_inertia` finds it).
 
     Raises:
-        TypeError: The geometry is a mesh and no ``resolve`` is given.
         ValueError: The mesh is not closed.
-        ToolNotFoundError: trimesh is not installed.
+        PackageNotFoundError: The mesh's package is not found.
+        ToolNotFoundError: The geometry is a mesh and trimesh is not installed.
     """
     if isinstance(geometry, Box):
         x, y, z = geometry.size
@@ -194,8 +216,9 @@ def volume(geometry: Geometry, resolve: Callable[[Mesh], Path] | None = None) ->
         return math.pi * geometry.radius**2 * geometry.length
     if isinstance(geometry, Sphere):
         return 4.0 / 3.0 * math.pi * geometry.radius**3
-    if isinstance(geometry, Mesh) and resolve is not None:
-        return float(_solid(resolve(geometry), geometry.scale).volume)
+    if isinstance(geometry, Mesh):
+        where = resolve(geometry) if resolve is not None else _mesh_file(geometry)
+        return float(_solid(where, geometry.scale).volume)
     raise TypeError(f"no closed form for {type(geometry).__name__} (box, cylinder, sphere)")
 
 
@@ -260,13 +283,13 @@ def link_inertial(
     Give the ``density`` (kg/m^3) or the link's total ``mass`` (kg, shared among its shapes
     by volume). One box, cylinder or sphere gives the closed form about the shape's own
     origin (the numbers common_inertia.xacro gives); several shapes are added up about
-    their joint centre of mass. Meshes count when ``resolve`` turns them into a file and
-    trimesh is installed.
+    their joint centre of mass. Closed meshes count when trimesh is installed; ``resolve``
+    turns one into its file (by default, as `geometry_inertia` does).
 
     Raises:
         ValueError: The link has no collision shape, or neither or both of density and mass
             are given, or a shape has no volume.
-        TypeError: A collision shape is a mesh and no ``resolve`` is given.
+        PackageNotFoundError: A mesh's package is not found.
         ToolNotFoundError: A mesh needs trimesh, which is not installed.
     """
     if density is None and mass is None:
@@ -285,13 +308,7 @@ def link_inertial(
     masses = [density * v if density is not None else mass * v / total for _, v in shapes]  # type: ignore[operator]
     parts = []
     for (collision, _), part in zip(shapes, masses, strict=True):
-        shape = collision.geometry
-        if isinstance(shape, Mesh):
-            assert resolve is not None
-            made = mesh_inertia(resolve(shape), part, collision.origin, shape.scale)
-        else:
-            made = geometry_inertia(shape, part, collision.origin)
-        parts.append(made)
+        parts.append(geometry_inertia(collision.geometry, part, collision.origin, resolve))
     if len(parts) == 1:
         return parts[0]
     together = combine((made, Pose()) for made in parts)

@@ -162,6 +162,7 @@ def check(
       fishbot check robots/fishbot/urdf/first_robot.urdf
       fishbot check robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
       fishbot check --strict a.urdf robot.urdf.xacro use_gpu:=false
+      fishbot check --ground-tolerance 5 robot.urdf.xacro
       xacro robot.urdf.xacro | fishbot check -
     """
     from ..graph import tree_text
