@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from .diagnostics import Diagnostic, Severity, closest, listing, sort_key
@@ -26,6 +26,7 @@ class CheckResult:
         diagnostics: Every finding, sorted by position.
         topology: The link structure, when there is a robot.
         files: Every file the robot was read from (for xacro, with everything it includes).
+        data: The URDF read: the file's bytes, or a xacro file's expansion.
     """
 
     path: str
@@ -33,6 +34,7 @@ class CheckResult:
     diagnostics: tuple[Diagnostic, ...]
     topology: Topology | None
     files: tuple[str, ...] = ()
+    data: bytes = field(default=b"", repr=False)
 
     @property
     def ok(self) -> bool:
@@ -62,7 +64,7 @@ def check_file(
     """
     parsed = read(source, path=path, args=args, packages=packages)
     if parsed.robot is None:
-        return CheckResult(parsed.path, None, parsed.diagnostics, None, parsed.files)
+        return CheckResult(parsed.path, None, parsed.diagnostics, None, parsed.files, parsed.data)
     topo = topology(parsed.robot)
     found = list(parsed.diagnostics)
     # A link whose numbers could not be read has no trustworthy mass: its physics findings
@@ -76,7 +78,7 @@ def check_file(
         if not (unread and finding.message.startswith(tuple(f"link {n!r}" for n in unread))):
             found.append(finding)
     found.sort(key=sort_key)
-    return CheckResult(parsed.path, parsed.robot, tuple(found), topo, parsed.files)
+    return CheckResult(parsed.path, parsed.robot, tuple(found), topo, parsed.files, parsed.data)
 
 
 def check(robot: Robot, *, ground_tolerance: float = GROUND_TOLERANCE) -> tuple[Diagnostic, ...]:
@@ -227,15 +229,15 @@ def _limits(joint: Joint, owner: str, path: str) -> Iterator[Diagnostic]:
             path,
             "swap them, lower <= upper",
         )
-    for field in ("effort", "velocity"):
-        value = getattr(limit, field)
+    for name in ("effort", "velocity"):
+        value = getattr(limit, name)
         if value < 0:
             yield _at(
                 "negative-limit",
-                f"{owner}: {field} limit {value:g} is negative",
+                f"{owner}: {name} limit {value:g} is negative",
                 limit.source,
                 path,
-                f"{field} is a magnitude, >= 0",
+                f"{name} is a magnitude, >= 0",
             )
 
 

@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from .errors import InputError, ToolNotFoundError
+from .graph import topology
 from .kinematics import link_poses
 from .model import (
     ZERO3,
@@ -188,8 +189,7 @@ def mass_properties(robot: Robot, positions: Mapping[str, float] | None = None) 
         ValueError: The robot has no root or several, or ``positions`` names a joint that
             does not exist or does not move.
     """
-    children = {joint.child for joint in robot.joints}
-    roots = [link.name for link in robot.links if link.name not in children]
+    roots = topology(robot).roots
     if len(roots) != 1:
         raise ValueError(f"robot {robot.name!r} has {len(roots)} root links; it needs one")
     poses = link_poses(robot, positions)

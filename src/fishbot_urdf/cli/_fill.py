@@ -19,7 +19,6 @@ if TYPE_CHECKING:
 
 def fill_copy(
     result: CheckResult,
-    data: bytes,
     packages: dict[str, str],
     output: str,
     density: float | None,
@@ -73,7 +72,7 @@ def fill_copy(
         click.echo("nothing written: no link could be filled", err=True)
         return EXIT_INVALID
     try:
-        text = add_inertials(data, computed, path=result.path)
+        text = add_inertials(result.data, computed, path=result.path)
         if output == "-":
             _to_stdout(text.encode("utf-8"))
         else:
@@ -122,19 +121,3 @@ def _link_masses(items: Sequence[str], links: dict[str, Link], closest: Any) -> 
             raise click.BadParameter(f"no link {name!r}{hint}", param_hint="--mass")
         wanted[name] = mass
     return wanted
-
-
-def urdf_bytes(file: str, values: dict[str, str], packages: dict[str, str]) -> bytes:
-    """The URDF text of FILE: the file itself, or the expansion of a xacro file."""
-    from ..errors import InputError
-    from ..parse import is_xacro_path
-
-    if is_xacro_path(file):
-        from ..expand import expand
-
-        return expand(file, args=values, packages=packages).text.encode("utf-8")
-    try:
-        with open(file, "rb") as handle:
-            return handle.read()
-    except OSError as exc:
-        raise InputError(f"cannot read {file}: {exc.strerror}", path=file) from exc

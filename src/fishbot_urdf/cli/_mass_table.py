@@ -51,16 +51,14 @@ def mass_table(result: CheckResult) -> dict[str, Any]:
     except ValueError as exc:
         table["total_error"] = str(exc)
         return table
-    from ..kinematics import link_poses
-
-    children = {joint.child for joint in robot.joints}
-    placed = link_poses(robot)
+    topo = result.topology
+    assert topo is not None
     table["total"] = {
-        "frame": next(link.name for link in robot.links if link.name not in children),
+        "frame": topo.root,
+        # links in a joint loop are not placed, so not counted
+        "left_out": [link.name for link in robot.links if link.name not in topo.reachable],
         "mass": total.mass,
         "com": _vector(total.com) if total.mass > 0 else None,
-        # links in a joint loop are not placed, so not counted
-        "left_out": [link.name for link in robot.links if link.name not in placed],
         "inertia": {
             f: getattr(total.inertia, f) for f in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
         },

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 import click
 
 from ..errors import FishbotUrdfError
-from ._fill import fill_copy, urdf_bytes
+from ._fill import fill_copy
 from ._mass_table import inertial_dict, mass_table, table_text
 from ._options import PACKAGE_HELP as _PACKAGE_HELP
 from ._options import Number, Wrapped, text_or_json
@@ -258,7 +258,6 @@ def robot(
         _fail,
         _packages,
         _status,
-        _stdin_urdf,
         _to_stdout,
         _xacro_args,
     )
@@ -277,17 +276,8 @@ def robot(
         raise click.UsageError("name:=value arguments are for a .xacro file, not standard input")
     values = _xacro_args(args)
     packages = _packages(package_items)
-    data: bytes | None = None
     try:
-        if file == "-":  # read once: it is checked, then filled
-            from ..check import check_file
-
-            data = _stdin_urdf()
-            result = check_file(data, path="<stdin>")
-        else:
-            result = _check_input(file, values, packages)
-        if fill and data is None and result.robot is not None:
-            data = urdf_bytes(file, values, packages)
+        result = _check_input(file, values, packages)
     except FishbotUrdfError as exc:
         _emit_findings([_fail(exc)])
         sys.exit(_status(exc))
@@ -297,7 +287,7 @@ def robot(
             _emit_findings(errors or result.diagnostics)
             click.echo("nothing written: fix the errors above first", err=True)
             sys.exit(EXIT_INVALID)
-        sys.exit(fill_copy(result, data or b"", packages, output or "-", density, masses))
+        sys.exit(fill_copy(result, packages, output or "-", density, masses))
     _emit_findings(result.diagnostics)
     if result.robot is None:
         sys.exit(EXIT_INVALID)

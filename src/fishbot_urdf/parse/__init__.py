@@ -10,7 +10,7 @@ import gc
 import re
 from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..diagnostics import Diagnostic, Severity
@@ -34,12 +34,14 @@ class Parsed:
         diagnostics: Every finding made while reading, in document order.
         files: Every file the robot was read from: the file itself and, for xacro, every
             file its expansion read (empty for bytes).
+        data: The URDF read: the file's bytes, or a xacro file's expansion.
     """
 
     path: str
     robot: Robot | None
     diagnostics: tuple[Diagnostic, ...]
     files: tuple[str, ...] = ()
+    data: bytes = field(default=b"", repr=False)
 
 
 def is_xacro_path(path: str | Path) -> bool:
@@ -93,11 +95,11 @@ def read(
     with paused_gc():
         robot = fast_robot(root, locator, data)
         if robot is not None:
-            return Parsed(name, robot, notes, files)
+            return Parsed(name, robot, notes, files, data)
         locator.rewind()
         reader = Reader(locator)
         robot = reader.robot(root)
-    return Parsed(name, robot, notes + tuple(reader.diagnostics), files)
+    return Parsed(name, robot, notes + tuple(reader.diagnostics), files, data)
 
 
 def xacro_warning(message: str, path: str) -> Diagnostic:

@@ -6,6 +6,7 @@ import math
 from collections.abc import Iterator
 
 from ..diagnostics import Diagnostic
+from ..graph import topology
 from ..kinematics import link_poses
 from ..model import Box, Collision, Cylinder, JointType, Link, Robot, Sphere
 from ..spatial import Pose
@@ -39,11 +40,10 @@ _STANDING = (JointType.FIXED, JointType.CONTINUOUS)
 
 
 def ground(robot: Robot, path: str, tolerance: float) -> Iterator[Diagnostic]:
-    children = {joint.child for joint in robot.joints}
-    roots = [link for link in robot.links if link.name not in children]
-    if len(roots) != 1 or roots[0].visuals or roots[0].collisions or roots[0].inertial:
+    name = topology(robot).root
+    root = next((link for link in robot.links if link.name == name), None)
+    if root is None or root.visuals or root.collisions or root.inertial:
         return  # the ground is z = 0 of a footprint root, a bare frame
-    root = roots[0]
     if root.name == "world":
         return  # Gazebo's name for the world itself: the robot is mounted, not standing
     # Only links the root holds through fixed joints and wheel axles: an arm's height at
