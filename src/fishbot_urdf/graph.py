@@ -38,12 +38,15 @@ class Topology:
         parents: For each link name, every joint whose child it is, in file order.
         roots: Links that are no joint's child, in file order.
         reachable: Links reachable from ``roots[0]`` (empty when there is no root).
+        loop_from_root: True when a joint loop can be reached from ``roots[0]``: its tree
+            never ends (check_urdf prints it until it crashes).
     """
 
     children: dict[str, tuple[Joint, ...]]
     parents: dict[str, tuple[Joint, ...]]
     roots: tuple[str, ...]
     reachable: frozenset[str]
+    loop_from_root: bool = False
 
     @property
     def root(self) -> str | None:
@@ -67,21 +70,39 @@ def topology(robot: Robot) -> Topology:
         for name, joints in children.items()
     }
     roots = tuple(dict.fromkeys(name for name in names if not parents[name]))
-    reachable: set[str] = set()
-    if roots:
-        stack = [roots[0]]
-        reachable.add(roots[0])
-        while stack:
-            for joint in sorted_children[stack.pop()]:
-                if joint.child not in reachable:
-                    reachable.add(joint.child)
-                    stack.append(joint.child)
+    reachable, loop = _reach(roots[0], sorted_children) if roots else (set(), False)
     return Topology(
         children=sorted_children,
         parents={name: tuple(joints) for name, joints in parents.items()},
         roots=roots,
         reachable=frozenset(reachable),
+        loop_from_root=loop,
     )
+
+
+def _reach(top: str, children: dict[str, tuple[Joint, ...]]) -> tuple[set[str], bool]:
+    """The links reachable from ``top``, and whether a joint loop is among them: one
+    iterative depth-first search, a link being on the current path or finished."""
+    on_path = {top}
+    reached = {top}
+    loop = False
+    pending = [iter(children[top])]
+    path = [top]
+    while pending:
+        joint = next(pending[-1], None)
+        if joint is None:
+            pending.pop()
+            on_path.discard(path.pop())
+            continue
+        child = joint.child
+        if child in on_path:
+            loop = True
+        elif child not in reached:
+            reached.add(child)
+            on_path.add(child)
+            path.append(child)
+            pending.append(iter(children[child]))
+    return reached, loop
 
 
 def _joint_name(joint: Joint) -> str:
@@ -108,15 +129,20 @@ def root(robot: Robot) -> str:
 
 
 def tree_text(robot: Robot, topo: Topology | None = None) -> Iterator[str]:
-    """Yield check_urdf's output for a valid robot, piece by piece (join them to get it all).
+    """Yield check_urdf's output for a robot with one root, piece by piece (join them to get
+    it all), whatever else is wrong with it.
 
     The pieces are the header and one line per link, each ending in a newline; a link
     appears once for every path to it, as in check_urdf. Pass ``topo`` if it is at hand.
+
+    Raises:
+        FishbotUrdfError: There is no single root, or a joint loop is reached from it (the
+            tree would never end).
     """
-    if topo is None:
-        topo = _tree(robot)
-    elif topo.root is None:
+    if topo is None or topo.root is None:
         topo = _tree(robot)  # raises, naming the roots
+    if topo.loop_from_root:
+        raise FishbotUrdfError(f"robot {robot.name!r} has a joint loop below its root")
     top = topo.root
     assert top is not None
     yield f"robot name is: {robot.name}\n"
@@ -138,8 +164,6 @@ def tree_text(robot: Robot, topo: Topology | None = None) -> Iterator[str]:
         yield f"{indents[depth]}child({index + 1}):  {child}\n"
         grandchildren = topo.children[child]
         if grandchildren:
-            if len(stack) > len(topo.children):
-                break  # a cycle: check reports it; never loop forever
             stack.append((grandchildren, 0))
 
 

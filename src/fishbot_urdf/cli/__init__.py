@@ -148,8 +148,9 @@ def check(
 ) -> None:
     """Check URDF or xacro files, like check_urdf, and more strictly.
 
-    On a valid robot, prints exactly what check_urdf prints (the robot's name and its link
-    tree). Every finding goes to stderr as one line, path:line:col: error: ... [rule].
+    Prints exactly what check_urdf prints (the robot's name and its link tree) whenever the
+    tree can be read, errors or not. Every finding goes to stderr as one line,
+    path:line:col: error: ... [rule].
     A .xacro file is expanded first (name:=value arguments go to it) and findings point
     at the xacro source. Beyond check_urdf it checks masses and inertias (errors where a
     simulator would refuse them), inertias against their collision shapes, and whether a
@@ -185,8 +186,11 @@ def check(
             reports.append(_json_report(result, failed))
             continue
         _emit_findings(result.diagnostics)
-        if not failed and result.robot is not None:
-            _write_chunks(tree_text(result.robot, result.topology))
+        # check_urdf's output whenever the tree can be printed, errors or not: a script
+        # reading it keeps working, and the exit status tells the rest.
+        topo = result.topology
+        if result.robot is not None and topo and topo.root and not topo.loop_from_root:
+            _write_chunks(tree_text(result.robot, topo))
     if fmt == "json":
         text = json.dumps({"ok": status == EXIT_OK, "files": reports}, indent=2) + "\n"
         _to_stdout(text.encode("utf-8"))
