@@ -6,10 +6,8 @@ RobotError listing every finding).
 
 from __future__ import annotations
 
-import gc
 import re
-from collections.abc import Iterator, Mapping
-from contextlib import contextmanager
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -92,35 +90,18 @@ def read(
         files = (str(source),)
     root = parse_xml(data, name)
     locator = Locator(data, name, origins)
-    with paused_gc():
-        robot = fast_robot(root, locator, data)
-        if robot is not None:
-            return Parsed(name, robot, notes, files, data)
-        locator.rewind()
-        reader = Reader(locator)
-        robot = reader.robot(root)
+    robot = fast_robot(root, locator, data)
+    if robot is not None:
+        return Parsed(name, robot, notes, files, data)
+    locator.rewind()
+    reader = Reader(locator)
+    robot = reader.robot(root)
     return Parsed(name, robot, notes + tuple(reader.diagnostics), files, data)
 
 
 def xacro_warning(message: str, path: str) -> Diagnostic:
     """A warning xacro gave while expanding ``path``, as a finding about the file."""
     return Diagnostic("xacro", Severity.WARNING, message.removeprefix("warning: ").strip(), path)
-
-
-@contextmanager
-def paused_gc() -> Iterator[None]:
-    """Pause Python's cycle collector while a robot is built.
-
-    A big robot is hundreds of thousands of small objects that hold no reference cycles; the
-    collector would walk them again and again as they are made (a third of the time).
-    """
-    was_enabled = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if was_enabled:
-            gc.enable()
 
 
 def parse(text: str | bytes, *, path: str | None = None) -> Robot:
