@@ -15,7 +15,6 @@ from ..diagnostics import Diagnostic, Severity
 from ..errors import RobotError
 from ..model import Robot
 from ..xmlsource import STRING_PATH, Locator, parse_xml, read_bytes
-from ._fast import fast_robot
 from ._reader import Reader
 from .values import to_double
 
@@ -90,10 +89,6 @@ def read(
         files = (str(source),)
     root = parse_xml(data, name)
     locator = Locator(data, name, origins)
-    robot = fast_robot(root, locator, data)
-    if robot is not None:
-        return Parsed(name, robot, notes, files, data)
-    locator.rewind()
     reader = Reader(locator)
     robot = reader.robot(root)
     return Parsed(name, robot, notes + tuple(reader.diagnostics), files, data)
