@@ -7,7 +7,7 @@ from lxml import etree
 from ..diagnostics import Diagnostic, Severity
 from ..model import ZERO3, Location, Vector3
 from ..xmlsource import Locator, diagnostic
-from .values import to_double
+from .values import to_double, to_doubles
 
 
 def xml_text(element: etree._Element) -> str:
@@ -142,9 +142,9 @@ class ReaderBase:
                 f'write {attr}="{meaning}" separated by spaces',
             )
             return None
-        numbers = [to_double(p) for p in pieces]
-        if None in numbers:
-            bad = pieces[numbers.index(None)]
+        numbers = to_doubles(pieces)
+        if numbers is None:
+            bad = next(p for p in pieces if to_double(p) is None)
             self.error(
                 "bad-number",
                 f'{owner}: <{el.tag} {attr}="{value}">: {bad!r} is not a number',
@@ -152,7 +152,7 @@ class ReaderBase:
                 f'write {attr}="{meaning}" as finite decimals separated by spaces',
             )
             return None
-        return numbers  # type: ignore[return-value]
+        return numbers
 
     def vector3(
         self,
