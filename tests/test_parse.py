@@ -6,6 +6,8 @@ from pathlib import Path
 
 import pytest
 from conftest import CORPUS, DATA, VALID, run_check_urdf
+from hypothesis import given
+from hypothesis import strategies as st
 
 import fishbot_urdf
 from fishbot_urdf import (
@@ -19,6 +21,7 @@ from fishbot_urdf import (
     parse,
     to_urdf,
 )
+from fishbot_urdf.parse.values import to_double, to_doubles
 
 ALL = DATA / "valid" / "all_elements.urdf"
 
@@ -55,6 +58,11 @@ VECTORS = {
     "0 0 1\n": False,
     "\t1 0 0": True,
     "0 0\r\n 1": False,
+    "1e308 1e308 0": True,  # each is finite, though their sum is not
+    "1_0 0 0": False,
+    "\u0663 0 0": False,  # an Arabic-Indic digit: Python's float takes it
+    "&#9;1 0 0": True,  # a tab written as a character reference
+    "1&#9; 0 0": False,
 }
 
 
@@ -71,6 +79,15 @@ def _agrees_with_urdfdom(data: bytes, accepted: bool, folder: Path) -> None:
 @pytest.mark.parametrize(("text", "accepted"), VECTORS.items(), ids=list(VECTORS))
 def test_vector_numbers_like_urdfdom(text: str, accepted: bool, tmp_path: Path) -> None:
     _agrees_with_urdfdom(_origin_robot(text), accepted, tmp_path)
+
+
+_PIECES = ["0", "1", "-2.5", "1e308", "1e400", "nan", "inf", "1_0", "\u0663", "\t1", "1\t", "x", ""]
+
+
+@given(st.lists(st.sampled_from(_PIECES), max_size=5))
+def test_numbers_checked_at_once_as_one_by_one(texts: list[str]) -> None:
+    one_by_one = [to_double(text) for text in texts]
+    assert to_doubles(texts) == (None if None in one_by_one else one_by_one)
 
 
 def test_model_of_every_element() -> None:
