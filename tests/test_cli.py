@@ -156,7 +156,9 @@ def test_json_report() -> None:
         "root": "base_link",
         "links": 2,
         "joints": 1,
+        "config": None,
         "diagnostics": [],
+        "suppressed": {"count": 0, "rules": {}},
     }
     assert second["ok"] is False
     assert [d["rule"] for d in second["diagnostics"]] == ["limit-range"]

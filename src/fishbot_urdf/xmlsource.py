@@ -10,7 +10,6 @@ from pathlib import Path
 
 from lxml import etree
 
-from .diagnostics import Diagnostic, Severity
 from .errors import InputError, XmlSyntaxError
 from .model import Location
 
@@ -268,18 +267,3 @@ class Locator:
             return location
         line, column = self._position(match.start() + 1)
         return Location(self.path, line, column)
-
-
-def diagnostic(
-    rule: str,
-    message: str,
-    location: Location | None,
-    *,
-    hint: str | None = None,
-    severity: Severity = Severity.ERROR,
-    path: str = STRING_PATH,
-) -> Diagnostic:
-    """Build a Diagnostic at ``location`` (or at the whole file ``path``)."""
-    if location is None:
-        return Diagnostic(rule, severity, message, path, None, None, hint)
-    return Diagnostic(rule, severity, message, location.path, location.line, location.column, hint)

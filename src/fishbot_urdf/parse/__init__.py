@@ -13,9 +13,10 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..diagnostics import Diagnostic, Severity
+from ..diagnostics import Diagnostic, Kind, Subject
 from ..errors import RobotError
 from ..model import Robot
+from ..rules.xacro import XACRO_WARNING
 from ..xmlsource import STRING_PATH, Locator, parse_xml, read_bytes
 from ._fast import fast_robot
 from ._reader import Reader
@@ -104,7 +105,9 @@ def read(
 
 def xacro_warning(message: str, path: str) -> Diagnostic:
     """A warning xacro gave while expanding ``path``, as a finding about the file."""
-    return Diagnostic("xacro", Severity.WARNING, message.removeprefix("warning: ").strip(), path)
+    return XACRO_WARNING.report(
+        message.removeprefix("warning: ").strip(), None, path=path, subject=Subject(Kind.FILE, path)
+    )
 
 
 @contextmanager

@@ -4,18 +4,25 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator
+from typing import Any
 
-from ..diagnostics import Diagnostic
-from ..inertia import geometry_inertia
-from ..model import Box, Cylinder, Link, Origin, Sphere, Vector3
-from ..spatial import Matrix3, eigh, rotate_tensor, rpy_matrix, transpose
-from ._common import TINY, place, report, short, tolerance
+from ...diagnostics import Diagnostic
+from ...inertia import geometry_inertia
+from ...model import Box, Cylinder, Link, Origin, Sphere, Vector3
+from ...spatial import Matrix3, eigh, rotate_tensor, rpy_matrix, transpose
+from ._common import INERTIA_MISMATCH, TINY, link_subject, place, short, tolerance
 
 MISMATCH = 0.10
 """How far (relative to the largest moment) an inertia may be from its collision shape's."""
 
 
 def mismatch(link: Link, path: str, moments: Vector3) -> Iterator[Diagnostic]:
+    """The inertia against the link's one collision box, cylinder or sphere.
+
+    The finding's data names the collision's shape (``shape``: box, cylinder or sphere,
+    with ``size`` or ``radius`` and ``length``), the ``mass``, and the collision origin's
+    ``xyz`` and ``rpy``: what it takes to compute the inertial that matches it.
+    """
     inertial = link.inertial
     if inertial is None or len(link.collisions) != 1 or not inertial.mass > 0:
         return
@@ -41,30 +48,27 @@ def mismatch(link: Link, path: str, moments: Vector3) -> Iterator[Diagnostic]:
     found = _describe(shape, seen, inertial.mass, turn)
     if found is None:
         return
-    yield report(
-        "inertia-mismatch",
-        f"link {link.name!r}: {found}",
+    owner = link_subject(link)
+    yield INERTIA_MISMATCH.report(
+        f"{owner}: {found}",
         place(link, inertial.source),
-        path,
-        _command(shape, inertial.mass, collision.origin),
-        error=False,
+        path=path,
+        subject=owner,
+        hint="fix the one that is wrong",
+        data=_collision_facts(shape, inertial.mass, collision.origin),
     )
 
 
-def _command(shape: Box | Cylinder | Sphere, mass: float, origin: Origin) -> str:
-    """The `fishbot inertia` command that prints the inertial matching the collision."""
+def _collision_facts(shape: Box | Cylinder | Sphere, mass: float, origin: Origin) -> dict[str, Any]:
+    """What it takes to compute the inertial that matches the collision."""
+    facts: dict[str, Any] = {"mass": mass, "xyz": list(origin.xyz), "rpy": list(origin.rpy)}
     if isinstance(shape, Box):
-        words = f"box --mass {mass:g} --size {' '.join(f'{s:g}' for s in shape.size)}"
+        facts.update(shape="box", size=list(shape.size))
     elif isinstance(shape, Cylinder):
-        words = f"cylinder --mass {mass:g} --radius {shape.radius:g} --length {shape.length:g}"
+        facts.update(shape="cylinder", radius=shape.radius, length=shape.length)
     else:
-        words = f"sphere --mass {mass:g} --radius {shape.radius:g}"
-    for name, values in (("xyz", origin.xyz), ("rpy", origin.rpy)):
-        if any(values):
-            words += f" --{name} {' '.join(f'{v:g}' for v in values)}"
-    return (
-        f"fix the one that is wrong; `fishbot inertia {words}` prints the inertial of the collision"
-    )
+        facts.update(shape="sphere", radius=shape.radius)
+    return facts
 
 
 def _off_diagonal(m: Matrix3) -> bool:

@@ -1,4 +1,5 @@
-"""Inertia of uniform solids: the closed forms of the fishbot's common_inertia.xacro.
+"""Inertia of uniform solids: the closed forms of the fishbot's common_inertia.xacro, closed
+meshes, and several solids taken together.
 
 Every function returns an ``Inertial`` whose numbers are the very floats the xacro macros
 produce (the same operations in the same order), about the solid's centre, in its own
@@ -8,29 +9,25 @@ frame: pass the ``origin`` of the visual or collision it belongs to.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from .errors import InputError, ToolNotFoundError
-from .graph import topology
-from .kinematics import link_poses
-from .model import (
+from ..errors import ArgumentError, InputError, ShapeError, ToolNotFoundError
+from ..model import (
     ZERO3,
     Box,
     Cylinder,
     Geometry,
     Inertia,
     Inertial,
-    Link,
     Mesh,
     Origin,
-    Robot,
     Sphere,
     Vector3,
 )
-from .spatial import (
+from ..spatial import (
     Matrix3,
     Pose,
     add,
@@ -47,8 +44,6 @@ __all__ = [
     "combine",
     "cylinder_inertia",
     "geometry_inertia",
-    "link_inertial",
-    "mass_properties",
     "mesh_inertia",
     "principal_moments",
     "sphere_inertia",
@@ -103,8 +98,8 @@ def geometry_inertia(
     `resolve_package_uri`).
 
     Raises:
-        TypeError: The geometry is not a box, cylinder, sphere or mesh.
-        ValueError: The mesh is not closed.
+        ArgumentError: The geometry is not a box, cylinder, sphere or mesh.
+        ShapeError: The mesh is not closed.
         PackageNotFoundError: The mesh's package is not found.
         ToolNotFoundError: The geometry is a mesh and trimesh is not installed.
     """
@@ -118,11 +113,14 @@ def geometry_inertia(
     if isinstance(geometry, Mesh):
         where = resolve(geometry) if resolve is not None else _mesh_file(geometry)
         return mesh_inertia(where, mass, origin, geometry.scale)
-    raise TypeError(f"no closed form for {type(geometry).__name__} (box, cylinder, sphere)")
+    raise ArgumentError(
+        f"no closed form for {type(geometry).__name__} (box, cylinder, sphere, mesh)",
+        name="geometry",
+    )
 
 
 def _mesh_file(mesh: Mesh) -> Path:
-    from .packages import resolve_package_uri
+    from ..packages import resolve_package_uri
 
     return resolve_package_uri(mesh.filename, near=mesh.source.path if mesh.source else None)
 
@@ -178,34 +176,12 @@ def combine(parts: Iterable[tuple[Inertial, Pose]]) -> MassProperties:
     return MassProperties(mass, com, _inertia(total))
 
 
-def mass_properties(robot: Robot, positions: Mapping[str, float] | None = None) -> MassProperties:
-    """Total mass, centre of mass and inertia about it of a whole robot, in its root frame.
-
-    Args:
-        robot: A robot with one root link.
-        positions: Joint positions by name (rad or m); the rest are zero.
-
-    Raises:
-        ValueError: The robot has no root or several, or ``positions`` names a joint that
-            does not exist or does not move.
-    """
-    roots = topology(robot).roots
-    if len(roots) != 1:
-        raise ValueError(f"robot {robot.name!r} has {len(roots)} root links; it needs one")
-    poses = link_poses(robot, positions)
-    return combine(
-        (link.inertial, poses[link.name])
-        for link in robot.links
-        if link.inertial is not None and link.name in poses
-    )
-
-
 def volume(geometry: Geometry, resolve: Callable[[Mesh], Path] | None = None) -> float:
     """The volume of a URDF box, cylinder or sphere (m^3), or of a closed mesh when the
     optional trimesh package is installed (found as `geometry_inertia` finds it).
 
     Raises:
-        ValueError: The mesh is not closed.
+        ShapeError: The mesh is not closed.
         PackageNotFoundError: The mesh's package is not found.
         ToolNotFoundError: The geometry is a mesh and trimesh is not installed.
     """
@@ -219,7 +195,10 @@ def volume(geometry: Geometry, resolve: Callable[[Mesh], Path] | None = None) ->
     if isinstance(geometry, Mesh):
         where = resolve(geometry) if resolve is not None else _mesh_file(geometry)
         return float(_solid(where, geometry.scale).volume)
-    raise TypeError(f"no closed form for {type(geometry).__name__} (box, cylinder, sphere)")
+    raise ArgumentError(
+        f"no closed form for {type(geometry).__name__} (box, cylinder, sphere, mesh)",
+        name="geometry",
+    )
 
 
 def _solid(path: Path, scale: Vector3 | None) -> Any:
@@ -239,7 +218,7 @@ def _solid(path: Path, scale: Vector3 | None) -> Any:
     if scale is not None:
         mesh.apply_scale(scale)
     if not mesh.is_watertight:
-        raise ValueError(f"the mesh {path} is not closed, so it has no volume")
+        raise ShapeError(f"the mesh {path} is not closed, so it has no volume", path=str(path))
     return mesh
 
 
@@ -254,7 +233,7 @@ def mesh_inertia(
     (``pip install 'fishbot-urdf[mesh]'``).
 
     Raises:
-        ValueError: The mesh is not closed.
+        ShapeError: The mesh is not closed.
         InputError: The file cannot be read as a mesh.
         ToolNotFoundError: trimesh is not installed.
     """
@@ -269,49 +248,3 @@ def mesh_inertia(
 def _matrix3(array: Any) -> Matrix3:
     rows = [tuple(float(v) + 0.0 for v in row) for row in array]  # + 0.0: no -0
     return (rows[0], rows[1], rows[2])  # type: ignore[return-value]
-
-
-def link_inertial(
-    link: Link,
-    *,
-    density: float | None = None,
-    mass: float | None = None,
-    resolve: Callable[[Mesh], Path] | None = None,
-) -> Inertial:
-    """The inertial of a link filled uniformly, from its collision shapes.
-
-    Give the ``density`` (kg/m^3) or the link's total ``mass`` (kg, shared among its shapes
-    by volume). One box, cylinder or sphere gives the closed form about the shape's own
-    origin (the numbers common_inertia.xacro gives); several shapes are added up about
-    their joint centre of mass. Closed meshes count when trimesh is installed; ``resolve``
-    turns one into its file (by default, as `geometry_inertia` does).
-
-    Raises:
-        ValueError: The link has no collision shape, or neither or both of density and mass
-            are given, or a shape has no volume.
-        PackageNotFoundError: A mesh's package is not found.
-        ToolNotFoundError: A mesh needs trimesh, which is not installed.
-    """
-    if density is None and mass is None:
-        raise ValueError("give the density or the mass")
-    if density is not None and mass is not None:
-        raise ValueError("give the density or the mass, not both")
-    given = density if density is not None else mass
-    if not (given is not None and math.isfinite(given) and given > 0):
-        raise ValueError(f"the density or mass must be a finite number > 0, not {given}")
-    shapes = [(c, volume(c.geometry, resolve)) for c in link.collisions]
-    if not shapes:
-        raise ValueError(f"link {link.name!r} has no collision shape")
-    total = math.fsum(v for _, v in shapes)
-    if total <= 0.0:
-        raise ValueError(f"link {link.name!r}: its collision shapes have no volume")
-    masses = [density * v if density is not None else mass * v / total for _, v in shapes]  # type: ignore[operator]
-    parts = []
-    for (collision, _), part in zip(shapes, masses, strict=True):
-        parts.append(geometry_inertia(collision.geometry, part, collision.origin, resolve))
-    if len(parts) == 1:
-        return parts[0]
-    together = combine((made, Pose()) for made in parts)
-    # The mass asked for, exactly (the sum of the shares may differ in the last digit).
-    whole = mass if mass is not None else together.mass
-    return Inertial(mass=whole, inertia=together.inertia, origin=Origin(xyz=together.com))

@@ -9,36 +9,56 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..diagnostics import Diagnostic
-from ..model import Robot
-from ..spatial import eigh
+from ...analysis import Analysis
+from ...diagnostics import Diagnostic
+from ...spatial import eigh
+from ._common import (
+    ABOVE_GROUND,
+    BELOW_GROUND,
+    INERTIA_MISMATCH,
+    INERTIA_NOT_POSITIVE,
+    INERTIA_TRIANGLE,
+    MASSLESS_LINK,
+    MISSING_INERTIAL,
+)
 from ._ground import GROUND_TOLERANCE, ground
-from ._mass import bodies, body_findings, finite
+from ._mass import body_findings, finite
 from ._shape import MISMATCH, mismatch
 
-__all__ = ["GROUND_TOLERANCE", "MISMATCH", "physics"]
+__all__ = [
+    "ABOVE_GROUND",
+    "BELOW_GROUND",
+    "GROUND_TOLERANCE",
+    "INERTIA_MISMATCH",
+    "INERTIA_NOT_POSITIVE",
+    "INERTIA_TRIANGLE",
+    "MASSLESS_LINK",
+    "MISMATCH",
+    "MISSING_INERTIAL",
+    "physics",
+]
 
 
 def physics(
-    robot: Robot, path: str, *, ground_tolerance: float = GROUND_TOLERANCE
+    analysis: Analysis, *, ground_tolerance: float = GROUND_TOLERANCE
 ) -> Iterator[Diagnostic]:
     """Every finding about the robot's masses, inertias and stance on the ground.
 
     Args:
-        robot: The robot.
-        path: The file findings without a location are reported against.
+        analysis: The robot, analysed.
         ground_tolerance: How far (m) below or above z = 0 of a footprint root the lowest
             collision point may be.
     """
+    robot, path = analysis.robot, analysis.path
     # Principal moments, once per link (they do not change when the inertia is turned).
     moments = {
         link.name: eigh(link.inertial.inertia.matrix())[0]
         for link in robot.links
         if link.inertial is not None and finite(link.inertial)
     }
-    for body in bodies(robot):
+    for body in analysis.bodies:
         yield from body_findings(body, path, moments, bool(robot.joints))
     for link in robot.links:
         if link.name in moments:
             yield from mismatch(link, path, moments[link.name])
-    yield from ground(robot, path, ground_tolerance)
+    yield from ground(analysis, ground_tolerance)

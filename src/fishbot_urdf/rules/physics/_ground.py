@@ -5,12 +5,11 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-from ..diagnostics import Diagnostic
-from ..graph import topology
-from ..kinematics import link_poses
-from ..model import Box, Collision, Cylinder, JointType, Link, Robot, Sphere
-from ..spatial import Pose
-from ._common import report
+from ...analysis import Analysis
+from ...diagnostics import Diagnostic
+from ...model import Box, Collision, Cylinder, JointType, Link, Sphere
+from ...spatial import Pose
+from ._common import ABOVE_GROUND, BELOW_GROUND, link_subject
 
 GROUND_TOLERANCE = 0.002
 """How far (m) the lowest collision point may be from the ground before it is reported."""
@@ -39,9 +38,15 @@ def _extent(collision: Collision, pose: Pose) -> tuple[float, float] | None:
 _STANDING = (JointType.FIXED, JointType.CONTINUOUS)
 
 
-def ground(robot: Robot, path: str, tolerance: float) -> Iterator[Diagnostic]:
-    name = topology(robot).root
-    root = next((link for link in robot.links if link.name == name), None)
+def ground(analysis: Analysis, tolerance: float) -> Iterator[Diagnostic]:
+    """Whether a robot on a footprint root stands on its z = 0 at the zero configuration.
+
+    The findings' data give the distance and the tolerance, in mm (``distance_mm``,
+    ``tolerance_mm``).
+    """
+    robot, path = analysis.robot, analysis.path
+    name = analysis.topology.root
+    root = analysis.links.get(name) if name is not None else None
     if root is None or root.visuals or root.collisions or root.inertial:
         return  # the ground is z = 0 of a footprint root, a bare frame
     if root.name == "world":
@@ -59,7 +64,8 @@ def ground(robot: Robot, path: str, tolerance: float) -> Iterator[Diagnostic]:
             if child not in held:
                 held.add(child)
                 stack.append(child)
-    poses = link_poses(Robot(robot.name, robot.links, tuple(joints)))
+    # At the zero configuration a wheel's axle does not move it: the robot's own poses.
+    poses = analysis.zero_poses
     spans: list[tuple[float, float, Link, Collision]] = []
     # Whether the robot may stand on something we cannot place: a mesh, or a leg or an
     # arm (a link on a joint that is neither fixed nor a wheel's axle).
@@ -81,7 +87,7 @@ def ground(robot: Robot, path: str, tolerance: float) -> Iterator[Diagnostic]:
     if top <= -bottom[0]:
         return  # the root sits inside the robot (a pelvis, a waist): not on the ground
     where = f"the ground (z = 0 of {root.name!r}) at the zero configuration"
-    passes = f"up to {tolerance * 1000:g} mm passes (--ground-tolerance)"
+    passes = f"up to {tolerance * 1000:g} mm passes"
     # Compared to the micrometre: a wheel turned by rpy 1.57079 rather than pi/2 sinks
     # 0.0001 mm more than its radius says, which is no finding.
     reported: set[str] = set()
@@ -89,24 +95,24 @@ def ground(robot: Robot, path: str, tolerance: float) -> Iterator[Diagnostic]:
         if z < -tolerance - _MICROMETRE and link.name not in reported:
             reported.add(link.name)
             depth = _mm(-z, tolerance)
-            yield report(
-                "below-ground",
+            yield BELOW_GROUND.report(
                 f"link {link.name!r} reaches {depth} mm below {where}",
                 collision.source or link.source,
-                path,
-                f"raise the joints above it or shorten the shape by {depth} mm; {passes}",
-                error=False,
+                path=path,
+                subject=link_subject(link),
+                hint=f"raise the joints above it or shorten the shape by {depth} mm; {passes}",
+                data={"distance_mm": -z * 1000, "tolerance_mm": tolerance * 1000},
             )
     z, _, link, collision = bottom
     if z > tolerance + _MICROMETRE and not unknown:
         height = _mm(z, tolerance)
-        yield report(
-            "above-ground",
+        yield ABOVE_GROUND.report(
             f"link {link.name!r}, the robot's lowest point, is {height} mm above {where}",
             collision.source or link.source,
-            path,
-            f"the robot floats: lower the joint below {root.name!r} by {height} mm; {passes}",
-            error=False,
+            path=path,
+            subject=link_subject(link),
+            hint=f"the robot floats: lower the joint below {root.name!r} by {height} mm; " + passes,
+            data={"distance_mm": z * 1000, "tolerance_mm": tolerance * 1000},
         )
 
 

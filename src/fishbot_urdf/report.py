@@ -1,0 +1,200 @@
+"""Findings for people and machines: JSON, SARIF 2.1.0 for code scanning, and GitHub
+Actions workflow annotations. (One finding per line of text is `Diagnostic.format`.)"""
+
+from __future__ import annotations
+
+import os
+from collections import Counter
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from .diagnostics import Diagnostic, Severity
+
+__all__ = ["FileReport", "github_annotations", "json_report", "sarif_report"]
+
+INFORMATION_URI = "https://pypi.org/project/fishbot-urdf/"
+
+
+@dataclass(frozen=True, slots=True)
+class FileReport:
+    """What checking one file found, for a report.
+
+    Attributes:
+        path: The file checked.
+        ok: Whether it passed (no error; with strict, no warning either).
+        diagnostics: Its findings.
+        suppressed: The findings comments silenced.
+        robot: The robot's name, when one was read.
+        root: Its root link, when it has one.
+        links: How many links it has, when one was read.
+        joints: How many joints it has, when one was read.
+        config: The configuration file that applied, if any.
+    """
+
+    path: str
+    ok: bool
+    diagnostics: tuple[Diagnostic, ...]
+    suppressed: tuple[Diagnostic, ...] = ()
+    robot: str | None = None
+    root: str | None = None
+    links: int | None = None
+    joints: int | None = None
+    config: str | None = None
+
+
+def json_report(files: Sequence[FileReport]) -> dict[str, Any]:
+    """The report of ``fishbot check --format json``: ``ok`` overall, then per file its
+    robot, its findings and how many comments silenced, by rule."""
+    return {
+        "ok": all(f.ok for f in files),
+        "files": [
+            {
+                "path": f.path,
+                "ok": f.ok,
+                "robot": f.robot,
+                "root": f.root,
+                "links": f.links,
+                "joints": f.joints,
+                "config": f.config,
+                "diagnostics": [d.to_dict() for d in f.diagnostics],
+                "suppressed": {
+                    "count": len(f.suppressed),
+                    "rules": dict(sorted(Counter(d.rule for d in f.suppressed).items())),
+                },
+            }
+            for f in files
+        ],
+    }
+
+
+_LEVELS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.NOTE: "note"}
+
+
+def sarif_report(files: Sequence[FileReport], *, version: str) -> dict[str, Any]:
+    """A SARIF 2.1.0 log of one run, for code scanning (GitHub, GitLab, Azure DevOps).
+
+    Every rule of the registry is described (id, summary, explanation, default level,
+    family and consumers); every finding is a result with its file, line and column;
+    findings that comments silenced are results with an in-source suppression. Paths are
+    relative URIs when they are inside the current folder.
+    """
+    from .rules import all_rules
+
+    rules = all_rules()
+    index = {rule.id: i for i, rule in enumerate(rules)}
+    results: list[dict[str, Any]] = []
+    for report in files:
+        for finding, silenced in (
+            *((d, False) for d in report.diagnostics),
+            *((d, True) for d in report.suppressed),
+        ):
+            results.append(_result(finding, index, silenced))
+    descriptors = [
+        {
+            "id": rule.id,
+            "name": "".join(part.capitalize() for part in rule.id.split("-")),
+            "shortDescription": {"text": rule.summary},
+            "fullDescription": {"text": rule.explanation or rule.summary},
+            "help": {"text": _help_text(rule.explanation, rule.bad, rule.good)},
+            "defaultConfiguration": {"level": _LEVELS[rule.severity]},
+            "properties": {
+                "tags": [rule.family.value],
+                "consumers": [c.value for c in rule.consumers],
+            },
+        }
+        for rule in rules
+    ]
+    return {
+        "$schema": "https://json.schemastore.org/sarif-2.1.0.json",
+        "version": "2.1.0",
+        "runs": [
+            {
+                "tool": {
+                    "driver": {
+                        "name": "fishbot",
+                        "informationUri": INFORMATION_URI,
+                        "version": version,
+                        "rules": descriptors,
+                    }
+                },
+                "columnKind": "unicodeCodePoints",
+                "results": results,
+            }
+        ],
+    }
+
+
+def _help_text(explanation: str, bad: str, good: str) -> str:
+    parts = [explanation] if explanation else []
+    if bad:
+        parts.append("Fails:\n" + bad)
+    if good:
+        parts.append("Passes:\n" + good)
+    return "\n\n".join(parts) or "-"
+
+
+def _result(finding: Diagnostic, index: dict[str, int], silenced: bool) -> dict[str, Any]:
+    text = finding.message + (f" ({finding.hint})" if finding.hint else "")
+    location: dict[str, Any] = {"artifactLocation": {"uri": _uri(finding.path)}}
+    if finding.line is not None:
+        region: dict[str, int] = {"startLine": finding.line}
+        if finding.column is not None:
+            region["startColumn"] = finding.column
+        location["region"] = region
+    result: dict[str, Any] = {
+        "ruleId": finding.rule,
+        "level": _LEVELS[finding.severity],
+        "message": {"text": text},
+        "locations": [{"physicalLocation": location}],
+    }
+    if finding.rule in index:
+        result["ruleIndex"] = index[finding.rule]
+    if finding.subject is not None:
+        result["properties"] = {
+            "subject": {"kind": finding.subject.kind.value, "name": finding.subject.name}
+        }
+    if silenced:
+        result["suppressions"] = [{"kind": "inSource"}]
+    return result
+
+
+def _uri(path: str) -> str:
+    """A relative URI for a file inside the current folder, else a file: URI."""
+    if path.startswith("<"):
+        return path.strip("<>")
+    candidate = Path(path)
+    if not candidate.is_absolute():
+        relative = os.path.normpath(path)
+        if not relative.startswith(".."):
+            return Path(relative).as_posix()
+    return candidate.absolute().as_uri()
+
+
+_ANNOTATIONS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.NOTE: "notice"}
+
+
+def github_annotations(findings: Iterable[Diagnostic]) -> str:
+    """GitHub Actions workflow commands, one per finding: ``::error file=F,line=L,col=C,
+    title=RULE::message``, which the run's summary and the pull request show at the line."""
+    lines: list[str] = []
+    for finding in findings:
+        fields = [f"file={_property(finding.path)}"]
+        if finding.line is not None:
+            fields.append(f"line={finding.line}")
+            if finding.column is not None:
+                fields.append(f"col={finding.column}")
+        fields.append(f"title={_property(f'fishbot {finding.rule}')}")
+        text = finding.message + (f" ({finding.hint})" if finding.hint else "")
+        message = f"{text} [{finding.rule}]"
+        lines.append(f"::{_ANNOTATIONS[finding.severity]} {','.join(fields)}::{_data(message)}\n")
+    return "".join(lines)
+
+
+def _data(text: str) -> str:
+    return text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+
+
+def _property(text: str) -> str:
+    return _data(text).replace(":", "%3A").replace(",", "%2C")

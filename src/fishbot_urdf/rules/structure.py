@@ -1,0 +1,321 @@
+"""Rules about names and the link tree: what urdfdom refuses, and what it lets through."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator
+
+from ..analysis import Analysis
+from ..diagnostics import Diagnostic, Kind, Severity, Subject, did_you_mean, listing
+from ..model import Joint, Location, Robot
+from . import Consumer, Family, Rule
+
+__all__ = ["structure"]
+
+_SIMULATORS = (Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE, Consumer.PYBULLET)
+_ALL = (Consumer.URDFDOM, *_SIMULATORS)
+E = Severity.ERROR
+
+NO_LINKS = Rule("no-links", E, Family.STRUCTURE, summary="The robot has no links.", consumers=_ALL)
+DUPLICATE_LINK = Rule(
+    "duplicate-link", E, Family.STRUCTURE, summary="Two links have the same name.", consumers=_ALL
+)
+DUPLICATE_JOINT = Rule(
+    "duplicate-joint", E, Family.STRUCTURE, summary="Two joints have the same name.", consumers=_ALL
+)
+DUPLICATE_MATERIAL = Rule(
+    "duplicate-material",
+    E,
+    Family.STRUCTURE,
+    summary="Two materials at the robot's top level have the same name.",
+)
+UNDEFINED_LINK = Rule(
+    "undefined-link",
+    E,
+    Family.STRUCTURE,
+    summary="A joint's parent or child names a link that is not defined.",
+    consumers=_ALL,
+)
+JOINT_SELF_LOOP = Rule(
+    "joint-self-loop",
+    E,
+    Family.STRUCTURE,
+    summary="A joint's parent and child are the same link.",
+    consumers=_ALL,
+)
+MISSING_LIMIT = Rule(
+    "missing-limit",
+    E,
+    Family.STRUCTURE,
+    summary="A revolute or prismatic joint has no <limit>.",
+    consumers=_ALL,
+)
+LIMIT_RANGE = Rule(
+    "limit-range",
+    E,
+    Family.STRUCTURE,
+    summary="A joint's lower limit is above its upper limit.",
+    consumers=(Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE),
+)
+NEGATIVE_LIMIT = Rule(
+    "negative-limit",
+    E,
+    Family.STRUCTURE,
+    summary="A joint's effort or velocity limit is negative.",
+    consumers=_SIMULATORS,
+)
+ZERO_AXIS = Rule(
+    "zero-axis",
+    E,
+    Family.STRUCTURE,
+    summary="A moving joint's axis is 0 0 0.",
+    consumers=_ALL,
+)
+UNDEFINED_MIMIC = Rule(
+    "undefined-mimic",
+    E,
+    Family.STRUCTURE,
+    summary="A <mimic> names a joint that does not exist, or its own joint.",
+    consumers=_ALL,
+)
+MULTIPLE_PARENTS = Rule(
+    "multiple-parents",
+    E,
+    Family.STRUCTURE,
+    summary="A link is the child of more than one joint.",
+    consumers=_ALL,
+)
+MULTIPLE_ROOTS = Rule(
+    "multiple-roots",
+    E,
+    Family.STRUCTURE,
+    summary="More than one link is no joint's child.",
+    consumers=_ALL,
+)
+NO_ROOT = Rule(
+    "no-root", E, Family.STRUCTURE, summary="Every link is some joint's child.", consumers=_ALL
+)
+CYCLE = Rule("cycle", E, Family.STRUCTURE, summary="Joints form a loop.", consumers=_ALL)
+UNREACHABLE_LINK = Rule(
+    "unreachable-link",
+    E,
+    Family.STRUCTURE,
+    summary="A link is not connected to the root (it hangs below a joint loop).",
+    consumers=_ALL,
+)
+
+
+def structure(analysis: Analysis) -> Iterator[Diagnostic]:
+    """Every finding about the robot's names, joints and link tree."""
+    yield from _names(analysis)
+    yield from _joints(analysis)
+    yield from _tree(analysis)
+
+
+def _robot(robot: Robot) -> str:
+    """How findings name the robot (a nameless one is reported separately)."""
+    return f"robot {robot.name!r}" if robot.name else "the robot"
+
+
+def _the_robot(robot: Robot) -> Subject:
+    return Subject(Kind.ROBOT, robot.name)
+
+
+_DUPLICATES = {
+    Kind.LINK: DUPLICATE_LINK,
+    Kind.JOINT: DUPLICATE_JOINT,
+    Kind.MATERIAL: DUPLICATE_MATERIAL,
+}
+
+
+def _names(analysis: Analysis) -> Iterator[Diagnostic]:
+    robot, path = analysis.robot, analysis.path
+    if not robot.links:
+        yield NO_LINKS.report(
+            f"{_robot(robot)} has no links",
+            robot.source,
+            path=path,
+            subject=_the_robot(robot),
+            hint='a robot needs at least one <link name="...">',
+        )
+    for kind, items in (
+        (Kind.LINK, robot.links),
+        (Kind.JOINT, robot.joints),
+        (Kind.MATERIAL, robot.materials),
+    ):
+        first: dict[str, Location | None] = {}
+        for item in items:
+            if not item.name:
+                continue
+            if item.name in first:
+                where = first[item.name]
+                seen = f" (first defined at line {where.line})" if where else ""
+                subject = Subject(kind, item.name)
+                yield _DUPLICATES[kind].report(
+                    f"{subject} is defined twice{seen}",
+                    item.source,
+                    path=path,
+                    subject=subject,
+                    hint=f"every {kind.value} needs a unique name",
+                )
+            else:
+                first[item.name] = item.source
+
+
+def _suggest(name: str, candidates: Iterable[str]) -> str:
+    names = set(candidates)
+    guess = did_you_mean(name, names)
+    return f"{guess}links: {listing(names)}" if names else "the robot defines no links"
+
+
+def _joints(analysis: Analysis) -> Iterator[Diagnostic]:
+    robot, path = analysis.robot, analysis.path
+    link_names = analysis.links.keys()
+    joint_names = analysis.joints.keys()
+    for joint in robot.joints:
+        owner = Subject(Kind.JOINT, joint.name)
+        for end, name, where in (
+            ("parent", joint.parent, joint.parent_source),
+            ("child", joint.child, joint.child_source),
+        ):
+            if name and name not in link_names:
+                yield UNDEFINED_LINK.report(
+                    f"{owner}: {end} link {name!r} is not defined",
+                    where or joint.source,
+                    path=path,
+                    subject=owner,
+                    hint=_suggest(name, link_names),
+                    data={"end": end, "link": name},
+                )
+        if joint.parent and joint.parent == joint.child:
+            yield JOINT_SELF_LOOP.report(
+                f"{owner}: parent and child are the same link {joint.parent!r}",
+                joint.child_source or joint.source,
+                path=path,
+                subject=owner,
+                hint="a joint connects two different links",
+            )
+        yield from _limits(joint, owner, path)
+        if joint.type.uses_axis and joint.axis == (0.0, 0.0, 0.0):
+            yield ZERO_AXIS.report(
+                f"{owner}: the axis is 0 0 0, so the joint cannot move",
+                joint.source,
+                path=path,
+                subject=owner,
+                hint='give a unit vector, e.g. <axis xyz="0 0 1"/>',
+            )
+        mimic = joint.mimic
+        if mimic is not None and mimic.joint:
+            if mimic.joint not in joint_names:
+                guess = did_you_mean(mimic.joint, joint_names).strip()
+                yield UNDEFINED_MIMIC.report(
+                    f"{owner}: mimics joint {mimic.joint!r}, which is not defined",
+                    mimic.source,
+                    path=path,
+                    subject=owner,
+                    hint=guess or "name an existing joint",
+                )
+            elif mimic.joint == joint.name:
+                yield UNDEFINED_MIMIC.report(
+                    f"{owner}: mimics itself",
+                    mimic.source,
+                    path=path,
+                    subject=owner,
+                    hint="name another joint",
+                )
+
+
+def _limits(joint: Joint, owner: Subject, path: str) -> Iterator[Diagnostic]:
+    limit = joint.limit
+    if limit is None:
+        if joint.type.needs_limit:
+            yield MISSING_LIMIT.report(
+                f"{owner}: a {joint.type.value} joint needs <limit>",
+                joint.source,
+                path=path,
+                subject=owner,
+                hint='write <limit lower=".." upper=".." effort=".." velocity=".."/>',
+            )
+        return
+    if joint.type.needs_limit and limit.lower > limit.upper:
+        yield LIMIT_RANGE.report(
+            f"{owner}: lower limit {limit.lower:g} is above upper limit {limit.upper:g}",
+            limit.source,
+            path=path,
+            subject=owner,
+            hint="swap them, lower <= upper",
+        )
+    for name in ("effort", "velocity"):
+        value = getattr(limit, name)
+        if value < 0:
+            yield NEGATIVE_LIMIT.report(
+                f"{owner}: {name} limit {value:g} is negative",
+                limit.source,
+                path=path,
+                subject=owner,
+                hint=f"{name} is a magnitude, >= 0",
+            )
+
+
+def _tree(analysis: Analysis) -> Iterator[Diagnostic]:
+    robot, topo, path = analysis.robot, analysis.topology, analysis.path
+    if not robot.links:
+        return
+    by_name = analysis.links
+    for name, joints in topo.parents.items():
+        if len(joints) > 1:
+            listed = ", ".join(repr(j.name) for j in joints)
+            yield MULTIPLE_PARENTS.report(
+                f"link {name!r} is the child of {len(joints)} joints: {listed}",
+                joints[1].child_source or joints[1].source,
+                path=path,
+                subject=Subject(Kind.LINK, name),
+                hint="a link has one parent joint; in a URDF tree loops are not allowed",
+            )
+    # A joint with a missing or misspelt end leaves its child as an extra root: report the
+    # joint only, not the consequence.
+    broken_joint = any(
+        not j.parent or not j.child or j.parent not in by_name or j.child not in by_name
+        for j in robot.joints
+    )
+    if len(topo.roots) > 1 and not broken_joint:
+        listed = ", ".join(repr(r) for r in topo.roots)
+        yield MULTIPLE_ROOTS.report(
+            f"{_robot(robot)} has {len(topo.roots)} root links: {listed}",
+            by_name[topo.roots[1]].source,
+            path=path,
+            subject=_the_robot(robot),
+            hint="connect every link but one to a parent with a joint",
+            data={"roots": list(topo.roots)},
+        )
+    if not topo.roots:
+        yield NO_ROOT.report(
+            f"{_robot(robot)} has no root link: every link is some joint's child",
+            robot.source,
+            path=path,
+            subject=_the_robot(robot),
+            hint="one link must be no joint's child; look for a joint loop",
+        )
+    in_loop: set[str] = set()
+    for loop in analysis.loops:
+        links = [j.parent for j in loop]
+        in_loop.update(links)
+        first = min(loop, key=lambda j: j.source.line if j.source else 0)
+        yield CYCLE.report(
+            f"joints {', '.join(repr(j.name) for j in loop)} form a loop: "
+            + " -> ".join([*links, links[0]]),
+            first.source,
+            path=path,
+            subject=Subject(Kind.JOINT, first.name),
+            hint="URDF is a tree; break the loop or model it with a mimic joint",
+            data={"joints": [j.name for j in loop]},
+        )
+    if len(topo.roots) <= 1:
+        for link in robot.links:
+            if link.name not in topo.reachable and link.name not in in_loop:
+                yield UNREACHABLE_LINK.report(
+                    f"link {link.name!r} is not connected to the root",
+                    link.source,
+                    path=path,
+                    subject=Subject(Kind.LINK, link.name),
+                    hint="it hangs below a joint loop",
+                )
