@@ -35,13 +35,14 @@ def rules(name: str | None, fmt: str) -> None:
       fishbot rules --format json
     """
     from ..diagnostics import did_you_mean
+    from ..errors import UnknownNameError
     from ..rules import Family, Rule, all_rules, get
 
     families = {f.value for f in Family}
     if name is not None and name not in families:
         try:
             rule = get(name)
-        except KeyError:
+        except UnknownNameError:
             known = [r.id for r in all_rules()] + sorted(families)
             click.echo(
                 f"fishbot rules: error: no rule or family {name!r} "
