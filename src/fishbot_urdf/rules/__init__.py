@@ -10,6 +10,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 from enum import Enum
+from functools import cache
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
 from ..diagnostics import Diagnostic, Severity, Subject, diagnostic
@@ -153,13 +155,10 @@ def ids() -> frozenset[str]:
     return frozenset(_registry())
 
 
-_REGISTRY: dict[str, Rule] = {}
-
-
-def _registry() -> dict[str, Rule]:
-    if not _REGISTRY:
-        _REGISTRY.update(_collect())
-    return _REGISTRY
+@cache
+def _registry() -> Mapping[str, Rule]:
+    """Every rule by id, collected once (read-only, so threads may share it)."""
+    return MappingProxyType(_collect())
 
 
 def _collect() -> dict[str, Rule]:
