@@ -9,7 +9,7 @@ import sys
 from pathlib import Path
 
 from click.testing import CliRunner
-from conftest import DATA, FISHBOT, run_check_urdf
+from conftest import DATA, FISHBOT, GoldenInput, check_urdf
 
 from fishbot_urdf.cli import cli
 
@@ -136,7 +136,8 @@ def test_many_files_worst_status_wins() -> None:
     status, out, err = run("check", str(FIRST), bad, "missing.urdf")
     assert status == 2
     # The loop misses the root, so the tree is printed as check_urdf prints it.
-    assert out == FIRST_TREE + run_check_urdf(Path(bad)).stdout.decode()
+    cycle = check_urdf(GoldenInput.from_id("data/invalid/cycle.urdf"))
+    assert out == FIRST_TREE + cycle.stdout.decode()
     assert "[cycle]" in err
     assert "missing.urdf: error: no such file [io]" in err
 
