@@ -1,0 +1,157 @@
+"""Read what urdfdom reads: the XML that check_urdf accepts and lxml refuses, recovered.
+
+check_urdf (urdfdom 3, TinyXML 2.6.2) accepts files no strict XML parser does. Each such
+file is read here as TinyXML reads it (``_tinyxml``), written out as well-formed XML
+(``_rewrite``) and given one warning per rule below; everything TinyXML refuses stays refused.
+Measured with check_urdf 3.0.1, lxml 6.1 (libxml2 2.14), Python's expat and xacro 2.1.1:
+
+============================================  ==========  ====  =====  =====  =============
+case                                          check_urdf  lxml  expat  xacro  rule
+============================================  ==========  ====  =====  =====  =============
+``<?xml version="0.0"?>`` (or 2.0, "abc")     ok          no    ok     ok     xml-declaration
+declaration without version, unquoted, junk   ok          no    no     no     xml-declaration
+declaration after a blank line, a comment,    ok          no    no     no     xml-declaration
+  spaces or a BOM+newline; twice; inside
+undeclared prefix ``<drake:x>``, ``drake:a=``  ok          no    no     no     xml-undeclared-prefix
+  (on ``<robot>`` itself: check_urdf refuses)
+``xmlns="..."`` on ``<robot>``                ok          ok*   ok*    ok*    xml-default-namespace
+ISO-8859-1 declared, non-ASCII bytes          ok**        ok    ok     no     xml-encoding
+ISO-8859-1 bytes undeclared / bad UTF-8       ok***       no    no     no     xml-encoding
+declared ISO-8859-1, file is UTF-8            ok          ok*   ok*    ok     xml-encoding
+unknown encoding name, "latin-1", UTF-16      ok          no    no     ok     xml-encoding
+  label on an 8-bit file
+``&#228;`` with no UTF-8 declaration          ok**        ok*   ok*    ok*    xml-encoding
+UTF-16/32 file (with or without BOM)          refused     ok    ok     no     (refused)
+stray ``&``, ``&foo;``, ``&amp`` (no ``;``)   ok****      no    no     no     xml-escape
+``<`` in an attribute value, ``]]>`` in text  ok          no    no     no     xml-escape
+``&#0;``, ``&#1;``, ``&#x110000;``            ok          no    no     no     xml-escape
+unquoted value ``a=b``; ``a="1"b="2"``        ok          no    no     no     xml-attribute
+duplicate attribute                           refused     no    no     no     (refused)
+``--`` inside a comment, ``--->``             ok          no    no     no     xml-comment
+control character, form feed as space         ok          no    no     no     xml-control-char
+``<1a/>``, ``<!foo>``, DOCTYPE inside         ok          no    no     no     xml-markup
+  an element, ``<a:b:c/>``
+text, an element or a second ``<robot>``      ok          no    no     no     xml-outside-root
+  after the root; an element before it;
+  a NUL byte after the root
+mismatched or missing end tag, unclosed       refused     no    no     no     (refused)
+  CDATA or comment inside an element
+DOCTYPE with an internal subset               refused     ok    ok     ok     (refused)
+============================================  ==========  ====  =====  =====  =============
+
+``*`` reads it otherwise than urdfdom (no ``<robot>`` in a namespace; garbled names; an
+undefined entity read as nothing). ``**`` check_urdf prints the raw bytes, which are not UTF-8.
+``***`` unless a byte that starts a UTF-8 sequence swallows the quote or '<' after it: then
+refused. ``****`` urdfdom drops the ``&`` (``&foo;`` reads ``foo;``); after a DOCTYPE lxml
+reads an undefined entity as nothing. urdfdom 4 (TinyXML2, ROS 2 Jazzy) differs, from its
+source: it refuses unquoted values and a declaration after anything but another one, and
+keeps ``&foo;`` as written.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+from ._messages import Recovery, summary
+from ._nodes import Refused, TooDeep
+from ._rewrite import UNDECLARED, rewrite
+from ._strict import root
+from ._tinyxml import read
+
+__all__ = [
+    "RULES",
+    "UNDECLARED",
+    "Recovered",
+    "Recovery",
+    "Refused",
+    "TooDeep",
+    "needed",
+    "recover",
+]
+
+# Every rule a recovery reports, with a one-line summary (all warnings).
+RULES: Mapping[str, str] = {
+    "xml-declaration": "an XML declaration strict parsers refuse, which urdfdom ignores",
+    "xml-undeclared-prefix": "a namespace prefix used without an xmlns declaration",
+    "xml-default-namespace": 'xmlns="..." puts the URDF elements in a namespace',
+    "xml-encoding": "bytes that are not UTF-8, or an encoding declaration that does not fit",
+    "xml-escape": "'&', '<' or ']]>' not escaped, or a reference to a forbidden character",
+    "xml-attribute": "an attribute without quotes, or not separated from the one before",
+    "xml-comment": "'--' inside a comment",
+    "xml-control-char": "a control character, or a form feed or vertical tab as white space",
+    "xml-markup": "markup that is not XML (urdfdom skips it) or a name XML cannot hold",
+    "xml-outside-root": "content outside the <robot> element, which urdfdom ignores",
+}
+
+
+@dataclass(frozen=True, slots=True)
+class Recovered:
+    """A file as urdfdom reads it, as well-formed XML.
+
+    Attributes:
+        data: The robot element as UTF-8 XML.
+        starts: Byte offset in the original file of each element of ``data``, in order.
+        tags: Element names of ``data`` (``prefix:local``) written otherwise in the file,
+            with the bytes that start them there (``<`` and the name).
+        recoveries: One per rule applied, in the order of the file.
+    """
+
+    data: bytes
+    starts: tuple[int, ...]
+    tags: Mapping[str, bytes]
+    recoveries: tuple[Recovery, ...]
+
+
+def recover(data: bytes) -> Recovered:
+    """Read ``data`` as urdfdom (TinyXML) does.
+
+    Raises:
+        Refused: urdfdom refuses the file (TooDeep: nested deeper than lxml reads).
+    """
+    document = read(data)
+    robot = root(document)
+    rewritten = rewrite(document, robot)
+    return Recovered(
+        rewritten.data, rewritten.starts, rewritten.tags, summary(document.notes, data)
+    )
+
+
+_BOM = b"\xef\xbb\xbf"
+_DECLARATION_START = re.compile(rb"[ \t\r\n]*<\?xml([ \t\r\n][^>]*)?>")
+_ENCODING = re.compile(rb"encoding[ \t\r\n]*=[ \t\r\n]*[\"']?([^\"'?\s]*)", re.IGNORECASE)
+_ANY_DECLARATION = re.compile(rb"<\?xml[ \t\r\n][^>]*encoding", re.IGNORECASE)
+_PI = re.compile(rb"<\?.*?\?>", re.DOTALL)
+_CHARREF = re.compile(rb"&#(?:x([0-9a-fA-F]+)|([0-9]+));")
+_DEFAULT_NAMESPACE = re.compile(rb"xmlns[ \t\r\n]*=[ \t\r\n]*(?:\"[^\"]|'[^'])")
+
+
+def needed(data: bytes, prolog: int | None = None) -> bool:
+    """True when lxml may read well-formed ``data`` otherwise than urdfdom: a NUL byte (UTF-16
+    too), a DOCTYPE, a default namespace, a processing instruction holding '>', bytes that are
+    not ASCII in a file urdfdom reads byte by byte, or a reference above 127 there.
+
+    ``prolog``: where the root element's start tag ends, if known (a DOCTYPE comes before).
+    """
+    if b"\0" in data or data.find(b"<!DOCTYPE", 0, prolog) >= 0:
+        return True
+    if _DEFAULT_NAMESPACE.search(data) or any(b">" in m[0][2:-2] for m in _PI.finditer(data)):
+        return True
+    if data.startswith(_BOM):
+        return False  # UTF-8 to urdfdom as to lxml
+    first = _DECLARATION_START.match(data)
+    label = None if first is None else _ENCODING.search(first[0])
+    if first is not None and (label is None or label[1].lower().startswith((b"utf-8", b"utf8"))):
+        return False  # UTF-8 to urdfdom as to lxml
+    wide = not data.isascii()
+    if first is not None:  # another encoding: urdfdom reads byte by byte
+        return wide or _high_reference(data)
+    # No declaration first: byte by byte until one (which may name an encoding) comes.
+    return _high_reference(data) or (wide and _ANY_DECLARATION.search(data) is not None)
+
+
+def _high_reference(data: bytes) -> bool:
+    return b"&#" in data and any(
+        int(m[1], 16) > 127 if m[1] else int(m[2]) > 127 for m in _CHARREF.finditer(data)
+    )
