@@ -42,7 +42,7 @@ CASES: dict[str, tuple[bytes, str]] = {
     ),
     "internal_subset": (
         b'<!DOCTYPE robot [<!ELEMENT robot ANY>]>\n<robot name="r"><link name="a"/></robot>',
-        "urdfdom cannot read this file: it stops reading at this text outside any element",
+        "urdfdom cannot read this file: its DOCTYPE ends at the first '>', inside the [...] part",
     ),
 }
 

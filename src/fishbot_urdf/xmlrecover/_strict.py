@@ -67,8 +67,15 @@ def root(document: Document) -> Element:
     found = next((n for n in document.nodes if isinstance(n, Element) and n.name == b"robot"), None)
     if found is None:
         if document.stop is not None:
+            last = document.nodes[-1]
+            doctype = isinstance(last, Other) and document.data.startswith(b"<!DOCTYPE", last.start)
             raise Refused(
-                "it stops reading at this text outside any element, before any <robot>",
+                (
+                    "its DOCTYPE ends at the first '>', inside the [...] part, and "
+                    if doctype
+                    else ""
+                )
+                + "it stops reading at this text outside any element, before any <robot>",
                 document.stop,
             )
         raise Refused("there is no top-level <robot> element")
