@@ -264,4 +264,8 @@ CASES |= {
     "pi_xml_prefixed_target": b"<?xmlfoo bar?>\n" + BODY,
     "declaration_version_1_5": with_declaration(b'<?xml version="1.5"?>'),
     "after_root_unterminated_tag": BODY + b'<robot name="x" \n',
+    "bom_inside_tag": with_declaration(DECLARATION).replace(
+        b'<link name="b"', b'<link \xef\xbb\xbfname="b"'
+    ),
+    "form_feed_after_root": BODY + b"\x0c\n",
 }

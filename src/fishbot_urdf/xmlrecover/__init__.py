@@ -129,12 +129,13 @@ _DEFAULT_NAMESPACE = re.compile(rb"xmlns[ \t\r\n]*=[ \t\r\n]*(?:\"[^\"]|'[^'])")
 
 def needed(data: bytes, prolog: int | None = None) -> bool:
     """True when lxml may read well-formed ``data`` otherwise than urdfdom: a NUL byte (UTF-16
-    too), a DOCTYPE, a default namespace, a processing instruction holding '>', bytes that are
-    not ASCII in a file urdfdom reads byte by byte, or a reference above 127 there.
+    too), a DOCTYPE, a byte-order mark after the start (white space to urdfdom), a default
+    namespace, a processing instruction holding '>', bytes that are not ASCII in a file urdfdom
+    reads byte by byte, or a reference above 127 there.
 
     ``prolog``: where the root element's start tag ends, if known (a DOCTYPE comes before).
     """
-    if b"\0" in data or data.find(b"<!DOCTYPE", 0, prolog) >= 0:
+    if b"\0" in data or data.find(b"<!DOCTYPE", 0, prolog) >= 0 or data.find(_BOM, 1) >= 0:
         return True
     if _DEFAULT_NAMESPACE.search(data) or any(b">" in m[0][2:-2] for m in _PI.finditer(data)):
         return True

@@ -134,13 +134,14 @@ def _describe(first: Note, group: list[Note], data: bytes) -> tuple[str, str]:
             f"{_STRICT}: XML forbids '--' in comments; remove the extra dashes",
         )
     if rule == "xml-control-char":
-        what = {
-            "control": f"control character 0x{data[at]:02X} (urdfdom keeps it)",
-            "space": f"{'form feed' if data[at] == 12 else 'vertical tab'} used as white space "
-            "(urdfdom takes it for a space)",
-            "noncharacter": f"U+{'FFFE' if data[at + 2] == 0xBE else 'FFFF'}, not a character "
-            "(urdfdom skips it as white space or keeps it)",
-        }[kind]
+        if kind == "control":
+            what = f"control character 0x{data[at]:02X} (urdfdom keeps it)"
+        elif kind == "space":
+            name = "form feed" if data[at] == 12 else "vertical tab"
+            what = f"{name} used as white space (urdfdom takes it for a space)"
+        else:
+            character = "FFFE" if data[at + 2] == 0xBE else "FFFF"
+            what = f"U+{character}, not a character (urdfdom skips it as white space or keeps it)"
         return (what, f"{_STRICT}: XML 1.0 forbids it; delete it")
     if rule == "xml-markup":
         if kind == "name":

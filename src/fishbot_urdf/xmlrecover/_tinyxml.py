@@ -81,7 +81,7 @@ class _Reader:
             raise Refused("the document is empty", 0)
         if data.startswith(_BOM):
             self.mode = UTF8
-        i = self.skip(0, top=True)
+        i = self.skip(0)
         nodes: list[Node] = []
         stop = None
         while i is not None and self.at(i):
@@ -94,13 +94,13 @@ class _Reader:
                 label = node.encoding.lower()
                 utf8 = not label or label.startswith((b"utf-8", b"utf8"))
                 self.mode = UTF8 if utf8 else LEGACY
-            i = None if i is None else self.skip(i, top=True)
+            i = None if i is None else self.skip(i)
         if not nodes:
             raise Refused("there is no XML element before the first text", stop or 0)
         return Document(data, nodes, self.mode, self.notes, stop, nul)
 
     # -- TiXmlBase::SkipWhiteSpace --------------------------------------------------------------
-    def skip(self, i: int, *, top: bool = False) -> int | None:
+    def skip(self, i: int) -> int | None:
         if i >= self.end:
             return None
         data = self.data
@@ -108,7 +108,7 @@ class _Reader:
             if self.mode == UTF8 and data[i] == 0xEF:
                 three = data[i : i + 3]
                 if three == _BOM:
-                    if i and top:
+                    if i:  # (lxml reads it as a character: in a tag, part of a name)
                         self.note("xml-encoding", i, "bom")
                     i += 3
                     continue
