@@ -331,20 +331,7 @@ def _meaning(raw: bytes) -> bytes:
     return _CONTROL.sub("\ufffd", text).encode("utf-8")
 
 
-# Read by lxml as a tree that parse/_base.xml_text cannot copy (an element name that is not
-# ASCII inside <link>): a fault of the reader's copying, not of this recovery.
-_XML_TEXT = {"element_name_nonascii", "invalid_utf8_tag"}
-
-
-@pytest.mark.parametrize(
-    "name",
-    [
-        pytest.param(n, marks=pytest.mark.xfail(strict=True, reason="xml_text, non-ASCII tag"))
-        if n in _XML_TEXT
-        else n
-        for n in CASES
-    ],
-)
+@pytest.mark.parametrize("name", list(CASES))
 def test_survey_case_checks_like_check_urdf(name: str, tmp_path: Path) -> None:
     path = tmp_path / f"{name}.urdf"
     path.write_bytes(CASES[name])
