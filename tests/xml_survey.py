@@ -268,4 +268,7 @@ CASES |= {
         b'<link name="b"', b'<link \xef\xbb\xbfname="b"'
     ),
     "form_feed_after_root": BODY + b"\x0c\n",
+    "form_feed_first": b"\x0c" + BODY,
+    "cdata_unclosed_after_root": BODY + b"<![CDATA[\n",
+    "cdata_after_root": BODY + b"<![CDATA[ x ]]>\n",
 }

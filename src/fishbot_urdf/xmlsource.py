@@ -119,7 +119,7 @@ def read_xml(
 def _check_start(data: bytes, path: str) -> None:
     if not data.strip():
         raise XmlSyntaxError('the file is empty (a URDF starts with <robot name="...">)', path=path)
-    if not data.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"<") and not data.startswith(
+    if not data.lstrip(b"\xef\xbb\xbf \t\r\n\v\f").startswith(b"<") and not data.startswith(
         (b"\xff\xfe", b"\xfe\xff")  # UTF-16 byte order marks
     ):
         raise XmlSyntaxError(

@@ -163,7 +163,7 @@ def _describe(first: Note, group: list[Note], data: bytes) -> tuple[str, str]:
         "element": "a second <robot>" if second else f"{_snippet(data, at)} outside <robot>",
         "text": "text after the <robot> element",
         "comment": "unclosed comment after the <robot> element",
-        "markup": f"{_snippet(data, at)} after the <robot> element",
+        "markup": f"{_snippet(data, at)} outside the <robot> element",
     }[kind]
     return (
         f"{what} (urdfdom reads the first top-level <robot> only and ignores the rest)",

@@ -35,6 +35,7 @@ _TEXT_ESCAPES = {"&": "&amp;", "<": "&lt;", ">": "&gt;", "\r": "&#13;"}
 _ESCAPE_ATTRIBUTE = re.compile('[&<>"\t\n\r]')
 _ESCAPE_TEXT = re.compile("[&<>\r]")
 _FALLBACK = {0xDC00 + b: b for b in range(0x80, 0x100)}  # surrogateescape -> ISO-8859-1
+_WIDE = re.compile(rb"[\x80-\xff]")
 
 
 @dataclass(frozen=True, slots=True)
@@ -67,6 +68,7 @@ class _Writer:
         self.out: list[bytes] = []
         self.starts: list[int] = []
         self.tags: dict[str, bytes] = {}
+        self.plain: set[str] = set()  # names known to be valid without a prefix
 
     def note(self, rule: str, offset: int, detail: str) -> None:
         self.notes.append(Note(rule, offset, detail))
@@ -140,7 +142,8 @@ class _Writer:
         """``name`` as XML with namespaces can hold it, declaring a prefix where needed."""
         prefix, colon, local = name.partition(":")
         if not colon:
-            if _NCNAME.fullmatch(name):
+            if name in self.plain or _NCNAME.fullmatch(name):
+                self.plain.add(name)
                 return name
         elif _NCNAME.fullmatch(prefix) and _NCNAME.fullmatch(local) and prefix != "xmlns":
             if prefix == "xml" or prefix in scope:
@@ -170,7 +173,8 @@ def _decoder(document: Document) -> Callable[[bytes], str]:
         bad = -1
     except UnicodeDecodeError as error:
         bad = error.start
-    wide = next((i for i, b in enumerate(data) if b > 127), -1)
+    first_wide = _WIDE.search(data)
+    wide = -1 if first_wide is None else first_wide.start()
     if label and not _lxml_knows(label):
         start = next(n.start for n in document.nodes if isinstance(n, Other) and n.declaration)
         document.notes.append(Note("xml-encoding", start, f"label:{label}"))

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import re
 
-from ._nodes import UNKNOWN, UTF8, Comment, Document, Element, Note, Other, Refused
+from ._nodes import UNKNOWN, UTF8, Comment, Document, Element, Note, Other, Refused, Text
 
 # What a strict parser accepts where TinyXML found a reference (no DTD: five names only).
 _REFERENCE = re.compile(rb"&(?:(amp|lt|gt|quot|apos)|#([0-9]+)|#x([0-9a-fA-F]+));")
@@ -90,6 +90,8 @@ def root(document: Document) -> Element:
         elif isinstance(node, Comment):
             if not node.closed:
                 notes.append(Note("xml-outside-root", node.start, "comment"))
+        elif isinstance(node, Text):  # CDATA, which XML allows inside an element only
+            notes.append(Note("xml-outside-root", node.start, "markup"))
         elif isinstance(node, Other):
             written = data[node.start : node.end]
             if node.declaration and _XML_TARGET.match(written):

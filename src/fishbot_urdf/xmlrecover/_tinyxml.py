@@ -12,6 +12,8 @@ converts bytes: a name holds the bytes written.
 
 from __future__ import annotations
 
+import re
+
 from . import _strict as strict
 from ._nodes import (
     LEGACY,
@@ -48,6 +50,7 @@ _ENTITIES = (
     (b"&apos;", b"'"),
 )
 _HEX = frozenset(b"0123456789abcdefABCDEF")
+_PLAIN_SPACE = re.compile(rb"[ \t\n\r]*")  # white space to XML too (the common run)
 _MAX_DEPTH = 260  # deeper than lxml's 256: such a file is refused anyway
 
 
@@ -104,6 +107,7 @@ class _Reader:
         if i >= self.end:
             return None
         data = self.data
+        i = _PLAIN_SPACE.match(data, i).end()  # type: ignore[union-attr]  # (always matches)
         while i < self.end:
             if self.mode == UTF8 and data[i] == 0xEF:
                 three = data[i : i + 3]
@@ -138,8 +142,8 @@ class _Reader:
             return self.comment(i)
         if self.equal(i, b"<![CDATA["):
             close = self.data.find(b"]]>", i + 9)
-            if close < 0:
-                raise Refused("a CDATA section is not closed", i)
+            if close < 0:  # TinyXML gives up (an error inside an element, not at the top)
+                return Text(b"", i), None
             strict.control(self.data, i + 9, close, self.notes)
             return Text(self.data[i + 9 : close], i), close + 3
         close = self.data.find(b">", i + 1)  # TiXmlUnknown: everything up to the first '>'
@@ -293,6 +297,13 @@ class _Reader:
 
     def text(self, p: int | None, end_tag: bytes, *, trim: bool) -> tuple[bytes, int] | None:
         """TiXmlBase::ReadText (white space condensed when ``trim``); None where it fails."""
+        if not trim and p is not None and len(end_tag) == 1:
+            # The usual value: ASCII up to the quote, no reference. (A UTF-8 lead byte could
+            # swallow the quote, and a reference is replaced: those go the long way.)
+            close = self.data.find(end_tag, p)
+            plain = self.data[p:close]
+            if close >= 0 and plain.isascii() and b"&" not in plain:
+                return plain, close + 1
         out = bytearray()
         if trim:
             p = self.skip(p) if p is not None else None
