@@ -3,49 +3,48 @@
 check_urdf (urdfdom 3, TinyXML 2.6.2) accepts files no strict XML parser does. Each such
 file is read here as TinyXML reads it (``_tinyxml``), written out as well-formed XML
 (``_rewrite``) and given one warning per rule below; everything TinyXML refuses stays refused.
-Measured with check_urdf 3.0.1, lxml 6.1 (libxml2 2.14), Python's expat and xacro 2.1.1:
+Measured with check_urdf 3.0.1, lxml 6.1 (libxml2 2.14), xacro 2.1.1 (expat) and yourdfpy
+0.0.60 (lxml, then lxml's recover mode): ok reads it as urdfdom does, no refuses it, ``~``
+reads something else without an error, crash raises an exception, - not measured.
 
-============================================  ==========  ====  =====  =====  =============
-case                                          check_urdf  lxml  expat  xacro  rule
-============================================  ==========  ====  =====  =====  =============
-``<?xml version="0.0"?>`` (or 2.0, "abc")     ok          no    ok     ok     xml-declaration
-declaration without version, unquoted, junk   ok          no    no     no     xml-declaration
-declaration after a blank line, a comment,    ok          no    no     no     xml-declaration
-  spaces or a BOM+newline; twice; inside
-undeclared prefix ``<drake:x>``, ``drake:a=``  ok          no    no     no     xml-undeclared-prefix
-  (on ``<robot>`` itself: check_urdf refuses)
-``xmlns="..."`` on ``<robot>``                ok          ok*   ok*    ok*    xml-default-namespace
-ISO-8859-1 declared, non-ASCII bytes          ok**        ok    ok     no     xml-encoding
-ISO-8859-1 bytes undeclared / bad UTF-8       ok***       no    no     no     xml-encoding
-declared ISO-8859-1, file is UTF-8            ok          ok*   ok*    ok     xml-encoding
-unknown encoding name, "latin-1", UTF-16      ok          no    no     ok     xml-encoding
-  label on an 8-bit file
-``&#228;`` with no UTF-8 declaration          ok**        ok*   ok*    ok*    xml-encoding
-UTF-16/32 file (with or without BOM)          refused     ok    ok     no     (refused)
-stray ``&``, ``&foo;``, ``&amp`` (no ``;``)   ok****      no    no     no     xml-escape
-``<`` in an attribute value, ``]]>`` in text  ok          no    no     no     xml-escape
-``&#0;``, ``&#1;``, ``&#x110000;``            ok          no    no     no     xml-escape
-unquoted value ``a=b``; ``a="1"b="2"``        ok          no    no     no     xml-attribute
-duplicate attribute                           refused     no    no     no     (refused)
-``--`` inside a comment, ``--->``             ok          no    no     no     xml-comment
-control character, form feed as space         ok          no    no     no     xml-control-char
-``<1a/>``, ``<!foo>``, DOCTYPE inside         ok          no    no     no     xml-markup
-  an element, ``<a:b:c/>``
-text, an element or a second ``<robot>``      ok          no    no     no     xml-outside-root
-  after the root; an element before it;
-  a NUL byte after the root
-mismatched or missing end tag, unclosed       refused     no    no     no     (refused)
-  CDATA or comment inside an element
-DOCTYPE with an internal subset               refused     ok    ok     ok     (refused)
-============================================  ==========  ====  =====  =====  =============
+===========================================  ===  ====  =====  ========  =====================
+case                                         cu   lxml  xacro  yourdfpy  rule
+===========================================  ===  ====  =====  ========  =====================
+``<?xml version="0.0"?>`` (2.0, "abc")       ok   no    ok     ok        xml-declaration
+declaration without version, unquoted, junk  ok   no    no     ok        xml-declaration
+declaration after a blank line, a comment    ok   no    no     ok        xml-declaration
+  or a BOM and a newline; twice; inside
+undeclared prefix ``<drake:x>``, ``d:a=``    ok   no    no     ok        xml-undeclared-prefix
+``xmlns="..."`` on ``<robot>``               ok   ~     ok     ~         xml-default-namespace
+ISO-8859-1 declared, non-ASCII bytes         ok*  ok    no     ok        xml-encoding
+ISO-8859-1 bytes undeclared, bad UTF-8       ok*  no    no     ok        xml-encoding
+declared ISO-8859-1, file is UTF-8           ok   ~     ok     ~         xml-encoding
+name lxml does not know ("latin-1")          ok   no    ok     ok        xml-encoding
+UTF-16 declared, the file 8-bit              ok   no    ok     crash     xml-encoding
+``&#228;`` and no UTF-8 declaration          ok*  ~     -      -         xml-encoding
+stray ``&``, ``&foo;``, ``&amp`` (no ``;``)  ok   no    no     ~         xml-escape
+``<`` in a value, ``]]>`` in text            ok   no    no     ok        xml-escape
+``&#0;``, ``&#1;``, ``&#x110000;``           ok   no    no     crash     xml-escape
+``&foo;`` after a DOCTYPE                    ok   ~     ~      ~         xml-escape
+unquoted ``a=b``; ``a="1"b="2"``             ok   no    no     crash     xml-attribute
+``--`` inside a comment, ``--->``            ok   no    no     ~         xml-comment
+control character, form feed as a space      ok   no    no     crash     xml-control-char
+``<1a/>``, ``<!x>``, ``<a:b:c/>``, DOCTYPE   ok   no    no     ok        xml-markup
+  inside an element
+text, an element, a second ``<robot>`` or    ok   no    no     ok        xml-outside-root
+  a NUL byte after the root (an element
+  before it: yourdfpy crashes)
+UTF-16 file with a BOM (without: xacro ok)   no   ok    no     ok        (refused)
+DOCTYPE with an internal subset              no   ok    ok     ok        (refused)
+duplicate attribute, mismatched end tag      no   no    no     ok        (refused)
+undeclared prefix on ``<robot>``             no   no    no     crash     (refused)
+===========================================  ===  ====  =====  ========  =====================
 
-``*`` reads it otherwise than urdfdom (no ``<robot>`` in a namespace; garbled names; an
-undefined entity read as nothing). ``**`` check_urdf prints the raw bytes, which are not UTF-8.
-``***`` unless a byte that starts a UTF-8 sequence swallows the quote or '<' after it: then
-refused. ``****`` urdfdom drops the ``&`` (``&foo;`` reads ``foo;``); after a DOCTYPE lxml
-reads an undefined entity as nothing. urdfdom 4 (TinyXML2, ROS 2 Jazzy) differs, from its
-source: it refuses unquoted values and a declaration after anything but another one, and
-keeps ``&foo;`` as written.
+``ok*``: check_urdf prints the raw bytes, which are not UTF-8 (here: the UTF-8 of what they
+mean). urdfdom drops the ``&`` of ``&foo;`` (reading ``foo;``); a byte that starts a UTF-8
+sequence after a UTF-8 declaration swallows the bytes after it (a closing quote: refused).
+urdfdom 4 (TinyXML2, ROS 2 Jazzy) differs, from its source: it refuses unquoted values and a
+declaration after anything but another one, and keeps ``&foo;`` as written.
 """
 
 from __future__ import annotations
