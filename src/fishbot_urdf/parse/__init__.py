@@ -17,7 +17,7 @@ from ..diagnostics import Diagnostic, Kind, Subject
 from ..errors import RobotError
 from ..model import Robot
 from ..rules.xacro import XACRO_WARNING
-from ..xmlsource import STRING_PATH, Locator, parse_xml, read_bytes
+from ..xmlsource import STRING_PATH, read_bytes, read_xml
 from ._fast import fast_robot
 from ._reader import Reader
 from .values import to_double
@@ -71,7 +71,8 @@ def read(
 
     Raises:
         InputError: The file cannot be read.
-        XmlSyntaxError: The file is not well-formed XML.
+        XmlSyntaxError: The file is not XML that urdfdom reads (see
+            :func:`fishbot_urdf.xmlsource.read_xml`).
         XacroError: The xacro file cannot be expanded.
         PackageNotFoundError: The xacro file names a package that is not found.
     """
@@ -91,8 +92,9 @@ def read(
         name = path or str(source)
         data = read_bytes(source)
         files = (str(source),)
-    root = parse_xml(data, name)
-    locator = Locator(data, name, origins)
+    # As urdfdom reads it: a file it reads though strict XML does not gives xml-* warnings.
+    document = read_xml(data, name, origins)
+    root, locator, notes = document.root, document.locator, notes + document.recoveries
     with paused_gc():
         robot = fast_robot(root, locator, data)
         if robot is not None:

@@ -17,7 +17,8 @@ Owner = Subject | str  # what a message names: a link, a joint, ... (or just "li
 def xml_text(element: etree._Element) -> str:
     """An element URDF does not define, as compact XML text (layout white space dropped, so
     that a robot written out with another indentation reads back equal)."""
-    copy = etree.fromstring(etree.tostring(element, with_tail=False))
+    # As text, not bytes: ASCII bytes would write a name like <grün> as a character reference.
+    copy = etree.fromstring(etree.tostring(element, encoding="unicode", with_tail=False))
     for node in copy.iter():
         if node.text is not None and not node.text.strip():
             node.text = None

@@ -162,11 +162,11 @@ def _registry() -> Mapping[str, Rule]:
 
 
 def _collect() -> dict[str, Rule]:
-    from . import physics, reading, setup, structure, xacro
+    from . import physics, reading, setup, structure, xacro, xml
 
     found: dict[str, Rule] = {}
     order = list(Family)
-    modules = (reading, structure, physics, xacro, setup)
+    modules = (xml, reading, structure, physics, xacro, setup)
     rules = [r for module in modules for r in vars(module).values() if isinstance(r, Rule)]
     for rule in sorted(rules, key=lambda r: (order.index(r.family), r.id)):
         if rule.id in found and found[rule.id] is not rule:
