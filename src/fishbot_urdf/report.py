@@ -31,6 +31,7 @@ class FileReport:
         links: How many links it has, when one was read.
         joints: How many joints it has, when one was read.
         config: The configuration file that applied, if any.
+        skipped: Why the file was not checked as a robot (``--skip-includes``), if it was not.
     """
 
     path: str
@@ -42,6 +43,7 @@ class FileReport:
     links: int | None = None
     joints: int | None = None
     config: str | None = None
+    skipped: str | None = None
 
 
 def json_report(files: Sequence[FileReport]) -> dict[str, Any]:
@@ -58,6 +60,7 @@ def json_report(files: Sequence[FileReport]) -> dict[str, Any]:
                 "links": f.links,
                 "joints": f.joints,
                 "config": f.config,
+                "skipped": f.skipped,
                 "diagnostics": [d.to_dict() for d in f.diagnostics],
                 "suppressed": {
                     "count": len(f.suppressed),
