@@ -429,6 +429,11 @@ def test_a_wrong_option_is_a_usage_error(arm: Path) -> None:
     }
     for args, message in cases.items():
         assert run(*args, "arm.urdf") == (2, "", f"{USAGE}Error: {message}\n"), args
+    assert run("--isolated", "--config", "a.toml", "arm.urdf") == (
+        2,
+        "",
+        f"{USAGE}Error: --config and --isolated cannot be used together\n",
+    )
     assert run("x:=1") == (
         2,
         "",

@@ -251,6 +251,7 @@ def check(
       fishbot check --config ci/fishbot.toml urdf/*.urdf
       fishbot check --format sarif -o fishbot.sarif urdf/*.urdf
       fishbot check --format github robot.urdf.xacro
+      fishbot check -q --skip-includes $(git ls-files '*.urdf' '*.xacro')
       xacro robot.urdf.xacro | fishbot check -
     """
     args = xacro_args([f for f in files if ":=" in f])
@@ -260,6 +261,8 @@ def check(
         raise click.UsageError("Missing argument 'FILE...'.")
     if not names:
         raise click.UsageError("no FILE to check (name:=value arguments go with a .xacro file)")
+    if isolated and config_file is not None:
+        raise click.UsageError("--config and --isolated cannot be used together")
     options = _Options(
         select=tuple(r for group in select for r in group) if select else None,
         extend_select=tuple(r for group in extend_select for r in group),
