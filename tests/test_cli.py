@@ -84,7 +84,7 @@ def test_bad_option_is_exit_2() -> None:
 def test_no_file_is_exit_2() -> None:
     status, _, err = run("check")
     assert status == 2
-    assert "Missing argument 'FILES...'" in err
+    assert "Missing argument 'FILE...'" in err
 
 
 def test_check_a_xacro_file_points_at_the_xacro_source(tmp_path: Path) -> None:
@@ -158,6 +158,7 @@ def test_json_report() -> None:
         "links": 2,
         "joints": 1,
         "config": None,
+        "skipped": None,
         "diagnostics": [],
         "suppressed": {"count": 0, "rules": {}},
     }

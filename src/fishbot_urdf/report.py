@@ -9,12 +9,18 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
+from urllib.parse import quote
 
-from .diagnostics import Diagnostic, Severity
+from .diagnostics import Diagnostic, Severity, shown_path
 
 __all__ = ["FileReport", "github_annotations", "json_report", "sarif_report"]
 
 INFORMATION_URI = "https://pypi.org/project/fishbot-urdf/"
+SARIF_SCHEMA = (
+    "https://docs.oasis-open.org/sarif/sarif/v2.1.0/errata01/os/schemas/sarif-schema-2.1.0.json"
+)
+SRCROOT = "%SRCROOT%"
+"""The base of the relative URIs of a SARIF log: the folder ``fishbot check`` ran in."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -31,6 +37,7 @@ class FileReport:
         links: How many links it has, when one was read.
         joints: How many joints it has, when one was read.
         config: The configuration file that applied, if any.
+        skipped: Why the file was not checked as a robot (``--skip-includes``), if it was not.
     """
 
     path: str
@@ -42,6 +49,7 @@ class FileReport:
     links: int | None = None
     joints: int | None = None
     config: str | None = None
+    skipped: str | None = None
 
 
 def json_report(files: Sequence[FileReport]) -> dict[str, Any]:
@@ -58,6 +66,7 @@ def json_report(files: Sequence[FileReport]) -> dict[str, Any]:
                 "links": f.links,
                 "joints": f.joints,
                 "config": f.config,
+                "skipped": f.skipped,
                 "diagnostics": [d.to_dict() for d in f.diagnostics],
                 "suppressed": {
                     "count": len(f.suppressed),
@@ -77,10 +86,12 @@ def sarif_report(files: Sequence[FileReport], *, version: str) -> dict[str, Any]
 
     Every rule of the registry is described (id, summary, explanation, default level,
     family and consumers); every finding is a result with its file, line and column;
-    findings that comments silenced are results with an in-source suppression. Paths are
-    relative URIs when they are inside the current folder.
+    findings that comments silenced are results with an in-source suppression. A file
+    inside the current folder is a URI relative to ``%SRCROOT%`` (that folder: the
+    checkout, in CI), any other an absolute file: URI.
     """
     from .rules import all_rules
+    from .rules.docs import explanation, markdown_explanation
 
     rules = all_rules()
     index = {rule.id: i for i, rule in enumerate(rules)}
@@ -97,7 +108,7 @@ def sarif_report(files: Sequence[FileReport], *, version: str) -> dict[str, Any]
             "name": "".join(part.capitalize() for part in rule.id.split("-")),
             "shortDescription": {"text": rule.summary},
             "fullDescription": {"text": rule.explanation or rule.summary},
-            "help": {"text": _help_text(rule.explanation, rule.bad, rule.good)},
+            "help": {"text": explanation(rule), "markdown": markdown_explanation(rule)},
             "defaultConfiguration": {"level": _LEVELS[rule.severity]},
             "properties": {
                 "tags": [rule.family.value],
@@ -107,7 +118,7 @@ def sarif_report(files: Sequence[FileReport], *, version: str) -> dict[str, Any]
         for rule in rules
     ]
     return {
-        "$schema": "https://json.schemastore.org/sarif-2.1.0.json",
+        "$schema": SARIF_SCHEMA,
         "version": "2.1.0",
         "runs": [
             {
@@ -119,6 +130,7 @@ def sarif_report(files: Sequence[FileReport], *, version: str) -> dict[str, Any]
                         "rules": descriptors,
                     }
                 },
+                "originalUriBaseIds": {SRCROOT: {"uri": Path.cwd().as_uri().rstrip("/") + "/"}},
                 "columnKind": "unicodeCodePoints",
                 "results": results,
             }
@@ -126,18 +138,9 @@ def sarif_report(files: Sequence[FileReport], *, version: str) -> dict[str, Any]
     }
 
 
-def _help_text(explanation: str, bad: str, good: str) -> str:
-    parts = [explanation] if explanation else []
-    if bad:
-        parts.append("Fails:\n" + bad)
-    if good:
-        parts.append("Passes:\n" + good)
-    return "\n\n".join(parts) or "-"
-
-
 def _result(finding: Diagnostic, index: dict[str, int], silenced: bool) -> dict[str, Any]:
     text = finding.message + (f" ({finding.hint})" if finding.hint else "")
-    location: dict[str, Any] = {"artifactLocation": {"uri": _uri(finding.path)}}
+    location: dict[str, Any] = {"artifactLocation": _artifact(finding.path)}
     if finding.line is not None:
         region: dict[str, int] = {"startLine": finding.line}
         if finding.column is not None:
@@ -160,16 +163,15 @@ def _result(finding: Diagnostic, index: dict[str, int], silenced: bool) -> dict[
     return result
 
 
-def _uri(path: str) -> str:
-    """A relative URI for a file inside the current folder, else a file: URI."""
-    if path.startswith("<"):
-        return path.strip("<>")
-    candidate = Path(path)
-    if not candidate.is_absolute():
-        relative = os.path.normpath(path)
-        if not relative.startswith(".."):
-            return Path(relative).as_posix()
-    return candidate.absolute().as_uri()
+def _artifact(path: str) -> dict[str, str]:
+    """Where a file is: a URI relative to the current folder (``%SRCROOT%``, the checkout
+    in CI) for a file inside it, else an absolute file: URI."""
+    if path.startswith("<"):  # <stdin>, <string>: no file
+        return {"uri": quote(path.strip("<>"))}
+    shown = shown_path(path)
+    if os.path.isabs(shown):
+        return {"uri": Path(shown).as_uri()}
+    return {"uri": quote(Path(os.path.normpath(shown)).as_posix()), "uriBaseId": SRCROOT}
 
 
 _ANNOTATIONS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.NOTE: "notice"}
@@ -180,7 +182,7 @@ def github_annotations(findings: Iterable[Diagnostic]) -> str:
     title=RULE::message``, which the run's summary and the pull request show at the line."""
     lines: list[str] = []
     for finding in findings:
-        fields = [f"file={_property(finding.path)}"]
+        fields = [f"file={_property(shown_path(finding.path))}"]
         if finding.line is not None:
             fields.append(f"line={finding.line}")
             if finding.column is not None:

@@ -38,16 +38,27 @@ FORMATS = ("text", "json", "sarif", "github")
 
 
 class _Rules(click.ParamType):  # type: ignore[type-arg]
-    """Rule ids or family names, comma-separated (the option may be repeated)."""
+    """Rule ids or family names, comma-separated (the option may be repeated), checked
+    against the registry as the option is read: a wrong one is a usage error."""
 
     name = "RULES"
+
+    def __init__(self, key: str) -> None:
+        self.key = key
 
     def convert(
         self, value: object, param: click.Parameter | None, ctx: click.Context | None
     ) -> tuple[str, ...]:
+        from ..config import check_selectors
+
         if isinstance(value, tuple):
             return value
-        return tuple(part.strip() for part in str(value).split(",") if part.strip())
+        names = tuple(part.strip() for part in str(value).split(",") if part.strip())
+        try:
+            check_selectors(self.key, names)
+        except FishbotUrdfError as exc:
+            self.fail(exc.message.removeprefix(f"{self.key}: "), param, ctx)
+        return names
 
 
 class _Severity(click.ParamType):  # type: ignore[type-arg]
@@ -58,12 +69,18 @@ class _Severity(click.ParamType):  # type: ignore[type-arg]
     def convert(
         self, value: object, param: click.Parameter | None, ctx: click.Context | None
     ) -> tuple[str, str]:
+        from ..config import check_severities
+
         if isinstance(value, tuple):
             return value
-        rule, sep, level = str(value).partition("=")
-        if not sep or not rule.strip() or level.strip() not in ("error", "warning", "note"):
+        rule, sep, level = (part.strip() for part in str(value).partition("="))
+        if not sep or not rule or level not in ("error", "warning", "note"):
             self.fail(f"{value!r} is not RULE=error|warning|note", param, ctx)
-        return rule.strip(), level.strip()
+        try:
+            check_severities({rule: level})
+        except FishbotUrdfError as exc:
+            self.fail(exc.message.removeprefix("severity: "), param, ctx)
+        return rule, level
 
 
 @dataclass(frozen=True, slots=True)
@@ -74,7 +91,7 @@ class _Options:
     extend_select: tuple[str, ...]
     ignore: tuple[str, ...]
     severity: dict[str, str]
-    strict: bool
+    strict: bool | None
     ground_mm: float | None
     config_file: str | None
     isolated: bool
@@ -83,7 +100,7 @@ class _Options:
         """The configuration that applies to ``file``: its nearest configuration file (or
         ``--config``, or none with ``--isolated``), with the options on top."""
         from ..config import Config, find_config, load_config
-        from ..diagnostics import Severity
+        from ..diagnostics import Severity, shown_path
 
         if self.isolated:
             where = None
@@ -91,7 +108,7 @@ class _Options:
             where = self.config_file
         else:
             near = find_config("." if file == "-" else file)
-            where = None if near is None else str(near)
+            where = None if near is None else shown_path(str(near))
         key = where or ""
         if key not in found:
             found[key] = load_config(where) if where else Config()
@@ -100,13 +117,18 @@ class _Options:
             extend_select=self.extend_select,
             ignore=self.ignore,
             severity={rule: Severity(level) for rule, level in self.severity.items()},
-            strict=True if self.strict else None,
+            strict=self.strict,
             ground_tolerance=self.ground_mm,
         )
 
 
 @click.command()
-@click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=True, allow_dash=True))
+@click.argument(
+    "files",
+    nargs=-1,
+    metavar="FILE... [name:=value]...",
+    type=click.Path(dir_okay=True, allow_dash=True),
+)
 @click.option(
     "--format",
     "fmt",
@@ -120,19 +142,33 @@ class _Options:
     "-o",
     "--output",
     metavar="FILE",
-    help="Write what goes to standard output (the tree, or the report) to FILE instead.",
+    help="Write what goes to standard output (the tree, or the report) to FILE instead "
+    "(whole or not at all; never over a checked file).",
 )
-@click.option("--strict", is_flag=True, help="Warnings fail too (exit 1).")
+@click.option(
+    "-q", "--quiet", is_flag=True, help="Findings only: no tree (text format; for hooks)."
+)
+@click.option(
+    "--strict/--no-strict",
+    default=None,
+    help="Warnings fail too (exit 1). [default: the configuration's strict, else no]",
+)
 @click.option(
     "--select",
-    type=_Rules(),
+    type=_Rules("select"),
     multiple=True,
-    help="Only these rules (ids or families, comma-separated; ALL for every rule).",
+    help="Only these rules (ids or families, comma-separated; ALL for every rule), instead "
+    "of the configuration's selection.",
 )
 @click.option(
-    "--extend-select", type=_Rules(), multiple=True, help="These rules as well as the selected."
+    "--extend-select",
+    type=_Rules("extend-select"),
+    multiple=True,
+    help="These rules as well as those selected.",
 )
-@click.option("--ignore", type=_Rules(), multiple=True, help="Not these rules (ids or families).")
+@click.option(
+    "--ignore", type=_Rules("ignore"), multiple=True, help="Not these rules (ids or families)."
+)
 @click.option(
     "--severity",
     "severities",
@@ -144,10 +180,18 @@ class _Options:
     "--config",
     "config_file",
     type=click.Path(dir_okay=False),
+    metavar="FILE",
     help="Read the rules' settings from this file (a fishbot.toml, or a pyproject.toml's "
     "[tool.fishbot]) instead of the nearest one above each checked file.",
 )
 @click.option("--isolated", is_flag=True, help="Read no configuration file.")
+@click.option(
+    "--skip-includes",
+    is_flag=True,
+    help="Pass over xacro files that define no robot (no name, no links: macros and "
+    "properties for other files to include); they are still expanded, so a fault that "
+    "stops the expansion is reported.",
+)
 @click.option(
     "--ground-tolerance",
     "ground_mm",
@@ -161,13 +205,15 @@ def check(
     files: Sequence[str],
     fmt: str,
     output: str | None,
-    strict: bool,
+    quiet: bool,
+    strict: bool | None,
     select: Sequence[tuple[str, ...]],
     extend_select: Sequence[tuple[str, ...]],
     ignore: Sequence[tuple[str, ...]],
     severities: Sequence[tuple[str, str]],
     config_file: str | None,
     isolated: bool,
+    skip_includes: bool,
     ground_mm: float | None,
     package_items: Sequence[str],
 ) -> None:
@@ -180,28 +226,43 @@ def check(
     masses and inertias (errors where a simulator would refuse them), inertias against
     their collision shapes, and whether a robot on a footprint root stands on the ground.
 
-    Rules are chosen by [tool.fishbot] in the nearest pyproject.toml or a fishbot.toml
-    above each file, and by the options; a comment <!-- fishbot: ignore[RULE] --> before
-    an element silences RULE for it (before <robot>, for the file). `fishbot rules` lists
-    the rules. FILE may be - to read standard input (URDF). Exit status: 0 valid (warnings
-    allowed), 1 a robot has errors, 2 a file could not be read, a package was not found,
-    the configuration or the command line is wrong.
+    Rules are chosen by [tool.fishbot] in the nearest pyproject.toml, or a fishbot.toml,
+    above each file (keys select, extend-select, ignore, severity, strict,
+    ground-tolerance), then by the options: --select replaces the file's selection, the
+    other options add to it. A comment <!-- fishbot: ignore[RULE, ...] --> right before an
+    element silences RULE for it and everything inside it (before the root element, for
+    the whole file). `fishbot rules` lists the rules. FILE may be - to read standard input
+    (URDF).
+
+    \b
+    Exit status:
+      0  every robot is valid (warnings allowed, unless strict)
+      1  a robot has errors (with --strict, warnings too)
+      2  a file could not be read or written, a package was not found,
+         the configuration or the command line is wrong
 
     \b
     Examples:
       fishbot check robots/fishbot/urdf/first_robot.urdf
       fishbot check robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
       fishbot check --strict a.urdf robot.urdf.xacro use_gpu:=false
-      fishbot check --ignore massless-link,inertia-mismatch robot.urdf
+      fishbot check --select physics --ignore inertia-mismatch robot.urdf
       fishbot check --severity limit-range=warning robot.urdf
+      fishbot check --config ci/fishbot.toml urdf/*.urdf
       fishbot check --format sarif -o fishbot.sarif urdf/*.urdf
       fishbot check --format github robot.urdf.xacro
+      fishbot check -q --skip-includes $(git ls-files '*.urdf' '*.xacro')
       xacro robot.urdf.xacro | fishbot check -
     """
-    from ..config import Config
-
     args = xacro_args([f for f in files if ":=" in f])
     packages = packages_option(package_items)
+    names = [f for f in files if ":=" not in f]
+    if not files:
+        raise click.UsageError("Missing argument 'FILE...'.")
+    if not names:
+        raise click.UsageError("no FILE to check (name:=value arguments go with a .xacro file)")
+    if isolated and config_file is not None:
+        raise click.UsageError("--config and --isolated cannot be used together")
     options = _Options(
         select=tuple(r for group in select for r in group) if select else None,
         extend_select=tuple(r for group in extend_select for r in group),
@@ -212,41 +273,53 @@ def check(
         config_file=config_file,
         isolated=isolated,
     )
-    names = [f for f in files if ":=" not in f]
+    found: dict[str, Config] = {}
     try:  # every configuration first: a wrong one stops everything, before any output
-        Config().updated(
-            select=options.select,
-            extend_select=options.extend_select,
-            ignore=options.ignore,
-            severity={},
-        )
-        found: dict[str, Config] = {}
         configs = [options.config_for(name, found) for name in names]
     except FishbotUrdfError as exc:
         stop_on(exc)
     status = EXIT_OK
     reports: list[FileReport] = []
     out: list[bytes] = []
-    inputs = [name for name in names if name != "-"]  # never written over, nor what they read
+    # Never written over: the files checked, what they read, the configuration files.
+    inputs = [name for name in (*names, *found) if name and name != "-"]
     for name, config in zip(names, configs, strict=True):
         try:
             result = check_input(name, args, packages, config)
         except FishbotUrdfError as exc:
-            reports.append(_failure(exc))
+            reports.append(_failure(exc, config))
             if fmt == "text":
                 emit_findings([fail(exc)])
             status = max(status, status_of(exc))
             continue
         inputs.extend(result.files)
+        if skip_includes and _is_include(result):
+            reports.append(_skipped(result, config))
+            continue
         report = _report(result, config)
         reports.append(report)
         if not report.ok:
             status = max(status, EXIT_INVALID)
         if fmt == "text":
             emit_findings(result.diagnostics)
-            _tree(result, out if output else None)
+            if not quiet:
+                _tree(result, out if output else None)
     _finish(fmt, reports, output, out, inputs)
     sys.exit(status)
+
+
+def _is_include(result: CheckResult) -> bool:
+    """A xacro file that defines no robot: macros, properties, materials for others."""
+    from ..parse import is_xacro_path
+
+    robot = result.robot
+    return (
+        robot is not None
+        and is_xacro_path(result.path)
+        and not robot.name
+        and not robot.links
+        and not robot.joints
+    )
 
 
 def _tree(result: CheckResult, into: list[bytes] | None) -> None:
@@ -282,11 +355,23 @@ def _report(result: CheckResult, config: Config) -> FileReport:
     )
 
 
-def _failure(exc: FishbotUrdfError) -> FileReport:
+def _failure(exc: FishbotUrdfError, config: Config) -> FileReport:
     from ..report import FileReport
 
     finding = fail(exc)
-    return FileReport(path=finding.path, ok=False, diagnostics=(finding,))
+    return FileReport(path=finding.path, ok=False, diagnostics=(finding,), config=config.path)
+
+
+def _skipped(result: CheckResult, config: Config) -> FileReport:
+    from ..report import FileReport
+
+    return FileReport(
+        path=result.path,
+        ok=True,
+        diagnostics=(),
+        config=config.path,
+        skipped="defines no robot (macros for other files to include)",
+    )
 
 
 def _finish(
