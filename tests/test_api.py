@@ -189,3 +189,43 @@ def test_readme_sessions_show_the_real_output(command: str) -> None:
 
 def test_readme_sessions_are_found() -> None:
     assert len(_readme_sessions()) >= 3
+
+
+def test_every_exception_the_library_raises_is_a_fishbot_urdf_error() -> None:
+    # Every `raise SomeError(...)` in the library names a FishbotUrdfError subclass (an
+    # assertion of an invariant aside), so that `except FishbotUrdfError` catches them all.
+    import ast
+    import importlib
+    import typing
+
+    package = Path(fishbot_urdf.__file__).parent
+    raised: set[tuple[str, str]] = set()
+    for source in package.rglob("*.py"):
+        if "cli" in source.relative_to(package).parts:
+            continue  # the command line turns errors into exit statuses
+        tree = ast.parse(source.read_text(encoding="utf-8"))
+        module = ".".join(("fishbot_urdf", *source.relative_to(package).with_suffix("").parts))
+        module = module.removesuffix(".__init__")
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Raise) and isinstance(node.exc, ast.Call):
+                func = node.exc.func
+                name = func.id if isinstance(func, ast.Name) else getattr(func, "attr", "")
+                raised.add((module, name))
+    assert raised
+    for module, name in sorted(raised):
+        # An invariant; the module __getattr__ protocol; signals that never leave the
+        # library (the quick pass giving up, the XML model refusing a file: each caught and
+        # turned into an error); and xacro's exception, raised inside xacro's run to be
+        # turned into a XacroError.
+        internal = ("AssertionError", "AttributeError", "_GiveUp", "Refused", "TooDeep")
+        if name in (*internal, "XacroException"):
+            continue
+        namespace = vars(importlib.import_module(module))
+        cls = namespace.get(name) or getattr(fishbot_urdf.errors, name, None)
+        if cls is None:  # a method of a class of the module: self._located(...)
+            owners = [c for c in namespace.values() if isinstance(c, type) and hasattr(c, name)]
+            cls = getattr(owners[0], name) if owners else None
+        if callable(cls) and not isinstance(cls, type):  # a function that builds the error
+            cls = typing.get_type_hints(cls)["return"]
+        assert isinstance(cls, type), (module, name)
+        assert issubclass(cls, fishbot_urdf.FishbotUrdfError), (module, name)

@@ -9,7 +9,7 @@ import sys
 from pathlib import Path
 
 from click.testing import CliRunner
-from conftest import DATA, FISHBOT, run_check_urdf
+from conftest import DATA, FISHBOT, GoldenInput, check_urdf
 
 from fishbot_urdf.cli import cli
 
@@ -84,7 +84,7 @@ def test_bad_option_is_exit_2() -> None:
 def test_no_file_is_exit_2() -> None:
     status, _, err = run("check")
     assert status == 2
-    assert "Missing argument 'FILES...'" in err
+    assert "Missing argument 'FILE...'" in err
 
 
 def test_check_a_xacro_file_points_at_the_xacro_source(tmp_path: Path) -> None:
@@ -136,7 +136,8 @@ def test_many_files_worst_status_wins() -> None:
     status, out, err = run("check", str(FIRST), bad, "missing.urdf")
     assert status == 2
     # The loop misses the root, so the tree is printed as check_urdf prints it.
-    assert out == FIRST_TREE + run_check_urdf(Path(bad)).stdout.decode()
+    cycle = check_urdf(GoldenInput.from_id("data/invalid/cycle.urdf"))
+    assert out == FIRST_TREE + cycle.stdout.decode()
     assert "[cycle]" in err
     assert "missing.urdf: error: no such file [io]" in err
 
@@ -156,7 +157,10 @@ def test_json_report() -> None:
         "root": "base_link",
         "links": 2,
         "joints": 1,
+        "config": None,
+        "skipped": None,
         "diagnostics": [],
+        "suppressed": {"count": 0, "rules": {}},
     }
     assert second["ok"] is False
     assert [d["rule"] for d in second["diagnostics"]] == ["limit-range"]

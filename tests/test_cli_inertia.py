@@ -172,14 +172,22 @@ def test_the_fishbot_mass_table() -> None:
 
 
 def test_the_mass_table_as_json() -> None:
-    for flag in (["--format", "json"], ["--json"]):
-        result = run(str(XACRO), *flag)
-        assert result.exit_code == 0
-        data = json.loads(result.stdout)
-        assert data["robot"] == "fishbot"
-        assert len(data["links"]) == 10
-        assert data["total"]["mass"] == pytest.approx(1.41)
-        assert data["total"]["frame"] == "base_footprint"
+    result = run(str(XACRO), "--format", "json")
+    assert result.exit_code == 0
+    data = json.loads(result.stdout)
+    assert data["robot"] == "fishbot"
+    assert len(data["links"]) == 10
+    assert data["total"]["mass"] == pytest.approx(1.41)
+    assert data["total"]["frame"] == "base_footprint"
+    # One vocabulary with `fishbot check --format json`: findings are "diagnostics".
+    assert data["ok"] is True and data["diagnostics"] == []
+    assert all(row["rules"] == [] for row in data["links"])
+
+
+def test_json_is_asked_for_one_way() -> None:
+    result = run(str(XACRO), "--json")
+    assert result.exit_code == 2
+    assert "No such option '--json'" in result.stderr
 
 
 def test_a_robot_with_errors_is_tabled_with_its_findings() -> None:
@@ -312,7 +320,7 @@ def test_box_inertia_is_the_one_fill_uses_for_a_box(tmp_path: Path) -> None:
 
 
 def test_options_may_come_before_the_robot() -> None:
-    result = run("--json", str(XACRO))
+    result = run("--format", "json", str(XACRO))
     assert result.exit_code == 0
     assert json.loads(result.stdout)["robot"] == "fishbot"
 
@@ -359,7 +367,7 @@ def test_a_robot_without_mass() -> None:
     result = run(str(FISHBOT / "urdf" / "first_robot.urdf"))
     assert result.exit_code == 0
     assert result.stdout.splitlines()[-1] == "total: 0 kg (no link has a mass)"
-    data = json.loads(run(str(FISHBOT / "urdf" / "first_robot.urdf"), "--json").stdout)
+    data = json.loads(run(str(FISHBOT / "urdf" / "first_robot.urdf"), "--format", "json").stdout)
     assert data["total"]["com"] is None
     assert data["ok"] is True
     assert data["diagnostics"] == []
@@ -398,7 +406,7 @@ def test_fill_stops_on_a_robot_with_errors(tmp_path: Path) -> None:
 def test_fill_refuses_json_and_a_link_given_twice(tmp_path: Path) -> None:
     robot = str(PHYSICS / "missing_inertial.urdf")
     out = str(tmp_path / "o.urdf")
-    assert run(robot, "--fill", "--density", "1", "-o", out, "--json").exit_code == 2
+    assert run(robot, "--fill", "--density", "1", "-o", out, "--format", "json").exit_code == 2
     twice = run(
         robot, "--fill", "--mass", "left_wheel_link=1", "--mass", "left_wheel_link=2", "-o", out
     )

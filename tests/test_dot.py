@@ -1,9 +1,12 @@
-"""`fishbot graph` and `fishbot_urdf.to_dot` against the real urdf_to_graphviz, run live.
+"""`fishbot graph` and `fishbot_urdf.to_dot` against the real urdf_to_graphviz.
 
-Where urdfdom accepts a robot, the DOT must be urdf_to_graphviz's byte for byte, except
-for the bugs we fix on purpose: a joint named like a link gets its own node, and links the
-root does not reach are drawn too. ``_undo_fixes`` takes exactly those out of our DOT, and
-what is left must still be identical.
+What urdf_to_graphviz writes for every fixture, the fishbot robot and a corpus is kept in
+tests/golden/ (see regenerate.py there), so this runs on any machine; where the tool is
+installed it also runs live and must write exactly what is kept. Where urdfdom accepts a
+robot, the DOT must be urdf_to_graphviz's byte for byte, except for the bugs we fix on
+purpose: a joint named like a link gets its own node, and links the root does not reach are
+drawn too. ``_undo_fixes`` takes exactly those out of our DOT, and what is left must still be
+identical.
 """
 
 from __future__ import annotations
@@ -15,7 +18,18 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from conftest import CORPUS, DATA, FISHBOT, INVALID, VALID, require_tool, xacro_command
+from conftest import (
+    DATA,
+    FISHBOT,
+    INVALID,
+    VALID,
+    GoldenInput,
+    golden_inputs,
+    require_tool,
+    sha256,
+    urdf_to_graphviz,
+    urdf_to_graphviz_form,
+)
 
 import fishbot_urdf
 from fishbot_urdf.cli import cli
@@ -24,25 +38,13 @@ from fishbot_urdf.dot import drawing
 FIRST = FISHBOT / "urdf" / "first_robot.urdf"
 FISHBOT_XACRO = FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"
 ESCAPE = DATA / "valid" / "names_to_escape.urdf"
-ROTATIONS = DATA / "valid" / "rotations.urdf"
-# urdf_to_graphviz, like check_urdf, never finishes on these loops.
-ENDLESS = ("self_loop", "loop_from_root")
 
 
-def urdf_to_graphviz(path: Path, folder: Path, env: dict[str, str] | None = None) -> Path | None:
-    """Run the real urdf_to_graphviz; the .gv it wrote, or None when it refused the robot."""
-    tool = require_tool("urdf_to_graphviz", "liburdfdom-tools")
-    folder.mkdir(parents=True, exist_ok=True)
-    subprocess.run(
-        [tool, str(path), "real"],
-        cwd=folder,
-        capture_output=True,
-        timeout=300,
-        env=env,
-        check=False,
-    )
-    out = folder / "real.gv"
-    return out if out.exists() else None
+def _golden_gv(id: str) -> bytes:
+    """The .gv urdf_to_graphviz wrote for input ``id``, kept in tests/golden/."""
+    gv = urdf_to_graphviz(GoldenInput.from_id(id)).gv
+    assert gv is not None, f"urdf_to_graphviz refused {id}"
+    return gv
 
 
 def ours(path: Path, *args: str) -> tuple[int, bytes, str]:
@@ -69,61 +71,56 @@ def _undo_fixes(text: str, robot: fishbot_urdf.Robot) -> str:
     return "".join(kept)
 
 
-def _compare(path: Path, tmp_path: Path) -> None:
-    real = urdf_to_graphviz(path, tmp_path)
-    status, out, err = ours(path)
-    if real is None:
-        # urdfdom refuses the robot: so do we (and still draw what could be read).
+def _compare(item: GoldenInput) -> None:
+    real = urdf_to_graphviz(item)
+    status, out, err = ours(item.path)
+    if real.gv is None:
+        # urdfdom refuses the robot, or never finishes: so do we (and still draw what could
+        # be read).
         assert status == 1, err
         return
-    expected = real.read_bytes()
-    if out == expected:
+    if out == real.gv:
         return
-    result = fishbot_urdf.check_file(path)
+    result = fishbot_urdf.check_file(item.path)
     assert result.robot is not None
     fixed = _undo_fixes(out.decode("utf-8"), result.robot)
-    assert fixed.encode("utf-8") == expected
+    assert fixed.encode("utf-8") == real.gv
     assert status == (0 if result.ok else 1), err
 
 
 # These two show urdf_to_graphviz's bugs, each in its own test below.
-OWN_TESTS = ("multiple_parents", "names_to_escape")
-FIXTURES = [p for p in VALID + INVALID if p.stem not in ENDLESS + OWN_TESTS]
+OWN_TESTS = ("data/invalid/multiple_parents.urdf", "data/valid/names_to_escape.urdf")
+INPUTS = golden_inputs()
+FIXTURES = [item for item in INPUTS if not item.in_corpus and item.id not in OWN_TESTS]
+CORPUS_INPUTS = [item for item in INPUTS if item.in_corpus]
 
 
-@pytest.mark.parametrize("path", FIXTURES, ids=[p.name for p in FIXTURES])
-def test_fixture_parity(path: Path, tmp_path: Path) -> None:
-    _compare(path, tmp_path)
+@pytest.mark.parametrize("item", FIXTURES, ids=[item.id for item in FIXTURES])
+def test_fixture_parity(item: GoldenInput) -> None:
+    _compare(item)
 
 
-@pytest.mark.parametrize("path", CORPUS, ids=[f"{p.parent.parent.name}/{p.name}" for p in CORPUS])
-def test_corpus_parity(path: Path, tmp_path: Path) -> None:
-    _compare(path, tmp_path)
+@pytest.mark.parametrize("item", CORPUS_INPUTS, ids=[item.id for item in CORPUS_INPUTS])
+def test_corpus_parity(item: GoldenInput) -> None:
+    _compare(item)
 
 
-def test_fishbot_parity_urdf_and_xacro(tmp_path: Path) -> None:
-    real = urdf_to_graphviz(FIRST, tmp_path / "first")
-    assert real is not None
-    assert ours(FIRST) == (0, real.read_bytes(), "")
-    # The xacro: the real xacro command expands it, urdf_to_graphviz draws the result; we
+def test_fishbot_parity_urdf_and_xacro() -> None:
+    real = _golden_gv("robots/fishbot/urdf/first_robot.urdf")
+    assert ours(FIRST) == (0, real, "")
+    # The xacro: the real xacro command expanded it, urdf_to_graphviz drew the result; we
     # read the .xacro ourselves.
-    expanded = xacro_command(FISHBOT_XACRO, packages={"fishbot_description": FISHBOT})
-    assert expanded.returncode == 0, expanded.stderr
-    urdf = tmp_path / "fishbot.urdf"
-    urdf.write_text(expanded.stdout)
-    real = urdf_to_graphviz(urdf, tmp_path / "xacro")
-    assert real is not None
-    assert ours(FISHBOT_XACRO) == (0, real.read_bytes(), "")
-    assert fishbot_urdf.to_dot(fishbot_urdf.load(FISHBOT_XACRO)).encode() == real.read_bytes()
+    real = _golden_gv("robots/fishbot/urdf/fishbot/fishbot.urdf.xacro")
+    assert ours(FISHBOT_XACRO) == (0, real, "")
+    assert fishbot_urdf.to_dot(fishbot_urdf.load(FISHBOT_XACRO)).encode() == real
 
 
-def test_the_numbers_are_printed_as_urdf_to_graphviz_prints_them(tmp_path: Path) -> None:
+def test_the_numbers_are_printed_as_urdf_to_graphviz_prints_them() -> None:
     """Gimbal lock, angles near pi, negative zeros, exponents, 7 significant digits."""
-    real = urdf_to_graphviz(ROTATIONS, tmp_path)
-    assert real is not None
-    status, out, _ = ours(ROTATIONS)
+    real = _golden_gv("data/valid/rotations.urdf")
+    status, out, _ = ours(DATA / "valid" / "rotations.urdf")
     assert status == 0
-    assert out == real.read_bytes()
+    assert out == real
     text = out.decode()
     assert '"base" -> "pitch_up_joint" [label="xyz: 0 0 0 \\nrpy: 0 1.5708 -0"]' in text
     assert "xyz: 0.123457 -1e-07 1e+300 \\nrpy: 0 -0 0" in text
@@ -132,21 +129,18 @@ def test_the_numbers_are_printed_as_urdf_to_graphviz_prints_them(tmp_path: Path)
 def test_default_output_is_urdf_to_graphviz_s_pair_of_files(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    real_folder, our_folder = tmp_path / "real", tmp_path / "ours"
-    tool = require_tool("urdf_to_graphviz", "liburdfdom-tools")
-    real_folder.mkdir()
-    real = subprocess.run(
-        [tool, str(FIRST)], cwd=real_folder, capture_output=True, timeout=60, check=True
-    )
-    our_folder.mkdir()
-    monkeypatch.chdir(our_folder)
+    require_tool("dot", "graphviz")  # for our PDF
+    real = urdf_to_graphviz_form("default-form")  # urdf_to_graphviz first_robot.urdf
+    monkeypatch.chdir(tmp_path)
     result = CliRunner().invoke(cli, ["graph", str(FIRST)])
     assert result.exit_code == 0, result.stderr
-    assert result.stdout_bytes == real.stdout
+    assert result.stdout == real["stdout"]
     assert result.stdout == "Created file first_robot.gv\nCreated file first_robot.pdf\n"
-    gv = "first_robot.gv"
-    assert (our_folder / gv).read_bytes() == (real_folder / gv).read_bytes()
-    assert _pdf_pages(our_folder / "first_robot.pdf") >= 1
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(real["files"])
+    gv = tmp_path / "first_robot.gv"
+    assert gv.read_bytes() == _golden_gv("robots/fishbot/urdf/first_robot.urdf")
+    assert sha256(gv.read_bytes()) == real["files"]["first_robot.gv"]
+    assert _pdf_pages(tmp_path / "first_robot.pdf") >= 1
 
 
 def _pdf_pages(path: Path) -> int:
@@ -251,15 +245,20 @@ def _dot_nodes(dot_text: bytes) -> tuple[int, list[str]] | None:
     return len(nodes), nodes
 
 
-def test_names_are_escaped(tmp_path: Path) -> None:
-    real = urdf_to_graphviz(ESCAPE, tmp_path)
-    assert real is not None
-    assert _dot_nodes(real.read_bytes()) is None  # dot: syntax error
+def test_names_are_escaped() -> None:
+    real = _golden_gv("data/valid/names_to_escape.urdf")
+    # urdf_to_graphviz writes names as they are: the quote ends the DOT string early.
+    assert b'"say "hi"" [label="say "hi""];' in real
     status, out, _ = ours(ESCAPE)
     assert status == 0
     assert '"say \\"hi\\"" [label="say \\"hi\\""];' in out.decode()
     assert '"back\\\\slash\\\\" [label="back\\\\slash\\\\"];' in out.decode()
-    parsed = _dot_nodes(out)
+
+
+def test_escaped_names_are_what_dot_reads_and_draws() -> None:
+    real = _golden_gv("data/valid/names_to_escape.urdf")
+    assert _dot_nodes(real) is None  # dot: syntax error
+    parsed = _dot_nodes(ours(ESCAPE)[1])
     assert parsed is not None
     # 4 links and 3 joints, each its own node.
     assert parsed[0] == 7
@@ -271,30 +270,35 @@ def test_names_are_escaped(tmp_path: Path) -> None:
     assert {'say "hi"', "back\\slash\\", "slash\\joint", "arm", "base"} <= texts
 
 
-def test_a_joint_named_like_a_link_gets_its_own_node(tmp_path: Path) -> None:
-    so100 = next(p for p in CORPUS if p.name == "so100.urdf")
-    real = urdf_to_graphviz(so100, tmp_path)
-    assert real is not None
-    robot = fishbot_urdf.load(so100)
-    size = len(robot.links) + len(robot.joints)
-    real_nodes = _dot_nodes(real.read_bytes())
-    assert real_nodes is not None and real_nodes[0] == size - 1  # merged
-    status, out, _ = ours(so100)
+SO100 = "example-robot-data/so_arm_description/urdf/so100.urdf"
+
+
+def test_a_joint_named_like_a_link_gets_its_own_node() -> None:
+    real = _golden_gv(SO100)
+    # urdf_to_graphviz: the joint "gripper" and the link "gripper" are one node.
+    assert b'"gripper" -> "gripper" [label=' in real
+    status, out, _ = ours(GoldenInput.from_id(SO100).path)
     assert status == 0
     text = out.decode()
     assert '"gripper (joint)" [label="gripper"];' in text
     # The joint "gripper" goes from the link "gripper" to the jaw.
     assert '"gripper" -> "gripper (joint)" [label=' in text
     assert '"gripper (joint)" -> "jaw"\n' in text
-    our_nodes = _dot_nodes(out)
+
+
+def test_dot_sees_one_node_fewer_in_urdf_to_graphviz_s_drawing() -> None:
+    so100 = GoldenInput.from_id(SO100).path
+    robot = fishbot_urdf.load(so100)
+    size = len(robot.links) + len(robot.joints)
+    real_nodes = _dot_nodes(_golden_gv(SO100))
+    assert real_nodes is not None and real_nodes[0] == size - 1  # merged
+    our_nodes = _dot_nodes(ours(so100)[1])
     assert our_nodes is not None and our_nodes[0] == size
 
 
-def test_a_link_with_two_parents_keeps_both_joints(tmp_path: Path) -> None:
+def test_a_link_with_two_parents_keeps_both_joints() -> None:
     path = DATA / "invalid" / "multiple_parents.urdf"
-    real = urdf_to_graphviz(path, tmp_path)
-    assert real is not None
-    real_text = real.read_text()
+    real_text = _golden_gv("data/invalid/multiple_parents.urdf").decode()
     # urdf_to_graphviz draws the link twice and one of its two joints twice.
     assert real_text.count('"bar" [label="bar"];') == 2
     assert "bar_left" not in real_text
@@ -305,11 +309,9 @@ def test_a_link_with_two_parents_keeps_both_joints(tmp_path: Path) -> None:
     assert '"left" -> "bar_left" [label=' in text and '"right" -> "bar_right" [label=' in text
 
 
-def test_links_behind_a_loop_are_drawn_and_marked(tmp_path: Path) -> None:
+def test_links_behind_a_loop_are_drawn_and_marked() -> None:
     path = DATA / "invalid" / "cycle.urdf"
-    real = urdf_to_graphviz(path, tmp_path)
-    assert real is not None
-    assert '"a"' not in real.read_text()
+    assert b'"a"' not in _golden_gv("data/invalid/cycle.urdf")
     status, out, err = ours(path)
     assert status == 1 and "[cycle]" in err
     text = out.decode()
@@ -345,11 +347,9 @@ def test_dot_missing_still_writes_the_gv_and_claims_nothing_else(
     empty = in_tmp / "bin"
     empty.mkdir()
     # The real tool says it made a PDF it did not make.
-    tool = require_tool("urdf_to_graphviz", "liburdfdom-tools")
-    real = subprocess.run(
-        [tool, str(FIRST), "real"], cwd=in_tmp, capture_output=True, env={"PATH": str(empty)}
-    )
-    assert b"Created file real.pdf" in real.stdout and not (in_tmp / "real.pdf").exists()
+    real = urdf_to_graphviz_form("without-dot")  # urdf_to_graphviz first_robot.urdf tree
+    assert real["stdout"] == "Created file tree.gv\nCreated file tree.pdf\n"
+    assert list(real["files"]) == ["tree.gv"]
     monkeypatch.setenv("PATH", str(empty))
     result = CliRunner().invoke(cli, ["graph", str(FIRST)])
     assert result.exit_code == 2
@@ -477,18 +477,14 @@ def test_help_has_an_example() -> None:
 
 def test_the_out_form_of_urdf_to_graphviz(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """`urdf_to_graphviz ROBOT OUT` (its form that is not deprecated) writes OUT.gv, OUT.pdf."""
-    tool = require_tool("urdf_to_graphviz", "liburdfdom-tools")
-    (tmp_path / "real").mkdir()
-    real = subprocess.run(
-        [tool, str(FIRST), "tree"], cwd=tmp_path / "real", capture_output=True, check=True
-    )
+    require_tool("dot", "graphviz")  # for our PDF
+    # The golden runs are `urdf_to_graphviz ROBOT tree`.
+    real = urdf_to_graphviz(GoldenInput.from_id("robots/fishbot/urdf/first_robot.urdf"))
     monkeypatch.chdir(tmp_path)
     result = CliRunner().invoke(cli, ["graph", str(FIRST), "ours/tree"])
     assert result.exit_code == 0, result.stderr
     assert result.stdout == real.stdout.decode().replace("tree", "ours/tree")
-    assert (tmp_path / "ours" / "tree.gv").read_bytes() == (
-        tmp_path / "real" / "tree.gv"
-    ).read_bytes()
+    assert (tmp_path / "ours" / "tree.gv").read_bytes() == real.gv
     assert _pdf_pages(tmp_path / "ours" / "tree.pdf") >= 1
     both = CliRunner().invoke(cli, ["graph", str(FIRST), "tree", "-o", "x.gv"])
     assert both.exit_code == 2 and "give one OUT" in both.stderr

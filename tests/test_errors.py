@@ -8,11 +8,16 @@ import pytest
 
 import fishbot_urdf
 from fishbot_urdf import (
+    ArgumentError,
+    ConfigError,
     FishbotUrdfError,
     InputError,
     PackageNotFoundError,
     RobotError,
+    ShapeError,
+    StructureError,
     ToolNotFoundError,
+    UnknownNameError,
     XacroError,
     XmlSyntaxError,
 )
@@ -61,7 +66,8 @@ def test_package_not_found_error(tmp_path: Path, monkeypatch: pytest.MonkeyPatch
     error = info.value
     assert isinstance(error, FishbotUrdfError)
     assert (error.rule, error.package) == ("package-not-found", "ghost_description")
-    assert error.searched[0] == "--package (none given)"
+    assert error.searched[0] == "the packages given (none)"
+    assert error.given == ()
     assert error.message.startswith("package 'ghost_description' not found (searched: ")
 
 
@@ -84,10 +90,16 @@ def test_robot_error_lists_every_finding() -> None:
 
 def test_base_error_from_tree_queries() -> None:
     robot = fishbot_urdf.Robot("r", (fishbot_urdf.Link("a"), fishbot_urdf.Link("b")))
-    with pytest.raises(FishbotUrdfError) as info:
+    with pytest.raises(StructureError) as info:
         fishbot_urdf.root(robot)
-    assert info.value.rule == "error"
-    assert info.value.message == "robot 'r' has no single root link (roots: a, b)"
+    assert isinstance(info.value, FishbotUrdfError)
+    assert info.value.rule == "structure"
+    assert info.value.roots == ("a", "b")
+    assert info.value.message == "robot 'r' needs one root link, and has 2: 'a', 'b'"
+    # The same condition is the same error wherever a question needs one root.
+    with pytest.raises(StructureError) as again:
+        fishbot_urdf.mass_properties(robot)
+    assert again.value.message == info.value.message
 
 
 def test_tool_not_found_error(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -101,3 +113,68 @@ def test_tool_not_found_error(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -
     assert error.message == "Graphviz's dot program is needed for SVG output and was not found"
     assert error.hint.startswith("install Graphviz: apt install graphviz, brew install graphviz")
     assert not (tmp_path / "r.svg").exists()
+
+
+def test_unknown_name_error() -> None:
+    robot = fishbot_urdf.load(Path(__file__).parent.parent / "robots/fishbot/urdf/first_robot.urdf")
+    with pytest.raises(UnknownNameError) as info:
+        fishbot_urdf.subtree(robot, "base")
+    error = info.value
+    assert isinstance(error, FishbotUrdfError) and isinstance(error, KeyError)
+    assert (error.rule, error.kind, error.name) == ("unknown-name", "link", "base")
+    assert error.known == ("base_link", "imu_link")
+    assert str(error) == "no link 'base' (did you mean 'base_link'? links: base_link, imu_link)"
+
+
+def test_argument_error() -> None:
+    link = fishbot_urdf.Link(
+        "wheel", collisions=(fishbot_urdf.Collision(fishbot_urdf.Sphere(0.1)),)
+    )
+    with pytest.raises(ArgumentError) as info:
+        fishbot_urdf.link_inertial(link, density=-1.0)
+    error = info.value
+    assert isinstance(error, FishbotUrdfError) and isinstance(error, ValueError)
+    assert (error.rule, error.name) == ("argument", "density")
+    assert error.message == "the density must be a finite number > 0, not -1"
+
+
+def test_shape_error() -> None:
+    with pytest.raises(ShapeError) as info:
+        fishbot_urdf.link_inertial(fishbot_urdf.Link("bare"), mass=1.0)
+    error = info.value
+    assert isinstance(error, FishbotUrdfError) and isinstance(error, ValueError)
+    assert error.rule == "shape"
+    assert error.message == "link 'bare' has no collision shape"
+
+
+def test_structure_error() -> None:
+    loop = fishbot_urdf.Robot(
+        "loop",
+        (fishbot_urdf.Link("a"), fishbot_urdf.Link("b")),
+        (
+            fishbot_urdf.Joint("ab", fishbot_urdf.JointType.FIXED, "a", "b"),
+            fishbot_urdf.Joint("ba", fishbot_urdf.JointType.FIXED, "b", "a"),
+        ),
+    )
+    with pytest.raises(StructureError) as info:
+        fishbot_urdf.root(loop)
+    error = info.value
+    assert isinstance(error, FishbotUrdfError)
+    assert (error.rule, error.roots) == ("structure", ())
+    assert error.message == (
+        "robot 'loop' needs one root link, and has none (every link is some joint's child)"
+    )
+
+
+def test_config_error(tmp_path: Path) -> None:
+    config = tmp_path / "fishbot.toml"
+    config.write_text('select = ["physics"]\nignroe = ["massless-link"]\n')
+    with pytest.raises(ConfigError) as info:
+        fishbot_urdf.load_config(config)
+    error = info.value
+    assert isinstance(error, FishbotUrdfError)
+    assert (error.rule, error.path, error.line) == ("config", str(config), 2)
+    assert error.message == (
+        "unknown key 'ignroe' (did you mean 'ignore'? keys: select, extend-select, ignore, "
+        "severity, strict, ground-tolerance)"
+    )

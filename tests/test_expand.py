@@ -518,10 +518,18 @@ def test_missing_package_lists_every_place(tmp_path: Path, monkeypatch: pytest.M
         expand(tmp_path / "robot.xacro")
     error = info.value
     assert (error.package, error.line, error.column) == ("no_such_description", 2, 3)
-    assert error.message.startswith("package 'no_such_description' not found (searched: --package")
+    assert error.message.startswith(
+        "package 'no_such_description' not found (searched: the packages given (none); "
+    )
     assert "ROS_PACKAGE_PATH (not set)" in error.message
     assert "AMENT_PREFIX_PATH (not set)" in error.message
-    assert error.message.endswith("name its folder with --package no_such_description=PATH")
+    # On the command line the same error names the option that fixes it.
+    result = CliRunner().invoke(cli, ["expand", str(tmp_path / "robot.xacro")])
+    assert result.exit_code == 2
+    assert "not found (searched: --package (none given); " in result.stderr
+    assert result.stderr.rstrip().endswith(
+        "(name its folder with --package no_such_description=PATH) [package-not-found]"
+    )
 
 
 def test_syntax_error_in_an_included_file(tmp_path: Path) -> None:
@@ -662,7 +670,7 @@ def test_xacro_warnings_become_findings(tmp_path: Path) -> None:
         },
     )
     path = str(tmp_path / "robot.xacro")
-    warning = f"{path}: warning: redefining global symbol: pi [xacro]\n"
+    warning = f"{path}: warning: redefining global symbol: pi [xacro-warning]\n"
     assert expand(path).messages == ("warning: redefining global symbol: pi",)
     runner = CliRunner()
     expanded = runner.invoke(cli, ["expand", path, "-o", str(tmp_path / "out.urdf")])

@@ -73,7 +73,7 @@ def test_root_leaves_subtree_chain() -> None:
 
 def test_root_of_a_robot_with_two_roots_raises() -> None:
     robot = Robot("two", (Link("a"), Link("b")))
-    with pytest.raises(FishbotUrdfError, match="no single root link"):
+    with pytest.raises(FishbotUrdfError, match="needs one root link, and has 2"):
         fishbot_urdf.root(robot)
 
 

@@ -245,7 +245,7 @@ def test_mass_properties_at_a_configuration() -> None:
 
 def test_mass_properties_need_one_root() -> None:
     two = fishbot_urdf.Robot("r", (fishbot_urdf.Link("a"), fishbot_urdf.Link("b")))
-    with pytest.raises(ValueError, match="2 root links"):
+    with pytest.raises(fishbot_urdf.StructureError, match="needs one root link, and has 2"):
         fishbot_urdf.mass_properties(two)
 
 

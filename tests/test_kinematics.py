@@ -8,6 +8,7 @@ import pytest
 from conftest import FISHBOT
 
 import fishbot_urdf
+from fishbot_urdf.errors import ArgumentError, UnknownNameError
 from fishbot_urdf.kinematics import joint_positions, link_poses
 from fishbot_urdf.model import Joint, JointType, Limit, Link, Mimic, Origin, Robot
 
@@ -75,11 +76,14 @@ def test_mimic_joints_follow_their_leader() -> None:
 
 
 def test_positions_must_name_moving_joints() -> None:
-    with pytest.raises(ValueError, match="no joint 'wrist'"):
+    with pytest.raises(UnknownNameError, match="no joint 'wrist'") as info:
         link_poses(_arm(), {"wrist": 1.0})
+    assert isinstance(info.value, KeyError)  # as a mapping lookup would raise
+    assert info.value.known == ("copy_joint", "elbow", "shoulder", "slide")
     robot = Robot("r", (Link("a"), Link("b")), (Joint("j", JointType.FIXED, "a", "b"),))
-    with pytest.raises(ValueError, match="joint 'j' is fixed"):
+    with pytest.raises(ArgumentError, match="joint 'j' is fixed") as wrong:
         link_poses(robot, {"j": 1.0})
+    assert isinstance(wrong.value, ValueError)
 
 
 def test_a_long_chain_needs_no_recursion() -> None:

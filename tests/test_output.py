@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import secrets
 import stat
 import subprocess
 import sys
@@ -101,3 +102,14 @@ def test_what_is_refused(tmp_path: Path) -> None:
     with pytest.raises(InputError, match="empty"):
         write_atomic("", "out")
     assert source.read_text() == "in"
+
+
+def test_no_free_temporary_name(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(secrets, "token_hex", lambda size: "taken")
+    (tmp_path / ".robot.urdf.taken").write_text("someone else's")
+    with pytest.raises(InputError, match="File exists"):
+        write_atomic(tmp_path / "robot.urdf", "new")
+    assert sorted(os.listdir(tmp_path)) == [".robot.urdf.taken"]
+    (tmp_path / ".robot.urdf.taken").unlink()
+    write_atomic(tmp_path / "robot.urdf", "new")
+    assert os.listdir(tmp_path) == ["robot.urdf"]

@@ -126,7 +126,7 @@ def test_a_package_without_a_name_is_not_a_match(tmp_path: Path) -> None:
     with pytest.raises(PackageNotFoundError) as info:
         find_package("fishbot_description", near=nameless / "urdf" / "x.xacro")
     assert info.value.searched == (
-        "--package (none given)",
+        "the packages given (none)",
         f"the folders above {(nameless / 'urdf').resolve()}",
         "ROS_PACKAGE_PATH (not set)",
         "AMENT_PREFIX_PATH (not set)",

@@ -1,18 +1,33 @@
-"""`fishbot check` against the real check_urdf, run live, on every fixture and a corpus.
+"""`fishbot check` against the real check_urdf, on every fixture, the fishbot robot and a corpus.
 
-Wherever check_urdf accepts a robot, our stdout is identical to its byte for byte, whatever
-our verdict. Where the verdicts differ, the difference must be one of the rules in STRICTER,
-each of which is a deliberate choice explained there.
+What check_urdf prints for each of them is kept in tests/golden/ (see regenerate.py there), so
+parity is checked on any machine; where check_urdf is installed it also runs live and must
+print exactly what is kept. Wherever check_urdf accepts a robot, our stdout is identical to
+its byte for byte, whatever our verdict. Where the verdicts differ, the difference must be one
+of the rules in STRICTER, each of which is a deliberate choice explained there.
 """
 
 from __future__ import annotations
 
+import os
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from conftest import CORPUS, INVALID, VALID, require_tool, run_check_urdf
+from conftest import (
+    CORPUS_PACKAGE,
+    GOLDEN,
+    REGENERATE,
+    RUNS,
+    GoldenInput,
+    check_urdf,
+    golden_check_urdf,
+    golden_index,
+    golden_inputs,
+    installed_corpus_version,
+)
 
 from fishbot_urdf.cli import cli
 
@@ -53,16 +68,16 @@ def _ours(path: Path) -> tuple[int, bytes, str]:
     return result.exit_code, result.stdout_bytes, result.stderr
 
 
-def _compare(path: Path) -> None:
-    real = run_check_urdf(path)
-    status, out, err = _ours(path)
-    real_ok = real.returncode == 0
+def _compare(item: GoldenInput) -> None:
+    real = check_urdf(item)
+    status, out, err = _ours(item.path)
+    real_ok = real.status == 0
     if real_ok:
         assert out == real.stdout
     if real_ok and status == 0:
         return
     if not real_ok:
-        # check_urdf rejects it: so must we.
+        # check_urdf rejects it (or never answers): so must we.
         assert status == 1, err
         return
     # check_urdf accepts, we do not: only for the deliberate rules above.
@@ -71,36 +86,32 @@ def _compare(path: Path) -> None:
     assert rules <= set(STRICTER), err
 
 
-# check_urdf never finishes on these (it prints the loop until it crashes): own test below.
+INPUTS = golden_inputs()
+FIXTURES = [item for item in INPUTS if not item.in_corpus]
+CORPUS_INPUTS = [item for item in INPUTS if item.in_corpus]
+
+
+@pytest.mark.parametrize("item", FIXTURES, ids=[item.id for item in FIXTURES])
+def test_fixture_parity(item: GoldenInput) -> None:
+    _compare(item)
+
+
+@pytest.mark.parametrize("item", CORPUS_INPUTS, ids=[item.id for item in CORPUS_INPUTS])
+def test_corpus_parity(item: GoldenInput) -> None:
+    _compare(item)
+
+
+# check_urdf never finishes on these: it prints the loop until it is stopped.
 ENDLESS = ("self_loop", "loop_from_root")
-PHYSICS = sorted((Path(__file__).parent / "data" / "physics").glob("*.urdf"))
-FIXTURES = [p for p in VALID + INVALID + PHYSICS if p.stem not in ENDLESS]
-
-
-@pytest.mark.parametrize("path", FIXTURES, ids=[p.name for p in FIXTURES])
-def test_fixture_parity(path: Path) -> None:
-    _compare(path)
-
-
-@pytest.mark.parametrize("path", CORPUS, ids=[f"{p.parent.parent.name}/{p.name}" for p in CORPUS])
-def test_corpus_parity(path: Path) -> None:
-    _compare(path)
 
 
 @pytest.mark.parametrize("name", ENDLESS)
 def test_check_urdf_never_finishes_on_a_loop_from_the_root_and_we_do(name: str) -> None:
-    path = Path(__file__).parent / "data" / "invalid" / f"{name}.urdf"
-    tool = require_tool("check_urdf", "liburdfdom-tools")
-    with pytest.raises(subprocess.TimeoutExpired):
-        # Its output grows without end: send it nowhere.
-        subprocess.run(
-            [tool, str(path)],
-            stdout=subprocess.DEVNULL,
-            stderr=subprocess.DEVNULL,
-            timeout=3,
-            check=False,
-        )
-    status, out, err = _ours(path)
+    item = GoldenInput.from_id(f"data/invalid/{name}.urdf")
+    # Stopped when the golden files were made; where check_urdf is installed, run again
+    # live and stopped again.
+    assert check_urdf(item).status is None
+    status, out, err = _ours(item.path)
     assert status == 1
     assert "[joint-self-loop]" in err or "[cycle]" in err
     if name == "loop_from_root":
@@ -112,7 +123,55 @@ def test_check_urdf_never_finishes_on_a_loop_from_the_root_and_we_do(name: str) 
 def test_the_corpus_has_robots_we_accept_byte_for_byte() -> None:
     # Guard against a parity sweep that passes because everything is rejected: what we
     # reject and check_urdf accepts is exactly the known-faulty list.
-    ours_reject = {p.name for p in CORPUS if _ours(p)[0] != 0}
-    real_reject = {p.name for p in CORPUS if run_check_urdf(p).returncode != 0}
+    ours_reject = {i.path.name for i in CORPUS_INPUTS if _ours(i.path)[0] != 0}
+    real_reject = {i.path.name for i in CORPUS_INPUTS if golden_check_urdf(i).status != 0}
     assert ours_reject - real_reject == set(FAULTY)
-    assert len(CORPUS) - len(ours_reject) >= 60
+    assert len(CORPUS_INPUTS) - len(ours_reject) >= 60
+
+
+# ------------------------------------------------------------------ the golden files
+
+
+def test_every_input_has_a_golden_entry_and_no_entry_is_orphaned() -> None:
+    index = golden_index()
+    ids = {item.id for item in INPUTS}
+    recorded = set(index["inputs"])
+    missing, orphaned = sorted(ids - recorded), sorted(recorded - ids)
+    assert missing == [], f"inputs without a golden entry: regenerate with {REGENERATE}"
+    assert orphaned == [], f"golden entries of no input: regenerate with {REGENERATE}"
+    assert sorted(index["runs"]) == sorted(RUNS), f"regenerate with {REGENERATE}"
+    # Every golden output file is one an entry names, and the other way round.
+    named = {
+        record[key]
+        for entry in index["inputs"].values()
+        for tool, key in (("check_urdf", "stdout"), ("urdf_to_graphviz", "gv"))
+        if (record := entry[tool]).get(key) is not None
+    }
+    on_disk = {
+        path.relative_to(GOLDEN).as_posix()
+        for folder in ("check_urdf", "urdf_to_graphviz")
+        for path in (GOLDEN / folder).rglob("*")
+        if path.is_file()
+    }
+    assert on_disk == named, f"regenerate with {REGENERATE}"
+
+
+def test_the_golden_corpus_is_the_installed_one() -> None:
+    recorded = golden_index()["versions"][CORPUS_PACKAGE]
+    assert installed_corpus_version() == recorded, (
+        f"the golden outputs are of {CORPUS_PACKAGE} {recorded}: install it "
+        f"(pip install -e '.[test]' pins it) or regenerate with {REGENERATE}"
+    )
+    assert len(CORPUS_INPUTS) >= 60
+
+
+def test_regenerating_refuses_to_run_without_the_real_tools(tmp_path: Path) -> None:
+    script = GOLDEN / "regenerate.py"
+    env = {**os.environ, "PATH": str(tmp_path)}  # no check_urdf, urdf_to_graphviz or dot
+    done = subprocess.run(
+        [sys.executable, str(script)], capture_output=True, text=True, env=env, check=False
+    )
+    assert done.returncode == 2, done.stderr
+    assert done.stdout == ""
+    assert "check_urdf, dot, urdf_to_graphviz not found" in done.stderr
+    assert "apt-get install graphviz liburdfdom-tools" in done.stderr

@@ -6,31 +6,39 @@
 ['base_link', 'imu_link']
 """
 
-from __future__ import annotations
-
-from typing import Any
-
+from .analysis import Analysis, Body, analyse
 from .check import CheckResult, check, check_file
-from .diagnostics import Diagnostic, Severity
+from .config import Config, find_config, load_config
+from .diagnostics import Diagnostic, Kind, Severity, Subject
 from .dot import draw, render, to_dot
 from .errors import (
+    ArgumentError,
+    ConfigError,
     FishbotUrdfError,
     InputError,
     RobotError,
+    ShapeError,
+    StructureError,
     ToolError,
     ToolNotFoundError,
+    UnknownNameError,
     XmlSyntaxError,
 )
 from .expand import Expansion, XacroError, expand
 from .graph import Topology, chain, leaves, root, subtree, to_networkx, topology, tree_text
 from .inertia import (
+    Filling,
+    LinkMass,
     MassProperties,
+    MassTable,
     box_inertia,
     combine,
     cylinder_inertia,
+    fill_inertials,
     geometry_inertia,
     link_inertial,
     mass_properties,
+    mass_table,
     mesh_inertia,
     principal_moments,
     sphere_inertia,
@@ -63,18 +71,27 @@ from .model import (
 )
 from .packages import PackageNotFoundError, find_package, resolve_package_uri
 from .parse import Parsed, load, parse, read
+from .report import FileReport, github_annotations, json_report, sarif_report
+from .rules import Rule
 from .spatial import Pose
 from .write import add_inertials, inertial_xml, to_urdf
 
 __all__ = [
+    "Analysis",
+    "ArgumentError",
+    "Body",
     "Box",
     "Calibration",
     "CheckResult",
     "Collision",
+    "Config",
+    "ConfigError",
     "Cylinder",
     "Diagnostic",
     "Dynamics",
     "Expansion",
+    "FileReport",
+    "Filling",
     "FishbotUrdfError",
     "Geometry",
     "Inertia",
@@ -82,10 +99,13 @@ __all__ = [
     "InputError",
     "Joint",
     "JointType",
+    "Kind",
     "Limit",
     "Link",
+    "LinkMass",
     "Location",
     "MassProperties",
+    "MassTable",
     "Material",
     "Mesh",
     "Mimic",
@@ -95,17 +115,23 @@ __all__ = [
     "Pose",
     "Robot",
     "RobotError",
+    "Rule",
     "SafetyController",
     "Severity",
+    "ShapeError",
     "Sphere",
+    "StructureError",
+    "Subject",
     "ToolError",
     "ToolNotFoundError",
     "Topology",
+    "UnknownNameError",
     "Visual",
     "XacroError",
     "XmlSyntaxError",
     "__version__",
     "add_inertials",
+    "analyse",
     "box_inertia",
     "chain",
     "check",
@@ -114,15 +140,21 @@ __all__ = [
     "cylinder_inertia",
     "draw",
     "expand",
+    "fill_inertials",
+    "find_config",
     "find_package",
     "geometry_inertia",
+    "github_annotations",
     "inertial_xml",
     "joint_positions",
+    "json_report",
     "leaves",
     "link_inertial",
     "link_poses",
     "load",
+    "load_config",
     "mass_properties",
+    "mass_table",
     "mesh_inertia",
     "parse",
     "principal_moments",
@@ -130,6 +162,7 @@ __all__ = [
     "render",
     "resolve_package_uri",
     "root",
+    "sarif_report",
     "sphere_inertia",
     "subtree",
     "to_dot",
@@ -142,7 +175,7 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str) -> Any:
+def __getattr__(name: str) -> str:
     # importlib.metadata costs several milliseconds: only pay for it when asked.
     if name == "__version__":
         from importlib.metadata import version

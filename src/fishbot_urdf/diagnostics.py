@@ -1,24 +1,58 @@
-"""Diagnostics: one finding about a robot description, and how findings are rendered."""
+"""Diagnostics: one finding about a robot description, what it is about, and how it prints."""
 
 from __future__ import annotations
 
-from collections.abc import Iterable
-from dataclasses import dataclass
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
 from enum import Enum
-from typing import Any
+from types import MappingProxyType
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from .errors import FishbotUrdfError
+    from .model import Location
 
 
 class Severity(str, Enum):
-    """How bad a finding is: errors make a robot invalid, warnings do not (unless --strict)."""
+    """How bad a finding is: errors make a robot invalid, warnings do not (unless strict)."""
 
     ERROR = "error"
     WARNING = "warning"
     NOTE = "note"
 
 
+class Kind(str, Enum):
+    """What kind of thing a finding is about."""
+
+    ROBOT = "robot"
+    LINK = "link"
+    JOINT = "joint"
+    MATERIAL = "material"
+    FILE = "file"
+    COMMENT = "comment"
+
+
+@dataclass(frozen=True, slots=True)
+class Subject:
+    """The thing a finding is about: a link, a joint, a material, the robot or a file.
+
+    ``str(subject)`` is how messages name it: ``link 'base_link'``.
+    """
+
+    kind: Kind
+    name: str
+
+    def __str__(self) -> str:
+        return f"{self.kind.value} {self.name!r}"
+
+
+_NO_DATA: Mapping[str, Any] = MappingProxyType({})
+
+
 @dataclass(frozen=True, slots=True)
 class Diagnostic:
-    """One finding, located in a source file.
+    """One finding, located in a source file. Make one with `diagnostic` (or a rule's
+    ``Rule.report``).
 
     Attributes:
         rule: Stable rule id, e.g. ``undefined-link``.
@@ -28,6 +62,8 @@ class Diagnostic:
         line: 1-based line, or None when the finding is about the whole file.
         column: 1-based column (in characters), or None.
         hint: What is allowed or what to do; rendered in parentheses.
+        subject: What the finding is about (the link, joint, ... and its name), if anything.
+        data: Facts behind the finding for programs (numbers, names), by rule; not compared.
     """
 
     rule: str
@@ -37,26 +73,34 @@ class Diagnostic:
     line: int | None = None
     column: int | None = None
     hint: str | None = None
+    subject: Subject | None = None
+    data: Mapping[str, Any] = field(default_factory=lambda: _NO_DATA, compare=False, repr=False)
 
     @property
     def is_error(self) -> bool:
         """True for ERROR findings."""
         return self.severity is Severity.ERROR
 
-    def format(self) -> str:
-        """Render as one GCC-style line: ``path:line:col: error: message (hint) [rule]``."""
+    @property
+    def where(self) -> str:
+        """``path:line:col`` (as much of it as is known)."""
         where = self.path
         if self.line is not None:
             where += f":{self.line}"
             if self.column is not None:
                 where += f":{self.column}"
-        text = f"{where}: {self.severity.value}: {self.message}"
+        return where
+
+    def format(self) -> str:
+        """Render as one GCC-style line: ``path:line:col: error: message (hint) [rule]``."""
+        text = f"{self.where}: {self.severity.value}: {self.message}"
         if self.hint:
             text += f" ({self.hint})"
         return f"{text} [{self.rule}]"
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready dict of every field."""
+        subject = self.subject
         return {
             "rule": self.rule,
             "severity": self.severity.value,
@@ -65,7 +109,57 @@ class Diagnostic:
             "line": self.line,
             "column": self.column,
             "hint": self.hint,
+            "subject": None
+            if subject is None
+            else {"kind": subject.kind.value, "name": subject.name},
+            "data": dict(self.data),
         }
+
+
+def diagnostic(
+    rule: str,
+    severity: Severity,
+    message: str,
+    where: Location | None = None,
+    *,
+    path: str = "<string>",
+    line: int | None = None,
+    column: int | None = None,
+    hint: str | None = None,
+    subject: Subject | None = None,
+    data: Mapping[str, Any] | None = None,
+) -> Diagnostic:
+    """The one way to make a finding: at ``where`` (a Location), or else in ``path`` at
+    ``line`` and ``column`` (None for the whole file)."""
+    facts = _NO_DATA if not data else MappingProxyType(dict(data))
+    if where is not None:
+        path, line, column = where.path, where.line, where.column
+    return Diagnostic(rule, severity, message, path, line, column, hint, subject, facts)
+
+
+def from_error(exc: FishbotUrdfError, path: str = "<input>") -> Diagnostic:
+    """The finding for an error that stopped a file from being read or written."""
+    return diagnostic(
+        exc.rule,
+        Severity.ERROR,
+        exc.message,
+        path=exc.path or path,
+        line=exc.line,
+        column=exc.column,
+        hint=getattr(exc, "hint", None),
+        subject=Subject(Kind.FILE, exc.path) if exc.path else None,
+    )
+
+
+def shown_path(name: str) -> str:
+    """A path as a user would write it: relative to the current folder when inside it."""
+    import os
+
+    try:
+        relative = os.path.relpath(name)
+    except ValueError:  # another drive (Windows)
+        return name
+    return name if relative.startswith("..") else relative
 
 
 def closest(name: str, candidates: Iterable[str]) -> str | None:
@@ -74,6 +168,12 @@ def closest(name: str, candidates: Iterable[str]) -> str | None:
 
     close = difflib.get_close_matches(name, sorted(set(candidates)), n=1)
     return close[0] if close else None
+
+
+def did_you_mean(name: str, candidates: Iterable[str]) -> str:
+    """``did you mean 'x'? `` when a candidate looks like ``name``, else ``''``."""
+    close = closest(name, candidates)
+    return f"did you mean {close!r}? " if close else ""
 
 
 def listing(names: Iterable[str], most: int = 8) -> str:

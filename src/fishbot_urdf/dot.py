@@ -12,7 +12,8 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
-from .errors import ToolError, ToolNotFoundError
+from .analysis import Analysis, of
+from .errors import ArgumentError, ToolError, ToolNotFoundError
 from .graph import to_networkx
 from .model import Joint, JointType, Link, Robot, Vector3
 
@@ -70,21 +71,19 @@ class Drawing:
     unreachable: frozenset[str]
 
 
-def drawing(robot: Robot) -> Drawing:
+def drawing(robot: Robot | Analysis) -> Drawing:
     """Work out what to draw and in which order, in time linear in the robot's size."""
-    graph = to_networkx(robot)
+    analysis = of(robot)
+    graph = to_networkx(analysis)
     defined: dict[str, Link | None] = {n: data.get("link") for n, data in graph.nodes(data=True)}
     # One pass over the edges (networkx's per-node views cost more than the whole walk).
     children: dict[str, list[tuple[str, str, Joint]]] = {name: [] for name in defined}
     parents: dict[str, int] = dict.fromkeys(defined, 0)
-    has_parent: set[str] = set()
     for parent, child, key, data in graph.edges(keys=True, data=True):
         children[parent].append((child, key, data["joint"]))
         parents[child] += 1
-        # As in urdfdom's tree: a joint from a missing link or from the link itself is no parent.
-        if parent != child and defined[parent] is not None:
-            has_parent.add(child)
-    roots = [n for n, link in defined.items() if link is not None and n not in has_parent]
+    # As in urdfdom's tree: a joint from a missing link or from the link itself is no parent.
+    roots = list(analysis.topology.roots)
     # The root's tree first, then the other trees, then links only loops reach.
     starts = [*roots, *(n for n, count in parents.items() if not count), *defined]
     links: list[str] = []
@@ -128,7 +127,7 @@ def drawing(robot: Robot) -> Drawing:
     )
 
 
-def to_dot(robot: Robot, detail: bool = False) -> str:
+def to_dot(robot: Robot | Analysis, detail: bool = False) -> str:
     """The robot's kinematic tree as Graphviz DOT text.
 
     Without ``detail`` it is what urdf_to_graphviz writes: links as boxes, joints as blue
@@ -269,11 +268,13 @@ def pipe_dot(text: str, format: str) -> bytes:
     return data
 
 
-def draw(robot: Robot, format: str, *, detail: bool = False) -> bytes:
+def draw(robot: Robot | Analysis, format: str, *, detail: bool = False) -> bytes:
     """The robot's graph as the bytes of a file in ``format`` (a key of ``FORMATS``)."""
     format = format.lower()
     if format not in FORMATS:
-        raise ValueError(f"unknown format {format!r} (formats: {', '.join(FORMATS)})")
+        raise ArgumentError(
+            f"unknown format {format!r} (formats: {', '.join(FORMATS)})", name="format"
+        )
     if format == "mmd":
         from .mermaid import to_mermaid
 
@@ -283,7 +284,11 @@ def draw(robot: Robot, format: str, *, detail: bool = False) -> bytes:
 
 
 def render(
-    robot: Robot, path: str | Path, *, format: str | None = None, detail: bool = False
+    robot: Robot | Analysis,
+    path: str | Path,
+    *,
+    format: str | None = None,
+    detail: bool = False,
 ) -> Path:
     """Write the robot's graph to ``path``, in the format its extension names.
 
@@ -296,7 +301,7 @@ def render(
         The path written.
 
     Raises:
-        ValueError: The format is not known.
+        ArgumentError: The format is not known.
         ToolNotFoundError: Rendering needs `dot`, and it is not installed.
         ToolError: `dot` failed.
         InputError: The file cannot be written.
@@ -304,8 +309,9 @@ def render(
     from .output import write_atomic
 
     chosen = format or Path(path).suffix.lstrip(".")
-    data = draw(robot, chosen, detail=detail)
-    return write_atomic(path, data, inputs=_source_files(robot))
+    analysis = of(robot)
+    data = draw(analysis, chosen, detail=detail)
+    return write_atomic(path, data, inputs=_source_files(analysis.robot))
 
 
 def _source_files(robot: Robot) -> set[str]:

@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from typing import Any
+from collections.abc import Iterable, Sequence
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .diagnostics import Diagnostic
 
 
 class FishbotUrdfError(Exception):
@@ -73,7 +76,7 @@ class RobotError(FishbotUrdfError):
 
     rule = "invalid-robot"
 
-    def __init__(self, diagnostics: Sequence[Any], *, path: str | None = None) -> None:
+    def __init__(self, diagnostics: Sequence[Diagnostic], *, path: str | None = None) -> None:
         self.diagnostics = tuple(diagnostics)
         first = self.diagnostics[0] if self.diagnostics else None
         count = len(self.diagnostics)
@@ -86,3 +89,60 @@ class RobotError(FishbotUrdfError):
             line=None if first is None else first.line,
             column=None if first is None else first.column,
         )
+
+
+class StructureError(FishbotUrdfError):
+    """The robot's links do not form the tree a question needs: no root, several roots
+    (``roots`` lists them), or two links that are not connected."""
+
+    rule = "structure"
+
+    def __init__(self, message: str, *, roots: tuple[str, ...] = ()) -> None:
+        super().__init__(message)
+        self.roots = roots
+
+
+class UnknownNameError(FishbotUrdfError, KeyError):
+    """A name (of a link, a joint, a rule, ...) that is not known.
+
+    Attributes:
+        kind: What was looked for (``link``, ``joint``, ``rule``).
+        name: The name given.
+        known: Every name that is known, sorted.
+    """
+
+    rule = "unknown-name"
+
+    def __init__(self, kind: str, name: str, known: Iterable[str]) -> None:
+        from .diagnostics import did_you_mean, listing
+
+        self.kind = kind
+        self.name = name
+        self.known = tuple(sorted(set(known)))
+        hint = did_you_mean(name, self.known)
+        listed = f"{kind}s: {listing(self.known)}" if self.known else f"there are no {kind}s"
+        super().__init__(f"no {kind} {name!r} ({hint}{listed})")
+
+
+class ArgumentError(FishbotUrdfError, ValueError):
+    """An argument a function was given is out of its range (``name`` names it)."""
+
+    rule = "argument"
+
+    def __init__(self, message: str, *, name: str | None = None) -> None:
+        super().__init__(message)
+        self.name = name
+
+
+class ShapeError(FishbotUrdfError, ValueError):
+    """A shape has no volume to fill: an open mesh, a shape of size zero, or a geometry no
+    formula covers."""
+
+    rule = "shape"
+
+
+class ConfigError(FishbotUrdfError):
+    """A configuration file or option is wrong: an unknown rule or key, a value of the
+    wrong type. ``path`` and ``line`` say where, when it came from a file."""
+
+    rule = "config"

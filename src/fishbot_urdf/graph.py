@@ -10,11 +10,13 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from .errors import FishbotUrdfError
+from .errors import StructureError, UnknownNameError
 from .model import Joint, Robot
 
 if TYPE_CHECKING:
     import networkx as nx
+
+    from .analysis import Analysis
 
 __all__ = [
     "Topology",
@@ -109,42 +111,54 @@ def _joint_name(joint: Joint) -> str:
     return joint.name
 
 
-def _tree(robot: Robot) -> Topology:
-    topo = topology(robot)
+def _parts(robot: Robot | Analysis) -> tuple[Robot, Topology]:
+    """The robot and its topology, from a robot or its analysis."""
+    if isinstance(robot, Robot):
+        return robot, topology(robot)
+    return robot.robot, robot.topology
+
+
+def _single_root(robot: Robot, topo: Topology) -> str:
     if topo.root is None:
-        found = ", ".join(topo.roots) if topo.roots else "none"
-        raise FishbotUrdfError(f"robot {robot.name!r} has no single root link (roots: {found})")
-    return topo
-
-
-def root(robot: Robot) -> str:
-    """The name of the root link (the one link that is no joint's child).
-
-    Raises:
-        FishbotUrdfError: There is no root, or more than one.
-    """
-    topo = _tree(robot)
-    assert topo.root is not None
+        found = (
+            f"{len(topo.roots)}: {', '.join(repr(r) for r in topo.roots)}"
+            if topo.roots
+            else "none (every link is some joint's child)"
+        )
+        raise StructureError(
+            f"robot {robot.name!r} needs one root link, and has {found}", roots=topo.roots
+        )
     return topo.root
 
 
-def tree_text(robot: Robot, topo: Topology | None = None) -> Iterator[str]:
+def root(robot: Robot | Analysis) -> str:
+    """The name of the root link (the one link that is no joint's child).
+
+    Raises:
+        StructureError: There is no root, or more than one.
+    """
+    return _single_root(*_parts(robot))
+
+
+def tree_text(robot: Robot | Analysis) -> Iterator[str]:
     """Yield check_urdf's output for a robot with one root, piece by piece (join them to get
     it all), whatever else is wrong with it.
 
     The pieces are the header and one line per link, each ending in a newline; a link
-    appears once for every path to it, as in check_urdf. Pass ``topo`` if it is at hand.
+    appears once for every path to it, as in check_urdf.
 
     Raises:
-        FishbotUrdfError: There is no single root, or a joint loop is reached from it (the
+        StructureError: There is no single root, or a joint loop is reached from it (the
             tree would never end).
     """
-    if topo is None or topo.root is None:
-        topo = _tree(robot)  # raises, naming the roots
+    model, topo = _parts(robot)
+    top = _single_root(model, topo)
     if topo.loop_from_root:
-        raise FishbotUrdfError(f"robot {robot.name!r} has a joint loop below its root")
-    top = topo.root
-    assert top is not None
+        raise StructureError(f"robot {model.name!r} has a joint loop below its root")
+    return _tree_lines(model, topo, top)
+
+
+def _tree_lines(robot: Robot, topo: Topology, top: str) -> Iterator[str]:
     yield f"robot name is: {robot.name}\n"
     yield "---------- Successfully Parsed XML ---------------\n"
     yield f"root Link: {top} has {len(topo.children[top])} child(ren)\n"
@@ -167,11 +181,19 @@ def tree_text(robot: Robot, topo: Topology | None = None) -> Iterator[str]:
             stack.append((grandchildren, 0))
 
 
-def subtree(robot: Robot, link: str) -> list[str]:
-    """``link`` and every link below it, depth-first with children ordered by joint name."""
-    topo = topology(robot)
-    if link not in topo.children:
-        raise KeyError(link)
+def _known(topo: Topology, name: str) -> None:
+    if name not in topo.children:
+        raise UnknownNameError("link", name, topo.children)
+
+
+def subtree(robot: Robot | Analysis, link: str) -> list[str]:
+    """``link`` and every link below it, depth-first with children ordered by joint name.
+
+    Raises:
+        UnknownNameError: The robot has no link ``link``.
+    """
+    _, topo = _parts(robot)
+    _known(topo, link)
     order: list[str] = []
     seen: set[str] = set()
     stack = [link]
@@ -185,25 +207,24 @@ def subtree(robot: Robot, link: str) -> list[str]:
     return order
 
 
-def leaves(robot: Robot) -> list[str]:
+def leaves(robot: Robot | Analysis) -> list[str]:
     """Links that are no joint's parent, in file order."""
-    topo = topology(robot)
-    return [link.name for link in robot.links if not topo.children[link.name]]
+    model, topo = _parts(robot)
+    return [link.name for link in model.links if not topo.children[link.name]]
 
 
-def chain(robot: Robot, start: str, end: str) -> list[str]:
+def chain(robot: Robot | Analysis, start: str, end: str) -> list[str]:
     """The links on the path from ``start`` to ``end`` (both included).
 
     The path goes up from ``start`` to the nearest common ancestor and down to ``end``.
 
     Raises:
-        KeyError: A link name is not in the robot.
-        FishbotUrdfError: The two links are not connected.
+        UnknownNameError: A link name is not in the robot.
+        StructureError: The two links are not connected.
     """
-    topo = topology(robot)
+    _, topo = _parts(robot)
     for name in (start, end):
-        if name not in topo.parents:
-            raise KeyError(name)
+        _known(topo, name)
 
     def ancestors(name: str) -> list[str]:
         path = [name]
@@ -222,10 +243,10 @@ def chain(robot: Robot, start: str, end: str) -> list[str]:
     for j, name in enumerate(up_from_end):
         if name in index:
             return up_from_start[: index[name] + 1] + list(reversed(up_from_end[:j]))
-    raise FishbotUrdfError(f"links {start!r} and {end!r} are not connected")
+    raise StructureError(f"links {start!r} and {end!r} are not connected")
 
 
-def to_networkx(robot: Robot) -> nx.MultiDiGraph[str]:
+def to_networkx(robot: Robot | Analysis) -> nx.MultiDiGraph[str]:
     """A MultiDiGraph with a node per link and an edge parent -> child per joint.
 
     Node attributes: ``link`` (the Link). Edges are keyed by joint name, with attributes
@@ -241,10 +262,11 @@ def to_networkx(robot: Robot) -> nx.MultiDiGraph[str]:
     """
     import networkx as nx  # ~200 ms to import: only when asked for
 
-    graph: nx.MultiDiGraph[str] = nx.MultiDiGraph(name=robot.name)
-    for link in robot.links:
+    model = robot if isinstance(robot, Robot) else robot.robot
+    graph: nx.MultiDiGraph[str] = nx.MultiDiGraph(name=model.name)
+    for link in model.links:
         graph.add_node(link.name, link=link)
-    for joint in sorted(robot.joints, key=_joint_name):
+    for joint in sorted(model.joints, key=_joint_name):
         graph.add_edge(
             joint.parent, joint.child, key=joint.name, joint=joint, type=joint.type.value
         )

@@ -4,36 +4,50 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from typing import TYPE_CHECKING
 
+from .errors import ArgumentError, UnknownNameError
 from .model import Joint, JointType, Robot
 from .spatial import Pose, axis_angle, scale
+
+if TYPE_CHECKING:
+    from .analysis import Analysis
 
 __all__ = ["joint_positions", "link_poses"]
 
 _MOVING = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)
 
 
-def joint_positions(robot: Robot, positions: Mapping[str, float] | None = None) -> dict[str, float]:
+def joint_positions(
+    robot: Robot | Analysis, positions: Mapping[str, float] | None = None
+) -> dict[str, float]:
     """The position of every revolute, continuous and prismatic joint (rad or m).
 
     Joints not named in ``positions`` are at zero, except mimic joints, which follow their
     leader: multiplier * leader + offset.
 
     Raises:
-        ValueError: ``positions`` names a joint the robot does not have, or a fixed,
-            floating or planar joint (whose pose is not one number), or a position that
-            is not a finite number.
+        UnknownNameError: ``positions`` names a joint the robot does not have.
+        ArgumentError: ``positions`` names a fixed, floating or planar joint (whose pose
+            is not one number), or gives a position that is not a finite number.
     """
+    model = robot if isinstance(robot, Robot) else robot.robot
     given = dict(positions or {})
-    by_name = {joint.name: joint for joint in robot.joints}
+    by_name = (
+        {joint.name: joint for joint in model.joints} if isinstance(robot, Robot) else robot.joints
+    )
     for name in given:
         joint = by_name.get(name)
         if joint is None:
-            raise ValueError(f"no joint {name!r} in robot {robot.name!r}")
+            raise UnknownNameError("joint", name, by_name)
         if joint.type not in _MOVING:
-            raise ValueError(f"joint {name!r} is {joint.type.value}: it takes no position")
+            raise ArgumentError(
+                f"joint {name!r} is {joint.type.value}: it takes no position", name=name
+            )
         if not math.isfinite(given[name]):
-            raise ValueError(f"joint {name!r}: position {given[name]} is not a finite number")
+            raise ArgumentError(
+                f"joint {name!r}: position {given[name]} is not a finite number", name=name
+            )
     values: dict[str, float] = {}
 
     def value(joint: Joint, depth: int = 0) -> float:
@@ -47,7 +61,7 @@ def joint_positions(robot: Robot, positions: Mapping[str, float] | None = None) 
         values[joint.name] = result
         return result
 
-    for joint in robot.joints:
+    for joint in model.joints:
         if joint.type in _MOVING:
             value(joint)
     return values
@@ -63,11 +77,13 @@ def joint_motion(joint: Joint, position: float) -> Pose:
     return Pose()
 
 
-def link_poses(robot: Robot, positions: Mapping[str, float] | None = None) -> dict[str, Pose]:
+def link_poses(
+    robot: Robot | Analysis, positions: Mapping[str, float] | None = None
+) -> dict[str, Pose]:
     """The pose of every link reached from a root, in that root's frame.
 
     Args:
-        robot: The robot.
+        robot: The robot, or its analysis.
         positions: Joint positions by name (rad for revolute and continuous, m for
             prismatic); the rest are zero (mimic joints follow their leader).
 
@@ -76,14 +92,17 @@ def link_poses(robot: Robot, positions: Mapping[str, float] | None = None) -> di
         in a joint loop, which no root reaches, are left out.
 
     Raises:
-        ValueError: ``positions`` names a joint that does not exist or does not move.
+        UnknownNameError: ``positions`` names a joint that does not exist.
+        ArgumentError: ``positions`` names a joint that does not move, or a position that
+            is not finite.
     """
     values = joint_positions(robot, positions)
+    model = robot if isinstance(robot, Robot) else robot.robot
     below: dict[str, list[Joint]] = {}
-    for joint in robot.joints:
+    for joint in model.joints:
         below.setdefault(joint.parent, []).append(joint)
-    children = {joint.child for joint in robot.joints}
-    poses = {link.name: Pose() for link in robot.links if link.name not in children}
+    children = {joint.child for joint in model.joints}
+    poses = {link.name: Pose() for link in model.links if link.name not in children}
     stack = list(poses)
     while stack:  # iterative: a 10k-link chain is fine
         name = stack.pop()

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from .analysis import Analysis
 from .dot import JOINT_COLORS, Drawing, drawing, joint_facts, link_facts, origin_numbers
 from .model import Robot
 
@@ -25,7 +26,7 @@ _ENTITIES = str.maketrans(
 )
 
 
-def to_mermaid(robot: Robot, detail: bool = False) -> str:
+def to_mermaid(robot: Robot | Analysis, detail: bool = False) -> str:
     """The robot's kinematic tree as a Mermaid flowchart (`flowchart TD`).
 
     The same drawing as ``to_dot``: links as boxes, joints as rounded nodes, each joint's

@@ -7,6 +7,8 @@ from dataclasses import dataclass, field, fields
 from enum import Enum
 from typing import NamedTuple, ParamSpec, TypeVar
 
+from .errors import UnknownNameError
+
 _T = TypeVar("_T")
 _P = ParamSpec("_P")
 Vector3 = tuple[float, float, float]
@@ -267,18 +269,26 @@ class Robot:
     source: Location | None = _source()
 
     def link(self, name: str) -> Link:
-        """The link called ``name``; KeyError if there is none. Linear in the number of links."""
+        """The link called ``name``. Linear in the number of links.
+
+        Raises:
+            UnknownNameError: There is none (a KeyError too).
+        """
         for link in self.links:
             if link.name == name:
                 return link
-        raise KeyError(name)
+        raise UnknownNameError("link", name, (link.name for link in self.links))
 
     def joint(self, name: str) -> Joint:
-        """The joint called ``name``; KeyError if there is none. Linear in the number of joints."""
+        """The joint called ``name``. Linear in the number of joints.
+
+        Raises:
+            UnknownNameError: There is none (a KeyError too).
+        """
         for joint in self.joints:
             if joint.name == name:
                 return joint
-        raise KeyError(name)
+        raise UnknownNameError("joint", name, (joint.name for joint in self.joints))
 
 
 def builder(cls: Callable[_P, _T]) -> Callable[_P, _T]:

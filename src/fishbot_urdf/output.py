@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import errno
 import os
 import secrets
 from collections.abc import Iterable
@@ -70,14 +69,16 @@ def _create_temporary(target: Path, mode: int) -> tuple[int, Path]:
     """A new, empty file beside ``target``, open for writing, with a name no other has."""
     # Short enough that a file name near the 255-byte limit still has room for it.
     prefix = f".{target.name[:40]}."
-    for _ in range(100):
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0)
+    tries = 100
+    while True:
         temporary = target.parent / f"{prefix}{secrets.token_hex(4)}"
         try:
-            flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0)
             return os.open(temporary, flags, mode), temporary
         except FileExistsError:
-            continue
-    raise FileExistsError(errno.EEXIST, "no free temporary file name", str(target.parent))
+            tries -= 1
+            if not tries:  # the caller says it cannot write there
+                raise
 
 
 def _same_file(a: Path, b: Path) -> bool:

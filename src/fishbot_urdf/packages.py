@@ -2,7 +2,7 @@
 
 Places are searched in this order, and the first that knows the package wins:
 
-1. ``packages``: names given explicitly (``--package NAME=PATH``).
+1. ``packages``: names given explicitly (``--package NAME=PATH`` on the command line).
 2. The folders around the file being read, walking up to the nearest ``package.xml`` whose
    ``<name>`` is the package.
 3. The folders listed in ``ROS_PACKAGE_PATH``, in order, each searched for a ``package.xml``
@@ -31,7 +31,8 @@ _SKIP_DIRS = frozenset(("build", "install", "log", "node_modules", "__pycache__"
 
 
 class PackageNotFoundError(FishbotUrdfError):
-    """No place knows the package; ``searched`` lists every place looked at, in order."""
+    """No place knows the package; ``searched`` lists every place looked at, in order (the
+    first is the packages given by name, ``given``)."""
 
     rule = "package-not-found"
 
@@ -40,16 +41,17 @@ class PackageNotFoundError(FishbotUrdfError):
         package: str,
         searched: tuple[str, ...],
         *,
+        given: tuple[str, ...] = (),
         path: str | None = None,
         line: int | None = None,
         column: int | None = None,
     ) -> None:
         self.package = package
         self.searched = searched
+        self.given = given
         places = "; ".join(searched) if searched else "nowhere"
         super().__init__(
-            f"package '{package}' not found (searched: {places}); "
-            f"name its folder with --package {package}=PATH",
+            f"package '{package}' not found (searched: {places})",
             path=path,
             line=line,
             column=column,
@@ -91,7 +93,7 @@ def find_package(
     searched: list[str] = []
     for found in _candidates(name, near, packages or {}, env, searched):
         return found
-    raise PackageNotFoundError(name, tuple(searched))
+    raise PackageNotFoundError(name, tuple(searched), given=tuple(sorted(packages or {})))
 
 
 def resolve_package_uri(
@@ -127,7 +129,7 @@ def _candidates(
     if name in packages:
         yield Path(os.path.abspath(packages[name]))
     given = ", ".join(sorted(packages))
-    searched.append(f"--package ({given})" if given else "--package (none given)")
+    searched.append(f"the packages given ({given or 'none'})")
 
     start = Path(near).resolve().parent if near is not None else None
     if start is not None:

@@ -6,6 +6,7 @@ from collections.abc import Iterable, Mapping
 
 from lxml import etree
 
+from .errors import ArgumentError, UnknownNameError
 from .model import (
     DEFAULT_AXIS,
     Box,
@@ -183,17 +184,19 @@ def add_inertials(
 
     Raises:
         XmlSyntaxError: ``data`` is not well-formed XML.
-        KeyError: A name in ``inertials`` is no top-level link of the robot.
-        ValueError: Such a link has an ``<inertial>`` already.
+        UnknownNameError: A name in ``inertials`` is no top-level link of the robot.
+        ArgumentError: Such a link has an ``<inertial>`` already.
     """
     if isinstance(data, str):
         data = data.encode("utf-8")
     root = parse_xml(data, path)
     links = {element.get("name"): element for element in root if element.tag == "link"}
     for name, inertial in inertials.items():
-        link = links[name]
+        link = links.get(name)
+        if link is None:
+            raise UnknownNameError("link", name, (n for n in links if n is not None))
         if link.find("inertial") is not None:
-            raise ValueError(f"link {name!r} has an <inertial> already")
+            raise ArgumentError(f"link {name!r} has an <inertial> already", name=name)
         inner = link.text if link.text and not link.text.strip() else "\n    "
         holder = etree.Element("link")
         _inertial(holder, inertial)

@@ -4,13 +4,15 @@ from __future__ import annotations
 
 import operator
 import re
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from itertools import accumulate, repeat
 from pathlib import Path
 
 from lxml import etree
 
-from .diagnostics import Diagnostic, Severity
+from . import xmlrecover
+from .diagnostics import Diagnostic, Kind, Subject
 from .errors import InputError, XmlSyntaxError
 from .model import Location
 
@@ -34,12 +36,91 @@ def read_bytes(path: str | Path) -> bytes:
 def parse_xml(data: bytes, path: str = STRING_PATH) -> etree._Element:
     """Parse bytes into an lxml element tree, refusing entities and DTDs.
 
+    Strict: a file urdfdom reads though XML does not (see `read_xml`) is refused too.
+
     Raises:
         XmlSyntaxError: The text is not well-formed XML, or declares entities.
     """
+    _check_start(data, path)
+    return _parse(data, path)
+
+
+@dataclass(frozen=True, slots=True)
+class XmlDocument:
+    """A file read as XML the way urdfdom reads it.
+
+    Attributes:
+        root: The root element (``<robot>`` unless the file has none).
+        locator: Source positions of its elements, in the file as written.
+        recoveries: One warning for each rule (``xml-*``) applied to read a file that urdfdom
+            reads and strict XML parsers refuse (or read otherwise); empty for clean XML.
+    """
+
+    root: etree._Element
+    locator: Locator
+    recoveries: tuple[Diagnostic, ...]
+
+
+def read_xml(
+    data: bytes, path: str = STRING_PATH, origins: Sequence[Location] | None = None
+) -> XmlDocument:
+    """Read bytes as urdfdom (check_urdf, robot_state_publisher) reads them.
+
+    Clean XML is read as it is. A file urdfdom reads although strict XML parsers refuse it (a
+    misplaced declaration, an undeclared prefix, a stray '&', ...) or read it otherwise is
+    read as urdfdom's TinyXML reads it, and each rule applied gives one warning saying what a
+    strict tool does with the file; nothing is ever read from outside the file.
+
+    Raises:
+        XmlSyntaxError: urdfdom refuses the file too (the strict parser's message when it
+            has one), or the file declares entities.
+    """
+    _check_start(data, path)
+    strict: XmlSyntaxError | None = None
+    try:
+        root = _parse(data, path)
+    except XmlSyntaxError as error:
+        strict = error
+    # (where the root's start tag ends: a DOCTYPE comes before)
+    if strict is None and not xmlrecover.needed(data, _line_end(data, root.sourceline)):
+        return XmlDocument(root, Locator(data, path, origins), ())
+    try:
+        recovered = xmlrecover.recover(data)
+        root = _parse(recovered.data, path)
+    except (xmlrecover.Refused, XmlSyntaxError) as refusal:
+        if strict is not None:
+            raise strict from refusal
+        if isinstance(refusal, XmlSyntaxError):  # pragma: no cover - a rewrite lxml refuses
+            raise
+        line, column = _line_column(data, refusal.offset or 0)
+        raise XmlSyntaxError(
+            f"urdfdom cannot read this file: {refusal.reason}",
+            path=path,
+            line=line if refusal.offset is not None else None,
+            column=column if refusal.offset is not None else None,
+        ) from refusal
+    locator = Locator(data, path, starts=recovered.starts, tags=recovered.tags)
+    from .rules.xml import BY_ID
+
+    findings = []
+    for recovery in recovered.recoveries:
+        line, column = _line_column(data, recovery.offset)
+        findings.append(
+            BY_ID[recovery.rule].report(
+                recovery.message,
+                Location(path, line, column),
+                path=path,
+                subject=Subject(Kind.FILE, path),
+                hint=recovery.hint,
+            )
+        )
+    return XmlDocument(root, locator, tuple(findings))
+
+
+def _check_start(data: bytes, path: str) -> None:
     if not data.strip():
         raise XmlSyntaxError('the file is empty (a URDF starts with <robot name="...">)', path=path)
-    if not data.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"<") and not data.startswith(
+    if not data.lstrip(b"\xef\xbb\xbf \t\r\n\v\f").startswith(b"<") and not data.startswith(
         (b"\xff\xfe", b"\xfe\xff")  # UTF-16 byte order marks
     ):
         raise XmlSyntaxError(
@@ -48,14 +129,43 @@ def parse_xml(data: bytes, path: str = STRING_PATH) -> etree._Element:
     doctype = data.find(b"<!DOCTYPE")
     entity = data.find(b"<!ENTITY", doctype) if doctype >= 0 else -1
     if entity >= 0:
+        line, column = _line_column(data, entity)
         raise XmlSyntaxError(
             "XML entity declarations are not allowed (URDF never needs them; they are "
             "refused so that nothing outside the file is read and nothing expands without end)",
             path=path,
-            line=data.count(b"\n", 0, entity) + 1,
-            column=len(data[data.rfind(b"\n", 0, entity) + 1 : entity].decode("utf-8", "replace"))
-            + 1,
+            line=line,
+            column=column,
         )
+    if data.startswith((b"\xff\xfe", b"\xfe\xff", b"\0")) or b"\0" in data[1:4]:
+        raise XmlSyntaxError(
+            "the file is UTF-16 or UTF-32: urdfdom reads it only up to its first NUL byte and "
+            "finds no <robot> (save it as UTF-8)",
+            path=path,
+            line=1,
+            column=1,
+        )
+
+
+def _line_end(data: bytes, line: object) -> int | None:
+    """Byte offset of the end of 1-based ``line`` (None: unknown)."""
+    if not isinstance(line, int):
+        return None
+    end = -1
+    for _ in range(line):
+        end = data.find(b"\n", end + 1)
+        if end < 0:
+            return None
+    return end
+
+
+def _line_column(data: bytes, offset: int) -> tuple[int, int]:
+    """1-based line and column (in characters) of byte ``offset``, as the Locator counts."""
+    start = data.rfind(b"\n", 0, offset) + 1
+    return data.count(b"\n", 0, offset) + 1, len(data[start:offset].decode("utf-8", "replace")) + 1
+
+
+def _parse(data: bytes, path: str) -> etree._Element:
     # No entity expansion, no DTD loading, no network, libxml2's size and depth guards on.
     parser = etree.XMLParser(
         resolve_entities=False,
@@ -130,10 +240,23 @@ class Locator:
         "raw_whitespace",
     )
 
-    def __init__(self, data: bytes, path: str, origins: Sequence[Location] | None = None) -> None:
+    def __init__(
+        self,
+        data: bytes,
+        path: str,
+        origins: Sequence[Location] | None = None,
+        *,
+        starts: Sequence[int] | None = None,
+        tags: Mapping[str, bytes] | None = None,
+    ) -> None:
+        """``starts`` gives the offset of every element instead of the scan (for a document
+        lxml read after a rewrite); ``tags`` the start-tag bytes of elements whose name, as
+        ``prefix:local``, is written otherwise in ``data``."""
         self._data = data
         self.path = path
-        if b"<!" in data:
+        if starts is not None:
+            self._starts = list(starts)
+        elif b"<!" in data:
             self._starts = [m.start() for m in _MARKUP.finditer(data) if m.lastindex]
         else:
             self._starts = [m.start() for m in _START_TAG.finditer(data)]
@@ -143,7 +266,7 @@ class Locator:
         self._origins = (
             origins if origins is not None and len(origins) == len(self._starts) else None
         )
-        self._tags: dict[str, bytes] = {}
+        self._tags: dict[str, bytes] = dict(tags or {})
         self.raw_whitespace = _RAW_WHITESPACE.search(data) is not None
         self.rewind()
 
@@ -181,6 +304,9 @@ class Locator:
         tag = element.tag
         if not isinstance(tag, str):
             return self._fallback(element)
+        if tag[0] == "{":  # in a namespace: written prefix:local (or local) in the file
+            local = tag[tag.index("}") + 1 :]
+            tag = f"{element.prefix}:{local}" if element.prefix else local
         name = self._tags.get(tag)
         if name is None:
             name = self._tags[tag] = b"<" + tag.encode("utf-8")
@@ -268,18 +394,3 @@ class Locator:
             return location
         line, column = self._position(match.start() + 1)
         return Location(self.path, line, column)
-
-
-def diagnostic(
-    rule: str,
-    message: str,
-    location: Location | None,
-    *,
-    hint: str | None = None,
-    severity: Severity = Severity.ERROR,
-    path: str = STRING_PATH,
-) -> Diagnostic:
-    """Build a Diagnostic at ``location`` (or at the whole file ``path``)."""
-    if location is None:
-        return Diagnostic(rule, severity, message, path, None, None, hint)
-    return Diagnostic(rule, severity, message, location.path, location.line, location.column, hint)

@@ -13,13 +13,29 @@ from typing import TYPE_CHECKING, Any
 import click
 
 from ..errors import FishbotUrdfError
-from ._fill import fill_copy
-from ._mass_table import inertial_dict, mass_table, table_text
-from ._options import PACKAGE_HELP as _PACKAGE_HELP
-from ._options import Number, Wrapped, text_or_json
+from ._common import (
+    EXIT_INVALID,
+    EXIT_OK,
+    EXIT_USAGE,
+    Number,
+    Wrapped,
+    check_input,
+    emit_findings,
+    fail,
+    format_option,
+    nearest_config,
+    package_option,
+    packages_option,
+    stop_on,
+    to_stdout,
+    xacro_args,
+)
 
 if TYPE_CHECKING:
-    from ..model import Inertial, Vector3
+    from pathlib import Path
+
+    from ..check import CheckResult
+    from ..model import Inertial, Mesh, Vector3
 
 _SHAPES = ("box", "cylinder", "sphere")
 
@@ -74,7 +90,7 @@ def inertia() -> None:
     \b
     Options for ROBOT (a URDF or xacro file, - for standard input):
       name:=value          xacro arguments
-      --format text|json   a table, or JSON (--json is the same)
+      --format text|json   a table, or JSON
       --fill -o OUT        write a copy with the missing inertials (- is stdout)
       --density KG_PER_M3  the density of every filled link
       --mass LINK=KG       the mass of one filled link (repeatable)
@@ -182,8 +198,8 @@ def _origin(xyz: Vector3, rpy: Vector3) -> Any:
 
 
 def _print(inertial: Inertial, fmt: str) -> None:
+    from ..inertia import inertial_dict
     from ..write import inertial_xml
-    from . import _to_stdout
 
     tensor = inertial.inertia
     if not all(math.isfinite(getattr(tensor, f)) for f in ("ixx", "iyy", "izz")):
@@ -193,7 +209,7 @@ def _print(inertial: Inertial, fmt: str) -> None:
         text = json.dumps(inertial_dict(inertial), indent=2) + "\n"
     else:
         text = inertial_xml(inertial)
-    _to_stdout(text.encode("utf-8"))
+    to_stdout(text.encode("utf-8"))
 
 
 class _RobotCommand(click.Command):
@@ -207,8 +223,7 @@ class _RobotCommand(click.Command):
 @inertia.command(cls=_RobotCommand, hidden=True)
 @click.argument("file", type=click.Path(allow_dash=True))
 @click.argument("args", nargs=-1, metavar="[name:=value]...")
-@text_or_json("text: a table; json: the same numbers for machines.")
-@click.option("--json", "as_json", is_flag=True, help="Same as --format json.")
+@format_option(("text", "json"), "text: a table; json: the same numbers for programs.")
 @click.option("--fill", is_flag=True, help="Write a copy with the missing inertials (needs -o).")
 @click.option("-o", "--output", metavar="OUT", help="Where --fill writes; - is standard output.")
 @click.option(
@@ -223,12 +238,11 @@ class _RobotCommand(click.Command):
     metavar="LINK=KG",
     help="With --fill: the mass of one link (repeatable); it wins over --density.",
 )
-@click.option("--package", "package_items", multiple=True, metavar="NAME=PATH", help=_PACKAGE_HELP)
+@package_option()
 def robot(
     file: str,
     args: Sequence[str],
     fmt: str,
-    as_json: bool,
     fill: bool,
     output: str | None,
     density: float | None,
@@ -247,21 +261,9 @@ def robot(
     \b
     Examples:
       fishbot inertia robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
-      fishbot inertia robot.urdf --json
+      fishbot inertia robot.urdf --format json
       fishbot inertia robot.urdf --fill --density 1000 -o robot_filled.urdf
     """
-    from . import (
-        EXIT_INVALID,
-        EXIT_OK,
-        _check_input,
-        _emit_findings,
-        _fail,
-        _packages,
-        _status,
-        _to_stdout,
-        _xacro_args,
-    )
-
     if any(":=" not in a for a in args):
         raise click.UsageError(f"unexpected argument {next(a for a in args if ':=' not in a)!r}")
     if fill and output is None:
@@ -270,30 +272,102 @@ def robot(
         raise click.UsageError("-o, --density and --mass go with --fill")
     if fill and density is None and not masses:
         raise click.UsageError("--fill needs --density KG_PER_M3 or --mass LINK=KG")
-    if fill and (as_json or fmt == "json"):
-        raise click.UsageError("--fill writes a URDF: it takes no --json or --format")
+    if fill and fmt == "json":
+        raise click.UsageError("--fill writes a URDF: it takes no --format")
     if file == "-" and args:
         raise click.UsageError("name:=value arguments are for a .xacro file, not standard input")
-    values = _xacro_args(args)
-    packages = _packages(package_items)
+    values = xacro_args(args)
+    packages = packages_option(package_items)
+    config = nearest_config(file)
     try:
-        result = _check_input(file, values, packages)
+        result = check_input(file, values, packages, config)
     except FishbotUrdfError as exc:
-        _emit_findings([_fail(exc)])
-        sys.exit(_status(exc))
+        stop_on(exc)
     if fill:
         errors = [d for d in result.diagnostics if d.is_error]
-        if result.robot is None or errors:  # the robot's own faults come first
-            _emit_findings(errors or result.diagnostics)
+        if result.analysis is None or errors:  # the robot's own faults come first
+            emit_findings(errors or result.diagnostics)
             click.echo("nothing written: fix the errors above first", err=True)
             sys.exit(EXIT_INVALID)
-        sys.exit(fill_copy(result, packages, output or "-", density, masses))
-    _emit_findings(result.diagnostics)
-    if result.robot is None:
+        sys.exit(_fill(result, packages, output or "-", density, _link_masses(masses)))
+    emit_findings(result.diagnostics)
+    if result.analysis is None:
         sys.exit(EXIT_INVALID)
-    table = mass_table(result)
-    if fmt == "json" or as_json:
-        _to_stdout((json.dumps(table, indent=2) + "\n").encode("utf-8"))
+    from ..inertia import mass_table
+
+    table = mass_table(result.analysis, result.diagnostics)
+    if fmt == "json":
+        report = {
+            "ok": result.ok,
+            **table.to_dict(),
+            "diagnostics": [d.to_dict() for d in result.diagnostics],
+        }
+        to_stdout((json.dumps(report, indent=2) + "\n").encode("utf-8"))
     else:
-        _to_stdout(table_text(table).encode("utf-8"))
+        to_stdout(table.to_text().encode("utf-8"))
     sys.exit(EXIT_INVALID if not result.ok else EXIT_OK)
+
+
+def _link_masses(items: Sequence[str]) -> dict[str, float]:
+    """``--mass LINK=KG`` values as a mapping."""
+    wanted: dict[str, float] = {}
+    for item in items:
+        name, sep, kg = item.partition("=")
+        try:
+            mass = float(kg)
+        except ValueError:
+            mass = -1.0
+        if not sep or not name or not mass > 0 or not math.isfinite(mass):
+            raise click.BadParameter(f"{item!r} is not LINK=KG with KG > 0", param_hint="--mass")
+        if name in wanted:
+            raise click.BadParameter(f"link {name!r} is given twice", param_hint="--mass")
+        wanted[name] = mass
+    return wanted
+
+
+def _fill(
+    result: CheckResult,
+    packages: dict[str, str],
+    output: str,
+    density: float | None,
+    masses: dict[str, float],
+) -> int:
+    """Write the copy with the missing inertials; the exit status."""
+    from ..errors import ArgumentError, UnknownNameError
+    from ..inertia import fill_inertials
+    from ..output import write_atomic
+    from ..packages import resolve_package_uri
+    from ..write import add_inertials
+
+    def resolve(mesh: Mesh) -> Path:
+        near = mesh.source.path if mesh.source else result.path
+        return resolve_package_uri(mesh.filename, near=near, packages=packages)
+
+    assert result.analysis is not None
+    try:
+        filling = fill_inertials(result.analysis, density=density, masses=masses, resolve=resolve)
+    except (ArgumentError, UnknownNameError) as exc:  # a --mass naming a wrong link
+        raise click.BadParameter(exc.message, param_hint="--mass") from None
+    emit_findings(filling.skipped)
+    computed = filling.inertials
+    if filling.skipped and not computed:
+        click.echo("nothing written: no link could be filled", err=True)
+        return EXIT_INVALID
+    try:
+        text = add_inertials(result.data, computed, path=result.path)
+        if output == "-":
+            to_stdout(text.encode("utf-8"))
+        else:
+            write_atomic(output, text, inputs=result.files)
+    except FishbotUrdfError as exc:
+        emit_findings([fail(exc)])
+        return EXIT_USAGE
+    where = "the URDF to standard output" if output == "-" else output
+    if computed:
+        count = f"{len(computed)} link" + ("s" if len(computed) > 1 else "")
+        names = ", ".join(f"{n} ({computed[n].mass:g} kg)" for n in computed)
+        said = f"<inertial> added to {count}: {names}"
+    else:
+        said = "no link needed an <inertial>"
+    click.echo(f"Wrote {where}: {said}", err=True)
+    return EXIT_INVALID if filling.skipped else EXIT_OK

@@ -21,7 +21,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..errors import FishbotUrdfError, InputError
+from ..errors import ArgumentError, FishbotUrdfError, InputError
 from ..model import Location
 
 __all__ = ["Expansion", "XacroError", "expand", "parse_args"]
@@ -35,8 +35,9 @@ class XacroError(FishbotUrdfError):
     Attributes:
         rule: ``xacro-include`` (an include names no file), ``xacro-undefined`` (a name,
             macro, parameter or argument that is not defined), ``xacro-namespace`` (the
-            ``xacro:`` prefix is not declared), ``xacro-syntax`` (not well-formed XML), or
-            ``xacro`` (anything else xacro refuses).
+            ``xacro:`` prefix is not declared), ``xacro-syntax`` (not well-formed XML),
+            ``xacro-circular`` (properties defined by each other), or ``xacro-error``
+            (anything else xacro refuses).
         hint: What to do, or the closest defined names.
         calls: The macro calls that led to the error, innermost first, as
             (macro name, where it was called).
@@ -46,7 +47,7 @@ class XacroError(FishbotUrdfError):
         self,
         message: str,
         *,
-        rule: str = "xacro",
+        rule: str = "xacro-error",
         hint: str | None = None,
         where: Location | None = None,
         calls: tuple[tuple[str, Location | None], ...] = (),
@@ -90,13 +91,13 @@ def parse_args(items: list[str] | tuple[str, ...]) -> dict[str, str]:
     private parameter (``_name:=value``) is ignored.
 
     Raises:
-        ValueError: An item has no ``:=``, more than one, or no name.
+        ArgumentError: An item has no ``:=``, more than one, or no name.
     """
     args: dict[str, str] = {}
     for item in items:
         pieces = [piece.strip() for piece in item.split(":=")]
         if len(pieces) != 2 or not pieces[0]:
-            raise ValueError(f"'{item}' is not an argument: write name:=value")
+            raise ArgumentError(f"'{item}' is not an argument: write name:=value", name=item)
         name, value = pieces
         if value and not (len(name) > 1 and name[0] == "_" and name[1] != "_"):
             args[name] = value

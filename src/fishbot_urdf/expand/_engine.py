@@ -10,10 +10,11 @@ from typing import Any
 from xml.dom import expatbuilder, minidom
 from xml.parsers.expat import ExpatError
 
+from ..diagnostics import shown_path
 from ..model import Location
 from ..packages import PackageNotFoundError, find_package
 from . import Expansion, XacroError
-from ._errors import SOURCE_KEY, Explaining, shown_path, source
+from ._errors import SOURCE_KEY, Explaining, source
 
 
 class _KeepOnClone:

@@ -7,22 +7,13 @@ from pathlib import Path
 from typing import Any
 from xml.parsers.expat import ExpatError
 
-from ..diagnostics import closest, listing
+from ..diagnostics import closest, listing, shown_path
 from ..errors import FishbotUrdfError
 from ..model import Location
 from ..packages import PackageNotFoundError
 from . import XacroError
 
 _XACRO_NS = "http://www.ros.org/wiki/xacro"
-
-
-def shown_path(name: str) -> str:
-    """A path as the user would write it: relative to the current folder when inside it."""
-    try:
-        relative = os.path.relpath(name)
-    except ValueError:  # another drive (Windows)
-        return name
-    return name if relative.startswith("..") else relative
 
 
 def source(node: Any) -> Location | None:
@@ -58,7 +49,12 @@ class Explaining:
         if where is None:
             return exc
         return PackageNotFoundError(
-            exc.package, exc.searched, path=where.path, line=where.line, column=where.column
+            exc.package,
+            exc.searched,
+            given=exc.given,
+            path=where.path,
+            line=where.line,
+            column=where.column,
         )
 
     def _syntax_error(self, exc: ExpatError) -> XacroError:

@@ -11,10 +11,11 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..diagnostics import Diagnostic, Severity
+from ..diagnostics import Diagnostic, Kind, Subject
 from ..errors import RobotError
 from ..model import Robot
-from ..xmlsource import STRING_PATH, Locator, parse_xml, read_bytes
+from ..rules.xacro import XACRO_WARNING
+from ..xmlsource import STRING_PATH, read_bytes, read_xml
 from ._reader import Reader
 from .values import to_double
 
@@ -67,7 +68,8 @@ def read(
 
     Raises:
         InputError: The file cannot be read.
-        XmlSyntaxError: The file is not well-formed XML.
+        XmlSyntaxError: The file is not XML that urdfdom reads (see
+            :func:`fishbot_urdf.xmlsource.read_xml`).
         XacroError: The xacro file cannot be expanded.
         PackageNotFoundError: The xacro file names a package that is not found.
     """
@@ -87,8 +89,9 @@ def read(
         name = path or str(source)
         data = read_bytes(source)
         files = (str(source),)
-    root = parse_xml(data, name)
-    locator = Locator(data, name, origins)
+    # As urdfdom reads it: a file it reads though strict XML does not gives xml-* warnings.
+    document = read_xml(data, name, origins)
+    root, locator, notes = document.root, document.locator, notes + document.recoveries
     reader = Reader(locator)
     robot = reader.robot(root)
     return Parsed(name, robot, notes + tuple(reader.diagnostics), files, data)
@@ -96,7 +99,9 @@ def read(
 
 def xacro_warning(message: str, path: str) -> Diagnostic:
     """A warning xacro gave while expanding ``path``, as a finding about the file."""
-    return Diagnostic("xacro", Severity.WARNING, message.removeprefix("warning: ").strip(), path)
+    return XACRO_WARNING.report(
+        message.removeprefix("warning: ").strip(), None, path=path, subject=Subject(Kind.FILE, path)
+    )
 
 
 def parse(text: str | bytes, *, path: str | None = None) -> Robot:

@@ -4,16 +4,21 @@ from __future__ import annotations
 
 from lxml import etree
 
-from ..diagnostics import Diagnostic, Severity
+from ..diagnostics import Diagnostic, Kind, Severity, Subject
 from ..model import ZERO3, Location, Vector3
-from ..xmlsource import Locator, diagnostic
+from ..rules import Rule
+from ..rules.reading import BAD_NUMBER, BAD_VECTOR, MISSING_ATTRIBUTE, UNKNOWN_ELEMENT
+from ..xmlsource import Locator
 from .values import to_double, to_doubles
+
+Owner = Subject | str  # what a message names: a link, a joint, ... (or just "link")
 
 
 def xml_text(element: etree._Element) -> str:
     """An element URDF does not define, as compact XML text (layout white space dropped, so
     that a robot written out with another indentation reads back equal)."""
-    copy = etree.fromstring(etree.tostring(element, with_tail=False))
+    # As text, not bytes: ASCII bytes would write a name like <grün> as a character reference.
+    copy = etree.fromstring(etree.tostring(element, encoding="unicode", with_tail=False))
     for node in copy.iter():
         if node.text is not None and not node.text.strip():
             node.text = None
@@ -28,28 +33,34 @@ class ReaderBase:
     def __init__(self, locator: Locator) -> None:
         self.locator = locator
         self.diagnostics: list[Diagnostic] = []
+        # What the element being read belongs to: the robot, a link, a joint, a material.
+        self.subject = Subject(Kind.ROBOT, "")
 
     # -- findings ---------------------------------------------------------------------------
     def error(
         self,
-        rule: str,
+        rule: Rule,
         message: str,
         location: Location | None,
         hint: str | None = None,
-        severity: Severity = Severity.ERROR,
+        severity: Severity | None = None,
     ) -> None:
         self.diagnostics.append(
-            diagnostic(
-                rule, message, location, hint=hint, severity=severity, path=self.locator.path
+            rule.report(
+                message,
+                location,
+                path=self.locator.path,
+                subject=self.subject,
+                hint=hint,
+                severity=severity,
             )
         )
 
-    def warn(self, rule: str, message: str, location: Location, hint: str | None = None) -> None:
-        self.error(rule, message, location, hint, Severity.WARNING)
-
-    def missing(self, el: etree._Element, at: Location, attr: str, owner: str, value: str) -> None:
+    def missing(
+        self, el: etree._Element, at: Location, attr: str, owner: Owner, value: str
+    ) -> None:
         self.error(
-            "missing-attribute",
+            MISSING_ATTRIBUTE,
             f"{owner}: <{el.tag}> has no {attr!r} attribute",
             at,
             f'write <{el.tag} {attr}="{value}">',
@@ -60,23 +71,23 @@ class ReaderBase:
         self.locator.skip(el)
         return xml_text(el)
 
-    def passed_over(self, el: etree._Element, rule: str, message: str, hint: str) -> None:
+    def passed_over(self, el: etree._Element, rule: Rule, message: str, hint: str) -> None:
         """Warn about an element that is read no further, and skip what it holds."""
         at = self.locator.locate(el)
         self.locator.skip_children(el)
-        self.warn(rule, message, at, hint)
+        self.error(rule, message, at, hint)
 
-    def ignored(self, el: etree._Element, owner: str, parent: str, allowed: str) -> None:
+    def ignored(self, el: etree._Element, owner: Owner, parent: str, allowed: str) -> None:
         """Warn about an element that has no meaning where it stands, and pass over it."""
         self.passed_over(
             el,
-            "unknown-element",
+            UNKNOWN_ELEMENT,
             f"{owner}: <{el.tag}> is not allowed inside <{parent}> and is ignored",
             allowed,
         )
 
     # -- attributes -------------------------------------------------------------------------
-    def text(self, el: etree._Element, at: Location, attr: str, owner: str) -> str | None:
+    def text(self, el: etree._Element, at: Location, attr: str, owner: Owner) -> str | None:
         """A required string attribute; reports ``missing-attribute`` when absent or empty."""
         value = el.get(attr)
         if not value:
@@ -89,7 +100,7 @@ class ReaderBase:
         el: etree._Element,
         at: Location,
         attr: str,
-        owner: str,
+        owner: Owner,
         default: float = 0.0,
         *,
         required: bool = False,
@@ -102,7 +113,7 @@ class ReaderBase:
         number = to_double(value) if value else None
         if number is None:
             self.error(
-                "bad-number",
+                BAD_NUMBER,
                 f'{owner}: <{el.tag} {attr}="{value}"> is not a number',
                 self.locator.attribute(at, attr),
                 "write a finite decimal like 0.5 or 1e-3, with no units or trailing spaces",
@@ -111,7 +122,7 @@ class ReaderBase:
         return number
 
     def optional_number(
-        self, el: etree._Element, at: Location, attr: str, owner: str
+        self, el: etree._Element, at: Location, attr: str, owner: Owner
     ) -> float | None:
         return None if el.get(attr) is None else self.number(el, at, attr, owner)
 
@@ -120,7 +131,7 @@ class ReaderBase:
         el: etree._Element,
         at: Location,
         attr: str,
-        owner: str,
+        owner: Owner,
         count: int,
         meaning: str,
     ) -> list[float] | None:
@@ -135,7 +146,7 @@ class ReaderBase:
             pieces = [p for p in pieces if p]
         if len(pieces) != count:
             self.error(
-                "bad-vector",
+                BAD_VECTOR,
                 f'{owner}: <{el.tag} {attr}="{value}"> has {len(pieces)} '
                 f"value{'' if len(pieces) == 1 else 's'}, {count} are needed",
                 self.locator.attribute(at, attr),
@@ -146,7 +157,7 @@ class ReaderBase:
         if numbers is None:
             bad = next(p for p in pieces if to_double(p) is None)
             self.error(
-                "bad-number",
+                BAD_NUMBER,
                 f'{owner}: <{el.tag} {attr}="{value}">: {bad!r} is not a number',
                 self.locator.attribute(at, attr),
                 f'write {attr}="{meaning}" as finite decimals separated by spaces',
@@ -159,7 +170,7 @@ class ReaderBase:
         el: etree._Element,
         at: Location,
         attr: str,
-        owner: str,
+        owner: Owner,
         default: Vector3 = ZERO3,
         *,
         required: bool = False,

@@ -6,6 +6,7 @@ from collections.abc import Callable
 
 from lxml import etree
 
+from ..diagnostics import Kind, Severity, Subject
 from ..model import (
     DEFAULT_AXIS,
     Calibration,
@@ -19,6 +20,8 @@ from ..model import (
     SafetyController,
     builder,
 )
+from ..rules.reading import DUPLICATE_ELEMENT, JOINT_TYPE, MISSING_ATTRIBUTE, MISSING_ELEMENT
+from ._base import Owner
 from ._links import LinkReader
 
 _TYPES = {t.value: t for t in JointType}
@@ -31,21 +34,21 @@ _new_limit = builder(Limit)
 class JointReader(LinkReader):
     """Builds Joint and its parts."""
 
-    def joint_type(self, el: etree._Element, at: Location, owner: str) -> JointType:
+    def joint_type(self, el: etree._Element, at: Location, owner: Owner) -> JointType:
         text = el.get("type")
         found = _TYPES.get(text or "")
         if found is not None:
             return found
         if not text:
             self.error(
-                "joint-type",
+                JOINT_TYPE,
                 f"{owner}: has no type",
                 at,
                 'write type="revolute|continuous|prismatic|fixed|floating|planar"',
             )
         else:
             self.error(
-                "joint-type",
+                JOINT_TYPE,
                 f"{owner}: type {text!r} is not a URDF joint type",
                 self.locator.attribute(at, "type"),
                 "use revolute, continuous, prismatic, fixed, floating or planar",
@@ -54,7 +57,7 @@ class JointReader(LinkReader):
 
     def joint(self, el: etree._Element, at: Location) -> Joint:
         name = self.text(el, at, "name", "joint") or ""
-        owner = f"joint {name!r}"
+        owner = self.subject = Subject(Kind.JOINT, name)
         joint_type = self.joint_type(el, at, owner)
         parts: dict[str, object] = {}
         ends: dict[str, tuple[str, Location]] = {}
@@ -69,8 +72,8 @@ class JointReader(LinkReader):
             c_at = self.locator.locate(child)
             if tag in parts or tag in ends:
                 self.locator.skip_children(child)
-                self.warn(
-                    "duplicate-element",
+                self.error(
+                    DUPLICATE_ELEMENT,
                     f"{owner}: a second <{tag}> is ignored",
                     c_at,
                     f"a joint has at most one <{tag}>",
@@ -82,7 +85,7 @@ class JointReader(LinkReader):
         for end in ("parent", "child"):
             if end not in ends:
                 self.error(
-                    "missing-element",
+                    MISSING_ELEMENT,
                     f"{owner}: has no <{end}>",
                     at,
                     f'write <{end} link="LINK_NAME"/>',
@@ -107,18 +110,19 @@ class JointReader(LinkReader):
             child_at,
         )
 
-    def axis(self, el: etree._Element, at: Location, owner: str) -> tuple[float, ...]:
+    def axis(self, el: etree._Element, at: Location, owner: Owner) -> tuple[float, ...]:
         if el.get("xyz") is None:
             # urdfdom keeps the default then; the spec asks for xyz.
-            self.warn(
-                "missing-attribute",
+            self.error(
+                MISSING_ATTRIBUTE,
                 f"{owner}: <axis> has no 'xyz' attribute, so the axis is 1 0 0",
                 at,
                 'write <axis xyz="x y z"/>',
+                Severity.WARNING,
             )
         return self.vector3(el, at, "xyz", owner, DEFAULT_AXIS)
 
-    def limit(self, el: etree._Element, at: Location, owner: str) -> Limit:
+    def limit(self, el: etree._Element, at: Location, owner: Owner) -> Limit:
         return _new_limit(
             self.number(el, at, "effort", owner, required=True),
             self.number(el, at, "velocity", owner, required=True),
@@ -127,19 +131,19 @@ class JointReader(LinkReader):
             at,
         )
 
-    def dynamics(self, el: etree._Element, at: Location, owner: str) -> Dynamics:
+    def dynamics(self, el: etree._Element, at: Location, owner: Owner) -> Dynamics:
         return Dynamics(
             self.number(el, at, "damping", owner), self.number(el, at, "friction", owner), at
         )
 
-    def calibration(self, el: etree._Element, at: Location, owner: str) -> Calibration:
+    def calibration(self, el: etree._Element, at: Location, owner: Owner) -> Calibration:
         return Calibration(
             self.optional_number(el, at, "rising", owner),
             self.optional_number(el, at, "falling", owner),
             at,
         )
 
-    def mimic(self, el: etree._Element, at: Location, owner: str) -> Mimic:
+    def mimic(self, el: etree._Element, at: Location, owner: Owner) -> Mimic:
         return Mimic(
             self.text(el, at, "joint", owner) or "",
             self.number(el, at, "multiplier", owner, 1.0),
@@ -147,7 +151,7 @@ class JointReader(LinkReader):
             at,
         )
 
-    def safety_controller(self, el: etree._Element, at: Location, owner: str) -> SafetyController:
+    def safety_controller(self, el: etree._Element, at: Location, owner: Owner) -> SafetyController:
         return SafetyController(
             k_velocity=self.number(el, at, "k_velocity", owner, required=True),
             k_position=self.number(el, at, "k_position", owner),
@@ -158,7 +162,7 @@ class JointReader(LinkReader):
 
 
 _ENDS = ("parent", "child")
-_PARTS: dict[str, Callable[[JointReader, etree._Element, Location, str], object]] = {
+_PARTS: dict[str, Callable[[JointReader, etree._Element, Location, Owner], object]] = {
     "origin": JointReader.origin,
     "axis": JointReader.axis,
     "limit": JointReader.limit,

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from lxml import etree
 
+from ..diagnostics import Kind, Subject
 from ..model import (
     ZERO3,
     Box,
@@ -21,7 +22,14 @@ from ..model import (
     Visual,
     builder,
 )
-from ._base import ReaderBase, xml_text
+from ..rules.reading import (
+    BAD_COLOR,
+    COLLISION_MATERIAL,
+    DUPLICATE_ELEMENT,
+    MISSING_ELEMENT,
+    UNKNOWN_GEOMETRY,
+)
+from ._base import Owner, ReaderBase, xml_text
 
 _SHAPES = "<box>, <cylinder>, <sphere> or <mesh>"
 _NO_ORIGIN = Origin()  # frozen: one for every element that has no <origin>
@@ -40,17 +48,19 @@ _new_link = builder(Link)
 class LinkReader(ReaderBase):
     """Builds Link, Inertial, Visual, Collision, Geometry, Origin and Material."""
 
-    def origin(self, el: etree._Element, at: Location, owner: str) -> Origin:
+    def origin(self, el: etree._Element, at: Location, owner: Owner) -> Origin:
         return _new_origin(
             self.vector3(el, at, "xyz", owner), self.vector3(el, at, "rpy", owner), at
         )
 
-    def material(self, el: etree._Element, at: Location, owner: str) -> Material:
+    def material(self, el: etree._Element, at: Location, owner: Owner) -> Material:
         name = el.get("name")
         if name is None:
             # urdfdom accepts name="" (an anonymous colour, common in exported robots).
             self.missing(el, at, "name", owner, "...")
-        label = f"material {name!r}"
+        label = Subject(Kind.MATERIAL, name or "")
+        if isinstance(owner, Subject) and owner.kind is Kind.ROBOT:  # a material of its own
+            self.subject = label
         color = texture = None
         for child in el:
             tag = child.tag
@@ -63,7 +73,7 @@ class LinkReader(ReaderBase):
                     color = (rgba[0], rgba[1], rgba[2], rgba[3])
                     if not all(0.0 <= v <= 1.0 for v in color):
                         self.error(
-                            "bad-color",
+                            BAD_COLOR,
                             f'{label}: <color rgba="{child.get("rgba")}"> has a value outside 0..1',
                             self.locator.attribute(c_at, "rgba"),
                             "each of red, green, blue and alpha is between 0 and 1",
@@ -78,7 +88,7 @@ class LinkReader(ReaderBase):
 
     def link(self, el: etree._Element, at: Location) -> Link:
         name = self.text(el, at, "name", "link") or ""
-        owner = f"link {name!r}"
+        owner = self.subject = Subject(Kind.LINK, name)
         inertial: Inertial | None = None
         visuals: list[Visual] = []
         collisions: list[Collision] = []
@@ -94,7 +104,7 @@ class LinkReader(ReaderBase):
             elif tag == "inertial":
                 self.passed_over(
                     child,
-                    "duplicate-element",
+                    DUPLICATE_ELEMENT,
                     f"{owner}: a second <inertial> is ignored",
                     "a link has at most one <inertial>",
                 )
@@ -103,7 +113,7 @@ class LinkReader(ReaderBase):
                 extras.append(self.extra(child))
         return _new_link(name, inertial, tuple(visuals), tuple(collisions), tuple(extras), at)
 
-    def inertial(self, el: etree._Element, at: Location, owner: str) -> Inertial:
+    def inertial(self, el: etree._Element, at: Location, owner: Owner) -> Inertial:
         origin = _NO_ORIGIN
         mass = 0.0
         inertia: Inertia | None = None
@@ -133,14 +143,14 @@ class LinkReader(ReaderBase):
                 )
         if not has_mass:
             self.error(
-                "missing-element",
+                MISSING_ELEMENT,
                 f"{owner}: <inertial> has no <mass>",
                 at,
                 'write <mass value="KG"/>',
             )
         if inertia is None:
             self.error(
-                "missing-element",
+                MISSING_ELEMENT,
                 f"{owner}: <inertial> has no <inertia>",
                 at,
                 'write <inertia ixx=".." ixy="0" ixz="0" iyy=".." iyz="0" izz=".."/>',
@@ -148,7 +158,7 @@ class LinkReader(ReaderBase):
         return _new_inertial(mass, inertia or Inertia(), origin, at)
 
     def _shape_parts(
-        self, el: etree._Element, at: Location, owner: str, visual: bool
+        self, el: etree._Element, at: Location, owner: Owner, visual: bool
     ) -> tuple[Origin, Geometry, Material | None]:
         origin = _NO_ORIGIN
         geometry: Geometry | None = None
@@ -166,14 +176,14 @@ class LinkReader(ReaderBase):
             elif tag == "material":
                 self.passed_over(
                     child,
-                    "collision-material",
+                    COLLISION_MATERIAL,
                     f"{owner}: <material> inside <collision> is ignored",
                     "colours belong in <visual>; move the <material> there",
                 )
             elif tag == "geometry":
                 self.passed_over(
                     child,
-                    "duplicate-element",
+                    DUPLICATE_ELEMENT,
                     f"{owner}: a second <geometry> in one <{el.tag}> is ignored",
                     f"use another <{el.tag}> for another shape",
                 )
@@ -184,22 +194,22 @@ class LinkReader(ReaderBase):
                 self.ignored(child, owner, el.tag, f"<{el.tag}> holds {allowed}")
         if not seen_geometry:
             self.error(
-                "missing-element",
+                MISSING_ELEMENT,
                 f"{owner}: <{el.tag}> has no <geometry>",
                 at,
                 f"write <geometry> with one {_SHAPES}",
             )
         return origin, geometry or Box(ZERO3), material
 
-    def visual(self, el: etree._Element, at: Location, owner: str) -> Visual:
+    def visual(self, el: etree._Element, at: Location, owner: Owner) -> Visual:
         origin, geometry, material = self._shape_parts(el, at, owner, True)
         return _new_visual(geometry, origin, material, el.get("name"), at)
 
-    def collision(self, el: etree._Element, at: Location, owner: str) -> Collision:
+    def collision(self, el: etree._Element, at: Location, owner: Owner) -> Collision:
         origin, geometry, _ = self._shape_parts(el, at, owner, False)
         return _new_collision(geometry, origin, el.get("name"), at)
 
-    def geometry(self, el: etree._Element, at: Location, owner: str) -> Geometry | None:
+    def geometry(self, el: etree._Element, at: Location, owner: Owner) -> Geometry | None:
         shape: Geometry | None = None
         seen = False
         for child in el:
@@ -210,8 +220,8 @@ class LinkReader(ReaderBase):
             if len(child):  # a shape holds nothing, as a rule
                 self.locator.skip_children(child)
             if seen:
-                self.warn(
-                    "duplicate-element",
+                self.error(
+                    DUPLICATE_ELEMENT,
                     f"{owner}: <geometry> holds more than one shape; <{tag}> is ignored",
                     c_at,
                     "one <geometry> has exactly one shape; use another <visual> or <collision>",
@@ -221,14 +231,14 @@ class LinkReader(ReaderBase):
             shape = self.shape(child, c_at, owner)
         if not seen:
             self.error(
-                "missing-element",
+                MISSING_ELEMENT,
                 f"{owner}: <geometry> is empty",
                 at,
                 f"write one {_SHAPES} inside it",
             )
         return shape
 
-    def shape(self, el: etree._Element, at: Location, owner: str) -> Geometry | None:
+    def shape(self, el: etree._Element, at: Location, owner: Owner) -> Geometry | None:
         tag = el.tag
         if tag == "box":
             return _new_box(self.vector3(el, at, "size", owner, required=True), at)
@@ -243,7 +253,5 @@ class LinkReader(ReaderBase):
             if el.get("scale") is not None:
                 scale = self.vector3(el, at, "scale", owner, (1.0, 1.0, 1.0))
             return Mesh(filename, scale, at)
-        self.error(
-            "unknown-geometry", f"{owner}: <{tag}> is not a URDF shape", at, f"use {_SHAPES}"
-        )
+        self.error(UNKNOWN_GEOMETRY, f"{owner}: <{tag}> is not a URDF shape", at, f"use {_SHAPES}")
         return None

@@ -6,7 +6,9 @@ import re
 
 from lxml import etree
 
+from ..diagnostics import Kind, Subject
 from ..model import Joint, Link, Material, Robot
+from ..rules.reading import NO_ROBOT, ROBOT_NAME, ROBOT_VERSION
 from ._joints import JointReader
 
 # urdfdom reads "MAJOR.MINOR" as two integers and supports only 1.0 ("1.00" and "01.0" too).
@@ -20,20 +22,21 @@ class Reader(JointReader):
         at = self.locator.locate(el)
         if el.tag != "robot":
             self.error(
-                "no-robot",
+                NO_ROBOT,
                 f"the root element is <{el.tag}>, not <robot>",
                 at,
                 'a URDF file holds one <robot name="..."> element',
             )
             return None
         name = el.get("name")
+        whole = self.subject = Subject(Kind.ROBOT, name or "")
         if not name:
-            self.error("robot-name", "<robot> has no name", at, 'write <robot name="my_robot">')
+            self.error(ROBOT_NAME, "<robot> has no name", at, 'write <robot name="my_robot">')
         version = el.get("version")
         parts = _VERSION.fullmatch(version) if version is not None else None
         if version is not None and (parts is None or (int(parts[1]), int(parts[2])) != (1, 0)):
             self.error(
-                "robot-version",
+                ROBOT_VERSION,
                 f'<robot version="{version}"> is not a URDF version this tool knows',
                 self.locator.attribute(at, "version"),
                 'use version="1.0" or leave the attribute out',
@@ -44,13 +47,14 @@ class Reader(JointReader):
         extras: list[str] = []
         locate = self.locator.locate
         for child in el:
+            self.subject = whole
             tag = child.tag
             if tag == "link":
                 links.append(self.link(child, locate(child)))
             elif tag == "joint":
                 joints.append(self.joint(child, locate(child)))
             elif tag == "material":
-                materials.append(self.material(child, locate(child), "robot"))
+                materials.append(self.material(child, locate(child), whole))
             elif isinstance(tag, str):
                 extras.append(self.extra(child))
         return Robot(

@@ -1,0 +1,163 @@
+"""What every rule, drawing and mass computation needs of one robot, built once.
+
+An `Analysis` holds the robot with its topology, its links and joints by name, each link's
+parent joint, the joint loops, the rigid bodies simulators make of links welded by fixed
+joints, and the links' poses, computed on first use. Build it with `analyse` and pass it
+on; functions that take a robot take an analysis too.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import NamedTuple
+
+from .graph import Topology, root, topology
+from .model import Joint, JointType, Link, Robot
+from .spatial import Pose
+
+__all__ = ["Analysis", "Body", "analyse", "of"]
+
+
+class Body(NamedTuple):
+    """Links welded together by fixed joints, as one rigid body.
+
+    Attributes:
+        base: The link the body starts at (the child of a moving joint, or a root).
+        members: Every link of the body with its pose in ``base``'s frame, ``base`` first.
+        moved_by: The joint that moves the body; None for a root's body.
+    """
+
+    base: Link
+    members: tuple[tuple[Link, Pose], ...]
+    moved_by: Joint | None
+
+
+@dataclass(frozen=True, eq=False)
+class Analysis:
+    """One robot, analysed. Immutable; what is costly is computed on first use.
+
+    Attributes:
+        robot: The robot.
+        path: The file findings without a location are reported against.
+        topology: How the links hang together (children, parents, roots, reachable).
+        links: Each link by name (the first one, if a name is used twice).
+        joints: Each joint by name (the first one, if a name is used twice).
+        parent_joint: Each link's parent joint (the first in file order, if it has several).
+    """
+
+    robot: Robot
+    path: str
+    topology: Topology
+    links: Mapping[str, Link] = field(repr=False)
+    joints: Mapping[str, Joint] = field(repr=False)
+    parent_joint: Mapping[str, Joint] = field(repr=False)
+
+    @property
+    def root(self) -> str:
+        """The root link.
+
+        Raises:
+            StructureError: There is no root, or several.
+        """
+        return root(self)
+
+    @cached_property
+    def loops(self) -> tuple[tuple[Joint, ...], ...]:
+        """Every joint loop, once each, whether or not the root reaches it."""
+        return _loops(self.robot, self.topology)
+
+    @cached_property
+    def bodies(self) -> tuple[Body, ...]:
+        """The rigid bodies: links welded by fixed joints, in file order of their base."""
+        return _bodies(self)
+
+    @cached_property
+    def zero_poses(self) -> Mapping[str, Pose]:
+        """Every reached link's pose in its root's frame, every joint at zero."""
+        from .kinematics import link_poses
+
+        return link_poses(self)
+
+
+def analyse(robot: Robot, path: str | None = None) -> Analysis:
+    """Analyse ``robot`` (linear in its size). ``path`` names the file it came from (by
+    default, where the robot element was read)."""
+    if path is None:
+        path = robot.source.path if robot.source else "<robot>"
+    links: dict[str, Link] = {}
+    for link in robot.links:
+        links.setdefault(link.name, link)
+    joints: dict[str, Joint] = {}
+    parent_joint: dict[str, Joint] = {}
+    for joint in robot.joints:
+        joints.setdefault(joint.name, joint)
+        if joint.child in links and joint.parent != joint.child:
+            parent_joint.setdefault(joint.child, joint)
+    return Analysis(robot, path, topology(robot), links, joints, parent_joint)
+
+
+def of(robot: Robot | Analysis) -> Analysis:
+    """The analysis of ``robot``, built if a Robot is given."""
+    return robot if isinstance(robot, Analysis) else analyse(robot)
+
+
+def _bodies(analysis: Analysis) -> tuple[Body, ...]:
+    fixed_below: dict[str, list[tuple[str, Pose]]] = {}
+    for child, joint in analysis.parent_joint.items():
+        if joint.type is JointType.FIXED:
+            fixed_below.setdefault(joint.parent, []).append((child, Pose.of(joint.origin)))
+    links = analysis.links
+    found: list[Body] = []
+    alone = Pose()
+    for link in analysis.robot.links:
+        moved_by = analysis.parent_joint.get(link.name)
+        if moved_by is not None and moved_by.type is JointType.FIXED:
+            continue  # part of its parent's body
+        if link.name not in fixed_below:  # the common case: a body of one link
+            found.append(Body(link, ((link, alone),), moved_by))
+            continue
+        members: list[tuple[Link, Pose]] = []
+        stack = [(link.name, alone)]
+        seen: set[str] = set()
+        while stack:
+            name, pose = stack.pop()
+            if name in seen or name not in links:
+                continue
+            seen.add(name)
+            members.append((links[name], pose))
+            stack.extend((child, pose.then(o)) for child, o in fixed_below.get(name, ()))
+        found.append(Body(link, tuple(members), moved_by))
+    return tuple(found)
+
+
+def _loops(robot: Robot, topo: Topology) -> tuple[tuple[Joint, ...], ...]:
+    """Every joint loop, found once each by an iterative depth-first search over all links
+    (in file order)."""
+    state: dict[str, int] = {}  # 1 on the current path, 2 finished
+    loops: list[tuple[Joint, ...]] = []
+    for start in (link.name for link in robot.links):
+        if start in state:
+            continue
+        state[start] = 1
+        path = [start]
+        via: list[Joint] = []  # via[i] is the joint from path[i] to path[i + 1]
+        pending = [iter(topo.children[start])]
+        while pending:
+            joint = next(pending[-1], None)
+            if joint is None:
+                state[path.pop()] = 2
+                pending.pop()
+                if via:
+                    via.pop()
+                continue
+            child = joint.child
+            if state.get(child) == 1:  # back to a link on the current path: a loop
+                loops.append((*via[path.index(child) :], joint))
+            elif child not in state:
+                state[child] = 1
+                path.append(child)
+                via.append(joint)
+                pending.append(iter(topo.children[child]))
+    return tuple(loops)

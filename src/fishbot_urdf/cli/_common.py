@@ -1,0 +1,220 @@
+"""What the subcommands share: printing findings and output, exit statuses, reading the
+robot, and the options more than one command takes."""
+
+from __future__ import annotations
+
+import math
+import os
+import sys
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import replace
+from typing import IO, TYPE_CHECKING, Any, NoReturn, TypeVar
+
+import click
+
+from ..diagnostics import Diagnostic, Severity, from_error
+from ..errors import FishbotUrdfError, InputError, ToolError
+from ._hints import error_hint, phrased
+
+if TYPE_CHECKING:
+    from ..check import CheckResult
+    from ..config import Config
+
+EXIT_OK, EXIT_INVALID, EXIT_USAGE = 0, 1, 2
+
+Wrapped = TypeVar("Wrapped", bound=Callable[..., object])
+
+_COLORS = {Severity.ERROR: "red", Severity.WARNING: "magenta", Severity.NOTE: "cyan"}
+
+PACKAGE_HELP = "Where ROS package NAME is, for $(find NAME) and package:// (repeatable)."
+
+
+def use_color(stream: IO[str]) -> bool:
+    """Colour only on a terminal, and never with NO_COLOR set."""
+    if os.environ.get("NO_COLOR"):
+        return False
+    return stream.isatty()
+
+
+def emit_findings(diagnostics: Iterable[Diagnostic]) -> None:
+    """Each finding as one line on stderr, its hint phrased for the command line."""
+    err = sys.stderr
+    color = use_color(err)
+    for d in diagnostics:
+        line = phrased(d).format()
+        if color:
+            label = f"{d.severity.value}:"
+            line = line.replace(
+                f" {label} ", " " + click.style(label, fg=_COLORS[d.severity], bold=True) + " ", 1
+            )
+        click.echo(line, err=True, color=color)
+
+
+def fail(exc: FishbotUrdfError) -> Diagnostic:
+    """One finding for an exception that stopped a file from being read."""
+    finding = from_error(exc)
+    phrasing = error_hint(exc)
+    if phrasing is None:
+        return finding
+    message, hint = phrasing
+    return replace(finding, message=message, hint=hint)
+
+
+def status_of(exc: FishbotUrdfError) -> int:
+    """Exit status for an error that stopped a file: 2 when the input or the setup is at
+    fault (a file cannot be read or written, a package or a program is not found, the
+    configuration is wrong), 1 when the robot is."""
+    from ..errors import ConfigError
+    from ..packages import PackageNotFoundError
+
+    setup = (InputError, PackageNotFoundError, ToolError, ConfigError)
+    return EXIT_USAGE if isinstance(exc, setup) else EXIT_INVALID
+
+
+def stop_on(exc: FishbotUrdfError) -> NoReturn:
+    """Report an error that stops the command, and exit with its status."""
+    emit_findings([fail(exc)])
+    sys.exit(status_of(exc))
+
+
+def packages_option(items: Sequence[str]) -> dict[str, str]:
+    """``--package NAME=PATH`` values as a mapping."""
+    packages: dict[str, str] = {}
+    for item in items:
+        name, sep, folder = item.partition("=")
+        if not sep or not name or not folder:
+            raise click.BadParameter(f"'{item}' is not NAME=PATH", param_hint="--package")
+        if not os.path.isdir(folder):
+            raise click.BadParameter(f"{folder} is not a folder", param_hint="--package")
+        packages[name] = folder
+    return packages
+
+
+def xacro_args(items: Sequence[str]) -> dict[str, str]:
+    """``name:=value`` arguments as a mapping."""
+    from ..expand import parse_args
+
+    try:
+        return parse_args(list(items))
+    except FishbotUrdfError as exc:
+        raise click.BadParameter(exc.message, param_hint="ARGS") from None
+
+
+def check_input(
+    name: str,
+    args: dict[str, str],
+    packages: dict[str, str],
+    config: Config | None = None,
+) -> CheckResult:
+    """Read and check FILE (- is standard input, read as URDF)."""
+    from ..check import check_file
+
+    if name == "-":
+        return check_file(stdin_urdf(), path="<stdin>", config=config)
+    return check_file(name, args=args, packages=packages, config=config)
+
+
+def nearest_config(file: str) -> Config:
+    """The configuration of the nearest fishbot.toml or pyproject.toml above ``file`` (the
+    current folder for -), or the default; a wrong one stops the command."""
+    from ..config import Config, find_config, load_config
+
+    found = find_config("." if file == "-" else file)
+    try:
+        return Config() if found is None else load_config(found)
+    except FishbotUrdfError as exc:
+        stop_on(exc)
+
+
+def stdin_urdf() -> bytes:
+    """Standard input, which must be URDF: xacro there has no folder for its includes."""
+    data = sys.stdin.buffer.read()
+    if b"xmlns:xacro" in data[:4096] or b"<xacro:" in data:
+        raise InputError(
+            "standard input is read as URDF, and this is xacro (give the .xacro file's "
+            "path, or pipe its expansion: fishbot expand FILE | fishbot check -)",
+            path="<stdin>",
+        )
+    return data
+
+
+def write_chunks(chunks: Iterable[str]) -> None:
+    """Write text to stdout in large blocks (a deep tree prints hundreds of megabytes)."""
+    buffer: list[str] = []
+    size = 0
+    for chunk in chunks:
+        buffer.append(chunk)
+        size += len(chunk)
+        if size > 1 << 20:
+            to_stdout("".join(buffer).encode("utf-8"), flush=False)
+            buffer, size = [], 0
+    to_stdout("".join(buffer).encode("utf-8"))
+
+
+def to_stdout(data: bytes, *, flush: bool = True) -> None:
+    """Write to stdout; when the reader has gone (`fishbot check big.urdf | head`), stop
+    quietly with status 0 rather than let click turn the broken pipe into status 1."""
+    try:
+        sys.stdout.buffer.write(data)
+        if flush:
+            sys.stdout.buffer.flush()
+    except BrokenPipeError:
+        stop_quietly()
+    except OSError as exc:  # a full disk, a closed terminal: one line, no traceback
+        emit_findings([fail(InputError(f"cannot write: {exc.strerror}", path="<stdout>"))])
+        stop_quietly(EXIT_USAGE)
+
+
+def stop_quietly(status: int = EXIT_OK) -> NoReturn:
+    """Exit; nothing more may reach a closed pipe, not even the flush at exit."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):
+        pass  # stdout is no real file (a test runner's buffer)
+    sys.exit(status)
+
+
+def format_option(choices: Sequence[str], text: str) -> Callable[[Wrapped], Wrapped]:
+    """``--format`` among ``choices`` (the first is the default), stored as ``fmt``."""
+    return click.option(
+        "--format",
+        "fmt",
+        type=click.Choice(list(choices)),
+        default=choices[0],
+        show_default=True,
+        help=text,
+    )
+
+
+def package_option() -> Callable[[Wrapped], Wrapped]:
+    """``--package NAME=PATH`` (repeatable), stored as ``package_items``."""
+    return click.option(
+        "--package", "package_items", multiple=True, metavar="NAME=PATH", help=PACKAGE_HELP
+    )
+
+
+class Number(click.ParamType):  # type: ignore[type-arg]
+    """A finite number (click's float lets nan and inf through), > 0 with ``positive``,
+    >= 0 with ``zero``."""
+
+    name = "float"
+
+    def __init__(self, *, positive: bool = False, zero: bool = False) -> None:
+        self.positive = positive
+        self.zero = zero
+
+    def convert(
+        self, value: Any, param: click.Parameter | None, ctx: click.Context | None
+    ) -> float:
+        try:
+            number = float(value)
+        except (TypeError, ValueError):
+            self.fail(f"{value!r} is not a number", param, ctx)
+        if not math.isfinite(number):
+            self.fail(f"{value!r} is not a finite number", param, ctx)
+        if self.positive and not number > 0:
+            self.fail(f"{value!r} must be > 0", param, ctx)
+        if self.zero and number < 0:
+            self.fail(f"{value!r} must be >= 0", param, ctx)
+        return number

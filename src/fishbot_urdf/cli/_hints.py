@@ -1,0 +1,86 @@
+"""Hints that name a command or an option of `fishbot`: the library's findings say what to
+do in general; here they learn how to do it from the command line."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import replace
+from typing import Any
+
+from ..diagnostics import Diagnostic
+from ..errors import FishbotUrdfError
+
+
+def phrased(finding: Diagnostic) -> Diagnostic:
+    """``finding`` with the command line's way to act on it added to its hint."""
+    extra = _EXTRA.get(finding.rule)
+    words = extra(finding.data) if extra is not None else None
+    if not words:
+        return finding
+    hint = f"{finding.hint}; {words}" if finding.hint else words
+    return replace(finding, hint=hint)
+
+
+def _numbers(values: Any) -> str:
+    return " ".join(f"{v:g}" for v in values)
+
+
+def _shape_command(data: Any) -> str | None:
+    shape = data.get("shape")
+    if shape is None:
+        return None
+    words = f"{shape} --mass {data['mass']:g}"
+    if shape == "box":
+        words += f" --size {_numbers(data['size'])}"
+    elif shape == "cylinder":
+        words += f" --radius {data['radius']:g} --length {data['length']:g}"
+    else:
+        words += f" --radius {data['radius']:g}"
+    for name in ("xyz", "rpy"):
+        if any(data.get(name, ())):
+            words += f" --{name} {_numbers(data[name])}"
+    return f"`fishbot inertia {words}` prints the inertial of the collision"
+
+
+def _tolerance(data: Any) -> str | None:
+    return "change it with --ground-tolerance MM" if "tolerance_mm" in data else None
+
+
+def _fill(data: Any) -> str:
+    return "`fishbot inertia ROBOT --fill --density KG_PER_M3 -o OUT` writes one"
+
+
+def _moments(data: Any) -> str | None:
+    if "principal_moments" not in data:
+        return None
+    return "`fishbot inertia box|cylinder|sphere` prints those of a solid"
+
+
+def _fill_skipped(data: Any) -> str | None:
+    if data.get("reason") == "no-mass":
+        return "give --mass LINK=KG or --density KG_PER_M3"
+    return None
+
+
+_EXTRA: dict[str, Callable[[Any], str | None]] = {
+    "inertia-mismatch": _shape_command,
+    "below-ground": _tolerance,
+    "above-ground": _tolerance,
+    "missing-inertial": _fill,
+    "massless-link": _moments,
+    "fill-skipped": _fill_skipped,
+}
+
+
+def error_hint(exc: FishbotUrdfError) -> tuple[str, str | None] | None:
+    """The message and hint of an error that stops a command, phrased for the command line,
+    or None to keep the library's."""
+    from ..packages import PackageNotFoundError
+
+    if isinstance(exc, PackageNotFoundError):
+        places = [f"--package ({', '.join(exc.given) or 'none given'})", *exc.searched[1:]]
+        return (
+            f"package {exc.package!r} not found (searched: {'; '.join(places)})",
+            f"name its folder with --package {exc.package}=PATH",
+        )
+    return None

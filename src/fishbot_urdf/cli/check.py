@@ -1,0 +1,424 @@
+"""`fishbot check`: check_urdf's output and every finding, in the format CI wants."""
+
+from __future__ import annotations
+
+import json
+import sys
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import click
+
+from ..errors import FishbotUrdfError
+from ._common import (
+    EXIT_INVALID,
+    EXIT_OK,
+    EXIT_USAGE,
+    Number,
+    check_input,
+    emit_findings,
+    fail,
+    package_option,
+    packages_option,
+    status_of,
+    stop_on,
+    to_stdout,
+    write_chunks,
+    xacro_args,
+)
+
+if TYPE_CHECKING:
+    from ..check import CheckResult
+    from ..config import Config
+    from ..diagnostics import Diagnostic
+    from ..report import FileReport
+
+FORMATS = ("text", "json", "sarif", "github")
+
+
+class _Rules(click.ParamType):  # type: ignore[type-arg]
+    """Rule ids or family names, comma-separated (the option may be repeated), checked
+    against the registry as the option is read: a wrong one is a usage error."""
+
+    name = "RULES"
+
+    def __init__(self, key: str) -> None:
+        self.key = key
+
+    def convert(
+        self, value: object, param: click.Parameter | None, ctx: click.Context | None
+    ) -> tuple[str, ...]:
+        from ..config import check_selectors
+
+        if isinstance(value, tuple):
+            return value
+        names = tuple(part.strip() for part in str(value).split(",") if part.strip())
+        try:
+            check_selectors(self.key, names)
+        except FishbotUrdfError as exc:
+            self.fail(exc.message.removeprefix(f"{self.key}: "), param, ctx)
+        return names
+
+
+class _Severity(click.ParamType):  # type: ignore[type-arg]
+    """RULE=LEVEL, LEVEL one of error, warning, note."""
+
+    name = "RULE=LEVEL"
+
+    def convert(
+        self, value: object, param: click.Parameter | None, ctx: click.Context | None
+    ) -> tuple[str, str]:
+        from ..config import check_severities
+
+        if isinstance(value, tuple):
+            return value
+        rule, sep, level = (part.strip() for part in str(value).partition("="))
+        if not sep or not rule or level not in ("error", "warning", "note"):
+            self.fail(f"{value!r} is not RULE=error|warning|note", param, ctx)
+        try:
+            check_severities({rule: level})
+        except FishbotUrdfError as exc:
+            self.fail(exc.message.removeprefix("severity: "), param, ctx)
+        return rule, level
+
+
+@dataclass(frozen=True, slots=True)
+class _Options:
+    """What the command line says about rules, on top of any configuration file."""
+
+    select: tuple[str, ...] | None
+    extend_select: tuple[str, ...]
+    ignore: tuple[str, ...]
+    severity: dict[str, str]
+    strict: bool | None
+    ground_mm: float | None
+    config_file: str | None
+    isolated: bool
+
+    def config_for(self, file: str, found: dict[str, Config]) -> Config:
+        """The configuration that applies to ``file``: its nearest configuration file (or
+        ``--config``, or none with ``--isolated``), with the options on top."""
+        from ..config import Config, find_config, load_config
+        from ..diagnostics import Severity, shown_path
+
+        if self.isolated:
+            where = None
+        elif self.config_file is not None:
+            where = self.config_file
+        else:
+            near = find_config("." if file == "-" else file)
+            where = None if near is None else shown_path(str(near))
+        key = where or ""
+        if key not in found:
+            found[key] = load_config(where) if where else Config()
+        return found[key].updated(
+            select=self.select,
+            extend_select=self.extend_select,
+            ignore=self.ignore,
+            severity={rule: Severity(level) for rule, level in self.severity.items()},
+            strict=self.strict,
+            ground_tolerance=self.ground_mm,
+        )
+
+
+@click.command()
+@click.argument(
+    "files",
+    nargs=-1,
+    metavar="FILE... [name:=value]...",
+    type=click.Path(dir_okay=True, allow_dash=True),
+)
+@click.option(
+    "--format",
+    "fmt",
+    type=click.Choice(FORMATS),
+    default="text",
+    show_default=True,
+    help="text: check_urdf's tree on stdout, one line per finding on stderr; json: a report "
+    "for programs; sarif: SARIF 2.1.0 for code scanning; github: workflow annotations.",
+)
+@click.option(
+    "-o",
+    "--output",
+    metavar="FILE",
+    help="Write what goes to standard output (the tree, or the report) to FILE instead "
+    "(whole or not at all; never over a checked file).",
+)
+@click.option(
+    "-q", "--quiet", is_flag=True, help="Findings only: no tree (text format; for hooks)."
+)
+@click.option(
+    "--strict/--no-strict",
+    default=None,
+    help="Warnings fail too (exit 1). [default: the configuration's strict, else no]",
+)
+@click.option(
+    "--select",
+    type=_Rules("select"),
+    multiple=True,
+    help="Only these rules (ids or families, comma-separated; ALL for every rule), instead "
+    "of the configuration's selection.",
+)
+@click.option(
+    "--extend-select",
+    type=_Rules("extend-select"),
+    multiple=True,
+    help="These rules as well as those selected.",
+)
+@click.option(
+    "--ignore", type=_Rules("ignore"), multiple=True, help="Not these rules (ids or families)."
+)
+@click.option(
+    "--severity",
+    "severities",
+    type=_Severity(),
+    multiple=True,
+    help="Report RULE's findings as errors, warnings or notes (repeatable).",
+)
+@click.option(
+    "--config",
+    "config_file",
+    type=click.Path(dir_okay=False),
+    metavar="FILE",
+    help="Read the rules' settings from this file (a fishbot.toml, or a pyproject.toml's "
+    "[tool.fishbot]) instead of the nearest one above each checked file.",
+)
+@click.option("--isolated", is_flag=True, help="Read no configuration file.")
+@click.option(
+    "--skip-includes",
+    is_flag=True,
+    help="Pass over xacro files that define no robot (no name, no links: macros and "
+    "properties for other files to include); they are still expanded, so a fault that "
+    "stops the expansion is reported.",
+)
+@click.option(
+    "--ground-tolerance",
+    "ground_mm",
+    type=Number(zero=True),
+    metavar="MM",
+    help="How far (millimetres) the lowest collision point may be below or above the ground "
+    "(z = 0 of a footprint root link) before a warning. [default: 2]",
+)
+@package_option()
+def check(
+    files: Sequence[str],
+    fmt: str,
+    output: str | None,
+    quiet: bool,
+    strict: bool | None,
+    select: Sequence[tuple[str, ...]],
+    extend_select: Sequence[tuple[str, ...]],
+    ignore: Sequence[tuple[str, ...]],
+    severities: Sequence[tuple[str, str]],
+    config_file: str | None,
+    isolated: bool,
+    skip_includes: bool,
+    ground_mm: float | None,
+    package_items: Sequence[str],
+) -> None:
+    """Check URDF or xacro files, like check_urdf, and more strictly.
+
+    Prints exactly what check_urdf prints (the robot's name and its link tree) whenever the
+    tree can be read, errors or not. Every finding goes to stderr as one line,
+    path:line:col: error: ... [rule]. A .xacro file is expanded first (name:=value
+    arguments go to it) and findings point at the xacro source. Beyond check_urdf it checks
+    masses and inertias (errors where a simulator would refuse them), inertias against
+    their collision shapes, and whether a robot on a footprint root stands on the ground.
+
+    Rules are chosen by [tool.fishbot] in the nearest pyproject.toml, or a fishbot.toml,
+    above each file (keys select, extend-select, ignore, severity, strict,
+    ground-tolerance), then by the options: --select replaces the file's selection, the
+    other options add to it. A comment <!-- fishbot: ignore[RULE, ...] --> right before an
+    element silences RULE for it and everything inside it (before the root element, for
+    the whole file). `fishbot rules` lists the rules. FILE may be - to read standard input
+    (URDF).
+
+    \b
+    Exit status:
+      0  every robot is valid (warnings allowed, unless strict)
+      1  a robot has errors (with --strict, warnings too)
+      2  a file could not be read or written, a package was not found,
+         the configuration or the command line is wrong
+
+    \b
+    Examples:
+      fishbot check robots/fishbot/urdf/first_robot.urdf
+      fishbot check robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
+      fishbot check --strict a.urdf robot.urdf.xacro use_gpu:=false
+      fishbot check --select physics --ignore inertia-mismatch robot.urdf
+      fishbot check --severity limit-range=warning robot.urdf
+      fishbot check --config ci/fishbot.toml urdf/*.urdf
+      fishbot check --format sarif -o fishbot.sarif urdf/*.urdf
+      fishbot check --format github robot.urdf.xacro
+      fishbot check -q --skip-includes $(git ls-files '*.urdf' '*.xacro')
+      xacro robot.urdf.xacro | fishbot check -
+    """
+    args = xacro_args([f for f in files if ":=" in f])
+    packages = packages_option(package_items)
+    names = [f for f in files if ":=" not in f]
+    if not files:
+        raise click.UsageError("Missing argument 'FILE...'.")
+    if not names:
+        raise click.UsageError("no FILE to check (name:=value arguments go with a .xacro file)")
+    if isolated and config_file is not None:
+        raise click.UsageError("--config and --isolated cannot be used together")
+    options = _Options(
+        select=tuple(r for group in select for r in group) if select else None,
+        extend_select=tuple(r for group in extend_select for r in group),
+        ignore=tuple(r for group in ignore for r in group),
+        severity=dict(severities),
+        strict=strict,
+        ground_mm=ground_mm,
+        config_file=config_file,
+        isolated=isolated,
+    )
+    found: dict[str, Config] = {}
+    try:  # every configuration first: a wrong one stops everything, before any output
+        configs = [options.config_for(name, found) for name in names]
+    except FishbotUrdfError as exc:
+        stop_on(exc)
+    status = EXIT_OK
+    reports: list[FileReport] = []
+    out: list[bytes] = []
+    # Never written over: the files checked, what they read, the configuration files.
+    inputs = [name for name in (*names, *found) if name and name != "-"]
+    for name, config in zip(names, configs, strict=True):
+        try:
+            result = check_input(name, args, packages, config)
+        except FishbotUrdfError as exc:
+            reports.append(_failure(exc, config))
+            if fmt == "text":
+                emit_findings([fail(exc)])
+            status = max(status, status_of(exc))
+            continue
+        inputs.extend(result.files)
+        if skip_includes and _is_include(result):
+            reports.append(_skipped(result, config))
+            continue
+        report = _report(result, config)
+        reports.append(report)
+        if not report.ok:
+            status = max(status, EXIT_INVALID)
+        if fmt == "text":
+            emit_findings(result.diagnostics)
+            if not quiet:
+                _tree(result, out if output else None)
+    _finish(fmt, reports, output, out, inputs)
+    sys.exit(status)
+
+
+def _is_include(result: CheckResult) -> bool:
+    """A xacro file that defines no robot: macros, properties, materials for others."""
+    from ..parse import is_xacro_path
+
+    robot = result.robot
+    return (
+        robot is not None
+        and is_xacro_path(result.path)
+        and not robot.name
+        and not robot.links
+        and not robot.joints
+    )
+
+
+def _tree(result: CheckResult, into: list[bytes] | None) -> None:
+    """check_urdf's output whenever the tree can be printed, errors or not: a script
+    reading it keeps working, and the exit status tells the rest."""
+    from ..graph import tree_text
+
+    topo = result.topology
+    if result.analysis is None or topo is None or topo.root is None or topo.loop_from_root:
+        return
+    if into is None:
+        write_chunks(tree_text(result.analysis))
+    else:
+        into.append("".join(tree_text(result.analysis)).encode("utf-8"))
+
+
+def _report(result: CheckResult, config: Config) -> FileReport:
+    from ..diagnostics import has_errors
+    from ..report import FileReport
+
+    robot, topo = result.robot, result.topology
+    failed = robot is None or has_errors(result.diagnostics, strict=config.strict)
+    return FileReport(
+        path=result.path,
+        ok=not failed,
+        diagnostics=result.diagnostics,
+        suppressed=result.suppressed,
+        robot=None if robot is None else robot.name,
+        root=None if topo is None else topo.root,
+        links=None if robot is None else len(robot.links),
+        joints=None if robot is None else len(robot.joints),
+        config=config.path,
+    )
+
+
+def _failure(exc: FishbotUrdfError, config: Config) -> FileReport:
+    from ..report import FileReport
+
+    finding = fail(exc)
+    return FileReport(path=finding.path, ok=False, diagnostics=(finding,), config=config.path)
+
+
+def _skipped(result: CheckResult, config: Config) -> FileReport:
+    from ..report import FileReport
+
+    return FileReport(
+        path=result.path,
+        ok=True,
+        diagnostics=(),
+        config=config.path,
+        skipped="defines no robot (macros for other files to include)",
+    )
+
+
+def _finish(
+    fmt: str,
+    reports: list[FileReport],
+    output: str | None,
+    out: list[bytes],
+    inputs: Sequence[str],
+) -> None:
+    """Write the report (or, for text, the trees) to stdout or ``output``."""
+    from ..report import github_annotations, json_report, sarif_report
+    from ._hints import phrased
+
+    phrased_reports = [_with(r, tuple(phrased(d) for d in r.diagnostics)) for r in reports]
+    if fmt == "json":
+        data = (json.dumps(json_report(phrased_reports), indent=2) + "\n").encode("utf-8")
+    elif fmt == "sarif":
+        log = sarif_report(phrased_reports, version=_version())
+        data = (json.dumps(log, indent=2) + "\n").encode("utf-8")
+    elif fmt == "github":
+        findings = (d for r in phrased_reports for d in r.diagnostics)
+        data = github_annotations(findings).encode("utf-8")
+    else:
+        data = b"".join(out)
+    if output is None or output == "-":
+        if fmt != "text" or out:
+            to_stdout(data)
+        return
+    from ..output import write_atomic
+
+    try:
+        write_atomic(output, data, inputs=inputs)
+    except FishbotUrdfError as exc:
+        emit_findings([fail(exc)])
+        sys.exit(EXIT_USAGE)
+
+
+def _with(report: FileReport, diagnostics: tuple[Diagnostic, ...]) -> FileReport:
+    from dataclasses import replace
+
+    return replace(report, diagnostics=diagnostics)
+
+
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("fishbot-urdf")
+    except PackageNotFoundError:
+        return "0"

@@ -1,0 +1,154 @@
+"""`fishbot graph`: the link/joint tree drawn, as urdf_to_graphviz draws it."""
+
+from __future__ import annotations
+
+import os
+import sys
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+import click
+
+from ..diagnostics import has_errors
+from ..dot import FORMATS
+from ..errors import FishbotUrdfError
+from ._common import (
+    EXIT_INVALID,
+    EXIT_OK,
+    check_input,
+    emit_findings,
+    nearest_config,
+    package_option,
+    packages_option,
+    stop_on,
+    to_stdout,
+    xacro_args,
+)
+
+if TYPE_CHECKING:
+    from ..analysis import Analysis
+
+_GRAPH_FORMATS = tuple(FORMATS)
+
+
+@click.command()
+@click.argument("file", type=click.Path(allow_dash=True))
+@click.argument("args", nargs=-1, metavar="[OUT] [name:=value]...")
+@click.option(
+    "-o",
+    "--output",
+    metavar="FILE",
+    help="The file to write, its format from its extension; - writes DOT to standard output.",
+)
+@click.option(
+    "--format",
+    "fmt",
+    type=click.Choice(_GRAPH_FORMATS),
+    help="The output format, whatever the extension: gv/dot DOT, mmd Mermaid, or pdf/svg/png.",
+)
+@click.option(
+    "--detail",
+    is_flag=True,
+    help="Also show joint types (one colour each), axes, limits, mimics, and link masses.",
+)
+@package_option()
+def graph(
+    file: str,
+    args: Sequence[str],
+    output: str | None,
+    fmt: str | None,
+    detail: bool,
+    package_items: Sequence[str],
+) -> None:
+    """Draw the link/joint tree of a URDF or xacro file, like urdf_to_graphviz.
+
+    As urdf_to_graphviz does, writes ROBOT_NAME.gv and ROBOT_NAME.pdf in the current
+    folder, or OUT.gv and OUT.pdf when OUT is given, and the .gv is byte for byte the same
+    (names with a quote or a backslash aside: they are escaped here). With -o the format
+    follows the extension: .gv/.dot DOT text, .mmd a Mermaid flowchart for Markdown,
+    .pdf/.svg/.png drawn by Graphviz's dot program. Joints named like links get their own
+    node, and links the root does not reach are drawn in red. The robot's findings go to
+    stderr as in `fishbot check`. Exit status: 0 drawn, 1 the robot has errors (drawn as far
+    as it could be read), 2 a file could not be read or written, Graphviz is missing or
+    failed, or the command line is wrong.
+
+    \b
+    Examples:
+      fishbot graph robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
+      fishbot graph robot.urdf build/tree
+      fishbot graph robot.urdf -o tree.svg
+      fishbot graph robot.urdf.xacro use_gpu:=false -o tree.png --detail
+      fishbot graph robot.urdf -o - | dot -Tpng -o tree.png
+      fishbot graph robot.urdf -o README-tree.mmd
+    """
+    names = [a for a in args if ":=" not in a]
+    if len(names) > 1 or (names and output is not None):
+        raise click.UsageError("give one OUT (as urdf_to_graphviz ROBOT OUT) or -o FILE, not both")
+    if file == "-" and len(names) < len(args):
+        raise click.UsageError("name:=value arguments are for a .xacro file, not standard input")
+    values = xacro_args([a for a in args if ":=" in a])
+    packages = packages_option(package_items)
+    outputs = None if output is None else _graph_output(output, fmt)
+    config = nearest_config(file)
+    try:
+        result = check_input(file, values, packages, config)
+    except FishbotUrdfError as exc:
+        stop_on(exc)
+    emit_findings(result.diagnostics)
+    if result.analysis is None:
+        sys.exit(EXIT_INVALID)
+    status = EXIT_INVALID if has_errors(result.diagnostics, strict=config.strict) else EXIT_OK
+    if outputs is None:
+        outputs = _graph_pair(names[0] if names else _file_name(result.analysis.robot.name), fmt)
+    try:
+        _draw_all(result.analysis, outputs, detail, result.files)
+    except FishbotUrdfError as exc:
+        stop_on(exc)
+    sys.exit(status)
+
+
+def _file_name(robot: str) -> str:
+    if not robot or robot in (".", "..") or "/" in robot or "\\" in robot:
+        raise click.UsageError(f"the robot's name {robot!r} is no file name: give OUT or -o FILE")
+    return robot
+
+
+def _graph_pair(stem: str, fmt: str | None) -> list[tuple[str, str]]:
+    """urdf_to_graphviz's files: STEM.gv and STEM.pdf (or STEM.FORMAT with --format)."""
+    if fmt is not None:
+        return [(f"{stem}.{fmt}", fmt)]
+    return [(f"{stem}.gv", "gv"), (f"{stem}.pdf", "pdf")]
+
+
+def _graph_output(output: str, fmt: str | None) -> list[tuple[str, str]]:
+    """-o FILE as (path, format): the format from --format, else from the extension."""
+    if output in ("-", os.devnull):
+        return [(output, fmt or "gv")]
+    chosen = fmt or os.path.splitext(output)[1].lstrip(".").lower()
+    if chosen not in _GRAPH_FORMATS:
+        raise click.BadParameter(
+            f"cannot tell the format of {output!r} (extensions: {', '.join(_GRAPH_FORMATS)}; "
+            "or give --format)",
+            param_hint="-o",
+        )
+    return [(output, chosen)]
+
+
+def _draw_all(
+    robot: Analysis, outputs: list[tuple[str, str]], detail: bool, inputs: Sequence[str]
+) -> None:
+    """Write each output, saying "Created file" only for files really written."""
+    from ..dot import draw
+    from ..output import write_atomic
+
+    for path, fmt in outputs:
+        try:
+            data = draw(robot, fmt, detail=detail)
+        except FishbotUrdfError as exc:
+            exc.path = path  # the finding is about the file that could not be made
+            raise
+        if path == "-":
+            to_stdout(data)
+            continue
+        write_atomic(path, data, inputs=inputs)
+        to_stdout(f"Created file {path}\n".encode())

@@ -1,0 +1,250 @@
+"""Inertia of uniform solids: the closed forms of the fishbot's common_inertia.xacro, closed
+meshes, and several solids taken together.
+
+Every function returns an ``Inertial`` whose numbers are the very floats the xacro macros
+produce (the same operations in the same order), about the solid's centre, in its own
+frame: pass the ``origin`` of the visual or collision it belongs to.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from ..errors import ArgumentError, InputError, ShapeError, ToolNotFoundError
+from ..model import (
+    ZERO3,
+    Box,
+    Cylinder,
+    Geometry,
+    Inertia,
+    Inertial,
+    Mesh,
+    Origin,
+    Sphere,
+    Vector3,
+)
+from ..spatial import (
+    Matrix3,
+    Pose,
+    add,
+    eigh,
+    mat_add,
+    point_mass_tensor,
+    rotate_tensor,
+    scale,
+)
+
+__all__ = [
+    "MassProperties",
+    "box_inertia",
+    "combine",
+    "cylinder_inertia",
+    "geometry_inertia",
+    "mesh_inertia",
+    "principal_moments",
+    "sphere_inertia",
+    "volume",
+]
+
+_AT_LINK = Origin()
+
+
+def box_inertia(m: float, w: float, h: float, d: float, origin: Origin = _AT_LINK) -> Inertial:
+    """A solid box of mass ``m`` (kg) with sides ``w`` along x, ``h`` along y and ``d``
+    along z (m), as ``<box size="w h d"/>``: ixx = m/12 (h^2 + d^2), iyy = m/12 (w^2 + d^2),
+    izz = m/12 (w^2 + h^2) (kg*m^2)."""
+    return Inertial(
+        mass=m,
+        inertia=Inertia(
+            ixx=m / 12.0 * (h * h + d * d),
+            iyy=m / 12.0 * (w * w + d * d),
+            izz=m / 12.0 * (w * w + h * h),
+        ),
+        origin=origin,
+    )
+
+
+def cylinder_inertia(m: float, r: float, h: float, origin: Origin = _AT_LINK) -> Inertial:
+    """A solid cylinder of mass ``m`` (kg), radius ``r`` and height ``h`` (m) along its z
+    axis, as ``<cylinder radius="r" length="h"/>``: ixx = iyy = m/12 (3 r^2 + h^2),
+    izz = m/2 r^2 (kg*m^2)."""
+    across = m / 12.0 * (3 * r * r + h * h)
+    return Inertial(
+        mass=m, inertia=Inertia(ixx=across, iyy=across, izz=m / 2.0 * r * r), origin=origin
+    )
+
+
+def sphere_inertia(m: float, r: float, origin: Origin = _AT_LINK) -> Inertial:
+    """A solid sphere of mass ``m`` (kg) and radius ``r`` (m): 2/5 m r^2 about every axis."""
+    moment = 2.0 / 5.0 * m * r * r
+    return Inertial(mass=m, inertia=Inertia(ixx=moment, iyy=moment, izz=moment), origin=origin)
+
+
+def geometry_inertia(
+    geometry: Geometry,
+    mass: float,
+    origin: Origin = _AT_LINK,
+    resolve: Callable[[Mesh], Path] | None = None,
+) -> Inertial:
+    """The inertia of a URDF box, cylinder or sphere filled uniformly with ``mass`` (kg),
+    or of a closed mesh when the optional trimesh package is installed.
+
+    A mesh's file is found by ``resolve``, or else from its filename: a path (relative to
+    the file the mesh was read from), ``file://``, or ``package://`` (see
+    `resolve_package_uri`).
+
+    Raises:
+        ArgumentError: The geometry is not a box, cylinder, sphere or mesh.
+        ShapeError: The mesh is not closed.
+        PackageNotFoundError: The mesh's package is not found.
+        ToolNotFoundError: The geometry is a mesh and trimesh is not installed.
+    """
+    if isinstance(geometry, Box):
+        x, y, z = geometry.size
+        return box_inertia(mass, x, y, z, origin)
+    if isinstance(geometry, Cylinder):
+        return cylinder_inertia(mass, geometry.radius, geometry.length, origin)
+    if isinstance(geometry, Sphere):
+        return sphere_inertia(mass, geometry.radius, origin)
+    if isinstance(geometry, Mesh):
+        where = resolve(geometry) if resolve is not None else _mesh_file(geometry)
+        return mesh_inertia(where, mass, origin, geometry.scale)
+    raise ArgumentError(
+        f"no closed form for {type(geometry).__name__} (box, cylinder, sphere, mesh)",
+        name="geometry",
+    )
+
+
+def _mesh_file(mesh: Mesh) -> Path:
+    from ..packages import resolve_package_uri
+
+    return resolve_package_uri(mesh.filename, near=mesh.source.path if mesh.source else None)
+
+
+def principal_moments(inertia: Inertia) -> Vector3:
+    """The eigenvalues of the inertia matrix, smallest first (kg*m^2)."""
+    return eigh(inertia.matrix())[0]
+
+
+def _inertia(m: Matrix3) -> Inertia:
+    return Inertia(ixx=m[0][0], ixy=m[0][1], ixz=m[0][2], iyy=m[1][1], iyz=m[1][2], izz=m[2][2])
+
+
+@dataclass(frozen=True, slots=True)
+class MassProperties:
+    """The mass properties of several bodies taken together.
+
+    Attributes:
+        mass: Total mass (kg).
+        com: Centre of mass (m), in the frame the bodies were given in.
+        inertia: Inertia about the centre of mass, axes of that frame (kg*m^2).
+    """
+
+    mass: float
+    com: Vector3
+    inertia: Inertia
+
+    @property
+    def principal_moments(self) -> Vector3:
+        """The eigenvalues of ``inertia``, smallest first (kg*m^2)."""
+        return principal_moments(self.inertia)
+
+
+def combine(parts: Iterable[tuple[Inertial, Pose]]) -> MassProperties:
+    """Add up inertials, each placed by a pose (the frame of the link it belongs to).
+
+    The centre of mass is the mass-weighted mean of the parts'; the inertia is the sum of
+    each part's, turned into the common frame and moved to the common centre of mass
+    (parallel axis theorem). With zero total mass the centre is the origin.
+    """
+    placed: list[tuple[float, Vector3, Matrix3]] = []
+    for inertial, pose in parts:
+        frame = pose.then(Pose.of(inertial.origin))
+        tensor = rotate_tensor(frame.rotation, inertial.inertia.matrix())
+        placed.append((inertial.mass, frame.translation, tensor))
+    mass = math.fsum(m for m, _, _ in placed)
+    com = ZERO3
+    if mass != 0.0:
+        com = tuple(math.fsum(m * c[k] for m, c, _ in placed) / mass for k in range(3))  # type: ignore[assignment]
+    total: Matrix3 = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+    for m, c, tensor in placed:
+        total = mat_add(total, mat_add(tensor, point_mass_tensor(m, add(c, scale(com, -1.0)))))
+    return MassProperties(mass, com, _inertia(total))
+
+
+def volume(geometry: Geometry, resolve: Callable[[Mesh], Path] | None = None) -> float:
+    """The volume of a URDF box, cylinder or sphere (m^3), or of a closed mesh when the
+    optional trimesh package is installed (found as `geometry_inertia` finds it).
+
+    Raises:
+        ShapeError: The mesh is not closed.
+        PackageNotFoundError: The mesh's package is not found.
+        ToolNotFoundError: The geometry is a mesh and trimesh is not installed.
+    """
+    if isinstance(geometry, Box):
+        x, y, z = geometry.size
+        return x * y * z
+    if isinstance(geometry, Cylinder):
+        return math.pi * geometry.radius**2 * geometry.length
+    if isinstance(geometry, Sphere):
+        return 4.0 / 3.0 * math.pi * geometry.radius**3
+    if isinstance(geometry, Mesh):
+        where = resolve(geometry) if resolve is not None else _mesh_file(geometry)
+        return float(_solid(where, geometry.scale).volume)
+    raise ArgumentError(
+        f"no closed form for {type(geometry).__name__} (box, cylinder, sphere, mesh)",
+        name="geometry",
+    )
+
+
+def _solid(path: Path, scale: Vector3 | None) -> Any:
+    """A closed trimesh mesh read from ``path``, scaled."""
+    try:
+        import trimesh
+    except ImportError:
+        raise ToolNotFoundError(
+            "the inertia of a mesh needs the trimesh package",
+            tool="trimesh",
+            hint="pip install 'fishbot-urdf[mesh]'",
+        ) from None
+    try:
+        mesh: Any = trimesh.load(str(path), force="mesh")
+    except (OSError, ValueError) as exc:
+        raise InputError(f"cannot read the mesh {path}: {exc}", path=str(path)) from exc
+    if scale is not None:
+        mesh.apply_scale(scale)
+    if not mesh.is_watertight:
+        raise ShapeError(f"the mesh {path} is not closed, so it has no volume", path=str(path))
+    return mesh
+
+
+def mesh_inertia(
+    path: str | Path,
+    mass: float,
+    origin: Origin = _AT_LINK,
+    scale: Vector3 | None = None,
+) -> Inertial:
+    """The inertia of a closed mesh file filled uniformly with ``mass`` (kg), about its
+    centre of mass, placed by ``origin`` (that of its collision). Needs trimesh
+    (``pip install 'fishbot-urdf[mesh]'``).
+
+    Raises:
+        ShapeError: The mesh is not closed.
+        InputError: The file cannot be read as a mesh.
+        ToolNotFoundError: trimesh is not installed.
+    """
+    solid = _solid(Path(path), scale)
+    solid.density = mass / float(solid.volume)
+    frame = Pose.of(origin)
+    tensor = rotate_tensor(frame.rotation, _matrix3(solid.moment_inertia))
+    centre = frame.apply(tuple(float(c) for c in solid.center_mass))  # type: ignore[arg-type]
+    return Inertial(mass=mass, inertia=_inertia(tensor), origin=Origin(xyz=centre))
+
+
+def _matrix3(array: Any) -> Matrix3:
+    rows = [tuple(float(v) + 0.0 for v in row) for row in array]  # + 0.0: no -0
+    return (rows[0], rows[1], rows[2])  # type: ignore[return-value]

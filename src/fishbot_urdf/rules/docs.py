@@ -1,0 +1,121 @@
+"""The rules as text: a table, one rule explained, and the same in Markdown (the README's
+rule list is made here, so that it always says what the registry says).
+
+``python -m fishbot_urdf.rules.docs --readme`` rewrites the rule list of README.md, between
+its two markers, from the registry.
+"""
+
+from __future__ import annotations
+
+import re
+import textwrap
+from collections.abc import Sequence
+
+from . import Rule
+
+__all__ = [
+    "README_BEGIN",
+    "README_END",
+    "explanation",
+    "markdown_explanation",
+    "markdown_table",
+    "table",
+    "with_rule_table",
+]
+
+README_BEGIN = "<!-- rules: begin -->"
+"""The line after which the README's rule list starts."""
+README_END = "<!-- rules: end -->"
+"""The line before which the README's rule list ends."""
+
+
+def _flags(rule: Rule) -> str:
+    return rule.severity.value + (", always on" if rule.fatal else "")
+
+
+def _fill(text: str) -> str:
+    # Rule ids, options and numbers with a hyphen (inertia-mismatch, 0-255) stay whole.
+    return textwrap.fill(text, 88, break_on_hyphens=False, break_long_words=False)
+
+
+def _markdown(text: str) -> str:
+    """A summary in Markdown: tags as code (a bare <robot> is an HTML tag there, which
+    renderers drop), and a table's | escaped."""
+    return re.sub(r"(<[^<>`]+>)", r"`\1`", text).replace("|", "\\|")
+
+
+def table(rules: Sequence[Rule]) -> str:
+    """One line per rule: id, default severity, family, summary."""
+    widths = [max((len(r.id) for r in rules), default=2), 7, 9]
+    lines = [f"{'rule':<{widths[0]}}  {'severity':<8} {'family':<9}  summary"]
+    for rule in rules:
+        lines.append(
+            f"{rule.id:<{widths[0]}}  {rule.severity.value:<8} {rule.family.value:<9}  "
+            f"{rule.summary}"
+        )
+    return "\n".join(lines) + "\n"
+
+
+def explanation(rule: Rule) -> str:
+    """One rule, explained for a terminal."""
+    parts = [
+        f"{rule.id} ({_flags(rule)}; family {rule.family.value})",
+        "",
+        rule.summary,
+    ]
+    if rule.explanation:
+        parts += ["", _fill(rule.explanation)]
+    if rule.consumers:
+        parts += ["", _fill("Matters to: " + ", ".join(c.label for c in rule.consumers) + ".")]
+    for title, snippet in (("Fails:", rule.bad), ("Passes:", rule.good)):
+        if snippet:
+            parts += ["", title, textwrap.indent(snippet.rstrip("\n"), "    ")]
+    return "\n".join(parts) + "\n"
+
+
+def markdown_table(rules: Sequence[Rule]) -> str:
+    """The rules as a Markdown table: id, default severity, family, summary."""
+    lines = ["| rule | severity | family | what it finds |", "| --- | --- | --- | --- |"]
+    for rule in rules:
+        severity = f"{rule.severity.value}" + (" (always on)" if rule.fatal else "")
+        summary = _markdown(rule.summary)
+        lines.append(f"| `{rule.id}` | {severity} | {rule.family.value} | {summary} |")
+    return "\n".join(lines) + "\n"
+
+
+def markdown_explanation(rule: Rule) -> str:
+    """One rule, explained in Markdown."""
+    parts = [
+        f"## `{rule.id}`",
+        "",
+        f"{_markdown(rule.summary)} *{_flags(rule)}; family {rule.family.value}*",
+    ]
+    if rule.explanation:
+        parts += ["", rule.explanation]
+    if rule.consumers:
+        parts += ["", "Matters to: " + ", ".join(c.label for c in rule.consumers) + "."]
+    fence = "bash" if rule.language == "shell" else "toml" if rule.language == "toml" else "xml"
+    for title, snippet in (("Fails:", rule.bad), ("Passes:", rule.good)):
+        if snippet:
+            parts += ["", title, "", f"```{fence}", snippet.rstrip("\n"), "```"]
+    return "\n".join(parts) + "\n"
+
+
+def with_rule_table(readme: str, rules: Sequence[Rule]) -> str:
+    """``readme`` with the text between `README_BEGIN` and `README_END` replaced by the
+    `markdown_table` of ``rules`` (a blank line on either side).
+
+    Raises:
+        ArgumentError: The text lacks a marker, or has the end before the beginning.
+    """
+    begin = readme.find(README_BEGIN)
+    end = readme.find(README_END)
+    if begin < 0 or end < begin:
+        from ..errors import ArgumentError
+
+        raise ArgumentError(
+            f"the README has no {README_BEGIN} ... {README_END} section for the rule list",
+            name="readme",
+        )
+    start = begin + len(README_BEGIN)
+    return readme[:start] + "\n\n" + markdown_table(rules) + "\n" + readme[end:]

@@ -1,0 +1,64 @@
+"""Robot -> findings about mass and inertia, and about where the robot stands on the ground.
+
+Simulators merge links joined by fixed joints into one rigid body (Gazebo lumps them,
+MuJoCo fuses them), so whether a body can move is judged on the merged body; what no
+piece of matter can have (a negative moment) is judged on every link, the root included.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from ...analysis import Analysis
+from ...diagnostics import Diagnostic
+from ...spatial import eigh
+from ._common import (
+    ABOVE_GROUND,
+    BELOW_GROUND,
+    INERTIA_MISMATCH,
+    INERTIA_NOT_POSITIVE,
+    INERTIA_TRIANGLE,
+    MASSLESS_LINK,
+    MISSING_INERTIAL,
+)
+from ._ground import GROUND_TOLERANCE, ground
+from ._mass import body_findings, finite
+from ._shape import MISMATCH, mismatch
+
+__all__ = [
+    "ABOVE_GROUND",
+    "BELOW_GROUND",
+    "GROUND_TOLERANCE",
+    "INERTIA_MISMATCH",
+    "INERTIA_NOT_POSITIVE",
+    "INERTIA_TRIANGLE",
+    "MASSLESS_LINK",
+    "MISMATCH",
+    "MISSING_INERTIAL",
+    "physics",
+]
+
+
+def physics(
+    analysis: Analysis, *, ground_tolerance: float = GROUND_TOLERANCE
+) -> Iterator[Diagnostic]:
+    """Every finding about the robot's masses, inertias and stance on the ground.
+
+    Args:
+        analysis: The robot, analysed.
+        ground_tolerance: How far (m) below or above z = 0 of a footprint root the lowest
+            collision point may be.
+    """
+    robot, path = analysis.robot, analysis.path
+    # Principal moments, once per link (they do not change when the inertia is turned).
+    moments = {
+        link.name: eigh(link.inertial.inertia.matrix())[0]
+        for link in robot.links
+        if link.inertial is not None and finite(link.inertial)
+    }
+    for body in analysis.bodies:
+        yield from body_findings(body, path, moments, bool(robot.joints))
+    for link in robot.links:
+        if link.name in moments:
+            yield from mismatch(link, path, moments[link.name])
+    yield from ground(analysis, ground_tolerance)

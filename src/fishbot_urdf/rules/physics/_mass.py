@@ -1,0 +1,190 @@
+"""Mass and inertia, link by link and body by body (links fused over fixed joints)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator, Mapping
+
+from ...analysis import Body
+from ...diagnostics import Diagnostic
+from ...inertia import combine
+from ...model import Inertial, Link, Vector3
+from ...spatial import Pose
+from ..reading import BAD_NUMBER, NEGATIVE_MASS
+from ._common import (
+    INERTIA_NOT_POSITIVE,
+    INERTIA_TRIANGLE,
+    MASSLESS_LINK,
+    MISSING_INERTIAL,
+    TINY,
+    W,
+    link_subject,
+    moment_text,
+    moments_text,
+    physical,
+    place,
+    tolerance,
+)
+
+_FIELDS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+
+
+def finite(inertial: Inertial) -> bool:
+    return all(
+        math.isfinite(v) for v in (inertial.mass, *(getattr(inertial.inertia, f) for f in _FIELDS))
+    )
+
+
+def _inertials(body: Body) -> list[tuple[Link, Inertial, Pose]]:
+    """The members that have an inertial, with it."""
+    return [(link, link.inertial, pose) for link, pose in body.members if link.inertial]
+
+
+def body_findings(
+    body: Body, path: str, moments: Mapping[str, Vector3], jointed: bool
+) -> Iterator[Diagnostic]:
+    having = _inertials(body)
+    parts = [(inertial, pose) for _, inertial, pose in having]
+    all_finite = all(link.name in moments for link, _, _ in having)
+    # Fused with its fixed neighbours a body may be physical although one link's own numbers
+    # are not: simulators that merge fixed links load it, so that is only a warning.
+    merged = all_finite and len(parts) > 1 and physical(combine(parts).principal_moments)
+    for link, _ in body.members:
+        inertial = link.inertial
+        if inertial is not None:
+            yield from _inertial(link, inertial, path, merged, moments.get(link.name))
+    if all_finite:
+        yield from _moving(body, having, path, moments, jointed)
+
+
+def _inertial(
+    link: Link, inertial: Inertial, path: str, merged: bool, moments: Vector3 | None
+) -> Iterator[Diagnostic]:
+    owner = link_subject(link)
+    if moments is None:  # not finite
+        yield BAD_NUMBER.report(
+            f"{owner}: the mass or inertia is not finite",
+            inertial.source,
+            path=path,
+            subject=owner,
+            hint="write finite numbers",
+        )
+        return
+    if inertial.mass < 0:
+        yield NEGATIVE_MASS.report(
+            f"{owner}: mass {inertial.mass:g} kg is negative",
+            inertial.source,
+            path=path,
+            subject=owner,
+            hint="mass is >= 0 kg",
+        )
+    where = place(link, inertial.inertia.source or inertial.source)
+    also = (
+        "; merged with the links fixed to it the body is physical, so simulators that merge "
+        "fixed links load it, but the numbers are still wrong"
+        if merged
+        else ""
+    )
+    facts = {"principal_moments": list(moments), "merged_body_physical": merged}
+    if moments[0] < -tolerance(moments):
+        # A negative moment written in the file is a sign slip, merged or not.
+        slip = any(getattr(inertial.inertia, f) < 0 for f in ("ixx", "iyy", "izz"))
+        yield INERTIA_NOT_POSITIVE.report(
+            f"{owner}: the inertia is not positive definite: principal moments "
+            f"{moments_text(moments)} kg*m^2",
+            where,
+            path=path,
+            subject=owner,
+            hint=_negative_hint(inertial) + ("" if slip else also),
+            severity=None if slip or not merged else W,
+            data=facts,
+        )
+    elif not physical(moments):
+        yield INERTIA_TRIANGLE.report(
+            f"{owner}: principal moments {moments_text(moments)} kg*m^2 break the triangle "
+            f"inequality ({moment_text(moments[0], moments)} + {moment_text(moments[1], moments)} "
+            f"< {moment_text(moments[2], moments)})",
+            where,
+            path=path,
+            subject=owner,
+            hint="no rigid body has one moment larger than the other two together; "
+            "MuJoCo refuses it" + also,
+            severity=W if merged else None,
+            data=facts,
+        )
+
+
+def _negative_hint(inertial: Inertial) -> str:
+    negative = [f for f in ("ixx", "iyy", "izz") if getattr(inertial.inertia, f) < 0]
+    if negative:
+        listed = ", ".join(f"{f}={getattr(inertial.inertia, f):g}" for f in negative)
+        return f"moments of inertia are >= 0, but {listed}"
+    return "the products ixy, ixz, iyz are too large for the moments ixx, iyy, izz"
+
+
+def _moving(
+    body: Body,
+    having: list[tuple[Link, Inertial, Pose]],
+    path: str,
+    moments: Mapping[str, Vector3],
+    jointed: bool,
+) -> Iterator[Diagnostic]:
+    with_shape = [link for link, _ in body.members if link.collisions]
+    joint = body.moved_by
+    if joint is None:
+        # The root's body: a mobile robot's base, unless the robot is bolted to the world.
+        if not having and with_shape and body.base.name != "world" and jointed:
+            link = with_shape[0]
+            yield MISSING_INERTIAL.report(
+                f"link {link.name!r} has collision geometry but no <inertial>, and nothing "
+                "it is fixed to has one: the robot's base weighs nothing",
+                link.source,
+                path=path,
+                subject=link_subject(link),
+                hint="Gazebo drops a link without an inertial; give it one computed from its "
+                "collision shapes",
+            )
+        return
+    moves = f"moves (joint {joint.name!r} is {joint.type.value})"
+    owner = link_subject(body.base)
+    if not having:
+        if with_shape:
+            link = with_shape[0]
+            yield MISSING_INERTIAL.report(
+                f"link {link.name!r} has collision geometry and {moves} but no <inertial>",
+                link.source,
+                path=path,
+                subject=link_subject(link),
+                hint="simulators drop a link without mass or cannot move it; give it one "
+                "computed from its collision shapes",
+            )
+        return
+    if any(inertial.mass < 0 for _, inertial, _ in having):
+        return  # reported as a negative mass
+    first_link, first, _ = having[0]
+    if len(having) == 1:  # the link alone: its own mass and moments
+        mass, principal = first.mass, moments[first_link.name]
+    else:
+        together = combine((inertial, pose) for _, inertial, pose in having)
+        mass, principal = together.mass, together.principal_moments
+    if mass <= TINY:
+        yield MASSLESS_LINK.report(
+            f"{owner} {moves} but its mass is {mass:g} kg",
+            place(first_link, first.source),
+            path=path,
+            subject=owner,
+            hint="a moving body needs a mass (MuJoCo: above 1e-15); give its real mass",
+            data={"mass": mass},
+        )
+    elif -tolerance(principal) <= principal[0] <= TINY:
+        # (below that the link's own inertia is reported as not positive definite)
+        yield MASSLESS_LINK.report(
+            f"{owner} {moves} but has no inertia about some axis: principal moments "
+            f"{moments_text(principal)} kg*m^2",
+            place(first_link, first.source),
+            path=path,
+            subject=owner,
+            hint="a moving body needs every moment above 1e-15 kg*m^2 (MuJoCo refuses it "
+            "otherwise); compute them from the body's shape",
+            data={"mass": mass, "principal_moments": list(principal)},
+        )

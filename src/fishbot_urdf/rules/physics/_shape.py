@@ -1,0 +1,143 @@
+"""An inertia against the link's own collision box, cylinder or sphere."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+from typing import Any
+
+from ...diagnostics import Diagnostic
+from ...inertia import geometry_inertia
+from ...model import Box, Cylinder, Link, Origin, Sphere, Vector3
+from ...spatial import Matrix3, eigh, rotate_tensor, rpy_matrix, transpose
+from ._common import INERTIA_MISMATCH, TINY, link_subject, place, short, tolerance
+
+MISMATCH = 0.10
+"""How far (relative to the largest moment) an inertia may be from its collision shape's."""
+
+
+def mismatch(link: Link, path: str, moments: Vector3) -> Iterator[Diagnostic]:
+    """The inertia against the link's one collision box, cylinder or sphere.
+
+    The finding's data names the collision's shape (``shape``: box, cylinder or sphere,
+    with ``size`` or ``radius`` and ``length``), the ``mass``, and the collision origin's
+    ``xyz`` and ``rpy``: what it takes to compute the inertial that matches it.
+    """
+    inertial = link.inertial
+    if inertial is None or len(link.collisions) != 1 or not inertial.mass > 0:
+        return
+    collision = link.collisions[0]
+    shape = collision.geometry
+    if not isinstance(shape, Box | Cylinder | Sphere):
+        return
+    if moments[0] < -tolerance(moments) or moments[2] <= TINY:
+        return  # reported as not positive definite, or a point mass
+    declared = rotate_tensor(rpy_matrix(inertial.origin.rpy), inertial.inertia.matrix())
+    turn = rpy_matrix(collision.origin.rpy)
+    closed = geometry_inertia(shape, inertial.mass).inertia
+    wanted = rotate_tensor(turn, closed.matrix())
+    largest = max(closed.ixx, closed.iyy, closed.izz)  # diagonal: these are its moments
+    if largest <= 0.0:
+        return
+    gap = max(abs(declared[i][j] - wanted[i][j]) for i in range(3) for j in range(3))
+    if gap <= MISMATCH * largest:
+        return
+    # What the numbers are, seen in the collision's own frame. Numbers that fit no such
+    # shape were measured (CAD), not computed: a collision shape only approximates those.
+    seen = rotate_tensor(transpose(turn), declared)
+    found = _describe(shape, seen, inertial.mass, turn)
+    if found is None:
+        return
+    owner = link_subject(link)
+    yield INERTIA_MISMATCH.report(
+        f"{owner}: {found}",
+        place(link, inertial.source),
+        path=path,
+        subject=owner,
+        hint="fix the one that is wrong",
+        data=_collision_facts(shape, inertial.mass, collision.origin),
+    )
+
+
+def _collision_facts(shape: Box | Cylinder | Sphere, mass: float, origin: Origin) -> dict[str, Any]:
+    """What it takes to compute the inertial that matches the collision."""
+    facts: dict[str, Any] = {"mass": mass, "xyz": list(origin.xyz), "rpy": list(origin.rpy)}
+    if isinstance(shape, Box):
+        facts.update(shape="box", size=list(shape.size))
+    elif isinstance(shape, Cylinder):
+        facts.update(shape="cylinder", radius=shape.radius, length=shape.length)
+    else:
+        facts.update(shape="sphere", radius=shape.radius)
+    return facts
+
+
+def _off_diagonal(m: Matrix3) -> bool:
+    scale = max(abs(m[0][0]), abs(m[1][1]), abs(m[2][2]))
+    return max(abs(m[0][1]), abs(m[0][2]), abs(m[1][2])) > 1e-3 * scale
+
+
+def _axis(turn: Matrix3, index: int) -> str:
+    """The link axis closest to the collision frame's axis ``index``."""
+    column = [turn[k][index] for k in range(3)]
+    best = max(range(3), key=lambda k: abs(column[k]))
+    if abs(column[best]) > math.cos(math.radians(5)):
+        return "xyz"[best]
+    return "(" + " ".join(f"{c:.2f}" for c in column) + ")"
+
+
+def _differs(a: float, b: float) -> bool:
+    return abs(a - b) > 0.05 * max(abs(a), abs(b)) and short(a) != short(b)
+
+
+def _describe(
+    shape: Box | Cylinder | Sphere, seen: Matrix3, mass: float, turn: Matrix3
+) -> str | None:
+    """Which shape of the collision's kind the declared inertia (in the collision's frame)
+    matches, against the collision itself; None when it matches none."""
+    if isinstance(shape, Sphere):
+        moments = eigh(seen)[0]
+        radius = math.sqrt(max(0.0, 5.0 * sum(moments) / 3.0 / (2.0 * mass)))
+        if moments[2] - moments[0] <= MISMATCH * moments[2] and _differs(radius, shape.radius):
+            return (
+                f"inertial matches a sphere r={short(radius)}, "
+                f"but the collision sphere has r={short(shape.radius)}"
+            )
+        return None
+    if _off_diagonal(seen):
+        return None
+    diagonal = (seen[0][0], seen[1][1], seen[2][2])
+    if isinstance(shape, Box):
+        squares = [6.0 * (sum(diagonal) - 2.0 * diagonal[k]) / mass for k in range(3)]
+        if min(squares) < 0:
+            return None
+        sides = [math.sqrt(s) for s in squares]
+        return (
+            "inertial matches a box "
+            + " x ".join(short(s) for s in sides)
+            + ", but the collision box is "
+            + " x ".join(short(s) for s in shape.size)
+        )
+    # A cylinder: its axis is where the odd moment out is.
+    k = min(range(3), key=lambda i: abs(diagonal[(i + 1) % 3] - diagonal[(i + 2) % 3]))
+    across = (diagonal[(k + 1) % 3] + diagonal[(k + 2) % 3]) / 2.0
+    if abs(diagonal[(k + 1) % 3] - diagonal[(k + 2) % 3]) > MISMATCH * across:
+        return None
+    radius = math.sqrt(2.0 * diagonal[k] / mass)
+    square = 12.0 * across / mass - 3.0 * radius * radius
+    if square < 0:
+        return None
+    length = math.sqrt(square)
+    found = f"inertial matches a cylinder r={short(radius)} h={short(length)}"
+    if k != 2:
+        return (
+            f"{found} along the link's {_axis(turn, k)} axis, "
+            f"but the collision cylinder lies along its {_axis(turn, 2)} axis"
+        )
+    wrong = [
+        f"{name}={short(real)}"
+        for name, fit, real in (("r", radius, shape.radius), ("h", length, shape.length))
+        if _differs(fit, real)
+    ]
+    if not wrong:
+        return None
+    return f"{found}, but the collision cylinder has {' '.join(wrong)}"

@@ -1,0 +1,378 @@
+"""The rule registry: every rule documented, its examples checked, every rule id the code can
+report registered, `fishbot rules`, and the README's rule list made from the registry."""
+
+from __future__ import annotations
+
+import dataclasses
+import importlib
+import json
+import pkgutil
+import re
+import shlex
+import subprocess
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner, Result
+from conftest import ROOT, require_tool, run_check_urdf
+
+import fishbot_urdf
+from fishbot_urdf.cli import cli
+from fishbot_urdf.errors import ArgumentError, FishbotUrdfError
+from fishbot_urdf.rules import Family, Rule, all_rules, get, ids
+from fishbot_urdf.rules.docs import (
+    README_BEGIN,
+    README_END,
+    explanation,
+    markdown_table,
+    table,
+    with_rule_table,
+)
+
+RULES = all_rules()
+SCRIPT = Path(__file__).resolve().parent / "readme_rules.py"
+REGENERATE = "python tests/readme_rules.py"
+ROBOT_RULES = [r for r in RULES if r.language in ("urdf", "xacro")]
+SETUP_RULES = [r for r in RULES if r.language in ("shell", "toml")]
+
+# Error classes for a caller of the library: a wrong argument or question. The commands turn
+# them into usage errors or never meet them, so they are no finding and need no rule.
+LIBRARY_ONLY = {"error", "invalid-robot", "structure", "unknown-name", "argument", "shape"}
+
+# Beside every xacro example: the file xacro-include's fixed example includes.
+WHEEL_XACRO = """\
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="wheel" params="side">
+    <link name="${side}_wheel_link"/>
+    <joint name="${side}_wheel_joint" type="continuous">
+      <parent link="base_link"/><child link="${side}_wheel_link"/><axis xyz="0 1 0"/>
+    </joint>
+  </xacro:macro>
+</robot>
+"""
+
+# The folder the setup rules' shell examples run in: a robot whose wheels have collision
+# shapes and no inertial (for fishbot inertia --fill), a xacro file that includes a file of
+# the ROS package in src/.
+WORKSPACE = {
+    "fishbot.urdf": """\
+<robot name="fishbot">
+  <link name="base_link">
+    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
+    <inertial>
+      <mass value="1.0"/>
+      <inertia ixx="0.0042" ixy="0" ixz="0" iyy="0.0042" iyz="0" izz="0.0067"/>
+    </inertial>
+  </link>
+  <link name="left_wheel_link">
+    <collision><geometry><cylinder radius="0.032" length="0.04"/></geometry></collision>
+  </link>
+  <link name="right_wheel_link">
+    <collision><geometry><cylinder radius="0.032" length="0.04"/></geometry></collision>
+  </link>
+  <joint name="left_wheel_joint" type="continuous">
+    <parent link="base_link"/><child link="left_wheel_link"/><axis xyz="0 0 1"/>
+  </joint>
+  <joint name="right_wheel_joint" type="continuous">
+    <parent link="base_link"/><child link="right_wheel_link"/><axis xyz="0 0 1"/>
+  </joint>
+</robot>
+""",
+    "fishbot.urdf.xacro": """\
+<robot name="fishbot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="$(find fishbot_description)/urdf/wheel.urdf.xacro"/>
+  <link name="base_link"/>
+  <xacro:wheel side="left"/>
+</robot>
+""",
+    "src/fishbot_description/package.xml": (
+        '<package format="3"><name>fishbot_description</name></package>\n'
+    ),
+    "src/fishbot_description/urdf/wheel.urdf.xacro": WHEEL_XACRO,
+}
+
+
+def _modules() -> Iterator[object]:
+    """Every module of the package (``__main__`` runs the command when imported)."""
+    yield fishbot_urdf
+    for info in pkgutil.walk_packages(fishbot_urdf.__path__, "fishbot_urdf."):
+        if not info.name.endswith("__main__"):
+            yield importlib.import_module(info.name)
+
+
+def _subclasses(cls: type) -> Iterator[type]:
+    for sub in cls.__subclasses__():
+        yield sub
+        yield from _subclasses(sub)
+
+
+def _findings(result: Result) -> list[tuple[str, str]]:
+    """(rule, severity) of every finding in a `fishbot check --format json` report."""
+    report = json.loads(result.stdout)
+    return [(d["rule"], d["severity"]) for f in report["files"] for d in f["diagnostics"]]
+
+
+def _check(tmp_path: Path, rule: Rule, text: str) -> Result:
+    """`fishbot check --format json` on ``text``, written as a .urdf or a .urdf.xacro file."""
+    (tmp_path / "wheel.urdf.xacro").write_text(WHEEL_XACRO, encoding="utf-8")
+    name = tmp_path / ("robot.urdf.xacro" if rule.language == "xacro" else "robot.urdf")
+    name.write_text(text, encoding="utf-8")
+    return CliRunner().invoke(cli, ["check", "--isolated", "--format", "json", str(name)])
+
+
+def _sentences(text: str) -> list[str]:
+    return re.split(r"(?<=[.!?])\s+", text.strip())
+
+
+def _words(text: str) -> str:
+    return " ".join(text.split())
+
+
+# -- the registry --------------------------------------------------------------------------
+
+
+def test_ids_are_unique_and_every_rule_is_registered() -> None:
+    assert len({r.id for r in RULES}) == len(RULES) == len(ids())
+    defined = [v for module in _modules() for v in vars(module).values() if isinstance(v, Rule)]
+    assert {r.id for r in defined} == ids()
+    for rule in defined:
+        assert get(rule.id) is rule, f"{rule.id} is defined twice, or not collected"
+
+
+def test_every_error_rule_that_reaches_a_command_is_registered() -> None:
+    list(_modules())  # every error class is defined
+    from fishbot_urdf.errors import ConfigError, InputError, ToolError, ToolNotFoundError
+    from fishbot_urdf.errors import XmlSyntaxError as Xml
+    from fishbot_urdf.packages import PackageNotFoundError
+
+    reported = (InputError, Xml, PackageNotFoundError, ToolNotFoundError, ToolError, ConfigError)
+    assert {c.rule for c in reported} <= ids()
+    for cls in _subclasses(FishbotUrdfError):
+        assert cls.rule in ids() | LIBRARY_ONLY, f"{cls.__name__}.rule {cls.rule!r}"
+    # Rule ids the code names as text: XacroError(rule="xacro-..."), class attributes, and
+    # findings made without a Rule.
+    package = Path(fishbot_urdf.__file__).parent
+    written = re.compile(r'\brule(?::\s*str)?\s*=\s*"([a-z0-9-]+)"|diagnostic\(\s*"([a-z0-9-]+)"')
+    named = {
+        a or b
+        for path in package.rglob("*.py")
+        for a, b in written.findall(path.read_text(encoding="utf-8"))
+    }
+    assert {"xacro-include", "xacro-undefined", "xacro-namespace", "xacro-syntax"} <= named
+    assert named - LIBRARY_ONLY <= ids()
+
+
+@pytest.mark.parametrize("rule", RULES, ids=[r.id for r in RULES])
+def test_rule_is_explained_with_a_failing_and_a_fixed_example(rule: Rule) -> None:
+    assert rule.summary.strip()
+    assert 2 <= len(_sentences(rule.explanation)) <= 5, rule.explanation
+    assert rule.bad.strip() and rule.good.strip() and rule.bad != rule.good
+    assert rule.bad.endswith("\n") and rule.good.endswith("\n")
+    assert max(len(rule.bad.splitlines()), len(rule.good.splitlines())) <= 13  # short
+    assert rule.language in ("urdf", "xacro", "shell", "toml")
+
+
+# -- the examples --------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("rule", ROBOT_RULES, ids=[r.id for r in ROBOT_RULES])
+def test_failing_example_is_found(tmp_path: Path, rule: Rule) -> None:
+    result = _check(tmp_path, rule, rule.bad)
+    assert rule.id in [found for found, _ in _findings(result)], result.output
+    assert result.exit_code == (1 if rule.severity.value == "error" else 0)
+
+
+@pytest.mark.parametrize("rule", ROBOT_RULES, ids=[r.id for r in ROBOT_RULES])
+def test_fixed_example_is_clean(tmp_path: Path, rule: Rule) -> None:
+    result = _check(tmp_path, rule, rule.good)
+    assert (result.exit_code, _findings(result)) == (0, []), result.output
+
+
+URDF_RULES = [r for r in ROBOT_RULES if r.language == "urdf"]
+
+
+@pytest.mark.parametrize("rule", URDF_RULES, ids=[r.id for r in URDF_RULES])
+def test_fixed_example_passes_check_urdf(tmp_path: Path, rule: Rule) -> None:
+    path = tmp_path / "robot.urdf"
+    path.write_text(rule.good, encoding="utf-8")
+    proc = run_check_urdf(path)
+    assert proc.returncode == 0, proc.stderr
+    assert b"Error" not in proc.stderr + proc.stdout
+
+
+def _commands(snippet: str) -> list[list[str]]:
+    """The `fishbot` commands of a shell example, as argument lists (other lines, such as
+    an install command, are what a person does)."""
+    found = []
+    for line in snippet.replace("\\\n", " ").splitlines():
+        words = shlex.split(line, comments=True)
+        if words[:1] == ["fishbot"]:
+            found.append(words[1:])
+    return found
+
+
+def _environment(rule: Rule, fixed: bool, tmp_path: Path) -> dict[str, str | None]:
+    """The machine a setup rule's example describes (in its comment)."""
+    env: dict[str, str | None] = {"ROS_PACKAGE_PATH": None, "AMENT_PREFIX_PATH": None}
+    if rule.id in ("tool-missing", "tool-failed"):
+        require_tool("dot", "graphviz")
+        empty = tmp_path / "empty"
+        empty.mkdir(exist_ok=True)
+        if not fixed and rule.id == "tool-missing":
+            env["PATH"] = str(empty)  # no Graphviz
+        if not fixed and rule.id == "tool-failed":
+            env["GVBINDIR"] = str(empty)  # Graphviz with no plugins registered
+    return env
+
+
+def _run_setup(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, rule: Rule, fixed: bool) -> Result:
+    for name, text in WORKSPACE.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text(text, encoding="utf-8")
+    monkeypatch.chdir(tmp_path)
+    snippet = rule.good if fixed else rule.bad
+    if rule.language == "toml":  # a configuration beside the robot, then the check
+        Path("pyproject.toml").write_text(snippet, encoding="utf-8")
+        commands = [["check", "fishbot.urdf"]]
+    else:
+        commands = _commands(snippet)
+    assert commands, snippet
+    env = _environment(rule, fixed, tmp_path)
+    results = [CliRunner().invoke(cli, args, env=env) for args in commands]
+    failed = [r for r in results if r.exit_code != 0]
+    return failed[0] if failed else results[-1]
+
+
+@pytest.mark.parametrize("rule", SETUP_RULES, ids=[r.id for r in SETUP_RULES])
+def test_failing_setup_example_reports_its_rule(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, rule: Rule
+) -> None:
+    result = _run_setup(tmp_path, monkeypatch, rule, fixed=False)
+    assert f"[{rule.id}]" in result.output, result.output
+    assert result.exit_code == (2 if rule.fatal else 1)
+
+
+@pytest.mark.parametrize("rule", SETUP_RULES, ids=[r.id for r in SETUP_RULES])
+def test_fixed_setup_example_runs(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, rule: Rule
+) -> None:
+    result = _run_setup(tmp_path, monkeypatch, rule, fixed=True)
+    assert result.exit_code == 0, result.output
+    assert f"[{rule.id}]" not in result.output
+
+
+# -- fishbot rules -------------------------------------------------------------------------
+
+
+def _rules(*args: str) -> Result:
+    return CliRunner().invoke(cli, ["rules", *args])
+
+
+def test_rules_lists_every_rule_once() -> None:
+    result = _rules()
+    assert (result.exit_code, result.stderr) == (0, "")
+    assert result.stdout == table(RULES)
+    lines = result.stdout.splitlines()
+    assert lines[0].split() == ["rule", "severity", "family", "summary"]
+    assert [line.split()[0] for line in lines[1:]] == [r.id for r in RULES]
+
+
+@pytest.mark.parametrize("rule", RULES, ids=[r.id for r in RULES])
+def test_rules_explains_one(rule: Rule) -> None:
+    result = _rules(rule.id)
+    assert (result.exit_code, result.stderr) == (0, "")
+    text = result.stdout
+    assert text == explanation(rule)
+    assert text.startswith(f"{rule.id} ({rule.severity.value}")
+    assert rule.summary in text
+    assert _words(rule.explanation) in _words(text)
+    for snippet in (rule.bad, rule.good):
+        assert "\n".join("    " + line for line in snippet.splitlines()) in text
+    for consumer in rule.consumers:
+        assert _words(consumer.label) in _words(text)
+    assert text.index("Fails:") < text.index("Passes:")
+
+
+@pytest.mark.parametrize("family", list(Family), ids=[f.value for f in Family])
+def test_rules_lists_a_family(family: Family) -> None:
+    result = _rules(family.value)
+    assert result.exit_code == 0
+    listed = [line.split()[0] for line in result.stdout.splitlines()[1:]]
+    assert listed == [r.id for r in RULES if r.family is family]
+    assert listed  # every family has rules
+
+
+def test_rules_json_has_every_field() -> None:
+    result = _rules("--format", "json")
+    assert result.exit_code == 0
+    data = json.loads(result.stdout)
+    assert data == [r.to_dict() for r in RULES]
+    fields = {f.name for f in dataclasses.fields(Rule)}
+    assert all(set(item) == fields for item in data)
+    one = json.loads(_rules("massless-link", "--format", "json").stdout)
+    assert one == get("massless-link").to_dict()
+    assert one["consumers"] == ["gazebo", "mujoco", "drake", "pybullet"]
+    assert one["bad"].startswith("<robot name=")
+
+
+def test_rules_markdown() -> None:
+    assert _rules("--format", "markdown").stdout == markdown_table(RULES)
+    # a tag is code in Markdown: bare, it is HTML, which a renderer drops
+    assert "| `robot-name` | error | urdf | `<robot>` has no name. |" in markdown_table(RULES)
+    one = _rules("config", "--format", "markdown").stdout
+    assert one.startswith("## `config`\n")
+    assert f"Fails:\n\n```toml\n{get('config').bad}```\n" in one
+
+
+def test_unknown_rule_is_one_line_with_the_closest() -> None:
+    result = _rules("massles-link")
+    assert result.exit_code == 2
+    assert result.stdout == ""
+    assert result.stderr == (
+        "fishbot rules: error: no rule or family 'massles-link' "
+        "(did you mean 'massless-link'? `fishbot rules` lists them)\n"
+    )
+
+
+# -- the README ----------------------------------------------------------------------------
+
+
+def test_readme_rule_list_is_the_registry() -> None:
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    assert readme.count(README_BEGIN) == readme.count(README_END) == 1
+    assert readme == with_rule_table(readme, RULES), (
+        f"the README's rule list is out of date: run `{REGENERATE}`"
+    )
+
+
+def test_regenerating_the_readme(tmp_path: Path) -> None:
+    stale = f"# robot\n\n{README_BEGIN}\n| rule |\n{README_END}\n\nthe end\n"
+    path = tmp_path / "README.md"
+    path.write_text(stale, encoding="utf-8")
+    command = [sys.executable, str(SCRIPT), "README.md"]
+    proc = subprocess.run(command, cwd=tmp_path, capture_output=True, text=True, check=False)
+    assert (proc.returncode, proc.stderr) == (0, "")
+    assert proc.stdout == f"README.md: rule list updated ({len(RULES)} rules)\n"
+    wanted = f"# robot\n\n{README_BEGIN}\n\n{markdown_table(RULES)}\n{README_END}\n\nthe end\n"
+    assert path.read_text(encoding="utf-8") == wanted
+    again = subprocess.run(command, cwd=tmp_path, capture_output=True, text=True, check=False)
+    assert again.stdout == f"README.md: rule list already up to date ({len(RULES)} rules)\n"
+    assert path.read_text(encoding="utf-8") == wanted
+
+
+def test_a_readme_without_markers_is_refused(tmp_path: Path) -> None:
+    with pytest.raises(ArgumentError, match="rules: begin"):
+        with_rule_table("# robot\n", RULES)
+    path = tmp_path / "README.md"
+    path.write_text("# robot\n", encoding="utf-8")
+    proc = subprocess.run(
+        [sys.executable, str(SCRIPT), str(path)],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert proc.returncode == 1
+    assert proc.stderr.startswith(f"{path}: the README has no {README_BEGIN}")
+    assert path.read_text(encoding="utf-8") == "# robot\n"
