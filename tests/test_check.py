@@ -151,6 +151,13 @@ CASES = [
         "joint 'wheel_joint': the axis is 0 0 0, so the joint cannot move",
     ),
     (
+        "axis_without_xyz",
+        "missing-attribute",
+        "warning",
+        "<axis/>",
+        "joint 'shoulder': <axis> has no 'xyz' attribute, so urdfdom reads the axis as 0 0 0",
+    ),
+    (
         "negative_limit",
         "negative-limit",
         "error",
@@ -287,4 +294,23 @@ def test_loop_reached_from_the_root() -> None:
     assert found == [
         ("cycle", "joints 'a_to_b', 'b_to_a' form a loop: a -> b -> a"),
         ("multiple-parents", "link 'a' is the child of 2 joints: 'base_to_a', 'b_to_a'"),
+    ]
+
+
+def test_an_axis_without_xyz_is_zero_as_urdfdom_reads_it(tmp_path: Path) -> None:
+    # urdfdom keeps its 1 0 0 default only when <axis> is left out: <axis/> leaves 0 0 0,
+    # and a moving joint cannot move about it.
+    fixed = (DATA / "invalid" / "axis_without_xyz.urdf").read_text()
+    path = tmp_path / "revolute.urdf"
+    path.write_text(
+        fixed.replace('type="fixed"', 'type="revolute"').replace(
+            "<axis/>", '<axis/>\n    <limit lower="-1" upper="1" effort="1" velocity="1"/>'
+        )
+    )
+    result = fishbot_urdf.check_file(path)
+    assert result.robot is not None
+    assert result.robot.joint("shoulder").axis == (0.0, 0.0, 0.0)
+    assert [(d.rule, d.severity.value, d.line) for d in result.diagnostics] == [
+        ("zero-axis", "error", 5),
+        ("missing-attribute", "warning", 8),
     ]

@@ -185,3 +185,21 @@ def test_robot_lookup_errors() -> None:
         robot.link("nope")
     with pytest.raises(KeyError):
         robot.joint("nope")
+
+
+@pytest.mark.parametrize(
+    ("attribute", "rule"),
+    [('xyz="$(optenv LIDAR_XYZ 0 0 0.1)"', "bad-vector"), ('xyz="${x} 0 0"', "bad-number")],
+)
+def test_a_xacro_substitution_left_in_a_urdf_is_named(attribute: str, rule: str) -> None:
+    data = (
+        '<robot name="r"><link name="a"/><link name="b"/>'
+        '<joint name="j" type="fixed"><parent link="a"/><child link="b"/>'
+        f"<origin {attribute}/></joint></robot>"
+    ).encode()
+    (finding,) = fishbot_urdf.check_file(data, path="r.urdf").diagnostics
+    assert finding.rule == rule
+    assert finding.hint == (
+        "this is a xacro substitution left unexpanded: check the .xacro file it came from, "
+        "or expand that with xacro first"
+    )

@@ -116,7 +116,8 @@ class ReaderBase:
                 BAD_NUMBER,
                 f'{owner}: <{el.tag} {attr}="{value}"> is not a number',
                 self.locator.attribute(at, attr),
-                "write a finite decimal like 0.5 or 1e-3, with no units or trailing spaces",
+                _unexpanded(value)
+                or "write a finite decimal like 0.5 or 1e-3, with no units or trailing spaces",
             )
             return default
         return number
@@ -150,7 +151,7 @@ class ReaderBase:
                 f'{owner}: <{el.tag} {attr}="{value}"> has {len(pieces)} '
                 f"value{'' if len(pieces) == 1 else 's'}, {count} are needed",
                 self.locator.attribute(at, attr),
-                f'write {attr}="{meaning}" separated by spaces',
+                _unexpanded(value) or f'write {attr}="{meaning}" separated by spaces',
             )
             return None
         numbers = to_doubles(pieces)
@@ -160,7 +161,8 @@ class ReaderBase:
                 BAD_NUMBER,
                 f'{owner}: <{el.tag} {attr}="{value}">: {bad!r} is not a number',
                 self.locator.attribute(at, attr),
-                f'write {attr}="{meaning}" as finite decimals separated by spaces',
+                _unexpanded(value)
+                or f'write {attr}="{meaning}" as finite decimals separated by spaces',
             )
             return None
         return numbers
@@ -181,3 +183,13 @@ class ReaderBase:
             return default
         found = self.numbers(el, at, attr, owner, 3, "x y z")
         return default if found is None else (found[0], found[1], found[2])
+
+
+def _unexpanded(value: str) -> str | None:
+    """The hint for a value that is a xacro substitution nobody expanded, if it is one."""
+    if "$(" in value or "${" in value:
+        return (
+            "this is a xacro substitution left unexpanded: check the .xacro file it came "
+            "from, or expand that with xacro first"
+        )
+    return None

@@ -9,6 +9,7 @@ from lxml import etree
 from ..diagnostics import Kind, Severity, Subject
 from ..model import (
     DEFAULT_AXIS,
+    ZERO3,
     Calibration,
     Dynamics,
     Joint,
@@ -112,14 +113,16 @@ class JointReader(LinkReader):
 
     def axis(self, el: etree._Element, at: Location, owner: Owner) -> tuple[float, ...]:
         if el.get("xyz") is None:
-            # urdfdom keeps the default then; the spec asks for xyz.
+            # urdfdom keeps the 1 0 0 default only when there is no <axis> at all; an <axis>
+            # without xyz leaves it at 0 0 0 (KDL then computes poses of NaN).
             self.error(
                 MISSING_ATTRIBUTE,
-                f"{owner}: <axis> has no 'xyz' attribute, so the axis is 1 0 0",
+                f"{owner}: <axis> has no 'xyz' attribute, so urdfdom reads the axis as 0 0 0",
                 at,
-                'write <axis xyz="x y z"/>',
+                'write <axis xyz="x y z">, or leave <axis> out for the default 1 0 0',
                 Severity.WARNING,
             )
+            return ZERO3
         return self.vector3(el, at, "xyz", owner, DEFAULT_AXIS)
 
     def limit(self, el: etree._Element, at: Location, owner: Owner) -> Limit:

@@ -125,7 +125,8 @@ XML_ESCAPE = Rule(
     "xml-escape",
     W,
     Family.XML,
-    summary="'&', '<' or ']]>' not escaped, or a reference to a character XML forbids.",
+    summary="An ampersand, a less-than sign or ]]> not escaped, or a reference to a "
+    "character XML forbids.",
     explanation=(
         "In XML, `&` starts a reference and `<` starts a tag, so inside text and attribute "
         "values they must be written `&amp;` and `&lt;`. urdfdom lets a stray `&` through and"
@@ -172,7 +173,7 @@ XML_COMMENT = Rule(
     "xml-comment",
     W,
     Family.XML,
-    summary="'--' inside a comment.",
+    summary="Two dashes (--) inside a comment.",
     explanation=(
         "XML forbids `--` inside a comment (and a comment ending `--->`). urdfdom reads a "
         "comment up to the first `-->` whatever it holds; lxml and xacro refuse the file, and"
