@@ -302,14 +302,19 @@ def test_two_expansions_do_not_leak(tmp_path: Path) -> None:
 
 def test_xacro_module_state_is_restored(tmp_path: Path) -> None:
     import xacro
+    import xacro.color
 
-    before = (xacro.eval_all, xacro.parse, xacro.all_includes, sys.stdout, sys.stderr)
+    def state() -> tuple[object, ...]:
+        exposed = xacro._global_symbols["xacro"]["message"]
+        return (xacro.eval_all, xacro.parse, xacro.all_includes, xacro.color.message, exposed)
+
+    before = (*state(), sys.stdout, sys.stderr)
     _write(tmp_path, {"r.xacro": f'<robot name="r" {NS}><link name="l"/></robot>'})
     expand(tmp_path / "r.xacro")
     with pytest.raises(XacroError):
         _write(tmp_path, {"bad.xacro": f'<robot name="r" {NS}><xacro:nope/></robot>'})
         expand(tmp_path / "bad.xacro")
-    after = (xacro.eval_all, xacro.parse, xacro.all_includes, sys.stdout, sys.stderr)
+    after = (*state(), sys.stdout, sys.stderr)
     assert after == before
 
 
@@ -674,6 +679,34 @@ def test_xacro_warnings_become_findings(tmp_path: Path) -> None:
     assert checked.exit_code == 0
     assert checked.output.startswith(warning + "robot name is: w\n")
     assert runner.invoke(cli, ["check", "--strict", path]).exit_code == 1
+
+
+# The lines xacro's print_location adds after a message; findings carry the place instead.
+_LOCATION_LINES = (
+    "when processing file:",
+    "when instantiating macro:",
+    "instantiated from:",
+    "in file:",
+    "included from:",
+)
+
+
+def test_messages_are_the_xacro_command_s(monkeypatch: pytest.MonkeyPatch) -> None:
+    folder = DATA / "xacro" / "warnings"
+    reference = xacro_command("robot.urdf.xacro", cwd=folder)
+    assert reference.returncode == 0, reference.stderr
+    expected = tuple(
+        line
+        for line in reference.stderr.splitlines()
+        if line.strip() and not line.startswith(_LOCATION_LINES)
+    )
+    monkeypatch.chdir(folder)
+    stderr = sys.stderr
+    ours = expand("robot.urdf.xacro")
+    assert ours.text == reference.stdout
+    assert ours.messages == expected
+    assert len(expected) == 10  # every kind: warning, error, message, deprecation, include
+    assert sys.stderr is stderr
 
 
 def test_arguments_are_read_like_the_xacro_command(tmp_path: Path) -> None:

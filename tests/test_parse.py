@@ -14,6 +14,8 @@ from conftest import (
     golden_check_urdf,
     repo_id,
 )
+from hypothesis import given
+from hypothesis import strategies as st
 
 import fishbot_urdf
 from fishbot_urdf import (
@@ -27,6 +29,7 @@ from fishbot_urdf import (
     parse,
     to_urdf,
 )
+from fishbot_urdf.parse.values import to_double, to_doubles
 
 ALL = DATA / "valid" / "all_elements.urdf"
 
@@ -47,6 +50,15 @@ def test_numbers_and_versions_like_urdfdom(path: Path) -> None:
 def test_the_number_cases_have_both_verdicts() -> None:
     verdicts = {golden_check_urdf(GoldenInput(repo_id(p), p)).status == 0 for p in URDFDOM}
     assert verdicts == {True, False}
+
+
+_PIECES = ["0", "1", "-2.5", "1e308", "1e400", "nan", "inf", "1_0", "\u0663", "\t1", "1\t", "x", ""]
+
+
+@given(st.lists(st.sampled_from(_PIECES), max_size=5))
+def test_numbers_checked_at_once_as_one_by_one(texts: list[str]) -> None:
+    one_by_one = [to_double(text) for text in texts]
+    assert to_doubles(texts) == (None if None in one_by_one else one_by_one)
 
 
 def test_model_of_every_element() -> None:

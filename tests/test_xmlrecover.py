@@ -4,7 +4,6 @@ refused. The fixtures are tests/data/xml/*.urdf; the wider survey is xml_survey.
 
 from __future__ import annotations
 
-import dataclasses
 import re
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -19,11 +18,8 @@ from fishbot_urdf import XmlSyntaxError, check_file
 from fishbot_urdf.cli import cli
 from fishbot_urdf.diagnostics import Severity
 from fishbot_urdf.parse import read
-from fishbot_urdf.parse._fast import fast_robot
-from fishbot_urdf.parse._reader import Reader
 from fishbot_urdf.rules.xml import BY_ID as RULES
 from fishbot_urdf.xmlrecover import UNDECLARED, needed
-from fishbot_urdf.xmlsource import read_xml
 
 DATA = Path(__file__).parent / "data" / "xml"
 FIXTURES = sorted(DATA.glob("*.urdf"))
@@ -398,26 +394,3 @@ def test_what_xacro_makes_of_the_fixtures() -> None:
     }
     assert '<robot name="xml">' in outputs["escape_doctype_entity"]
     assert '<link name="tool_\u00e4"/>' in outputs["encoding_mislabelled"]
-
-
-@pytest.mark.parametrize("name", list(CASES_READ))
-def test_quick_pass_agrees_on_a_recovered_file(name: str) -> None:
-    # The quick pass and the full reader get the same rewritten tree and locator: they agree,
-    # locations included.
-    data = (DATA / f"{name}.urdf").read_bytes()
-    document = read_xml(data, "robot.urdf")
-    fast = fast_robot(document.root, document.locator, data)
-    document.locator.rewind()
-    reader = Reader(document.locator)
-    full = reader.robot(document.root)
-    if fast is not None:
-        assert reader.diagnostics == []
-        assert _with_locations(fast) == _with_locations(full)
-
-
-def _with_locations(value: object) -> object:
-    if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        return tuple(_with_locations(getattr(value, f.name)) for f in dataclasses.fields(value))
-    if isinstance(value, tuple):
-        return tuple(_with_locations(item) for item in value)
-    return value

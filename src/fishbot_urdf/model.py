@@ -5,11 +5,12 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field, fields
 from enum import Enum
-from typing import NamedTuple, TypeVar
+from typing import NamedTuple, ParamSpec, TypeVar
 
 from .errors import UnknownNameError
 
 _T = TypeVar("_T")
+_P = ParamSpec("_P")
 Vector3 = tuple[float, float, float]
 Rgba = tuple[float, float, float, float]
 
@@ -290,11 +291,13 @@ class Robot:
         raise UnknownNameError("joint", name, (joint.name for joint in self.joints))
 
 
-def builder(cls: type[_T]) -> Callable[..., _T]:
+def builder(cls: Callable[_P, _T]) -> Callable[_P, _T]:
     """A constructor for the frozen dataclass ``cls`` taking every field, in order, by position.
 
     It sets the slots directly, which is about twice as fast as the generated ``__init__``
     (that goes through ``object.__setattr__`` for each field). Readers of big files use it.
+    It is typed as ``cls`` itself, so that its arguments are checked, but it has no defaults:
+    every field must be given.
     """
     names = [f.name for f in fields(cls)]  # type: ignore[arg-type]
     scope: dict[str, object] = {"_new": object.__new__, "_cls": cls}

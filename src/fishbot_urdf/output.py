@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import os
-import tempfile
+import secrets
 from collections.abc import Iterable
 from pathlib import Path
 
@@ -46,25 +46,39 @@ def write_atomic(path: str | Path, data: bytes | str, *, inputs: Iterable[str | 
         return target
     try:
         target.parent.mkdir(parents=True, exist_ok=True)
-        # Short enough that a file name near the 255-byte limit still has room for it.
-        prefix = f".{target.name[:40]}."
-        handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=prefix)
+        # A new file gets the mode any new file gets: 0o666 less the umask, which the system
+        # applies by itself. A file replaced keeps its own mode, given once the data is in
+        # (until then only its owner may read it, as the file may be private).
+        mode = target.stat().st_mode & 0o7777 if target.exists() else None
+        handle, temporary = _create_temporary(target, 0o666 if mode is None else 0o600)
     except OSError as exc:
         raise InputError(f"cannot write {path}: {exc.strerror}", path=str(path)) from exc
     try:
         with os.fdopen(handle, "wb") as stream:
             stream.write(payload)
-        if target.exists():
-            os.chmod(temporary, target.stat().st_mode & 0o7777)
-        else:
-            umask = os.umask(0)
-            os.umask(umask)
-            os.chmod(temporary, 0o666 & ~umask)
+        if mode is not None:
+            os.chmod(temporary, mode)
         os.replace(temporary, target)
     except OSError as exc:
-        Path(temporary).unlink(missing_ok=True)
+        temporary.unlink(missing_ok=True)
         raise InputError(f"cannot write {path}: {exc.strerror}", path=str(path)) from exc
     return target
+
+
+def _create_temporary(target: Path, mode: int) -> tuple[int, Path]:
+    """A new, empty file beside ``target``, open for writing, with a name no other has."""
+    # Short enough that a file name near the 255-byte limit still has room for it.
+    prefix = f".{target.name[:40]}."
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0)
+    tries = 100
+    while True:
+        temporary = target.parent / f"{prefix}{secrets.token_hex(4)}"
+        try:
+            return os.open(temporary, flags, mode), temporary
+        except FileExistsError:
+            tries -= 1
+            if not tries:  # the caller says it cannot write there
+                raise
 
 
 def _same_file(a: Path, b: Path) -> bool:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import contextlib
 import io
 import os
 from collections.abc import Callable, Iterator
@@ -63,11 +62,12 @@ class Run(Explaining):
         self.given_attributes: list[Any] = []  # elements an <xacro:attribute> wrote to
         self.properties: dict[str, Location | None] = {}  # where each property was defined
         self._saved: list[tuple[Any, str, Any]] = []
-        self._stderr = io.StringIO()
-        self._redirect = contextlib.redirect_stderr(self._stderr)
+        self._messages = io.StringIO()  # what xacro would have printed on stderr
 
     # -- the hooks -------------------------------------------------------------------------
     def __enter__(self) -> Run:
+        import xacro.color  # type: ignore[import-untyped]
+
         x, subst = self.xacro, self.subst
         for name in ("eval_all", "process_include", "grab_macro"):
             self._patch(x, name, self._tracked(getattr(x, name)))
@@ -81,6 +81,11 @@ class Run(Explaining):
         self._patch(x, "eval_extension", self._extension(x.eval_extension))
         self._patch(x, "parse", self._parse)
         self._patch(x, "print_location", lambda: None)
+        # xacro prints its warnings and errors through xacro.color.message (the functions
+        # xacro.warning and xacro.error call it by name); ${xacro.message(...)} in a file
+        # holds the original function, so its entry in the symbol table is replaced too.
+        self._patch(xacro.color, "message", self._message)
+        self._patch(x._global_symbols["xacro"], "message", self._exposed_message)
         self._patch(subst, "_eval_find", self._find)
         self._patch(subst._eval_dict, "find", self._find)
         # the state a previous run may have left
@@ -89,11 +94,9 @@ class Run(Explaining):
         self._patch(x, "verbosity", 1)
         self._patch(x, "substitution_args_context", {})
         x.init_stacks(None)
-        self._redirect.__enter__()
         return self
 
     def __exit__(self, *exc: object) -> None:
-        self._redirect.__exit__(None, None, None)
         for owner, name, value in reversed(self._saved):
             if isinstance(owner, dict):
                 owner[name] = value
@@ -108,6 +111,20 @@ class Run(Explaining):
         else:
             self._saved.append((owner, name, getattr(owner, name)))
             setattr(owner, name, value)
+
+    def _message(self, msg: Any, *args: Any, **kwargs: Any) -> None:
+        # As xacro.color.message writes to a stream that is not a terminal: no colour, the
+        # alt_text ('warning: ', 'error: ') in front.
+        alt_text = kwargs.get("alt_text")
+        text = "%s%s" % (alt_text, msg) if alt_text else msg  # noqa: UP031  # as xacro does
+        self._messages.write(" ".join(map(str, (text, *args))) + "\n")  # as print() does
+
+    def _exposed_message(self, *args: Any, **kwargs: Any) -> str:
+        # ${xacro.message(...)}: as xacro's own wrapper, less the location (never printed here).
+        kwargs.pop("print_location", None)
+        kwargs.pop("file", None)
+        self._message(*args, **kwargs)
+        return ""
 
     def _tracked(self, function: Callable[..., Any]) -> Callable[..., Any]:
         def run(node: Any, *rest: Any) -> Any:
@@ -216,7 +233,7 @@ class Run(Explaining):
         seen: dict[str, None] = {}
         for name in x.all_includes:
             seen.setdefault(name, None)
-        messages = tuple(line for line in self._stderr.getvalue().splitlines() if line.strip())
+        messages = tuple(line for line in self._messages.getvalue().splitlines() if line.strip())
         return Expansion(
             self.path, text, tuple(seen), tuple(_sources(document, self.path)), messages
         )

@@ -6,10 +6,8 @@ RobotError listing every finding).
 
 from __future__ import annotations
 
-import gc
 import re
-from collections.abc import Iterator, Mapping
-from contextlib import contextmanager
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -18,7 +16,6 @@ from ..errors import RobotError
 from ..model import Robot
 from ..rules.xacro import XACRO_WARNING
 from ..xmlsource import STRING_PATH, read_bytes, read_xml
-from ._fast import fast_robot
 from ._reader import Reader
 from .values import to_double
 
@@ -95,13 +92,8 @@ def read(
     # As urdfdom reads it: a file it reads though strict XML does not gives xml-* warnings.
     document = read_xml(data, name, origins)
     root, locator, notes = document.root, document.locator, notes + document.recoveries
-    with paused_gc():
-        robot = fast_robot(root, locator, data)
-        if robot is not None:
-            return Parsed(name, robot, notes, files, data)
-        locator.rewind()
-        reader = Reader(locator)
-        robot = reader.robot(root)
+    reader = Reader(locator)
+    robot = reader.robot(root)
     return Parsed(name, robot, notes + tuple(reader.diagnostics), files, data)
 
 
@@ -110,22 +102,6 @@ def xacro_warning(message: str, path: str) -> Diagnostic:
     return XACRO_WARNING.report(
         message.removeprefix("warning: ").strip(), None, path=path, subject=Subject(Kind.FILE, path)
     )
-
-
-@contextmanager
-def paused_gc() -> Iterator[None]:
-    """Pause Python's cycle collector while a robot is built.
-
-    A big robot is hundreds of thousands of small objects that hold no reference cycles; the
-    collector would walk them again and again as they are made (a third of the time).
-    """
-    was_enabled = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if was_enabled:
-            gc.enable()
 
 
 def parse(text: str | bytes, *, path: str | None = None) -> Robot:

@@ -9,7 +9,7 @@ from ..model import ZERO3, Location, Vector3
 from ..rules import Rule
 from ..rules.reading import BAD_NUMBER, BAD_VECTOR, MISSING_ATTRIBUTE, UNKNOWN_ELEMENT
 from ..xmlsource import Locator
-from .values import to_double
+from .values import to_double, to_doubles
 
 Owner = Subject | str  # what a message names: a link, a joint, ... (or just "link")
 
@@ -154,9 +154,9 @@ class ReaderBase:
                 _unexpanded(value) or f'write {attr}="{meaning}" separated by spaces',
             )
             return None
-        numbers = [to_double(p) for p in pieces]
-        if None in numbers:
-            bad = pieces[numbers.index(None)]
+        numbers = to_doubles(pieces)
+        if numbers is None:
+            bad = next(p for p in pieces if to_double(p) is None)
             self.error(
                 BAD_NUMBER,
                 f'{owner}: <{el.tag} {attr}="{value}">: {bad!r} is not a number',
@@ -165,7 +165,7 @@ class ReaderBase:
                 or f'write {attr}="{meaning}" as finite decimals separated by spaces',
             )
             return None
-        return numbers  # type: ignore[return-value]
+        return numbers
 
     def vector3(
         self,

@@ -19,12 +19,17 @@ from ..model import (
     Mimic,
     Origin,
     SafetyController,
+    builder,
 )
 from ..rules.reading import DUPLICATE_ELEMENT, JOINT_TYPE, MISSING_ATTRIBUTE, MISSING_ELEMENT
 from ._base import Owner
 from ._links import LinkReader
 
 _TYPES = {t.value: t for t in JointType}
+_NO_ORIGIN = Origin()
+# As in _links: the model's constructors, every field given in order, twice as fast.
+_new_joint = builder(Joint)
+_new_limit = builder(Limit)
 
 
 class JointReader(LinkReader):
@@ -88,12 +93,12 @@ class JointReader(LinkReader):
                 )
         parent, parent_at = ends.get("parent", ("", None))
         child_name, child_at = ends.get("child", ("", None))
-        return Joint(
+        return _new_joint(
             name,
             joint_type,
             parent,
             child_name,
-            parts.get("origin", Origin()),  # type: ignore[arg-type]
+            parts.get("origin", _NO_ORIGIN),  # type: ignore[arg-type]
             parts.get("axis", DEFAULT_AXIS),  # type: ignore[arg-type]
             parts.get("limit"),  # type: ignore[arg-type]
             parts.get("dynamics"),  # type: ignore[arg-type]
@@ -121,12 +126,12 @@ class JointReader(LinkReader):
         return self.vector3(el, at, "xyz", owner, DEFAULT_AXIS)
 
     def limit(self, el: etree._Element, at: Location, owner: Owner) -> Limit:
-        return Limit(
-            effort=self.number(el, at, "effort", owner, required=True),
-            velocity=self.number(el, at, "velocity", owner, required=True),
-            lower=self.number(el, at, "lower", owner),
-            upper=self.number(el, at, "upper", owner),
-            source=at,
+        return _new_limit(
+            self.number(el, at, "effort", owner, required=True),
+            self.number(el, at, "velocity", owner, required=True),
+            self.number(el, at, "lower", owner),
+            self.number(el, at, "upper", owner),
+            at,
         )
 
     def dynamics(self, el: etree._Element, at: Location, owner: Owner) -> Dynamics:

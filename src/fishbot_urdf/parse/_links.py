@@ -20,6 +20,7 @@ from ..model import (
     Origin,
     Sphere,
     Visual,
+    builder,
 )
 from ..rules.reading import (
     BAD_COLOR,
@@ -31,13 +32,26 @@ from ..rules.reading import (
 from ._base import Owner, ReaderBase, xml_text
 
 _SHAPES = "<box>, <cylinder>, <sphere> or <mesh>"
+_NO_ORIGIN = Origin()  # frozen: one for every element that has no <origin>
+
+# The constructors of the model's classes, every field given in order: twice as fast as the
+# classes' own (a big robot is hundreds of thousands of these).
+_new_origin = builder(Origin)
+_new_box = builder(Box)
+_new_inertia = builder(Inertia)
+_new_inertial = builder(Inertial)
+_new_visual = builder(Visual)
+_new_collision = builder(Collision)
+_new_link = builder(Link)
 
 
 class LinkReader(ReaderBase):
     """Builds Link, Inertial, Visual, Collision, Geometry, Origin and Material."""
 
     def origin(self, el: etree._Element, at: Location, owner: Owner) -> Origin:
-        return Origin(self.vector3(el, at, "xyz", owner), self.vector3(el, at, "rpy", owner), at)
+        return _new_origin(
+            self.vector3(el, at, "xyz", owner), self.vector3(el, at, "rpy", owner), at
+        )
 
     def material(self, el: etree._Element, at: Location, owner: Owner) -> Material:
         name = el.get("name")
@@ -97,10 +111,10 @@ class LinkReader(ReaderBase):
                 extras.append(xml_text(child))
             elif isinstance(tag, str):
                 extras.append(self.extra(child))
-        return Link(name, inertial, tuple(visuals), tuple(collisions), tuple(extras), at)
+        return _new_link(name, inertial, tuple(visuals), tuple(collisions), tuple(extras), at)
 
     def inertial(self, el: etree._Element, at: Location, owner: Owner) -> Inertial:
-        origin = Origin()
+        origin = _NO_ORIGIN
         mass = 0.0
         inertia: Inertia | None = None
         has_mass = False
@@ -113,11 +127,16 @@ class LinkReader(ReaderBase):
                 mass = self.number(child, self.locator.locate(child), "value", owner, required=True)
             elif tag == "inertia":
                 c_at = self.locator.locate(child)
-                ixx, ixy, ixz, iyy, iyz, izz = (
-                    self.number(child, c_at, key, owner, required=True)
-                    for key in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+                number = self.number
+                inertia = _new_inertia(
+                    number(child, c_at, "ixx", owner, required=True),
+                    number(child, c_at, "ixy", owner, required=True),
+                    number(child, c_at, "ixz", owner, required=True),
+                    number(child, c_at, "iyy", owner, required=True),
+                    number(child, c_at, "iyz", owner, required=True),
+                    number(child, c_at, "izz", owner, required=True),
+                    c_at,
                 )
-                inertia = Inertia(ixx, ixy, ixz, iyy, iyz, izz, c_at)
             elif isinstance(tag, str):
                 self.ignored(
                     child, owner, "inertial", "<inertial> holds <origin>, <mass> and <inertia>"
@@ -136,12 +155,12 @@ class LinkReader(ReaderBase):
                 at,
                 'write <inertia ixx=".." ixy="0" ixz="0" iyy=".." iyz="0" izz=".."/>',
             )
-        return Inertial(mass, inertia or Inertia(), origin, at)
+        return _new_inertial(mass, inertia or Inertia(), origin, at)
 
     def _shape_parts(
         self, el: etree._Element, at: Location, owner: Owner, visual: bool
     ) -> tuple[Origin, Geometry, Material | None]:
-        origin = Origin()
+        origin = _NO_ORIGIN
         geometry: Geometry | None = None
         material: Material | None = None
         seen_geometry = False
@@ -184,11 +203,11 @@ class LinkReader(ReaderBase):
 
     def visual(self, el: etree._Element, at: Location, owner: Owner) -> Visual:
         origin, geometry, material = self._shape_parts(el, at, owner, True)
-        return Visual(geometry, origin, material, el.get("name"), at)
+        return _new_visual(geometry, origin, material, el.get("name"), at)
 
     def collision(self, el: etree._Element, at: Location, owner: Owner) -> Collision:
         origin, geometry, _ = self._shape_parts(el, at, owner, False)
-        return Collision(geometry, origin, el.get("name"), at)
+        return _new_collision(geometry, origin, el.get("name"), at)
 
     def geometry(self, el: etree._Element, at: Location, owner: Owner) -> Geometry | None:
         shape: Geometry | None = None
@@ -198,7 +217,8 @@ class LinkReader(ReaderBase):
             if not isinstance(tag, str):
                 continue
             c_at = self.locator.locate(child)
-            self.locator.skip_children(child)
+            if len(child):  # a shape holds nothing, as a rule
+                self.locator.skip_children(child)
             if seen:
                 self.error(
                     DUPLICATE_ELEMENT,
@@ -221,7 +241,7 @@ class LinkReader(ReaderBase):
     def shape(self, el: etree._Element, at: Location, owner: Owner) -> Geometry | None:
         tag = el.tag
         if tag == "box":
-            return Box(self.vector3(el, at, "size", owner, required=True), at)
+            return _new_box(self.vector3(el, at, "size", owner, required=True), at)
         if tag == "cylinder":
             radius = self.number(el, at, "radius", owner, required=True)
             return Cylinder(radius, self.number(el, at, "length", owner, required=True), at)

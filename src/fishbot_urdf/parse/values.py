@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 _TRAILING = frozenset(" \t\n\r\v\f")
 
@@ -24,3 +25,27 @@ def to_double(text: str) -> float | None:
     if not math.isfinite(value) or text[-1] in _TRAILING or "_" in text or not text.isascii():
         return None
     return value
+
+
+def to_doubles(texts: Sequence[str]) -> list[float] | None:
+    """``to_double`` of every text when each is a number, else None; checked all at once.
+
+    Texts that hold no white space (as the pieces of a vector split at spaces do, unless a tab
+    or line break was written in) are numbers by ``to_double``'s rules exactly when ``float``
+    takes each, none is infinite or nan, and none holds ``_`` or anything but ASCII.
+    """
+    try:
+        values = list(map(float, texts))
+    except ValueError:
+        return None
+    total = sum(values)  # inf or nan if a value is (or, rarely, if the sum overflows)
+    joined = "".join(texts)
+    if total - total == 0.0 and joined.isascii() and joined.isprintable() and "_" not in joined:
+        return values
+    checked: list[float] = []  # the rare rest, one by one
+    for text in texts:
+        number = to_double(text)
+        if number is None:
+            return None
+        checked.append(number)
+    return checked

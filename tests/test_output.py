@@ -1,0 +1,115 @@
+"""`fishbot_urdf.output.write_atomic`: whole files or none, modes as any program gives them."""
+
+from __future__ import annotations
+
+import os
+import secrets
+import stat
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from fishbot_urdf import InputError
+from fishbot_urdf.output import write_atomic
+
+_WRITE = "import sys; from fishbot_urdf.output import write_atomic; write_atomic(sys.argv[1], 'x')"
+
+
+def _mode(path: Path) -> int:
+    return stat.S_IMODE(path.stat().st_mode)
+
+
+@pytest.mark.parametrize("umask", ["022", "027", "002", "077"])
+def test_a_new_file_gets_the_mode_the_shell_gives_one(tmp_path: Path, umask: str) -> None:
+    # The shell's own `>` creates a file the way every program does: 0o666 less the umask.
+    subprocess.run(["sh", "-c", f"umask {umask}; : > shell.txt"], cwd=tmp_path, check=True)
+    script = f'umask {umask}; exec {sys.executable} -c "{_WRITE}" ours.txt'
+    subprocess.run(["sh", "-c", script], cwd=tmp_path, check=True)
+    assert _mode(tmp_path / "ours.txt") == _mode(tmp_path / "shell.txt")
+    assert (tmp_path / "ours.txt").read_text() == "x"
+
+
+def test_the_umask_is_never_touched(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    def refuse(mask: int) -> int:
+        raise AssertionError("os.umask changes the whole process")
+
+    monkeypatch.setattr(os, "umask", refuse)
+    write_atomic(tmp_path / "new.urdf", "<robot/>")
+    write_atomic(tmp_path / "new.urdf", "<robot/>")
+    assert (tmp_path / "new.urdf").read_text() == "<robot/>"
+
+
+@pytest.mark.parametrize("mode", [0o600, 0o640, 0o755, 0o444])
+def test_a_file_replaced_keeps_its_mode(tmp_path: Path, mode: int) -> None:
+    target = tmp_path / "robot.urdf"
+    target.write_text("old")
+    target.chmod(mode)
+    before = target.stat().st_ino
+    write_atomic(target, "new")
+    assert target.read_text() == "new"
+    assert _mode(target) == mode
+    assert target.stat().st_ino != before  # replaced whole, by a rename
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["robot.urdf"]
+
+
+def test_links_are_written_through_and_devices_directly(tmp_path: Path) -> None:
+    real = tmp_path / "real.urdf"
+    real.write_text("old")
+    real.chmod(0o640)
+    link = tmp_path / "link.urdf"
+    link.symlink_to(real)
+    assert write_atomic(link, b"new") == real
+    assert link.is_symlink()
+    assert (real.read_text(), _mode(real)) == ("new", 0o640)
+    write_atomic(os.devnull, "nothing")
+    assert Path(os.devnull).is_char_device()
+
+
+def test_folders_are_made_and_long_names_fit(tmp_path: Path) -> None:
+    name = "y" * 250 + ".gv"  # 253 bytes: legal, and the temporary file must fit too
+    written = write_atomic(tmp_path / "a" / "b" / name, "text")
+    assert written.read_text() == "text"
+    assert os.listdir(tmp_path / "a" / "b") == [name]
+    with pytest.raises(InputError, match="File name too long"):
+        write_atomic(tmp_path / ("z" * 260), "text")
+
+
+def test_a_failed_write_leaves_nothing(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    target = tmp_path / "robot.urdf"
+    target.write_text("old")
+
+    def full(source: object, destination: object) -> None:
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(os, "replace", full)
+    with pytest.raises(InputError, match="No space left on device"):
+        write_atomic(target, "new")
+    assert target.read_text() == "old"
+    assert os.listdir(tmp_path) == ["robot.urdf"]
+
+
+def test_what_is_refused(tmp_path: Path) -> None:
+    source = tmp_path / "in.urdf"
+    source.write_text("in")
+    with pytest.raises(InputError, match="refusing to write over the input"):
+        write_atomic(source, "out", inputs=[source])
+    with pytest.raises(InputError, match="is a folder"):
+        write_atomic(tmp_path, "out")
+    with pytest.raises(InputError, match="names a folder"):
+        write_atomic(f"{tmp_path}/new/", "out")
+    with pytest.raises(InputError, match="empty"):
+        write_atomic("", "out")
+    assert source.read_text() == "in"
+
+
+def test_no_free_temporary_name(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(secrets, "token_hex", lambda size: "taken")
+    (tmp_path / ".robot.urdf.taken").write_text("someone else's")
+    with pytest.raises(InputError, match="File exists"):
+        write_atomic(tmp_path / "robot.urdf", "new")
+    assert sorted(os.listdir(tmp_path)) == [".robot.urdf.taken"]
+    (tmp_path / ".robot.urdf.taken").unlink()
+    write_atomic(tmp_path / "robot.urdf", "new")
+    assert os.listdir(tmp_path) == ["robot.urdf"]
