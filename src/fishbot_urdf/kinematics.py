@@ -4,14 +4,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from typing import TYPE_CHECKING
 
+from .analysis import Analysis, of
 from .errors import ArgumentError, UnknownNameError
 from .model import Joint, JointType, Robot
 from .spatial import Pose, axis_angle, scale
-
-if TYPE_CHECKING:
-    from .analysis import Analysis
 
 __all__ = ["joint_positions", "link_poses"]
 
@@ -96,18 +93,16 @@ def link_poses(
         ArgumentError: ``positions`` names a joint that does not move, or a position that
             is not finite.
     """
-    values = joint_positions(robot, positions)
-    model = robot if isinstance(robot, Robot) else robot.robot
-    below: dict[str, list[Joint]] = {}
-    for joint in model.joints:
-        below.setdefault(joint.parent, []).append(joint)
-    children = {joint.child for joint in model.joints}
-    poses = {link.name: Pose() for link in model.links if link.name not in children}
+    analysis = of(robot)
+    values = joint_positions(analysis, positions)
+    children, parent_joint = analysis.topology.children, analysis.parent_joint
+    poses = {name: Pose() for name in analysis.topology.roots}
     stack = list(poses)
     while stack:  # iterative: a 10k-link chain is fine
         name = stack.pop()
-        for joint in below.get(name, ()):
-            if joint.child in poses:  # a second parent: the first one wins
+        for joint in children[name]:
+            # A link with two parent joints hangs from the first in the file.
+            if parent_joint[joint.child] is not joint or joint.child in poses:
                 continue
             pose = poses[name].then(Pose.of(joint.origin))
             if joint.name in values:
