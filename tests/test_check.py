@@ -314,3 +314,12 @@ def test_an_axis_without_xyz_is_zero_as_urdfdom_reads_it(tmp_path: Path) -> None
         ("zero-axis", "error", 5),
         ("missing-attribute", "warning", 8),
     ]
+
+
+def test_a_consequence_is_reported_when_its_cause_is_not() -> None:
+    # A misspelt parent leaves its child as an extra root: the extra root is the misspelling's
+    # consequence, reported alone only when the misspelling's rule is turned off.
+    path = DATA / "invalid" / "undefined_parent.urdf"
+    assert [d.rule for d in check_file(path).diagnostics] == ["undefined-link"]
+    quiet = fishbot_urdf.Config(ignore=("undefined-link",))
+    assert [d.rule for d in check_file(path, config=quiet).diagnostics] == ["multiple-roots"]

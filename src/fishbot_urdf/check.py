@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 from collections.abc import Iterator, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from .analysis import Analysis, analyse
 from .config import Config
-from .diagnostics import Diagnostic, Kind, shown_path, sort_key
+from .diagnostics import FOLLOWS, Diagnostic, Kind, shown_path, sort_key, without_consequences
 from .graph import Topology
 from .model import Robot
 from .parse import is_xacro_path, read
@@ -87,6 +87,7 @@ def check_file(
         sources = {parsed.path: parsed.data}
     marks = suppressions(sources)
     kept, silenced = apply_suppressions(config.apply(found), marks, config)
+    kept = without_consequences(kept)
     kept.sort(key=sort_key)
     return CheckResult(
         parsed.path,
@@ -104,7 +105,8 @@ def check(robot: Robot | Analysis, *, config: Config | None = None) -> tuple[Dia
     sorted by position. (Comments are not read here: see `check_file`.)"""
     analysis = robot if isinstance(robot, Analysis) else analyse(robot)
     config = config or Config()
-    return tuple(sorted(config.apply(_rule_findings(analysis, (), config)), key=sort_key))
+    found = without_consequences(config.apply(_rule_findings(analysis, (), config)))
+    return tuple(sorted(found, key=sort_key))
 
 
 def _rule_findings(
@@ -113,14 +115,16 @@ def _rule_findings(
     yield from structure(analysis)
     # A link whose numbers could not be read has no trustworthy mass: its physics findings
     # would only repeat the fault (a mass of "1kg" read as none is no "massless link").
-    unread = {
-        d.subject.name
-        for d in read_findings
-        if d.is_error and d.subject is not None and d.subject.kind is Kind.LINK
-    }
+    unread: dict[str, set[str]] = {}
+    for d in read_findings:
+        if d.is_error and d.subject is not None and d.subject.kind is Kind.LINK:
+            unread.setdefault(d.subject.name, set()).add(d.rule)
     mm = config.ground_tolerance
     tolerance = GROUND_TOLERANCE if mm is None else mm / 1000.0
     for finding in physics(analysis, ground_tolerance=tolerance):
         subject = finding.subject
-        if subject is None or subject.kind is not Kind.LINK or subject.name not in unread:
-            yield finding
+        causes = unread.get(subject.name) if subject and subject.kind is Kind.LINK else None
+        if causes:
+            facts = {**finding.data, FOLLOWS: sorted(causes)}
+            finding = replace(finding, data=facts)
+        yield finding

@@ -48,6 +48,10 @@ class Subject:
 
 _NO_DATA: Mapping[str, Any] = MappingProxyType({})
 
+FOLLOWS = "follows"
+"""The key of a finding's data that lists the rules whose findings it follows from: it is
+only news when none of them is reported (see `without_consequences`)."""
+
 
 @dataclass(frozen=True, slots=True)
 class Diagnostic:
@@ -180,6 +184,15 @@ def listing(names: Iterable[str], most: int = 8) -> str:
     """Sorted names, comma-separated, the first ``most`` of them then '...'."""
     ordered = sorted(set(names))
     return ", ".join(ordered[:most]) + (", ..." if len(ordered) > most else "")
+
+
+def without_consequences(findings: Iterable[Diagnostic]) -> list[Diagnostic]:
+    """``findings`` without those that only follow from another one reported among them
+    (an extra root left by a misspelt parent link, say). When the cause is not reported (its
+    rule is turned off or silenced), the consequence is."""
+    kept = list(findings)
+    rules = {finding.rule for finding in kept}
+    return [f for f in kept if not rules.intersection(f.data.get(FOLLOWS, ()))]
 
 
 def has_errors(diagnostics: Iterable[Diagnostic], *, strict: bool = False) -> bool:

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator
 
 from ..analysis import Analysis
-from ..diagnostics import Diagnostic, Kind, Severity, Subject, did_you_mean, listing
+from ..diagnostics import FOLLOWS, Diagnostic, Kind, Severity, Subject, did_you_mean, listing
 from ..model import Joint, Location, Robot
 from . import Consumer, Family, Rule
 
@@ -699,6 +699,19 @@ def _limits(joint: Joint, owner: Subject, path: str) -> Iterator[Diagnostic]:
             )
 
 
+def _broken_ends(analysis: Analysis) -> list[str]:
+    """The rules that report a joint whose parent or child is missing or misspelt: such a
+    joint leaves its child as an extra root, which is their consequence, not news."""
+    causes: set[str] = set()
+    for joint in analysis.robot.joints:
+        for name in (joint.parent, joint.child):
+            if not name:
+                causes.update(("missing-element", "missing-attribute"))
+            elif name not in analysis.links:
+                causes.add(UNDEFINED_LINK.id)
+    return sorted(causes)
+
+
 def _tree(analysis: Analysis) -> Iterator[Diagnostic]:
     robot, topo, path = analysis.robot, analysis.topology, analysis.path
     if not robot.links:
@@ -714,13 +727,7 @@ def _tree(analysis: Analysis) -> Iterator[Diagnostic]:
                 subject=Subject(Kind.LINK, name),
                 hint="a link has one parent joint; in a URDF tree loops are not allowed",
             )
-    # A joint with a missing or misspelt end leaves its child as an extra root: report the
-    # joint only, not the consequence.
-    broken_joint = any(
-        not j.parent or not j.child or j.parent not in by_name or j.child not in by_name
-        for j in robot.joints
-    )
-    if len(topo.roots) > 1 and not broken_joint:
+    if len(topo.roots) > 1:
         listed = ", ".join(repr(r) for r in topo.roots)
         yield MULTIPLE_ROOTS.report(
             f"{_robot(robot)} has {len(topo.roots)} root links: {listed}",
@@ -728,7 +735,7 @@ def _tree(analysis: Analysis) -> Iterator[Diagnostic]:
             path=path,
             subject=_the_robot(robot),
             hint="connect every link but one to a parent with a joint",
-            data={"roots": list(topo.roots)},
+            data={"roots": list(topo.roots), FOLLOWS: _broken_ends(analysis)},
         )
     if not topo.roots:
         yield NO_ROOT.report(
