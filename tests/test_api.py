@@ -8,7 +8,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from conftest import ROOT
+from conftest import ROOT, require_tool
 
 import fishbot_urdf
 
@@ -229,3 +229,14 @@ def test_every_exception_the_library_raises_is_a_fishbot_urdf_error() -> None:
             cls = typing.get_type_hints(cls)["return"]
         assert isinstance(cls, type), (module, name)
         assert issubclass(cls, fishbot_urdf.FishbotUrdfError), (module, name)
+
+
+def test_readme_library_example_runs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    require_tool("dot", "graphviz")  # the example renders an SVG
+    block = README.split("## Library", 1)[1].split("```python\n", 1)[1].split("```", 1)[0]
+    code = block.replace('"robots/', f'"{ROOT}/robots/')
+    monkeypatch.chdir(tmp_path)
+    printed: list[object] = []
+    exec(compile(code, "README.md", "exec"), {"print": lambda *a: printed.append(a)})
+    assert (tmp_path / "tree.svg").read_bytes().startswith(b"<?xml")
+    assert printed
