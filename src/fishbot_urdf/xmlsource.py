@@ -2,11 +2,9 @@
 
 from __future__ import annotations
 
-import operator
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from itertools import accumulate, repeat
 from pathlib import Path
 
 from lxml import etree
@@ -323,31 +321,6 @@ class Locator:
                 self._last = (location, offset)
                 return location
         return self._fallback(element)
-
-    @property
-    def element_count(self) -> int:
-        """How many start tags the scan found (the document's element count, unless a
-        processing instruction holds something that looks like a tag)."""
-        return len(self._starts)
-
-    def locations(self) -> list[Location]:
-        """The location of every start tag, in document order, all at once: for a reader
-        that visits every element in order and has checked ``element_count`` first."""
-        starts, data = self._starts, self._data
-        if self._origins is not None:
-            return list(self._origins)
-        if not self._ascii:
-            self.rewind()
-            places = [self._position(offset) for offset in starts]
-            self.rewind()
-            return [_make_location(self.path, line, column) for line, column in places]
-        # The loops run in C: line = 1 + newlines before the tag; column = bytes after the
-        # last newline before it.
-        newline = repeat(b"\n")
-        lines = accumulate(map(data.count, newline, [0, *starts[:-1]], starts), initial=1)
-        next(lines)
-        columns = map(operator.sub, starts, map(data.rfind, newline, repeat(0), starts))
-        return list(map(_new_tuple, repeat(Location), zip(repeat(self.path), lines, columns)))
 
     def _fallback(self, element: etree._Element) -> Location:
         # Only reached if the scan and lxml disagree: lxml's line is close enough then.
