@@ -439,3 +439,16 @@ def test_a_wrong_option_is_a_usage_error(arm: Path) -> None:
         "",
         f"{USAGE}Error: no FILE to check (name:=value arguments go with a .xacro file)\n",
     )
+
+
+def test_find_config_remembers_the_folders_it_searched(tmp_path: Path) -> None:
+    (tmp_path / "fishbot.toml").write_text('ignore = ["inertia-mismatch"]\n')
+    deep = tmp_path / "a" / "b"
+    deep.mkdir(parents=True)
+    (tmp_path / "a" / "robot.urdf").write_text("<robot/>")
+    known: dict[Path, Path | None] = {}
+    first = find_config(deep / "robot.urdf", known)
+    assert first == tmp_path / "fishbot.toml"
+    assert known[deep] == known[tmp_path / "a"] == known[tmp_path] == first
+    # Answered from what was found: the same as a search without it.
+    assert find_config(tmp_path / "a" / "robot.urdf", known) == find_config(tmp_path / "a")

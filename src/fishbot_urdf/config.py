@@ -184,18 +184,38 @@ def check_severities(severity: Mapping[str, object], *, path: str | None = None)
             )
 
 
-def find_config(start: str | Path) -> Path | None:
+def find_config(start: str | Path, known: dict[Path, Path | None] | None = None) -> Path | None:
     """The nearest fishbot.toml, or pyproject.toml with a ``[tool.fishbot]`` table, in the
-    folder ``start`` (or the folder of the file ``start``) and the folders above it."""
+    folder ``start`` (or the folder of the file ``start``) and the folders above it.
+
+    ``known`` (folder -> its answer) spares looking again in folders already searched:
+    pass the same dict for the many files of one run.
+    """
     here = Path(start).absolute()
     if not here.is_dir():
         here = here.parent
+    known = {} if known is None else known
+    passed: list[Path] = []
+    found: Path | None = None
     for folder in (here, *here.parents):
-        for name in CONFIG_FILES:
-            candidate = folder / name
-            if candidate.is_file() and (name != "pyproject.toml" or _has_table(candidate)):
-                return candidate
-    return None
+        if folder in known:
+            found = known[folder]
+            break
+        passed.append(folder)
+        found = next(
+            (
+                candidate
+                for candidate in (folder / name for name in CONFIG_FILES)
+                if candidate.is_file()
+                and (candidate.name != "pyproject.toml" or _has_table(candidate))
+            ),
+            None,
+        )
+        if found is not None:
+            break
+    for folder in passed:
+        known[folder] = found
+    return found
 
 
 def load_config(path: str | Path) -> Config:

@@ -6,6 +6,7 @@ import json
 import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 import click
@@ -96,9 +97,12 @@ class _Options:
     config_file: str | None
     isolated: bool
 
-    def config_for(self, file: str, found: dict[str, Config]) -> Config:
+    def config_for(
+        self, file: str, found: dict[str, Config], folders: dict[Path, Path | None]
+    ) -> Config:
         """The configuration that applies to ``file``: its nearest configuration file (or
-        ``--config``, or none with ``--isolated``), with the options on top."""
+        ``--config``, or none with ``--isolated``), with the options on top. ``found`` and
+        ``folders`` keep what earlier files of the run found."""
         from ..config import Config, find_config, load_config
         from ..diagnostics import Severity, shown_path
 
@@ -107,12 +111,13 @@ class _Options:
         elif self.config_file is not None:
             where = self.config_file
         else:
-            near = find_config("." if file == "-" else file)
+            near = find_config("." if file == "-" else file, folders)
             where = None if near is None else shown_path(str(near))
         key = where or ""
-        if key not in found:
-            found[key] = load_config(where) if where else Config()
-        return found[key].updated(
+        if key in found:
+            return found[key]
+        base = load_config(where) if where else Config()
+        found[key] = base.updated(
             select=self.select,
             extend_select=self.extend_select,
             ignore=self.ignore,
@@ -120,6 +125,7 @@ class _Options:
             strict=self.strict,
             ground_tolerance=self.ground_mm,
         )
+        return found[key]
 
 
 @click.command()
@@ -274,8 +280,9 @@ def check(
         isolated=isolated,
     )
     found: dict[str, Config] = {}
+    folders: dict[Path, Path | None] = {}
     try:  # every configuration first: a wrong one stops everything, before any output
-        configs = [options.config_for(name, found) for name in names]
+        configs = [options.config_for(name, found, folders) for name in names]
     except FishbotUrdfError as exc:
         stop_on(exc)
     status = EXIT_OK
