@@ -3,6 +3,8 @@ and nothing read from outside the file."""
 
 from __future__ import annotations
 
+import os
+
 from pathlib import Path
 
 import pytest
@@ -124,11 +126,15 @@ def test_unreadable_file_is_exit_2(tmp_path: Path, monkeypatch: pytest.MonkeyPat
     path = tmp_path / "locked.urdf"
     path.write_text('<robot name="r"><link name="a"/></robot>')
 
-    def refuse(self: Path) -> bytes:
-        raise PermissionError(13, "Permission denied", str(self))
+    real_open = os.open
+
+    def refuse(name: str, flags: int, *rest: int) -> int:
+        if name == str(path):
+            raise PermissionError(13, "Permission denied", name)
+        return real_open(name, flags, *rest)
 
     # Simulated: file permissions do not stop root, which CI runs as.
-    monkeypatch.setattr(Path, "read_bytes", refuse)
+    monkeypatch.setattr(os, "open", refuse)
     result = CliRunner().invoke(cli, ["check", str(path)])
     assert result.exit_code == 2
     assert result.stderr == f"{path}: error: permission denied [io]\n"

@@ -11,24 +11,16 @@ from lxml import etree
 
 from . import xmlrecover
 from .diagnostics import Diagnostic, Kind, Subject
-from .errors import InputError, XmlSyntaxError
+from .errors import XmlSyntaxError
+from .inputs import read_input
 from .model import Location
 
 STRING_PATH = "<string>"
 
 
 def read_bytes(path: str | Path) -> bytes:
-    """Read a whole file, turning every OS error into an InputError that names the file."""
-    try:
-        return Path(path).read_bytes()
-    except FileNotFoundError as exc:
-        raise InputError("no such file", path=str(path)) from exc
-    except IsADirectoryError as exc:
-        raise InputError("is a directory, not a file", path=str(path)) from exc
-    except PermissionError as exc:
-        raise InputError("permission denied", path=str(path)) from exc
-    except OSError as exc:
-        raise InputError(f"cannot read: {exc.strerror or exc}", path=str(path)) from exc
+    """Read a whole regular file within the size limit (see :mod:`fishbot_urdf.inputs`)."""
+    return read_input(path)
 
 
 def parse_xml(data: bytes, path: str = STRING_PATH) -> etree._Element:

@@ -1,0 +1,126 @@
+"""Reading the files a robot names: regular files only, and no bigger than a limit.
+
+Every file the library reads on a robot's behalf (the robot itself, its includes, YAML
+files, package manifests, meshes) goes through :func:`read_input`, so a FIFO, a device such
+as ``/dev/zero`` or a file of many gigabytes is refused with one clear error instead of
+hanging or filling the memory.
+
+The limit belongs to the caller's context (a :class:`contextvars.ContextVar`), not to the
+process: :func:`size_limit` raises it for the code inside a ``with``, in that thread only.
+"""
+
+from __future__ import annotations
+
+import os
+import stat
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
+from pathlib import Path
+
+from .errors import ArgumentError, InputError
+
+__all__ = ["DEFAULT_MAX_BYTES", "InputTooLargeError", "max_bytes", "read_input", "size_limit"]
+
+DEFAULT_MAX_BYTES = 256 * 1024 * 1024
+"""The largest file read by default: 256 MiB, about fifteen times a 100,000-link URDF."""
+
+_LIMIT: ContextVar[int] = ContextVar("fishbot_urdf_max_bytes", default=DEFAULT_MAX_BYTES)
+
+
+class InputTooLargeError(InputError):
+    """A file is bigger than the limit; ``size`` and ``limit`` are in bytes."""
+
+    rule = "io"
+
+    def __init__(self, path: str, size: int, limit: int) -> None:
+        super().__init__(
+            f"is {_megabytes(size)}, more than the limit of {_megabytes(limit)}", path=path
+        )
+        self.size = size
+        self.limit = limit
+
+
+def max_bytes() -> int:
+    """The size limit in force here, in bytes."""
+    return _LIMIT.get()
+
+
+@contextmanager
+def size_limit(limit: int) -> Iterator[None]:
+    """Read files of up to ``limit`` bytes inside the ``with`` (this thread or task only)."""
+    if limit <= 0:
+        raise ArgumentError("the size limit must be a positive number of bytes")
+    token = _LIMIT.set(limit)
+    try:
+        yield
+    finally:
+        _LIMIT.reset(token)
+
+
+def read_input(path: str | Path) -> bytes:
+    """Read a whole regular file of at most :func:`max_bytes` bytes.
+
+    The file is opened without blocking, so a FIFO is refused at once rather than waited on.
+
+    Raises:
+        InputError: The file does not exist, is a folder, a FIFO, a device or a socket, or
+            cannot be read (the message says which).
+        InputTooLargeError: The file is bigger than the limit.
+    """
+    name = str(path)
+    limit = _LIMIT.get()
+    try:
+        handle = os.open(name, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | _BINARY)
+    except FileNotFoundError as exc:
+        raise InputError("no such file", path=name) from exc
+    except IsADirectoryError as exc:
+        raise InputError("is a directory, not a file", path=name) from exc
+    except PermissionError as exc:
+        raise InputError("permission denied", path=name) from exc
+    except OSError as exc:
+        raise InputError(f"cannot read: {exc.strerror or exc}", path=name) from exc
+    try:
+        mode = os.fstat(handle).st_mode
+        if stat.S_ISDIR(mode):
+            raise InputError("is a directory, not a file", path=name)
+        if not stat.S_ISREG(mode):
+            raise InputError(f"is {_kind(mode)}, not a regular file", path=name)
+        size = os.fstat(handle).st_size
+        if size > limit:
+            raise InputTooLargeError(name, size, limit)
+        chunks = []
+        left = limit + 1  # a file that grows while it is read is caught too
+        while left > 0:
+            chunk = os.read(handle, min(left, 1 << 20))
+            if not chunk:
+                break
+            chunks.append(chunk)
+            left -= len(chunk)
+        data = b"".join(chunks)
+        if len(data) > limit:
+            raise InputTooLargeError(name, len(data), limit)
+        return data
+    except OSError as exc:
+        raise InputError(f"cannot read: {exc.strerror or exc}", path=name) from exc
+    finally:
+        os.close(handle)
+
+
+_BINARY = getattr(os, "O_BINARY", 0)
+
+
+def _kind(mode: int) -> str:
+    if stat.S_ISFIFO(mode):
+        return "a FIFO (named pipe)"
+    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
+        return "a device"
+    if stat.S_ISSOCK(mode):
+        return "a socket"
+    return "not a regular file"
+
+
+def _megabytes(size: int) -> str:
+    if size < 1024 * 1024:
+        return f"{size:,} bytes"
+    return f"{size / (1024 * 1024):,.1f} MiB"

@@ -1,0 +1,76 @@
+"""Reading the files a robot names: regular files only, within a size limit."""
+
+from __future__ import annotations
+
+import os
+import threading
+from pathlib import Path
+
+import pytest
+
+from fishbot_urdf.errors import ArgumentError, InputError
+from fishbot_urdf.inputs import (
+    DEFAULT_MAX_BYTES,
+    InputTooLargeError,
+    max_bytes,
+    read_input,
+    size_limit,
+)
+
+
+def test_a_regular_file_is_read_whole(tmp_path: Path) -> None:
+    path = tmp_path / "r.urdf"
+    path.write_bytes(b"<robot/>" * 1000)
+    assert read_input(path) == b"<robot/>" * 1000
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="this system has no FIFOs")
+def test_a_fifo_is_refused_at_once_not_waited_on(tmp_path: Path) -> None:
+    fifo = tmp_path / "pipe.urdf"
+    os.mkfifo(fifo)
+    with pytest.raises(InputError) as caught:
+        read_input(fifo)  # nothing writes to it: a blocking read would never return
+    assert caught.value.message == "is a FIFO (named pipe), not a regular file"
+    assert caught.value.path == str(fifo)
+
+
+@pytest.mark.skipif(not Path("/dev/zero").exists(), reason="this system has no /dev/zero")
+def test_a_device_is_refused_not_read_without_end() -> None:
+    with pytest.raises(InputError) as caught:
+        read_input("/dev/zero")
+    assert caught.value.message == "is a device, not a regular file"
+
+
+def test_a_folder_and_a_missing_file_are_named(tmp_path: Path) -> None:
+    with pytest.raises(InputError, match="is a directory, not a file"):
+        read_input(tmp_path)
+    with pytest.raises(InputError, match="no such file"):
+        read_input(tmp_path / "missing.urdf")
+
+
+def test_a_file_over_the_limit_is_refused_with_its_size_and_the_limit(tmp_path: Path) -> None:
+    path = tmp_path / "big.urdf"
+    path.write_bytes(b" " * 3000)
+    with size_limit(2048), pytest.raises(InputTooLargeError) as caught:
+        read_input(path)
+    assert (caught.value.size, caught.value.limit) == (3000, 2048)
+    assert caught.value.message == "is 3,000 bytes, more than the limit of 2,048 bytes"
+    assert caught.value.rule == "io"
+    with size_limit(3000):
+        assert len(read_input(path)) == 3000
+
+
+def test_the_limit_belongs_to_the_context_not_the_process() -> None:
+    seen: list[int] = []
+    with size_limit(10):
+        thread = threading.Thread(target=lambda: seen.append(max_bytes()))
+        thread.start()
+        thread.join()
+        assert max_bytes() == 10
+    assert seen == [DEFAULT_MAX_BYTES]
+    assert max_bytes() == DEFAULT_MAX_BYTES
+
+
+def test_a_limit_must_be_positive() -> None:
+    with pytest.raises(ArgumentError), size_limit(0):
+        pass
