@@ -4,7 +4,6 @@ and nothing read from outside the file."""
 from __future__ import annotations
 
 import os
-
 from pathlib import Path
 
 import pytest
