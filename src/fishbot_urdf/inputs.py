@@ -11,6 +11,7 @@ process: :func:`size_limit` raises it for the code inside a ``with``, in that th
 
 from __future__ import annotations
 
+import errno
 import os
 import stat
 from collections.abc import Iterator
@@ -83,7 +84,8 @@ def read_input(path: str | Path) -> bytes:
     try:
         mode = os.fstat(handle).st_mode
         if stat.S_ISDIR(mode):
-            raise InputError("is a directory, not a file", path=name)
+            cause = IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), name)
+            raise InputError("is a directory, not a file", path=name) from cause
         if not stat.S_ISREG(mode):
             raise InputError(f"is {_kind(mode)}, not a regular file", path=name)
         size = os.fstat(handle).st_size

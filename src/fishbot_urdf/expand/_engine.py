@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import contextvars
+import functools
 import io
 import os
+import threading
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
@@ -11,10 +14,13 @@ from xml.dom import expatbuilder, minidom
 from xml.parsers.expat import ExpatError
 
 from ..diagnostics import shown_path
+from ..errors import InputError
+from ..inputs import read_input
 from ..model import Location
 from ..packages import PackageNotFoundError, find_package
 from . import Expansion, XacroError
 from ._errors import SOURCE_KEY, Explaining, source
+from ._guard import guard_symbols, guarded
 
 
 class _KeepOnClone:
@@ -69,15 +75,13 @@ class Run(Explaining):
         import xacro.color  # type: ignore[import-untyped]
 
         x, subst = self.xacro, self.subst
-        for name in ("eval_all", "process_include", "grab_macro"):
-            self._patch(x, name, self._tracked(getattr(x, name)))
-        self._patch(x, "grab_property", self._property(self._tracked(x.grab_property)))
-        # <xacro:if>, <xacro:arg>, <xacro:attribute> read their attributes through these and
-        # then evaluate them: the element stays the one at fault until another takes over.
-        self._patch(x, "check_attrs", self._noted(x.check_attrs))
-        self._patch(x, "reqd_attrs", self._attributes(self._noted(x.reqd_attrs)))
-        self._patch(x, "handle_macro_call", self._macro_call(x.handle_macro_call))
-        self._patch(x, "safe_eval", self._safe_eval(x.safe_eval))
+        # The element at fault and the macro calls that led to it are read off the stack
+        # when an error comes (see _locate): no hook sits on xacro's recursion, which
+        # keeps its depth the xacro command's.
+        self._patch(x, "grab_property", self._property(x.grab_property))
+        self._patch(x, "reqd_attrs", self._attributes(x.reqd_attrs))
+        self._patch(x, "safe_eval", guarded)
+        self._patch(subst, "_eval", self._substitution_eval)
         self._patch(x, "eval_extension", self._extension(x.eval_extension))
         self._patch(x, "parse", self._parse)
         self._patch(x, "print_location", lambda: None)
@@ -85,7 +89,9 @@ class Run(Explaining):
         # xacro.warning and xacro.error call it by name); ${xacro.message(...)} in a file
         # holds the original function, so its entry in the symbol table is replaced too.
         self._patch(xacro.color, "message", self._message)
-        self._patch(x._global_symbols["xacro"], "message", self._exposed_message)
+        # Each run evaluates in a symbol table of its own: nothing one file does to
+        # ``math`` or ``python`` reaches the next.
+        self._patch(x, "_global_symbols", self._fresh_symbols())
         self._patch(subst, "_eval_find", self._find)
         self._patch(subst._eval_dict, "find", self._find)
         # the state a previous run may have left
@@ -112,6 +118,74 @@ class Run(Explaining):
             self._saved.append((owner, name, getattr(owner, name)))
             setattr(owner, name, value)
 
+    def _fresh_symbols(self) -> dict[str, Any]:
+        x = self.xacro
+        symbols: dict[str, Any] = x.create_global_symbols()
+        guard_symbols(symbols)
+        exposed = symbols["xacro"]
+        exposed["message"] = self._exposed_message
+        exposed["load_yaml"] = self._load_yaml
+        if "load_yaml" in symbols:  # the deprecated name outside the namespace
+            message = "Using load_yaml() directly is deprecated. Use xacro.load_yaml() instead."
+
+            def deprecated(filename: str) -> Any:
+                x.warning(message)
+                return self._load_yaml(filename)
+
+            symbols["load_yaml"] = deprecated
+        return symbols
+
+    def _load_yaml(self, filename: str) -> Any:
+        """xacro.load_yaml, reading only a regular file, with a YAML loader of its own."""
+        import yaml  # type: ignore[import-untyped]
+
+        x = self.xacro
+        symbols = x._global_symbols
+
+        class Loader(yaml.SafeLoader):  # type: ignore[misc]
+            pass
+
+        for unit in x.ConstructUnits:
+
+            def construct(
+                loader: Any, node: Any, factor: float = unit.value.conversion_constant
+            ) -> float:
+                value = loader.construct_scalar(node)
+                try:
+                    return float(guarded(value, symbols)) * factor
+                except SyntaxError as exc:
+                    raise x.XacroException(f"invalid expression: {value}") from exc
+
+            Loader.add_constructor(unit.value.tag, construct)
+        name = x.abs_filename_spec(filename)
+        x.filestack.append(name)
+        try:
+            try:
+                data = read_input(name)
+            except InputError as exc:
+                raise x.XacroException(f"cannot read {name}: {exc.message}") from exc
+            try:
+                return x.YamlListWrapper.wrap(yaml.load(data, Loader=Loader))  # a SafeLoader
+            except yaml.YAMLError as exc:
+                raise x.XacroException(f"{name} is not valid YAML: {exc}") from exc
+        finally:
+            x.filestack.pop()
+            x.all_includes.append(name)
+
+    def _substitution_eval(self, text: str, context: dict[str, Any]) -> str:
+        """``$(eval ...)``: the same check as ``${...}``, and no builtins either."""
+        subst = self.subst
+        args = context.setdefault("arg", {})
+        functions = dict(subst._eval_dict)
+        functions["arg"] = lambda name: subst.convert_value(
+            subst._eval_arg(name, args=args), "auto"
+        )
+        functions["dirname"] = lambda: subst._eval_dirname(context["filename"])
+        functions.pop("__builtins__", None)
+        # xacro gives $(eval) all of Python's builtins; here, those ${...} has as python.*
+        builtins = dict(self.xacro._global_symbols["python"])
+        return str(guarded(text, {}, subst._DictWrapper(args, functions), builtins))
+
     def _message(self, msg: Any, *args: Any, **kwargs: Any) -> None:
         # As xacro.color.message writes to a stream that is not a terminal: no colour, the
         # alt_text ('warning: ', 'error: ') in front.
@@ -126,23 +200,6 @@ class Run(Explaining):
         self._message(*args, **kwargs)
         return ""
 
-    def _tracked(self, function: Callable[..., Any]) -> Callable[..., Any]:
-        def run(node: Any, *rest: Any) -> Any:
-            outer = self.node
-            self.node = node
-            result = function(node, *rest)
-            self.node = outer  # on an error, the failing element stays
-            return result
-
-        return run
-
-    def _noted(self, function: Callable[..., Any]) -> Callable[..., Any]:
-        def run(node: Any, *rest: Any) -> Any:
-            self.node = node
-            return function(node, *rest)
-
-        return run
-
     def _property(self, function: Callable[..., Any]) -> Callable[..., Any]:
         def run(node: Any, table: Any) -> Any:
             self.properties[node.getAttribute("name")] = source(node)
@@ -155,31 +212,6 @@ class Run(Explaining):
             if node.tagName == "xacro:attribute":
                 self.given_attributes.append(node.parentNode)
             return function(node, names)
-
-        return run
-
-    def _macro_call(self, function: Callable[..., Any]) -> Callable[..., Any]:
-        def run(node: Any, macros: Any, symbols: Any) -> Any:
-            tag = node.tagName
-            if not tag.startswith("xacro:"):
-                return False
-            outer = self.node
-            self.node, self.macros = node, macros
-            self.calls.append((tag[6:], source(node)))
-            result = function(node, macros, symbols)
-            self.calls.pop()
-            self.node = outer
-            return result
-
-        return run
-
-    def _safe_eval(self, function: Callable[..., Any]) -> Callable[..., Any]:
-        def run(expr: str, globals: Any, locals: Any = None) -> Any:
-            try:
-                return function(expr, globals, locals)
-            except NameError:
-                self.symbols = globals
-                raise
 
         return run
 
@@ -204,20 +236,71 @@ class Run(Explaining):
         assert filename is not None
         full = os.path.join(self.xacro.root_dir, filename)
         try:
-            data = Path(full).read_bytes()
-        except OSError as exc:
+            data = read_input(full)
+        except InputError as exc:
             self.xacro.filestack.pop()  # as xacro does: the include, not the file, is at fault
-            raise self.xacro.XacroException(f"{exc.strerror}: {full}", exc=exc) from exc
+            cause = exc.__cause__
+            if isinstance(cause, OSError):  # missing, a folder, unreadable: as xacro says it
+                raise self.xacro.XacroException(f"{cause.strerror}: {full}", exc=cause) from exc
+            raise self.xacro.XacroException(f"cannot include {full}: {exc.message}") from exc
         self.parsing = filename
         document = _LocatingBuilder(shown_path(filename)).parseString(data)
         self.parsing = None
         return document
 
+    def _locate(self, error: BaseException) -> None:
+        """The element at fault, and the macro calls that led to it, from the frames of an
+        error: the innermost element one of xacro's steps was working on."""
+        x = self.xacro
+        steps = {
+            x.eval_all.__code__: "node",
+            x.handle_macro_call.__code__: "node",
+            x.process_include.__code__: "elt",
+            x.grab_macro.__code__: "elt",
+            x.grab_property.__code__: "elt",
+            x.check_attrs.__code__: "tag",
+            x.xmlutils.reqd_attrs.__code__: "tag",
+        }
+        evaluating = guarded.__code__
+        calls: list[tuple[str, Location | None]] = []
+        inner: BaseException | None = error.__context__
+        while inner is not None:  # what failed inside an expression: the symbols it saw
+            trace = inner.__traceback__
+            while trace is not None:
+                if trace.tb_frame.f_code is evaluating:
+                    self.symbols = trace.tb_frame.f_locals.get("globals")
+                trace = trace.tb_next
+            inner = inner.__context__
+        trace = error.__traceback__
+        while trace is not None:
+            frame = trace.tb_frame
+            if frame.f_code is evaluating:  # the symbols of the failing expression
+                self.symbols = frame.f_locals.get("globals")
+            local = steps.get(frame.f_code)
+            node = frame.f_locals.get(local) if local else None
+            if node is not None:
+                if node.nodeType != node.ELEMENT_NODE:  # a text: its element is at fault
+                    node = node.parentNode
+                self.node = node
+                if frame.f_code is x.handle_macro_call.__code__ and node.tagName.startswith(
+                    "xacro:"
+                ):
+                    calls.append((node.tagName[6:], source(node)))
+                    self.macros = frame.f_locals.get("macros")
+            trace = trace.tb_next
+        self.calls = calls
+
     # -- the run ---------------------------------------------------------------------------
     def expand(self) -> Expansion:
         x = self.xacro
         try:
-            document = x.process_file(self.path, mappings=dict(self.args))
+            try:
+                document = _on_a_fresh_stack(
+                    functools.partial(x.process_file, self.path, mappings=dict(self.args))
+                )
+            except BaseException as exc:
+                self._locate(exc)
+                raise
             _stringify_attributes(self.given_attributes)
             text = document.toprettyxml(indent="  ")
         except ExpatError as exc:
@@ -230,6 +313,16 @@ class Run(Explaining):
             raise XacroError(
                 "macros or properties call each other without end", where=source(self.node)
             ) from exc
+        except RuntimeError as exc:  # xacro's check of an element's attributes
+            tag, _, missing = str(exc).partition(": missing attribute ")
+            if not missing:
+                raise
+            raise XacroError(
+                f"<{tag}> has no {missing.strip(chr(39))} attribute",
+                hint=f'write it: <{tag} {missing.strip(chr(39))}="...">',
+                where=source(self.node),
+                calls=self._calls(),
+            ) from exc
         seen: dict[str, None] = {}
         for name in x.all_includes:
             seen.setdefault(name, None)
@@ -237,6 +330,33 @@ class Run(Explaining):
         return Expansion(
             self.path, text, tuple(seen), tuple(_sources(document, self.path)), messages
         )
+
+
+def _on_a_fresh_stack(work: Callable[[], Any]) -> Any:
+    """Run ``work`` in a thread of its own, in the caller's context: xacro recurses once per
+    nested macro call, and Python's recursion limit counts the frames of a thread, so the
+    caller's frames (a command line, a test runner) do not shorten how deep macros may go."""
+    worker = _Worker(work)
+    worker.start()
+    worker.join()
+    if worker.failure is not None:
+        raise worker.failure
+    return worker.outcome
+
+
+class _Worker(threading.Thread):
+    def __init__(self, work: Callable[[], Any]) -> None:
+        super().__init__(name="fishbot-xacro")
+        self.context = contextvars.copy_context()
+        self.work = work
+        self.outcome: Any = None
+        self.failure: BaseException | None = None
+
+    def run(self) -> None:  # as few frames under xacro's as its own command has
+        try:
+            self.outcome = self.context.run(self.work)
+        except BaseException as exc:  # handed to the caller's thread, raised there
+            self.failure = exc
 
 
 def _stringify_attributes(elements: list[Any]) -> None:

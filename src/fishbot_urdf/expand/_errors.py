@@ -12,6 +12,7 @@ from ..errors import FishbotUrdfError
 from ..model import Location
 from ..packages import PackageNotFoundError
 from . import XacroError
+from ._guard import UnsafeExpression
 
 _XACRO_NS = "http://www.ros.org/wiki/xacro"
 
@@ -104,6 +105,16 @@ class Explaining:
             )
         if isinstance(inner, PackageNotFoundError):
             return self._located(inner)
+        if isinstance(inner, UnsafeExpression):
+            return XacroError(
+                f"expression {_shown(inner.expression)} uses '{inner.what}', which is not "
+                "allowed in a xacro expression",
+                rule="xacro-unsafe",
+                hint="use properties, arguments and the math, python and xacro functions; "
+                "names that start with '__' and attributes that start with '_' are refused",
+                where=where,
+                calls=calls,
+            )
         if isinstance(inner, OSError) and self.node is not None:
             if self.node.tagName == "xacro:include":
                 spec = self.node.getAttribute("filename")
@@ -177,6 +188,11 @@ class Explaining:
         )
 
 
+def _shown(expression: str) -> str:
+    text = " ".join(expression.split())
+    return "${" + (text if len(text) <= 60 else text[:57] + "...") + "}"
+
+
 def _line_of(path: str, number: int) -> str:
     try:
         lines = Path(path).read_text(encoding="utf-8", errors="replace").splitlines()
@@ -191,7 +207,7 @@ def _missing_include(
     where: Location | None,
     calls: tuple[tuple[str, Location | None], ...],
 ) -> XacroError:
-    target = Path(str(error.filename))
+    target = Path(str(error.filename if error.filename is not None else spec))
     folder = target.parent
     if target.is_dir():
         return XacroError(

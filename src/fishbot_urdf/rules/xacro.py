@@ -247,3 +247,32 @@ XACRO_WARNING = Rule(
     consumers=_XACRO,
     language="xacro",
 )
+XACRO_UNSAFE = Rule(
+    "xacro-unsafe",
+    E,
+    Family.XACRO,
+    summary="A xacro expression reaches past its properties, into Python itself.",
+    explanation="A `${...}` or `$(eval ...)` expression is Python code, and xacro runs it. "
+    "fishbot checks every expression before it runs, at every depth (inside lambdas and "
+    "comprehensions too), and refuses names that start with `__`, attributes that start with "
+    "`_`, attributes that lead to frames, code or globals (`gi_frame`, `f_globals`, ...), "
+    "`str.format` on anything but a written string, `python.type` with three arguments, and "
+    "`python.vars` shows no names that start with `_`. These are the ways out of the symbol "
+    "table to the files and programs of the machine; a robot description never needs them. "
+    "Write the value with the properties, arguments and `math`, `python` and `xacro` functions.",
+    bad="""\
+<robot name="fishbot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="prefix" value="left"/>
+  <link name="${prefix.__class__.__name__}_wheel_link"/>
+</robot>
+""",
+    good="""\
+<robot name="fishbot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="prefix" value="left"/>
+  <link name="${prefix}_wheel_link"/>
+</robot>
+""",
+    consumers=_XACRO,
+    language="xacro",
+    fatal=True,
+)

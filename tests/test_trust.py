@@ -1,0 +1,344 @@
+"""The trust model of expansion: every expression is checked before it runs, at every depth,
+and each file is expanded with evaluation state of its own.
+
+Each escape attempt below would, if it ran, create a canary file or reach an object that
+leads to one (a frame, a function's globals, the list of every class). The property: the
+expansion stops with one located error and the canary never appears.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+from conftest import xacro_command
+
+from fishbot_urdf.cli import cli
+from fishbot_urdf.expand import XacroError, expand
+from fishbot_urdf.expand._guard import UnsafeExpression, check_expression
+
+NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+CANARY = "CANARY"
+
+# Runs `touch CANARY` in the current folder through os.system, reached from a lambda.
+SYSTEM = (
+    "(lambda: [c for c in ().__class__.__base__.__subclasses__() "
+    "if c.__name__ == '_wrap_close'][0].__init__.__globals__['system']('touch CANARY'))()"
+)
+
+# Expressions refused by the checker before they run, each with what it names first.
+REFUSED = [
+    (SYSTEM, "__class__"),
+    ("[c for c in ().__class__.__bases__[0].__subclasses__()]", "__class__"),
+    ("[g.gi_frame.f_back.f_globals for g in [(x for x in [1])]]", "gi_frame"),
+    ("(x for x in []).gi_code.co_consts", "gi_code"),
+    ("(lambda: 0).__globals__", "__globals__"),
+    ("(lambda f=(lambda: 0): f.__code__)()", "__code__"),
+    ("[[y.__class__ for y in [x]] for x in [1]]", "__class__"),
+    ("f'{().__class__}'", "__class__"),
+    ("'{0.__class__.__base__}'.format(1)", "format"),
+    ("'{0[__x]}'.format(python.dict())", "format"),
+    ("python.str.format('{0.__class__}', 1)", "format"),
+    ("'{x}'.format_map(python.dict())", "format_map"),
+    ("python.dict(__class__=1)", "__class__"),
+    ("(lambda __x: 0)(1)", "__x"),
+    ("xacro.load_yaml.__globals__", "__globals__"),
+    ("xacro.arg.__closure__", "__closure__"),
+    ("xacro.arg.func_globals", "func_globals"),
+    ("[].__class__.__mro__", "__class__"),
+    ("(y := ().__class__)", "__class__"),
+    ("[*().__class__.__mro__]", "__class__"),
+    ("__import__('os')", "__import__"),
+    ("math._private", "_private"),
+    ("python.len.__self__", "__self__"),
+]
+
+
+@pytest.mark.parametrize(("expression", "what"), REFUSED, ids=[r[0][:40] for r in REFUSED])
+def test_the_checker_refuses_each_escape_naming_what_it_refused(expression: str, what: str) -> None:
+    with pytest.raises(UnsafeExpression) as caught:
+        check_expression(expression)
+    assert caught.value.what == what
+
+
+@pytest.mark.parametrize(
+    "expression",
+    [
+        "math.pi / 2",
+        "xacro.arg('x') if False else 1",
+        "python.dict(a=1)['a']",
+        "'{}_link'.format('left')",
+        "'{0}_{1:.2f}'.format('w', 0.5)",
+        "[x * 2 for x in python.range(3)]",
+        "(lambda r: r * r)(2)",
+        "props.wheel.radius",
+        "python.sorted([3, 1])",
+    ],
+)
+def test_what_robot_descriptions_write_is_allowed(expression: str) -> None:
+    check_expression(expression)
+
+
+def _expand_in(folder: Path, files: dict[str, str], monkeypatch: pytest.MonkeyPatch) -> Path:
+    for name, text in files.items():
+        (folder / name).write_text(text)
+    monkeypatch.chdir(folder)
+    return folder / "robot.xacro"
+
+
+def _robot(body: str) -> str:
+    return f'<robot name="r" {NS}>\n{body}\n</robot>\n'
+
+
+# The same escape, placed wherever xacro evaluates an expression.
+PLACES = {
+    "attribute": _robot(f'<link name="${{{SYSTEM}}}"/>'),
+    "if": _robot(f'<xacro:if value="${{{SYSTEM}}}"><link name="a"/></xacro:if>'),
+    "property": _robot(f'<xacro:property name="p" value="${{{SYSTEM}}}"/>\n<link name="${{p}}"/>'),
+    "macro default": _robot(
+        f'<xacro:macro name="m" params="x:=${{{SYSTEM}}}"><link name="${{x}}"/></xacro:macro>\n'
+        "<xacro:m/>"
+    ),
+    "macro argument": _robot(
+        '<xacro:macro name="m" params="x"><link name="${x}"/></xacro:macro>\n'
+        f'<xacro:m x="${{{SYSTEM}}}"/>'
+    ),
+    "element name": _robot(f'<xacro:element xacro:name="${{{SYSTEM}}}"/>'),
+    "attribute name": _robot(
+        f'<link name="a"><xacro:attribute name="${{{SYSTEM}}}" value="1"/></link>'
+    ),
+    "argument default": _robot(
+        f'<xacro:arg name="a" default="${{{SYSTEM}}}"/>\n<link name="$(arg a)"/>'
+    ),
+}
+
+
+@pytest.mark.parametrize("place", sorted(PLACES))
+def test_an_escape_fails_located_and_runs_nothing_wherever_it_is_written(
+    place: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    robot = _expand_in(tmp_path, {"robot.xacro": PLACES[place]}, monkeypatch)
+    with pytest.raises(XacroError) as caught:
+        expand(robot)
+    assert caught.value.rule == "xacro-unsafe"
+    assert caught.value.path == str(robot) or caught.value.path == "robot.xacro"
+    assert caught.value.line is not None
+    assert not (tmp_path / CANARY).exists()
+
+
+def test_the_escape_is_real_the_xacro_command_runs_it(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # The corpus is not toothless: the xacro command itself runs the attack.
+    robot = _expand_in(tmp_path, {"robot.xacro": PLACES["attribute"]}, monkeypatch)
+    xacro_command(robot, cwd=tmp_path)
+    assert (tmp_path / CANARY).exists()
+
+
+@pytest.mark.parametrize(
+    "value",
+    [
+        f'"{SYSTEM}"',
+        '"xacro.arg.__closure__"',
+        '"().__class__"',
+    ],
+)
+def test_yaml_unit_tags_are_checked_like_expressions(
+    value: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    robot = _expand_in(
+        tmp_path,
+        {
+            "robot.xacro": _robot(
+                '<xacro:property name="p" value="${xacro.load_yaml(\'p.yaml\')}"/>\n'
+                '<link name="${p.a}"/>'
+            ),
+            "p.yaml": f"a: !degrees {value}\n",
+        },
+        monkeypatch,
+    )
+    with pytest.raises(XacroError) as caught:
+        expand(robot)
+    assert caught.value.rule == "xacro-unsafe"
+    assert not (tmp_path / CANARY).exists()
+
+
+def test_yaml_unit_tags_still_convert(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    files = {
+        "robot.xacro": _robot(
+            '<xacro:property name="p" value="${xacro.load_yaml(\'p.yaml\')}"/>\n'
+            '<link name="${p.a}_${p.b}"/>'
+        ),
+        "p.yaml": "a: !degrees 180\nb: !millimeters 2 * 500\n",
+    }
+    robot = _expand_in(tmp_path, files, monkeypatch)
+    assert expand(robot).text == xacro_command(robot, cwd=tmp_path).stdout
+
+
+@pytest.mark.parametrize(
+    ("expression", "message"),
+    [
+        # built while running, out of the checker's sight: the symbol table closes them
+        (
+            "python.vars(python.type)['_' + '_subclasses' + '__']",
+            "'__subclasses__'",
+        ),
+        ("python.type('X', (), python.dict())", "python.type with three arguments"),
+        ("python.type(python.int)('X', (), python.dict())", "python.type with three arguments"),
+    ],
+)
+def test_what_is_built_at_run_time_is_closed_in_the_symbol_table(
+    expression: str, message: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    robot = _expand_in(
+        tmp_path, {"robot.xacro": _robot(f'<link name="${{{expression}}}"/>')}, monkeypatch
+    )
+    with pytest.raises(XacroError) as caught:
+        expand(robot)
+    assert message in str(caught.value)
+
+
+def test_python_vars_shows_no_private_names(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    text = _robot('<link name="${python.len([k for k in python.vars(python.int)])}"/>')
+    robot = _expand_in(tmp_path, {"robot.xacro": text}, monkeypatch)
+    shown = int(expand(robot).text.split('link name="')[1].split('"')[0])
+    assert shown == len([k for k in vars(int) if not k.startswith("_")])
+
+
+@pytest.mark.parametrize(
+    ("eval_text", "refused"),
+    [("$(eval [].__class__)", "xacro-unsafe"), ("$(eval open)", "xacro-undefined")],
+)
+def test_eval_substitution_is_checked_and_has_no_builtins_beyond_xacros(
+    eval_text: str, refused: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # xacro's own $(eval) runs with every Python builtin, `open` among them.
+    robot = _expand_in(
+        tmp_path, {"robot.xacro": _robot(f'<link name="{eval_text}"/>')}, monkeypatch
+    )
+    with pytest.raises(XacroError) as caught:
+        expand(robot)
+    assert caught.value.rule == refused
+
+
+def test_eval_substitution_keeps_what_robots_use(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    text = _robot(
+        '<xacro:arg name="r" default="0.5"/>\n'
+        '<link name="a"><visual><geometry><sphere radius="$(eval 2 * r)"/>'
+        "</geometry></visual></link>"
+    )
+    robot = _expand_in(tmp_path, {"robot.xacro": text}, monkeypatch)
+    assert expand(robot).text == xacro_command(robot, cwd=tmp_path).stdout
+
+
+def test_one_file_cannot_change_the_next(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    changes = {
+        "c.xacro": _robot('<link name="${python.dict.update(math, pi=3)}"/>'),
+        "d.xacro": _robot('<link name="${math.pi}_${pi}"/>'),
+    }
+    _expand_in(tmp_path, changes, monkeypatch)
+    result = CliRunner().invoke(cli, ["expand", "c.xacro"])
+    assert result.exit_code == 0, result.output
+    after = expand(tmp_path / "d.xacro").text
+    assert 'name="3.141592653589793_3.141592653589793"' in after
+
+
+def test_check_of_two_files_evaluates_each_afresh(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    files = {
+        "c.xacro": _robot('<link name="a${python.dict.update(math, pi=3)}"/>'),
+        "d.xacro": _robot(
+            '<link name="b"/><xacro:if value="${math.pi == 3}"><link name="b"/></xacro:if>'
+        ),
+    }
+    _expand_in(tmp_path, files, monkeypatch)
+    result = CliRunner().invoke(cli, ["check", "c.xacro", "d.xacro"])
+    assert result.exit_code == 0, result.output
+
+
+def _recursive(depth: int) -> str:
+    return _robot(
+        '<xacro:macro name="m" params="n"><xacro:if value="${n > 0}">'
+        '<xacro:m n="${n-1}"/></xacro:if></xacro:macro>\n'
+        f'<xacro:m n="{depth}"/><link name="a"/>'
+    )
+
+
+def test_macros_nest_as_deep_as_the_xacro_command_lets_them(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # 240 nested calls: the xacro command expands them (it stops a few levels deeper, where
+    # Python's recursion limit is), and so does expand, called from deep in a test runner.
+    robot = _expand_in(tmp_path, {"robot.xacro": _recursive(240)}, monkeypatch)
+    real = xacro_command(robot, cwd=tmp_path)
+    assert real.returncode == 0
+    assert expand(robot).text == real.stdout
+
+
+def test_macros_without_end_are_one_located_error(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    robot = _expand_in(tmp_path, {"robot.xacro": _recursive(100_000)}, monkeypatch)
+    with pytest.raises(XacroError) as caught:
+        expand(robot)
+    assert caught.value.message == "macros or properties call each other without end"
+    assert (caught.value.line, caught.value.column) == (2, 61)
+
+
+@pytest.mark.parametrize(
+    ("body", "message"),
+    [
+        ("<xacro:include/>", "<xacro:include> has no filename attribute"),
+        ('<xacro:macro params="a"/>', "<xacro:macro> has no name attribute"),
+        ("<xacro:property/>", "<xacro:property> has no name attribute"),
+    ],
+)
+def test_an_element_without_its_name_is_one_located_error(
+    body: str, message: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    robot = _expand_in(tmp_path, {"robot.xacro": _robot(body)}, monkeypatch)
+    result = CliRunner().invoke(cli, ["expand", "robot.xacro"])
+    assert result.exit_code == 1
+    tag = message.split(">")[0] + " " + message.split(" has no ")[1].split()[0]
+    assert (
+        result.stderr
+        == f'robot.xacro:2:1: error: {message} (write it: {tag}="...">) [xacro-error]\n'
+    )
+    assert robot.exists()
+
+
+@pytest.mark.skipif(not hasattr(__import__("os"), "mkfifo"), reason="this system has no FIFOs")
+def test_a_fifo_or_a_device_included_is_refused_not_waited_on(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import os
+
+    os.mkfifo(tmp_path / "pipe.xacro")
+    for target, kind in (("pipe.xacro", "a FIFO (named pipe)"), ("/dev/zero", "a device")):
+        robot = _expand_in(
+            tmp_path, {"robot.xacro": _robot(f'<xacro:include filename="{target}"/>')}, monkeypatch
+        )
+        with pytest.raises(XacroError) as caught:
+            expand(robot)
+        assert caught.value.line == 2
+        assert f"{kind}, not a regular file" in caught.value.message
+
+
+@pytest.mark.skipif(not hasattr(__import__("os"), "mkfifo"), reason="this system has no FIFOs")
+def test_a_yaml_file_that_is_a_fifo_is_refused(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import os
+
+    os.mkfifo(tmp_path / "p.yaml")
+    text = _robot("<link name=\"${xacro.load_yaml('p.yaml').a}\"/>")
+    robot = _expand_in(tmp_path, {"robot.xacro": text}, monkeypatch)
+    with pytest.raises(XacroError) as caught:
+        expand(robot)
+    assert "a FIFO (named pipe), not a regular file" in caught.value.message
