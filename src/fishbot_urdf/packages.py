@@ -15,18 +15,16 @@ Places are searched in this order, and the first that knows the package wins:
 from __future__ import annotations
 
 import os
-import re
 from collections import deque
 from collections.abc import Iterator, Mapping
 from pathlib import Path
 
-from .errors import FishbotUrdfError
+from .errors import FishbotUrdfError, InputError
+from .inputs import read_input
 
 __all__ = ["PackageNotFoundError", "find_package", "package_name", "resolve_package_uri"]
 
 _IGNORE_MARKERS = ("COLCON_IGNORE", "AMENT_IGNORE", "CATKIN_IGNORE")
-_COMMENT = re.compile(r"<!--.*?-->", re.S)
-_NAME = re.compile(r"<name(?:\s[^>]*)?>([^<]*)</name>")
 _SKIP_DIRS = frozenset(("build", "install", "log", "node_modules", "__pycache__"))
 
 
@@ -59,15 +57,28 @@ class PackageNotFoundError(FishbotUrdfError):
 
 
 def package_name(package_xml: str | Path) -> str | None:
-    """The ``<name>`` of a package.xml, or None if it has none or cannot be read."""
+    """The ``<name>`` of a package.xml, or None if it has none or cannot be read (a FIFO, a
+    device or a file over the size limit is not read; a file that is not well-formed XML,
+    which ROS's tools refuse too, has no name)."""
+    from lxml import etree
+
     try:
-        text = Path(package_xml).read_text(encoding="utf-8", errors="replace")
-    except OSError:
+        data = read_input(package_xml)
+    except InputError:
         return None
-    match = _NAME.search(_COMMENT.sub("", text))
-    if match is None:
+    parser = etree.XMLParser(
+        resolve_entities=False, load_dtd=False, no_network=True, huge_tree=False
+    )
+    try:
+        root = etree.fromstring(data, parser)
+    except etree.XMLSyntaxError:
         return None
-    return match.group(1).strip() or None
+    if not isinstance(root.tag, str) or etree.QName(root).localname != "package":
+        return None
+    name = root.find("{*}name")
+    if name is None or name.text is None:
+        return None
+    return name.text.strip() or None
 
 
 def find_package(

@@ -16,10 +16,11 @@ import os
 import re
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .diagnostics import Diagnostic, Kind, Subject, did_you_mean
+from .errors import InputError
+from .inputs import read_input
 from .model import Location
 
 if TYPE_CHECKING:
@@ -27,7 +28,8 @@ if TYPE_CHECKING:
 
 __all__ = ["Suppression", "apply_suppressions", "suppressions"]
 
-_MARK = re.compile(r"fishbot\s*:\s*ignore\s*\[([^\]]*)\]")
+# The rule list holds no bracket: a try stops at the next marker's "[" (linear time).
+_MARK = re.compile(r"fishbot\s*:\s*ignore\s*\[([^\[\]]*)\]")
 # What looks meant as a suppression, well-formed or not.
 _LOOSE = re.compile(r"fishbot\s*:\s*ignore", re.IGNORECASE)
 # Comments (group 1: the text), CDATA, processing instructions, the DOCTYPE (with its
@@ -93,8 +95,8 @@ def suppressions(sources: Mapping[str, bytes | None]) -> tuple[Suppression, ...]
     for name, data in sources.items():
         if data is None:
             try:
-                data = Path(name).read_bytes()
-            except OSError:
+                data = read_input(name)
+            except InputError:
                 continue
         if b"fishbot" in data and data.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"<"):
             found.extend(_scan(data, name))

@@ -195,7 +195,10 @@ _START_TAG = re.compile(rb"<[^/!?]")  # enough when there are no comments, CDATA
 _AFTER_TAG = frozenset(b" \t\r\n/>")
 # An attribute value holding a raw tab or line break. XML turns them into spaces, but
 # urdfdom's XML parser keeps them, and then refuses a vector like "0 0<TAB>1".
-_RAW_WHITESPACE = re.compile(rb"=\s*(?:\"[^\"<]*[\t\n\r][^\"<]*\"|'[^'<]*[\t\n\r][^'<]*')")
+# The run before the first tab or line break holds none, so each try scans a value once.
+_RAW_WHITESPACE = re.compile(
+    rb"=[ \t\r\n]*(?:\"[^\"<\t\n\r]*[\t\n\r][^\"<]*\"|'[^'<\t\n\r]*[\t\n\r][^'<]*')"
+)
 
 
 _new_tuple = tuple.__new__  # builds a Location without the NamedTuple's Python-level __new__
