@@ -14,6 +14,7 @@ from __future__ import annotations
 import os
 import re
 import subprocess
+import time
 from pathlib import Path
 
 import pytest
@@ -568,3 +569,60 @@ def test_stdin_takes_no_xacro_arguments() -> None:
 def test_devnull_and_upper_case_formats(fishbot_robot: fishbot_urdf.Robot) -> None:
     assert CliRunner().invoke(cli, ["graph", str(FIRST), "-o", os.devnull]).exit_code == 0
     assert fishbot_urdf.draw(fishbot_robot, "GV") == fishbot_urdf.to_dot(fishbot_robot).encode()
+
+
+def _fake_dot(folder: Path, body: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A `dot` on PATH that runs ``body`` (a shell script) instead of Graphviz."""
+    folder.mkdir()
+    script = folder / "dot"
+    script.write_text("#!/bin/sh\n" + body + "\n")
+    script.chmod(0o755)
+    monkeypatch.setenv("PATH", f"{folder}{os.pathsep}{os.environ['PATH']}")
+
+
+@pytest.mark.skipif(os.name != "posix", reason="the stand-in dot is a shell script")
+def test_a_dot_that_never_ends_is_stopped_with_what_it_started(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # The stand-in starts a child that would hold the pipe open, then waits for ever.
+    pid_file = tmp_path / "child.pid"
+    _fake_dot(tmp_path / "bin", f"sleep 600 & echo $! > {pid_file}\nwait", monkeypatch)
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    result = CliRunner().invoke(
+        cli, ["graph", str(robot), "-o", str(tmp_path / "r.png"), "--timeout", "0.5"]
+    )
+    assert result.exit_code == 2
+    assert result.stderr == (
+        f"{tmp_path / 'r.png'}: error: dot did not finish drawing the PNG within 0.5 s "
+        "(allow it longer with --timeout SECONDS) [tool-failed]\n"
+    )
+    assert not (tmp_path / "r.png").exists()
+    child = int(pid_file.read_text())
+    assert not _alive(child)  # killed with dot's process group
+
+
+def _alive(pid: int) -> bool:
+    """Whether a process runs, waiting a little for a kill to land (a zombie does not run)."""
+    for _ in range(100):
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            return False
+        stat = Path(f"/proc/{pid}/stat")
+        if stat.exists() and stat.read_text().rsplit(")", 1)[1].split()[0] == "Z":
+            return False
+        time.sleep(0.05)
+    return True
+
+
+@pytest.mark.skipif(os.name != "posix", reason="the stand-in dot is a shell script")
+def test_a_dot_that_fails_says_its_first_line(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    _fake_dot(tmp_path / "bin", 'echo "Format: \\"png\\" not recognized." >&2; exit 1', monkeypatch)
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    result = CliRunner().invoke(cli, ["graph", str(robot), "-o", str(tmp_path / "r.png")])
+    assert result.exit_code == 2
+    assert 'dot could not render PNG: Format: "png" not recognized.' in result.stderr

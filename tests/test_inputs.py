@@ -74,3 +74,43 @@ def test_the_limit_belongs_to_the_context_not_the_process() -> None:
 def test_a_limit_must_be_positive() -> None:
     with pytest.raises(ArgumentError), size_limit(0):
         pass
+
+
+def test_every_command_refuses_a_file_over_max_size_and_says_how_to_raise_it(
+    tmp_path: Path,
+) -> None:
+    from click.testing import CliRunner
+
+    from fishbot_urdf.cli import cli
+
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>' + " " * 2000)
+    size = robot.stat().st_size
+    line = (
+        f"{robot}: error: is {size:,} bytes, more than the limit of 1,048 bytes "
+        "(raise the limit with --max-size MIB) [io]\n"
+    )
+    for command in (["check"], ["graph", "-o", "-"], ["expand"], ["inertia"]):
+        result = CliRunner().invoke(cli, [*command, str(robot), "--max-size", "0.001"])
+        assert result.exit_code == 2, command
+        assert line in result.stderr, command
+        assert "Traceback" not in result.output
+        roomy = CliRunner().invoke(cli, [*command, str(robot), "--max-size", "1"])
+        assert "more than the limit" not in roomy.stderr, command
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="this system has no FIFOs")
+def test_every_command_says_a_fifo_is_a_fifo(tmp_path: Path) -> None:
+    from click.testing import CliRunner
+
+    from fishbot_urdf.cli import cli
+
+    for name in ("r.urdf", "r.urdf.xacro"):
+        fifo = tmp_path / name
+        os.mkfifo(fifo)
+        for command in (["check"], ["graph", "-o", "-"], ["expand"], ["inertia"]):
+            result = CliRunner().invoke(cli, [*command, str(fifo)])
+            assert result.exit_code == 2, (name, command)
+            assert result.stderr == (
+                f"{fifo}: error: is a FIFO (named pipe), not a regular file [io]\n"
+            ), (name, command)

@@ -8,12 +8,14 @@ like a link gets its own node, and links the root does not reach are drawn too, 
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from .analysis import Analysis, of
-from .errors import ArgumentError, ToolError, ToolNotFoundError
+from .errors import ArgumentError, ToolError, ToolNotFoundError, ToolTimeoutError
 from .graph import to_networkx
 from .model import Joint, JointType, Link, Robot, Vector3
 
@@ -244,32 +246,84 @@ def joint_facts(joint: Joint) -> list[str]:
     return facts
 
 
-def pipe_dot(text: str, format: str) -> bytes:
+DOT_TIMEOUT = 60.0
+"""Seconds `dot` may take to draw before it is stopped."""
+
+
+def pipe_dot(text: str, format: str, *, timeout: float = DOT_TIMEOUT) -> bytes:
     """Render DOT text with Graphviz's `dot` to ``format`` (``pdf``, ``svg`` or ``png``).
+
+    `dot` runs in a process group of its own and is stopped, with everything it started,
+    when it takes longer than ``timeout`` seconds.
 
     Raises:
         ToolNotFoundError: `dot` is not installed (the message says how to install it).
+        ToolTimeoutError: `dot` took longer than ``timeout``.
         ToolError: `dot` failed.
     """
-    import graphviz  # only when something is rendered
+    import shutil
+    import subprocess
 
+    executable = shutil.which("dot")
+    missing = ToolNotFoundError(
+        f"Graphviz's dot program is needed for {format.upper()} output and was not found",
+        tool="dot",
+        hint=INSTALL_GRAPHVIZ,
+    )
+    if executable is None:
+        raise missing
+    alone = {"start_new_session": True} if os.name == "posix" else {}
     try:
-        data: bytes = graphviz.pipe("dot", format, text.encode("utf-8"), quiet=True)
-    except graphviz.ExecutableNotFound as exc:
-        raise ToolNotFoundError(
-            f"Graphviz's dot program is needed for {format.upper()} output and was not found",
+        process = subprocess.Popen(
+            [executable, f"-T{format}"],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            **alone,  # type: ignore[call-overload]
+        )
+    except FileNotFoundError as exc:
+        raise missing from exc
+    except OSError as exc:
+        raise ToolError(f"dot could not be started: {exc.strerror}", tool="dot") from exc
+    try:
+        data: bytes
+        data, errors = process.communicate(text.encode("utf-8"), timeout=timeout)
+    except subprocess.TimeoutExpired as exc:
+        _stop(process)
+        raise ToolTimeoutError(
+            f"dot did not finish drawing the {format.upper()} within {timeout:g} s",
             tool="dot",
-            hint=INSTALL_GRAPHVIZ,
+            seconds=timeout,
         ) from exc
-    except graphviz.CalledProcessError as exc:
-        lines = (exc.stderr or b"").decode("utf-8", "replace").strip().splitlines()
-        reason = lines[0] if lines else f"exit status {exc.returncode}"
-        raise ToolError(f"dot could not render {format.upper()}: {reason}", tool="dot") from exc
+    except BaseException:  # an interrupt: dot goes too
+        _stop(process)
+        raise
+    if process.returncode != 0:
+        lines = errors.decode("utf-8", "replace").strip().splitlines()
+        reason = lines[0] if lines else f"exit status {process.returncode}"
+        raise ToolError(f"dot could not render {format.upper()}: {reason}", tool="dot")
     return data
 
 
-def draw(robot: Robot | Analysis, format: str, *, detail: bool = False) -> bytes:
-    """The robot's graph as the bytes of a file in ``format`` (a key of ``FORMATS``)."""
+def _stop(process: Any) -> None:
+    """Kill a process and what it started (its process group, on POSIX), and reap it."""
+    import signal
+
+    try:
+        if os.name == "posix":
+            os.killpg(process.pid, signal.SIGKILL)
+        else:
+            process.kill()
+    except OSError:
+        pass  # it has just ended
+    process.communicate()
+
+
+def draw(
+    robot: Robot | Analysis, format: str, *, detail: bool = False, timeout: float = DOT_TIMEOUT
+) -> bytes:
+    """The robot's graph as the bytes of a file in ``format`` (a key of ``FORMATS``);
+    Graphviz's `dot`, where it draws, gets ``timeout`` seconds."""
     format = format.lower()
     if format not in FORMATS:
         raise ArgumentError(
@@ -280,7 +334,9 @@ def draw(robot: Robot | Analysis, format: str, *, detail: bool = False) -> bytes
 
         return to_mermaid(robot, detail=detail).encode("utf-8")
     text = to_dot(robot, detail=detail)
-    return text.encode("utf-8") if format in ("gv", "dot") else pipe_dot(text, format)
+    if format in ("gv", "dot"):
+        return text.encode("utf-8")
+    return pipe_dot(text, format, timeout=timeout)
 
 
 def render(

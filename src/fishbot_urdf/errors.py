@@ -59,6 +59,14 @@ class ToolError(FishbotUrdfError):
         self.hint = hint
 
 
+class ToolTimeoutError(ToolError):
+    """A program the job runs did not finish within ``seconds`` and was stopped."""
+
+    def __init__(self, message: str, *, tool: str, seconds: float, path: str | None = None) -> None:
+        super().__init__(message, tool=tool, path=path)
+        self.seconds = seconds
+
+
 class ToolNotFoundError(ToolError):
     """A program the job needs is not installed; ``hint`` says how to install it."""
 

@@ -163,19 +163,17 @@ def _tree_lines(robot: Robot, topo: Topology, top: str) -> Iterator[str]:
     yield "---------- Successfully Parsed XML ---------------\n"
     yield f"root Link: {top} has {len(topo.children[top])} child(ren)\n"
     # Depth-first, children by joint name, with an explicit stack of (joints, next index).
+    # Each line's indentation is made for it and dropped: keeping one string per depth
+    # would hold depth^2 / 2 spaces (30,000 links deep: 1.8 GB).
     stack: list[tuple[tuple[Joint, ...], int]] = [(topo.children[top], 0)]
-    indents: list[str] = [""]
     while stack:
         joints, index = stack[-1]
         if index == len(joints):
             stack.pop()
             continue
         stack[-1] = (joints, index + 1)
-        depth = len(stack)
-        while len(indents) <= depth:
-            indents.append(indents[-1] + "    ")
         child = joints[index].child
-        yield f"{indents[depth]}child({index + 1}):  {child}\n"
+        yield f"{'    ' * len(stack)}child({index + 1}):  {child}\n"
         grandchildren = topo.children[child]
         if grandchildren:
             stack.append((grandchildren, 0))

@@ -3,6 +3,7 @@ robot, and the options more than one command takes."""
 
 from __future__ import annotations
 
+import functools
 import math
 import os
 import sys
@@ -192,6 +193,29 @@ def package_option() -> Callable[[Wrapped], Wrapped]:
     return click.option(
         "--package", "package_items", multiple=True, metavar="NAME=PATH", help=PACKAGE_HELP
     )
+
+
+def max_size_option() -> Callable[[Wrapped], Wrapped]:
+    """``--max-size MIB``: the largest input file read; the command runs within that limit."""
+
+    def decorate(function: Wrapped) -> Wrapped:
+        @functools.wraps(function)
+        def run(*args: Any, max_size: float | None, **kwargs: Any) -> Any:
+            from ..inputs import max_bytes, size_limit
+
+            limit = max_bytes() if max_size is None else int(max_size * 1024 * 1024)
+            with size_limit(max(limit, 1)):
+                return function(*args, **kwargs)
+
+        option = click.option(
+            "--max-size",
+            type=Number(positive=True),
+            metavar="MIB",
+            help="Refuse a file bigger than this, in MiB (default 256).",
+        )
+        return option(run)  # type: ignore[return-value]
+
+    return decorate
 
 
 class Number(click.ParamType):  # type: ignore[type-arg]

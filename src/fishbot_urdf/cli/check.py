@@ -20,6 +20,7 @@ from ._common import (
     check_input,
     emit_findings,
     fail,
+    max_size_option,
     package_option,
     packages_option,
     status_of,
@@ -207,6 +208,7 @@ class _Options:
     "(z = 0 of a footprint root link) before a warning. [default: 2]",
 )
 @package_option()
+@max_size_option()
 def check(
     files: Sequence[str],
     fmt: str,

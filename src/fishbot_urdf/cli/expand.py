@@ -11,6 +11,7 @@ from ..errors import FishbotUrdfError
 from ._common import (
     EXIT_OK,
     emit_findings,
+    max_size_option,
     package_option,
     packages_option,
     stop_on,
@@ -31,6 +32,7 @@ from ._common import (
 )
 @click.option("--deps", is_flag=True, help="Print the files the expansion reads instead.")
 @package_option()
+@max_size_option()
 def expand(
     file: str, args: Sequence[str], output: str, deps: bool, package_items: Sequence[str]
 ) -> None:

@@ -15,8 +15,10 @@ from ..errors import FishbotUrdfError
 from ._common import (
     EXIT_INVALID,
     EXIT_OK,
+    Number,
     check_input,
     emit_findings,
+    max_size_option,
     nearest_config,
     package_option,
     packages_option,
@@ -51,13 +53,23 @@ _GRAPH_FORMATS = tuple(FORMATS)
     is_flag=True,
     help="Also show joint types (one colour each), axes, limits, mimics, and link masses.",
 )
+@click.option(
+    "--timeout",
+    type=Number(positive=True),
+    default=60,
+    show_default=True,
+    metavar="SECONDS",
+    help="Stop Graphviz's dot when it takes longer to draw.",
+)
 @package_option()
+@max_size_option()
 def graph(
     file: str,
     args: Sequence[str],
     output: str | None,
     fmt: str | None,
     detail: bool,
+    timeout: float,
     package_items: Sequence[str],
 ) -> None:
     """Draw the link/joint tree of a URDF or xacro file, like urdf_to_graphviz.
@@ -101,7 +113,7 @@ def graph(
     if outputs is None:
         outputs = _graph_pair(names[0] if names else _file_name(result.analysis.robot.name), fmt)
     try:
-        _draw_all(result.analysis, outputs, detail, result.files)
+        _draw_all(result.analysis, outputs, detail, result.files, timeout)
     except FishbotUrdfError as exc:
         stop_on(exc)
     sys.exit(status)
@@ -135,7 +147,11 @@ def _graph_output(output: str, fmt: str | None) -> list[tuple[str, str]]:
 
 
 def _draw_all(
-    robot: Analysis, outputs: list[tuple[str, str]], detail: bool, inputs: Sequence[str]
+    robot: Analysis,
+    outputs: list[tuple[str, str]],
+    detail: bool,
+    inputs: Sequence[str],
+    timeout: float,
 ) -> None:
     """Write each output, saying "Created file" only for files really written."""
     from ..dot import draw
@@ -143,7 +159,7 @@ def _draw_all(
 
     for path, fmt in outputs:
         try:
-            data = draw(robot, fmt, detail=detail)
+            data = draw(robot, fmt, detail=detail, timeout=timeout)
         except FishbotUrdfError as exc:
             exc.path = path  # the finding is about the file that could not be made
             raise

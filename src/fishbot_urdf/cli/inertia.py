@@ -23,6 +23,7 @@ from ._common import (
     emit_findings,
     fail,
     format_option,
+    max_size_option,
     nearest_config,
     package_option,
     packages_option,
@@ -239,6 +240,7 @@ class _RobotCommand(click.Command):
     help="With --fill: the mass of one link (repeatable); it wins over --density.",
 )
 @package_option()
+@max_size_option()
 def robot(
     file: str,
     args: Sequence[str],

@@ -118,12 +118,13 @@ def expand(
             :mod:`fishbot_urdf.packages` for the rest of the search).
 
     Raises:
-        InputError: The file cannot be read.
+        InputError: The file cannot be read, or is not a regular file (a FIFO, a device),
+            or is bigger than the size limit (see :mod:`fishbot_urdf.inputs`).
         PackageNotFoundError: ``$(find NAME)`` names a package no place knows.
         XacroError: xacro refuses the input (the message says where and why).
     """
     name = str(path)
-    if not Path(name).is_file():
+    if Path(name).is_dir() or not Path(name).exists():
         reason = "is a folder" if Path(name).is_dir() else "does not exist"
         raise InputError(f"{name} {reason}", path=name)
     from ._engine import Run  # xacro and minidom load here, not with the package

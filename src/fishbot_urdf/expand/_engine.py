@@ -137,7 +137,7 @@ class Run(Explaining):
 
     def _load_yaml(self, filename: str) -> Any:
         """xacro.load_yaml, reading only a regular file, with a YAML loader of its own."""
-        import yaml  # type: ignore[import-untyped]
+        import yaml
 
         x = self.xacro
         symbols = x._global_symbols
@@ -238,6 +238,8 @@ class Run(Explaining):
         try:
             data = read_input(full)
         except InputError as exc:
+            if len(self.xacro.filestack) <= 1 and filename == self.path:
+                raise  # the file expanded, not an include: the caller's input is at fault
             self.xacro.filestack.pop()  # as xacro does: the include, not the file, is at fault
             cause = exc.__cause__
             if isinstance(cause, OSError):  # missing, a folder, unreadable: as xacro says it
