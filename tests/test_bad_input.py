@@ -137,3 +137,26 @@ def test_unreadable_file_is_exit_2(tmp_path: Path, monkeypatch: pytest.MonkeyPat
     result = CliRunner().invoke(cli, ["check", str(path)])
     assert result.exit_code == 2
     assert result.stderr == f"{path}: error: permission denied [io]\n"
+
+
+def _utf16_with_an_entity(xacro: bool) -> bytes:
+    namespace = ' xmlns:xacro="http://www.ros.org/wiki/xacro"' if xacro else ""
+    text = (
+        '<?xml version="1.0" encoding="UTF-16"?>\n<!DOCTYPE robot [<!ENTITY x "boom">]>\n'
+        f'<robot name="r"{namespace}><link name="a&x;"/></robot>\n'
+    )
+    return text.encode("utf-16")
+
+
+@pytest.mark.parametrize("name", ["r.urdf", "r.urdf.xacro"])
+def test_a_utf16_file_declaring_an_entity_is_refused_and_nothing_expands(
+    tmp_path: Path, name: str
+) -> None:
+    path = tmp_path / name
+    path.write_bytes(_utf16_with_an_entity(name.endswith(".xacro")))
+    for command in (["check"], ["expand"], ["graph", "-o", "-"], ["inertia"]):
+        result = CliRunner().invoke(cli, [*command, str(path)])
+        assert result.exit_code == 1, command
+        assert "boom" not in result.output, command
+        assert "UTF-16 or UTF-32" in result.stderr, command
+        assert result.stderr.count("\n") == 1, command

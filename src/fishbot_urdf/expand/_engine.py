@@ -245,6 +245,13 @@ class Run(Explaining):
             if isinstance(cause, OSError):  # missing, a folder, unreadable: as xacro says it
                 raise self.xacro.XacroException(f"{cause.strerror}: {full}", exc=cause) from exc
             raise self.xacro.XacroException(f"cannot include {full}: {exc.message}") from exc
+        if data.startswith((b"\xff\xfe", b"\xfe\xff")) or b"\0" in data[:4]:
+            raise XacroError(  # xacro decodes every file as UTF-8, and fails on these
+                "the file is UTF-16 or UTF-32, and xacro reads UTF-8 only",
+                rule="xacro-syntax",
+                hint="save it as UTF-8",
+                where=Location(shown_path(filename), 1, 1),
+            )
         self.parsing = filename
         document = _LocatingBuilder(shown_path(filename)).parseString(data)
         self.parsing = None
