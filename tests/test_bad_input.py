@@ -160,3 +160,133 @@ def test_a_utf16_file_declaring_an_entity_is_refused_and_nothing_expands(
         assert "boom" not in result.output, command
         assert "UTF-16 or UTF-32" in result.stderr, command
         assert result.stderr.count("\n") == 1, command
+
+
+# Numbers a float holds, whose arithmetic does not: each command gives findings, no traceback.
+HUGE_PRODUCT = (
+    '<robot name="r"><link name="a"><inertial><mass value="1"/>'
+    '<inertia ixx="1" ixy="1e200" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link></robot>'
+)
+
+
+@pytest.mark.parametrize("command", [["check"], ["graph", "-o", "-"], ["inertia"]])
+def test_a_product_of_inertia_of_1e200_is_a_finding(tmp_path: Path, command: list[str]) -> None:
+    path = tmp_path / "r.urdf"
+    path.write_text(HUGE_PRODUCT)
+    result = CliRunner().invoke(cli, [*command, str(path)])
+    assert result.exit_code == 1, result.output
+    assert result.exception is None or isinstance(result.exception, SystemExit)
+    assert "[inertia-not-positive]" in result.stderr
+
+
+def test_a_joint_without_parent_holding_a_collision_is_a_finding(tmp_path: Path) -> None:
+    path = tmp_path / "r.urdf"
+    path.write_text(
+        '<robot name="r"><link name="base_footprint"/>'
+        '<link name="base_link"><collision><geometry><box size="1 1 1"/></geometry></collision>'
+        "</link>"
+        '<link name="c"><collision><geometry><box size="1 1 1"/></geometry></collision></link>'
+        '<joint name="j" type="fixed"><parent link="base_footprint"/><child link="base_link"/>'
+        "</joint>"
+        '<joint name="k" type="fixed"><child link="c"/></joint></robot>'
+    )
+    result = CliRunner().invoke(cli, ["check", str(path)])
+    assert result.exit_code == 1
+    assert "joint 'k': has no <parent>" in result.stderr
+    assert result.exception is None or isinstance(result.exception, SystemExit)
+
+
+def _one_link(collision: str) -> str:
+    return (
+        f'<robot name="r"><link name="a"><collision><geometry>{collision}</geometry>'
+        "</collision></link></robot>"
+    )
+
+
+@pytest.mark.parametrize(
+    ("shape", "why"),
+    [
+        ('<sphere radius="1e120"/>', "its collision shapes have no finite volume"),
+        ('<box size="1e200 1e200 1e200"/>', "its collision shapes have no finite volume"),
+        (
+            '<box size="1e102 1e102 1e102"/>',
+            "its collision shapes are too large for a finite mass and inertia (mass inf kg)",
+        ),
+    ],
+)
+def test_fill_never_writes_a_number_past_the_floats(tmp_path: Path, shape: str, why: str) -> None:
+    path = tmp_path / "r.urdf"
+    path.write_text(_one_link(shape))
+    out = tmp_path / "out.urdf"
+    result = CliRunner().invoke(
+        cli, ["inertia", str(path), "--fill", "--density", "1000", "-o", str(out)]
+    )
+    assert result.exit_code == 1
+    assert f"link 'a': no <inertial> added (link 'a': {why}) [fill-skipped]" in result.stderr
+    assert not out.exists()
+
+
+def test_a_total_past_the_floats_is_said_not_printed_as_nan(tmp_path: Path) -> None:
+    path = tmp_path / "r.urdf"
+    path.write_text(
+        '<robot name="r"><link name="a"><inertial><origin xyz="1e308 0 0"/>'
+        '<mass value="1e308"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>'
+        '</inertial></link><link name="b"><inertial><origin xyz="-1e308 0 0"/>'
+        '<mass value="1e308"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>'
+        '</inertial></link><joint name="j" type="fixed"><parent link="a"/><child link="b"/>'
+        "</joint></robot>"
+    )
+    text = CliRunner().invoke(cli, ["inertia", str(path)])
+    assert text.stdout.splitlines()[-1] == (
+        "total: no total: the links' masses and inertias add up beyond the largest number a "
+        "float holds (about 1.8e308)"
+    )
+    assert "nan" not in text.stdout and "inf" not in text.stdout
+    report = CliRunner().invoke(cli, ["inertia", str(path), "--format", "json"])
+    import json
+
+    assert json.loads(report.stdout)["total"] is None  # and it is JSON: no NaN in it
+
+
+@pytest.mark.parametrize(
+    ("name", "data", "why"),
+    [
+        ("box.foo", b"solid x\nendsolid x\n", "is not a file fishbot reads"),
+        ("box", b"solid x\nendsolid x\n", "is not a file fishbot reads"),
+        ("noise.stl", bytes(range(256)) * 12, "cannot read the mesh"),
+    ],
+)
+def test_fill_on_a_mesh_that_is_no_mesh_is_one_finding(
+    tmp_path: Path, name: str, data: bytes, why: str
+) -> None:
+    pytest.importorskip("trimesh", reason="meshes are read by the optional trimesh package")
+    (tmp_path / name).write_bytes(data)
+    path = tmp_path / "r.urdf"
+    path.write_text(_one_link(f'<mesh filename="{name}"/>'))
+    result = CliRunner().invoke(
+        cli, ["inertia", str(path), "--fill", "--density", "1000", "-o", str(tmp_path / "o.urdf")]
+    )
+    assert result.exit_code == 1
+    assert result.exception is None or isinstance(result.exception, SystemExit)
+    assert why in result.stderr and "[fill-skipped]" in result.stderr
+
+
+def test_joints_that_mimic_each_other_round_a_loop_are_each_reported(tmp_path: Path) -> None:
+    joint = (
+        '<joint name="{0}" type="revolute"><parent link="base"/><child link="{1}"/>'
+        '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>'
+        '<mimic joint="{2}"/></joint>'
+    )
+    path = tmp_path / "r.urdf"
+    path.write_text(
+        '<robot name="r"><link name="base"/><link name="l1"/><link name="l2"/><link name="l3"/>'
+        + joint.format("a", "l1", "b")
+        + joint.format("b", "l2", "a")
+        + joint.format("c", "l3", "a")  # follows the loop, is not in it
+        + "</robot>"
+    )
+    result = CliRunner().invoke(cli, ["check", str(path)])
+    assert result.exit_code == 1
+    loops = [line for line in result.stderr.splitlines() if "mimics in a loop" in line]
+    assert [line.split("joint '")[1][0] for line in loops] == ["a", "b"]
+    assert all("(a -> b -> a)" in line and line.endswith("[undefined-mimic]") for line in loops)

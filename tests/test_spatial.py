@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -69,3 +70,12 @@ def test_pose_then_and_apply_match_homogeneous_matrices(
     assert np.allclose(np.array(outer.then(inner).matrix()), expected, atol=1e-12)
     point = np.array([0.5, -1.0, 2.0, 1.0])
     assert np.allclose(outer.apply((0.5, -1.0, 2.0)), (np.array(outer.matrix()) @ point)[:3])
+
+
+def test_eigh_of_entries_whose_squares_overflow_is_the_scaled_eigh() -> None:
+    # 1e200 is a float; its square is not. The eigenvalues scale with the matrix.
+    small = ((1.0, 0.5, 0.0), (0.5, 2.0, 0.25), (0.0, 0.25, 3.0))
+    big = tuple(tuple(x * 1e200 for x in row) for row in small)
+    values, _ = eigh(big)  # type: ignore[arg-type]
+    expected, _ = eigh(small)
+    assert values == pytest.approx([v * 1e200 for v in expected], rel=1e-12)

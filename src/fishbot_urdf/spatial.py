@@ -142,11 +142,14 @@ def eigh(m: Matrix3) -> tuple[Vector3, Matrix3]:
             (m[order[0]][order[0]], m[order[1]][order[1]], m[order[2]][order[2]]),
             transpose((columns[0], columns[1], columns[2])),
         )
-    a = [list(row) for row in m]
+    # Worked on scaled to its largest entry, so that no square overflows (an inertia of
+    # 1e200 is finite, its square is not), and scaled back at the end.
+    scale = max(abs(x) for row in m for x in row)
+    a = [[x / scale for x in row] for row in m]
     v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
     for _ in range(50):
-        off = a[0][1] ** 2 + a[0][2] ** 2 + a[1][2] ** 2
-        size = a[0][0] ** 2 + a[1][1] ** 2 + a[2][2] ** 2
+        off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2]
+        size = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2]
         if off <= 1e-30 * size or off == 0.0:
             break
         for p, q in ((0, 1), (0, 2), (1, 2)):
@@ -166,7 +169,11 @@ def eigh(m: Matrix3) -> tuple[Vector3, Matrix3]:
                 vkp, vkq = v[k][p], v[k][q]
                 v[k][p], v[k][q] = c * vkp - s * vkq, s * vkp + c * vkq
     order = sorted(range(3), key=lambda i: a[i][i])
-    values = (a[order[0]][order[0]], a[order[1]][order[1]], a[order[2]][order[2]])
+    values = (
+        a[order[0]][order[0]] * scale,
+        a[order[1]][order[1]] * scale,
+        a[order[2]][order[2]] * scale,
+    )
     vectors = (
         (v[0][order[0]], v[0][order[1]], v[0][order[2]]),
         (v[1][order[0]], v[1][order[1]], v[1][order[2]]),

@@ -15,7 +15,7 @@ from ..kinematics import link_poses
 from ..model import Inertial, Link, Mesh, Origin, Robot
 from ..rules.setup import FILL_SKIPPED
 from ..spatial import Pose
-from ._solids import MassProperties, combine, geometry_inertia, volume
+from ._solids import MassProperties, combine, exact_sum, geometry_inertia, volume
 
 __all__ = ["Filling", "fill_inertials", "link_inertial", "mass_properties"]
 
@@ -81,7 +81,7 @@ def link_inertial(
     shapes = [(c, volume(c.geometry, resolve)) for c in link.collisions]
     if not shapes:
         raise ShapeError(f"link {link.name!r} has no collision shape")
-    total = math.fsum(v for _, v in shapes)
+    total = exact_sum([v for _, v in shapes])
     if not total > 0.0 or not math.isfinite(total):
         raise ShapeError(f"link {link.name!r}: its collision shapes have no finite volume")
     if density is not None:
@@ -94,11 +94,26 @@ def link_inertial(
         for (collision, _), part in zip(shapes, masses, strict=True)
     ]
     if len(parts) == 1:
-        return parts[0]
+        return _finite(link, parts[0])
     together = combine((made, Pose()) for made in parts)
     # The mass asked for, exactly (the sum of the shares may differ in the last digit).
     whole = mass if mass is not None else together.mass
-    return Inertial(mass=whole, inertia=together.inertia, origin=Origin(xyz=together.com))
+    return _finite(
+        link, Inertial(mass=whole, inertia=together.inertia, origin=Origin(xyz=together.com))
+    )
+
+
+def _finite(link: Link, inertial: Inertial) -> Inertial:
+    """``inertial``, if every number of it can be written; a number beyond the largest
+    float (a huge shape, a dense one) is refused rather than written as inf or nan."""
+    i = inertial.inertia
+    numbers = (inertial.mass, i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz, *inertial.origin.xyz)
+    if not all(math.isfinite(n) for n in numbers):
+        raise ShapeError(
+            f"link {link.name!r}: its collision shapes are too large for a finite mass and "
+            f"inertia (mass {inertial.mass:g} kg)"
+        )
+    return inertial
 
 
 @dataclass(frozen=True, slots=True)

@@ -8,13 +8,15 @@ frame: pass the ``origin`` of the visual or collision it belongs to.
 
 from __future__ import annotations
 
+import io
 import math
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..errors import ArgumentError, InputError, ShapeError, ToolNotFoundError
+from ..errors import ArgumentError, ShapeError, ToolNotFoundError
+from ..inputs import read_input
 from ..model import (
     ZERO3,
     Box,
@@ -154,6 +156,15 @@ class MassProperties:
         return principal_moments(self.inertia)
 
 
+def exact_sum(values: list[float]) -> float:
+    """The correctly rounded sum; inf or nan, as plain addition gives, where a partial sum
+    leaves the floats or infinities meet (``math.fsum`` raises there)."""
+    try:
+        return math.fsum(values)
+    except (OverflowError, ValueError):  # ValueError: inf and -inf among the values
+        return sum(values)
+
+
 def combine(parts: Iterable[tuple[Inertial, Pose]]) -> MassProperties:
     """Add up inertials, each placed by a pose (the frame of the link it belongs to).
 
@@ -166,10 +177,10 @@ def combine(parts: Iterable[tuple[Inertial, Pose]]) -> MassProperties:
         frame = pose.then(Pose.of(inertial.origin))
         tensor = rotate_tensor(frame.rotation, inertial.inertia.matrix())
         placed.append((inertial.mass, frame.translation, tensor))
-    mass = math.fsum(m for m, _, _ in placed)
+    mass = exact_sum([m for m, _, _ in placed])
     com = ZERO3
     if mass != 0.0:
-        com = tuple(math.fsum(m * c[k] for m, c, _ in placed) / mass for k in range(3))  # type: ignore[assignment]
+        com = tuple(exact_sum([m * c[k] for m, c, _ in placed]) / mass for k in range(3))  # type: ignore[assignment]
     total: Matrix3 = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
     for m, c, tensor in placed:
         total = mat_add(total, mat_add(tensor, point_mass_tensor(m, add(c, scale(com, -1.0)))))
@@ -189,9 +200,9 @@ def volume(geometry: Geometry, resolve: Callable[[Mesh], Path] | None = None) ->
         x, y, z = geometry.size
         return x * y * z
     if isinstance(geometry, Cylinder):
-        return math.pi * geometry.radius**2 * geometry.length
+        return math.pi * geometry.radius * geometry.radius * geometry.length  # inf, not an error
     if isinstance(geometry, Sphere):
-        return 4.0 / 3.0 * math.pi * geometry.radius**3
+        return 4.0 / 3.0 * math.pi * geometry.radius * geometry.radius * geometry.radius
     if isinstance(geometry, Mesh):
         where = resolve(geometry) if resolve is not None else _mesh_file(geometry)
         return float(_solid(where, geometry.scale).volume)
@@ -199,6 +210,10 @@ def volume(geometry: Geometry, resolve: Callable[[Mesh], Path] | None = None) ->
         f"no closed form for {type(geometry).__name__} (box, cylinder, sphere, mesh)",
         name="geometry",
     )
+
+
+_MESH_FORMATS = ("stl", "obj", "dae", "ply", "off", "glb")
+"""Mesh files read for their volume (archives and formats that name other files are not)."""
 
 
 def _solid(path: Path, scale: Vector3 | None) -> Any:
@@ -211,10 +226,30 @@ def _solid(path: Path, scale: Vector3 | None) -> Any:
             tool="trimesh",
             hint="pip install 'fishbot-urdf[mesh]'",
         ) from None
+    kind = path.suffix.lower().lstrip(".")
+    if kind not in _MESH_FORMATS:
+        raise ShapeError(
+            f"the mesh {path} is not a file fishbot reads ({', '.join(_MESH_FORMATS)}, by "
+            "its extension)",
+            path=str(path),
+        )
+    data = read_input(path)  # a regular file within the size limit
     try:
-        mesh: Any = trimesh.load(str(path), force="mesh")
-    except (OSError, ValueError) as exc:
-        raise InputError(f"cannot read the mesh {path}: {exc}", path=str(path)) from exc
+        mesh: Any = trimesh.load(io.BytesIO(data), file_type=kind, force="mesh")
+    except ImportError as exc:
+        if kind == "dae":  # COLLADA is read by the pycollada package, which is optional
+            raise ToolNotFoundError(
+                f"reading the COLLADA mesh {path} needs the pycollada package",
+                tool="pycollada",
+                hint="pip install pycollada",
+            ) from exc
+        raise ShapeError(f"cannot read the mesh {path} as {kind.upper()}", path=str(path)) from exc
+    except Exception as exc:  # whatever a foreign reader makes of bytes that are no mesh
+        raise ShapeError(
+            f"cannot read the mesh {path} as {kind.upper()}: {exc}", path=str(path)
+        ) from exc
+    if type(mesh).__name__ != "Trimesh" or len(mesh.faces) == 0:
+        raise ShapeError(f"the mesh {path} holds no triangles", path=str(path))
     if scale is not None:
         mesh.apply_scale(scale)
     if not mesh.is_watertight:

@@ -3,6 +3,7 @@ rules that concern it, and the whole robot's."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
@@ -157,6 +158,14 @@ def mass_table(robot: Robot | Analysis, diagnostics: Iterable[Diagnostic] = ()) 
         total = mass_properties(analysis)
     except StructureError as exc:
         return MassTable(model.name, lines, None, None, (), exc.message)
+    i = total.inertia
+    numbers = (total.mass, *total.com, i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz)
+    if not all(math.isfinite(n) for n in (*numbers, *total.principal_moments)):
+        problem = (
+            "no total: the links' masses and inertias add up beyond the largest number a "
+            "float holds (about 1.8e308)"
+        )
+        return MassTable(model.name, lines, None, None, (), problem)
     topo = analysis.topology
     # links in a joint loop are not placed, so not counted
     left_out = tuple(link.name for link in model.links if link.name not in topo.reachable)

@@ -346,11 +346,12 @@ UNDEFINED_MIMIC = Rule(
     "undefined-mimic",
     E,
     Family.STRUCTURE,
-    summary="A <mimic> names a joint that does not exist, or its own joint.",
+    summary="A <mimic> names a joint that does not exist, its own joint, or a loop of mimics.",
     explanation='`<mimic joint="...">` makes a joint follow another one, named exactly. '
     "check_urdf accepts a name that matches no joint, but MoveIt logs an error and moves the "
     "joint on its own, MuJoCo ignores the mimic, and Drake refuses the file. Name the joint to "
-    "follow.",
+    "follow. Joints that mimic each other round a loop (`a` follows `b`, `b` follows `a`) have "
+    "no joint that moves of its own: let one of them lead.",
     bad="""\
 <robot name="fishbot">
   <link name="base_link"/>
@@ -665,6 +666,41 @@ def _joints(analysis: Analysis) -> Iterator[Diagnostic]:
                     subject=owner,
                     hint="name another joint",
                 )
+    yield from _mimic_loops(analysis)
+
+
+def _mimic_loops(analysis: Analysis) -> Iterator[Diagnostic]:
+    """Joints that mimic each other round a loop (a -> b -> a): none of them leads."""
+    follows = {
+        joint.name: joint.mimic.joint
+        for joint in analysis.robot.joints
+        if joint.mimic is not None and joint.mimic.joint and joint.mimic.joint != joint.name
+    }
+    done: set[str] = set()
+    for start in follows:
+        if start in done:
+            continue
+        trail: list[str] = []
+        at: str | None = start
+        while at is not None and at not in done and at not in trail:
+            trail.append(at)
+            at = follows.get(at)
+        done.update(trail)
+        if at is None or at not in trail:
+            continue  # the chain ends at a joint that leads, or joins one seen before
+        loop = trail[trail.index(at) :]
+        shown = " -> ".join([*loop, loop[0]])
+        for name in loop:
+            joint = analysis.joints[name]
+            owner = Subject(Kind.JOINT, name)
+            assert joint.mimic is not None
+            yield UNDEFINED_MIMIC.report(
+                f"{owner}: mimics in a loop ({shown}), so no joint of it leads",
+                joint.mimic.source,
+                path=analysis.path,
+                subject=owner,
+                hint="let one joint of the loop mimic none",
+            )
 
 
 def _limits(joint: Joint, owner: Subject, path: str) -> Iterator[Diagnostic]:

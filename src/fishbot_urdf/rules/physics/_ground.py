@@ -74,8 +74,12 @@ def ground(analysis: Analysis, tolerance: float) -> Iterator[Diagnostic]:
         if link.name not in held or link is root:
             unknown = unknown or (link.name not in held and bool(link.collisions))
             continue
+        pose = poses.get(link.name)
+        if pose is None:  # held by a joint the tree does not place (one without a parent)
+            unknown = unknown or bool(link.collisions)
+            continue
         for collision in link.collisions:
-            span = _extent(collision, poses[link.name])
+            span = _extent(collision, pose)
             if span is None:
                 unknown = True
             else:

@@ -33,6 +33,8 @@ def mismatch(link: Link, path: str, moments: Vector3) -> Iterator[Diagnostic]:
     if moments[0] < -tolerance(moments) or moments[2] <= TINY:
         return  # reported as not positive definite, or a point mass
     declared = rotate_tensor(rpy_matrix(inertial.origin.rpy), inertial.inertia.matrix())
+    if not all(math.isfinite(x) for row in declared for x in row):
+        return  # numbers past the floats' range: nothing to compare
     turn = rpy_matrix(collision.origin.rpy)
     closed = geometry_inertia(shape, inertial.mass).inertia
     wanted = rotate_tensor(turn, closed.matrix())
@@ -110,7 +112,7 @@ def _describe(
         squares = [6.0 * (sum(diagonal) - 2.0 * diagonal[k]) / mass for k in range(3)]
         if min(squares) < 0:
             return None
-        sides = [math.sqrt(s) for s in squares]
+        sides = [math.sqrt(max(0.0, s)) for s in squares]
         return (
             "inertial matches a box "
             + " x ".join(short(s) for s in sides)
@@ -122,7 +124,7 @@ def _describe(
     across = (diagonal[(k + 1) % 3] + diagonal[(k + 2) % 3]) / 2.0
     if abs(diagonal[(k + 1) % 3] - diagonal[(k + 2) % 3]) > MISMATCH * across:
         return None
-    radius = math.sqrt(2.0 * diagonal[k] / mass)
+    radius = math.sqrt(max(0.0, 2.0 * diagonal[k] / mass))  # rounding may leave -1e-17
     square = 12.0 * across / mass - 3.0 * radius * radius
     if square < 0:
         return None
