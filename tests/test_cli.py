@@ -8,6 +8,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
 from click.testing import CliRunner
 from conftest import DATA, FISHBOT, GoldenInput, check_urdf
 
@@ -205,3 +206,121 @@ def test_version() -> None:
     status, out, _ = run("--version")
     assert status == 0
     assert out.startswith("fishbot, version ")
+
+
+def _slow_dot(folder: Path) -> dict[str, str]:
+    """An environment whose `dot` says it has started (a file), then waits for ever."""
+    bin_folder = folder / "bin"
+    bin_folder.mkdir()
+    script = bin_folder / "dot"
+    script.write_text(f"#!/bin/sh\ntouch {folder / 'dot-started'}\nexec sleep 600\n")
+    script.chmod(0o755)
+    return {**os.environ, "PATH": f"{bin_folder}{os.pathsep}{os.environ['PATH']}"}
+
+
+def _stopped_while_drawing(tmp_path: Path, signum: int) -> subprocess.CompletedProcess[bytes]:
+    import signal
+    import time
+
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    process = subprocess.Popen(
+        [sys.executable, "-m", "fishbot_urdf", "graph", str(robot), "-o", str(tmp_path / "r.png")],
+        env=_slow_dot(tmp_path),
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
+    for _ in range(600):  # until dot runs (at most a minute on a slow machine)
+        if (tmp_path / "dot-started").exists() or process.poll() is not None:
+            break
+        time.sleep(0.1)
+    process.send_signal(signal.SIGINT if signum == 2 else signal.SIGTERM)
+    out, err = process.communicate(timeout=60)
+    return subprocess.CompletedProcess(process.args, process.returncode, out, err)
+
+
+@pytest.mark.skipif(os.name != "posix", reason="signals and the stand-in dot are POSIX")
+@pytest.mark.parametrize(("signum", "status"), [(2, 130), (15, 143)])
+def test_an_interrupt_or_a_termination_exits_quietly_with_the_shells_status(
+    tmp_path: Path, signum: int, status: int
+) -> None:
+    done = _stopped_while_drawing(tmp_path, signum)
+    assert done.returncode == status
+    assert b"Traceback" not in done.stderr and b"Aborted" not in done.stderr
+    assert done.stderr.strip() == b""
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bin", "dot-started", "r.urdf"]
+
+
+@pytest.mark.skipif(os.name != "posix", reason="closing a standard stream is POSIX shell work")
+def test_closed_standard_streams_are_no_traceback(tmp_path: Path) -> None:
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/><link name="b"/></robot>')
+    command = [sys.executable, "-m", "fishbot_urdf", "check", str(robot)]
+    closed_out = subprocess.run(
+        command,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        close_fds=True,
+        pass_fds=(),
+        check=False,
+        preexec_fn=lambda: os.close(1),
+    )
+    assert closed_out.returncode == 1
+    assert b"Traceback" not in closed_out.stderr
+    assert b"has 2 root links" in closed_out.stderr
+    closed_err = subprocess.run(
+        command, capture_output=True, check=False, preexec_fn=lambda: os.close(2)
+    )
+    assert closed_err.returncode == 1
+    assert closed_err.stdout == b""  # two roots: no tree to print
+
+
+def test_file_names_that_are_no_utf8_are_written_as_their_bytes(tmp_path: Path) -> None:
+    if sys.platform == "darwin" or os.name != "posix":
+        pytest.skip("this file system takes names that are not UTF-8 only on Linux")
+    name = os.fsdecode(b"\xff.urdf.xacro")
+    robot = tmp_path / name
+    robot.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="a"/>'
+        '<link name="b"/></robot>'
+    )
+    raw = os.fsencode(str(robot))
+    for command in (["check"], ["expand"], ["inertia"], ["graph", "-o", "-"]):
+        result = CliRunner().invoke(cli, [*command, str(robot)])
+        assert result.exception is None or isinstance(result.exception, SystemExit), command
+        assert result.exit_code in (0, 1), command
+        assert raw in result.stderr_bytes + result.stdout_bytes, command
+    report = CliRunner().invoke(cli, ["check", "--format", "sarif", str(robot)])
+    uri = json.loads(report.stdout)["runs"][0]["results"][0]["locations"][0]["physicalLocation"]
+    assert "%FF.urdf.xacro" in uri["artifactLocation"]["uri"]
+    out = os.fsdecode(b"\xfe.gv")
+    drawn = CliRunner().invoke(cli, ["graph", str(robot), "-o", str(tmp_path / out)])
+    assert (tmp_path / out).exists()
+    assert drawn.stdout_bytes == b"Created file " + os.fsencode(str(tmp_path / out)) + b"\n"
+
+
+def test_no_output_is_written_over_a_mesh_the_robot_names(tmp_path: Path) -> None:
+    package = tmp_path / "pkg"
+    (package / "urdf").mkdir(parents=True)
+    (package / "meshes").mkdir()
+    (package / "package.xml").write_text('<package format="3"><name>pkg</name></package>')
+    trimesh = pytest.importorskip("trimesh", reason="--fill reads meshes with trimesh")
+    mesh = package / "meshes" / "box.stl"
+    trimesh.creation.box(extents=(0.1, 0.1, 0.1)).export(mesh)  # closed: --fill reads it
+    before = mesh.read_bytes()
+    robot = package / "urdf" / "robot.urdf.xacro"
+    robot.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="a"><collision>'
+        '<geometry><mesh filename="package://pkg/meshes/box.stl"/></geometry></collision></link>'
+        "</robot>"
+    )
+    for command in (
+        ["graph", str(robot), "--format", "gv"],
+        ["expand", str(robot)],
+        ["check", str(robot), "--format", "json"],
+        ["inertia", str(robot), "--fill", "--mass", "a=1"],
+    ):
+        result = CliRunner().invoke(cli, [*command, "-o", str(mesh)])
+        assert result.exit_code == 2, command
+        assert f"refusing to write over the input {mesh}" in result.stderr, command
+        assert mesh.read_bytes() == before, command

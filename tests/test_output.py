@@ -41,7 +41,7 @@ def test_the_umask_is_never_touched(tmp_path: Path, monkeypatch: pytest.MonkeyPa
     assert (tmp_path / "new.urdf").read_text() == "<robot/>"
 
 
-@pytest.mark.parametrize("mode", [0o600, 0o640, 0o755, 0o444])
+@pytest.mark.parametrize("mode", [0o600, 0o640, 0o755, 0o644])
 def test_a_file_replaced_keeps_its_mode(tmp_path: Path, mode: int) -> None:
     target = tmp_path / "robot.urdf"
     target.write_text("old")
@@ -52,6 +52,43 @@ def test_a_file_replaced_keeps_its_mode(tmp_path: Path, mode: int) -> None:
     assert _mode(target) == mode
     assert target.stat().st_ino != before  # replaced whole, by a rename
     assert sorted(p.name for p in tmp_path.iterdir()) == ["robot.urdf"]
+
+
+def test_a_read_only_file_is_not_replaced(tmp_path: Path) -> None:
+    target = tmp_path / "robot.urdf"
+    target.write_text("old")
+    target.chmod(0o444)
+    with pytest.raises(InputError) as caught:
+        write_atomic(target, "new")
+    assert caught.value.message == f"{target} is read-only (make it writable to replace it)"
+    assert target.read_text() == "old"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["robot.urdf"]
+
+
+def test_a_dangling_link_makes_no_folders(tmp_path: Path) -> None:
+    link = tmp_path / "out.urdf"
+    link.symlink_to(tmp_path / "nowhere" / "deeper" / "out.urdf")
+    with pytest.raises(InputError) as caught:
+        write_atomic(link, "new")
+    assert caught.value.message.endswith("whose folder does not exist")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.urdf"]
+    (tmp_path / "nowhere" / "deeper").mkdir(parents=True)  # its folder there: written through
+    assert write_atomic(link, "new").read_text() == "new"
+
+
+def test_an_interrupt_while_writing_leaves_no_temporary_file(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    real_replace = os.replace
+
+    def interrupted(*args: object) -> None:
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(os, "replace", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        write_atomic(tmp_path / "out.urdf", "new")
+    monkeypatch.setattr(os, "replace", real_replace)
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_links_are_written_through_and_devices_directly(tmp_path: Path) -> None:

@@ -287,7 +287,7 @@ def pipe_dot(text: str, format: str, *, timeout: float = DOT_TIMEOUT) -> bytes:
         raise ToolError(f"dot could not be started: {exc.strerror}", tool="dot") from exc
     try:
         data: bytes
-        data, errors = process.communicate(text.encode("utf-8"), timeout=timeout)
+        data, errors = process.communicate(text.encode("utf-8", "surrogateescape"), timeout=timeout)
     except subprocess.TimeoutExpired as exc:
         _stop(process)
         raise ToolTimeoutError(
@@ -332,10 +332,10 @@ def draw(
     if format == "mmd":
         from .mermaid import to_mermaid
 
-        return to_mermaid(robot, detail=detail).encode("utf-8")
+        return to_mermaid(robot, detail=detail).encode("utf-8", "surrogateescape")
     text = to_dot(robot, detail=detail)
     if format in ("gv", "dot"):
-        return text.encode("utf-8")
+        return text.encode("utf-8", "surrogateescape")
     return pipe_dot(text, format, timeout=timeout)
 
 

@@ -16,17 +16,20 @@ def write_atomic(path: str | Path, data: bytes | str, *, inputs: Iterable[str | 
     """Write ``data`` to ``path`` through a temporary file and a rename, making parent folders.
 
     A reader never sees half a file, and an existing file is only replaced by a complete new
-    one. A link is written through (its target is replaced); a device or a pipe
-    (``/dev/null``, a FIFO) is written to directly. Text is written as UTF-8.
+    one; an interrupt leaves no temporary file behind. A link is written through (its target
+    is replaced; a link whose target's folder does not exist is refused, not made); a
+    device or a pipe (``/dev/null``, a FIFO) is written to directly. Text is written as
+    UTF-8 (a file name that is no UTF-8, as its own bytes).
 
     Raises:
-        InputError: ``path`` is one of ``inputs``, a folder, or cannot be written.
+        InputError: ``path`` is one of ``inputs``, a folder, read-only, or cannot be
+            written.
     """
     if not str(path):
         raise InputError("the output file name is empty", path="<output>")
     if str(path).endswith(("/", os.sep)):
         raise InputError(f"{path} names a folder (name a file in it)", path=str(path))
-    payload = data.encode("utf-8") if isinstance(data, str) else data
+    payload = data.encode("utf-8", "surrogateescape") if isinstance(data, str) else data
     try:
         target = Path(os.path.realpath(path))
         for source in inputs:
@@ -34,7 +37,16 @@ def write_atomic(path: str | Path, data: bytes | str, *, inputs: Iterable[str | 
                 raise InputError(f"refusing to write over the input {source}", path=str(path))
         if target.is_dir():
             raise InputError(f"{path} is a folder (name a file in it)", path=str(path))
+        if os.path.islink(path) and not target.parent.is_dir():
+            raise InputError(
+                f"{path} is a link to {target}, whose folder does not exist", path=str(path)
+            )
         special = target.exists() and not target.is_file()
+        if target.is_file() and (not target.stat().st_mode & 0o222 or not _writable(target)):
+            # As a shell's > refuses it (root included: the mode says "keep").
+            raise InputError(
+                f"{path} is read-only (make it writable to replace it)", path=str(path)
+            )
     except OSError as exc:  # a name too long, a loop of links, ...
         raise InputError(f"cannot write {path}: {exc.strerror}", path=str(path)) from exc
     if special:
@@ -59,9 +71,11 @@ def write_atomic(path: str | Path, data: bytes | str, *, inputs: Iterable[str | 
         if mode is not None:
             os.chmod(temporary, mode)
         os.replace(temporary, target)
-    except OSError as exc:
+    except BaseException as exc:  # a full disk, or an interrupt: no half file is left
         temporary.unlink(missing_ok=True)
-        raise InputError(f"cannot write {path}: {exc.strerror}", path=str(path)) from exc
+        if isinstance(exc, OSError):
+            raise InputError(f"cannot write {path}: {exc.strerror}", path=str(path)) from exc
+        raise
     return target
 
 
@@ -79,6 +93,10 @@ def _create_temporary(target: Path, mode: int) -> tuple[int, Path]:
             tries -= 1
             if not tries:  # the caller says it cannot write there
                 raise
+
+
+def _writable(path: Path) -> bool:
+    return os.access(path, os.W_OK)
 
 
 def _same_file(a: Path, b: Path) -> bool:

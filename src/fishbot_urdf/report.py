@@ -171,7 +171,11 @@ def _artifact(path: str) -> dict[str, str]:
     shown = shown_path(path)
     if os.path.isabs(shown):
         return {"uri": Path(shown).as_uri()}
-    return {"uri": quote(Path(os.path.normpath(shown)).as_posix()), "uriBaseId": SRCROOT}
+    # As bytes: a file name that is no UTF-8 is percent-encoded byte for byte.
+    return {
+        "uri": quote(os.fsencode(Path(os.path.normpath(shown)).as_posix())),
+        "uriBaseId": SRCROOT,
+    }
 
 
 _ANNOTATIONS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.NOTE: "notice"}

@@ -20,6 +20,7 @@ from ._hints import error_hint, phrased
 if TYPE_CHECKING:
     from ..check import CheckResult
     from ..config import Config
+    from ..model import Robot
 
 EXIT_OK, EXIT_INVALID, EXIT_USAGE = 0, 1, 2
 
@@ -48,7 +49,19 @@ def emit_findings(diagnostics: Iterable[Diagnostic]) -> None:
             line = line.replace(
                 f" {label} ", " " + click.style(label, fg=_COLORS[d.severity], bold=True) + " ", 1
             )
-        click.echo(line, err=True, color=color)
+        _echo_raw(line, err)
+
+
+def _echo_raw(line: str, stream: IO[str]) -> None:
+    """A line on ``stream`` with file names that are no UTF-8 written as their own bytes."""
+    data = (line + "\n").encode("utf-8", "surrogateescape")
+    binary = getattr(stream, "buffer", None)
+    if binary is None:
+        stream.write(data.decode("utf-8", "replace"))
+        return
+    stream.flush()  # after what went through the text layer
+    binary.write(data)
+    binary.flush()
 
 
 def fail(exc: FishbotUrdfError) -> Diagnostic:
@@ -115,6 +128,28 @@ def check_input(
     return check_file(name, args=args, packages=packages, config=config)
 
 
+def mesh_files(robot: Robot | None, path: str, packages: dict[str, str]) -> list[str]:
+    """The mesh files ``robot`` names that can be found: inputs too, never to be written
+    over (`-o meshes/box.stl` after a mistyped name)."""
+    from ..model import Mesh
+    from ..packages import resolve_package_uri
+
+    if robot is None:
+        return []
+    found: list[str] = []
+    shapes = [part.geometry for link in robot.links for part in link.visuals]
+    shapes += [part.geometry for link in robot.links for part in link.collisions]
+    for shape in shapes:
+        if isinstance(shape, Mesh) and shape.filename:
+            near = shape.source.path if shape.source else path
+            try:
+                where = resolve_package_uri(shape.filename, near=near, packages=packages)
+            except FishbotUrdfError:
+                continue  # a package not found: nothing there to write over
+            found.append(str(where))
+    return found
+
+
 def nearest_config(file: str) -> Config:
     """The configuration of the nearest fishbot.toml or pyproject.toml above ``file`` (the
     current folder for -), or the default; a wrong one stops the command."""
@@ -147,9 +182,9 @@ def write_chunks(chunks: Iterable[str]) -> None:
         buffer.append(chunk)
         size += len(chunk)
         if size > 1 << 20:
-            to_stdout("".join(buffer).encode("utf-8"), flush=False)
+            to_stdout("".join(buffer).encode("utf-8", "surrogateescape"), flush=False)
             buffer, size = [], 0
-    to_stdout("".join(buffer).encode("utf-8"))
+    to_stdout("".join(buffer).encode("utf-8", "surrogateescape"))
 
 
 def to_stdout(data: bytes, *, flush: bool = True) -> None:

@@ -21,6 +21,7 @@ from ._common import (
     emit_findings,
     fail,
     max_size_option,
+    mesh_files,
     package_option,
     packages_option,
     status_of,
@@ -302,6 +303,8 @@ def check(
             status = max(status, status_of(exc))
             continue
         inputs.extend(result.files)
+        if output is not None:
+            inputs.extend(mesh_files(result.robot, result.path, packages))
         if skip_includes and _is_include(result):
             reports.append(_skipped(result, config))
             continue
@@ -342,7 +345,7 @@ def _tree(result: CheckResult, into: list[bytes] | None) -> None:
     if into is None:
         write_chunks(tree_text(result.analysis))
     else:
-        into.append("".join(tree_text(result.analysis)).encode("utf-8"))
+        into.append("".join(tree_text(result.analysis)).encode("utf-8", "surrogateescape"))
 
 
 def _report(result: CheckResult, config: Config) -> FileReport:
@@ -396,13 +399,15 @@ def _finish(
 
     phrased_reports = [_with(r, tuple(phrased(d) for d in r.diagnostics)) for r in reports]
     if fmt == "json":
-        data = (json.dumps(json_report(phrased_reports), indent=2) + "\n").encode("utf-8")
+        data = (json.dumps(json_report(phrased_reports), indent=2) + "\n").encode(
+            "utf-8", "surrogateescape"
+        )
     elif fmt == "sarif":
         log = sarif_report(phrased_reports, version=_version())
-        data = (json.dumps(log, indent=2) + "\n").encode("utf-8")
+        data = (json.dumps(log, indent=2) + "\n").encode("utf-8", "surrogateescape")
     elif fmt == "github":
         findings = (d for r in phrased_reports for d in r.diagnostics)
-        data = github_annotations(findings).encode("utf-8")
+        data = github_annotations(findings).encode("utf-8", "surrogateescape")
     else:
         data = b"".join(out)
     if output is None or output == "-":

@@ -4,14 +4,19 @@ from __future__ import annotations
 
 import sys
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import click
 
 from ..errors import FishbotUrdfError
+
+if TYPE_CHECKING:
+    from ..expand import Expansion
 from ._common import (
     EXIT_OK,
     emit_findings,
     max_size_option,
+    mesh_files,
     package_option,
     packages_option,
     stop_on,
@@ -64,12 +69,24 @@ def expand(
         else:
             text = expansion.text
         if output == "-":
-            to_stdout(text.encode("utf-8"))
+            to_stdout(text.encode("utf-8", "surrogateescape"))
         else:
-            write_atomic(output, text, inputs=[file, *expansion.dependencies])
+            meshes = [] if deps else _mesh_files(expansion, packages)
+            write_atomic(output, text, inputs=[file, *expansion.dependencies, *meshes])
     except FishbotUrdfError as exc:
         stop_on(exc)
     from ..parse import xacro_warning
 
     emit_findings(xacro_warning(message, file) for message in expansion.messages)
     sys.exit(EXIT_OK)
+
+
+def _mesh_files(expansion: Expansion, packages: dict[str, str]) -> list[str]:
+    """The mesh files the expanded robot names, read as far as it reads."""
+    from ..parse import read
+
+    try:
+        robot = read(expansion.text.encode("utf-8", "replace"), path=expansion.path).robot
+    except FishbotUrdfError:
+        return []
+    return mesh_files(robot, expansion.path, packages)

@@ -19,6 +19,7 @@ from ._common import (
     check_input,
     emit_findings,
     max_size_option,
+    mesh_files,
     nearest_config,
     package_option,
     packages_option,
@@ -113,7 +114,8 @@ def graph(
     if outputs is None:
         outputs = _graph_pair(names[0] if names else _file_name(result.analysis.robot.name), fmt)
     try:
-        _draw_all(result.analysis, outputs, detail, result.files, timeout)
+        inputs = [*result.files, *mesh_files(result.robot, result.path, packages)]
+        _draw_all(result.analysis, outputs, detail, inputs, timeout)
     except FishbotUrdfError as exc:
         stop_on(exc)
     sys.exit(status)
@@ -167,4 +169,4 @@ def _draw_all(
             to_stdout(data)
             continue
         write_atomic(path, data, inputs=inputs)
-        to_stdout(f"Created file {path}\n".encode())
+        to_stdout(f"Created file {path}\n".encode("utf-8", "surrogateescape"))

@@ -24,6 +24,7 @@ from ._common import (
     fail,
     format_option,
     max_size_option,
+    mesh_files,
     nearest_config,
     package_option,
     packages_option,
@@ -210,7 +211,7 @@ def _print(inertial: Inertial, fmt: str) -> None:
         text = json.dumps(inertial_dict(inertial), indent=2) + "\n"
     else:
         text = inertial_xml(inertial)
-    to_stdout(text.encode("utf-8"))
+    to_stdout(text.encode("utf-8", "surrogateescape"))
 
 
 class _RobotCommand(click.Command):
@@ -304,9 +305,9 @@ def robot(
             **table.to_dict(),
             "diagnostics": [d.to_dict() for d in result.diagnostics],
         }
-        to_stdout((json.dumps(report, indent=2) + "\n").encode("utf-8"))
+        to_stdout((json.dumps(report, indent=2) + "\n").encode("utf-8", "surrogateescape"))
     else:
-        to_stdout(table.to_text().encode("utf-8"))
+        to_stdout(table.to_text().encode("utf-8", "surrogateescape"))
     sys.exit(EXIT_INVALID if not result.ok else EXIT_OK)
 
 
@@ -358,9 +359,10 @@ def _fill(
     try:
         text = add_inertials(result.data, computed, path=result.path)
         if output == "-":
-            to_stdout(text.encode("utf-8"))
+            to_stdout(text.encode("utf-8", "surrogateescape"))
         else:
-            write_atomic(output, text, inputs=result.files)
+            inputs = [*result.files, *mesh_files(result.robot, result.path, packages)]
+            write_atomic(output, text, inputs=inputs)
     except FishbotUrdfError as exc:
         emit_findings([fail(exc)])
         return EXIT_USAGE

@@ -66,4 +66,4 @@ def rules(name: str | None, fmt: str) -> None:
         from ..rules.docs import explanation, table
 
         text = explanation(chosen[0]) if one else table(chosen)
-    to_stdout(text.encode("utf-8"))
+    to_stdout(text.encode("utf-8", "surrogateescape"))

@@ -355,7 +355,8 @@ def _on_a_fresh_stack(work: Callable[[], Any]) -> Any:
 
 class _Worker(threading.Thread):
     def __init__(self, work: Callable[[], Any]) -> None:
-        super().__init__(name="fishbot-xacro")
+        # A daemon: an interrupt in the caller's thread ends the program without waiting.
+        super().__init__(name="fishbot-xacro", daemon=True)
         self.context = contextvars.copy_context()
         self.work = work
         self.outcome: Any = None

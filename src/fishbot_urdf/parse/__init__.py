@@ -82,7 +82,9 @@ def read(
         from ..expand import expand
 
         expansion = expand(source, args=args, packages=packages)
-        data, name, origins = expansion.text.encode("utf-8"), path or str(source), expansion.sources
+        # A file name that is no UTF-8 (the banner names the file) is no XML text either.
+        data = expansion.text.encode("utf-8", "replace")
+        name, origins = path or str(source), expansion.sources
         notes = tuple(xacro_warning(message, name) for message in expansion.messages)
         files = (str(source), *expansion.dependencies)
     else:
