@@ -2,14 +2,16 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 import secrets
 from collections.abc import Iterable
 from pathlib import Path
+from typing import Any
 
 from .errors import InputError
 
-__all__ = ["write_atomic"]
+__all__ = ["AtomicFile", "write_atomic"]
 
 
 def write_atomic(path: str | Path, data: bytes | str, *, inputs: Iterable[str | Path] = ()) -> Path:
@@ -25,11 +27,94 @@ def write_atomic(path: str | Path, data: bytes | str, *, inputs: Iterable[str | 
         InputError: ``path`` is one of ``inputs``, a folder, read-only, or cannot be
             written.
     """
+    with AtomicFile(path, inputs=inputs) as out:
+        out.write(data)
+        return out.commit(inputs)
+
+
+class AtomicFile:
+    """An output file written piece by piece and put in place whole, or not at all.
+
+    Use it in a ``with``: :meth:`commit` puts the file in place; leaving the ``with``
+    without it (an error, an interrupt) removes what was written. The checks of
+    :func:`write_atomic` are made when it opens (against the ``inputs`` known then) and
+    again at :meth:`commit` (against all of them).
+    """
+
+    def __init__(self, path: str | Path, *, inputs: Iterable[str | Path] = ()) -> None:
+        self.path = str(path)
+        self.target = _target(path, inputs)
+        self._temporary: Path | None = None
+        self._mode: int | None = None
+        self._stream: Any = None
+        try:
+            if self.target.exists() and not self.target.is_file():
+                # a device or a pipe: there is nothing to replace
+                self._stream = open(self.target, "wb")  # noqa: SIM115
+                return
+            self.target.parent.mkdir(parents=True, exist_ok=True)
+            # A new file gets the mode any new file gets: 0o666 less the umask, which the
+            # system applies by itself. A file replaced keeps its own mode, given once the
+            # data is in (until then only its owner may read it, as the file may be private).
+            if self.target.exists():
+                self._mode = self.target.stat().st_mode & 0o7777
+            handle, self._temporary = _create_temporary(
+                self.target, 0o666 if self._mode is None else 0o600
+            )
+            self._stream = os.fdopen(handle, "wb")
+        except OSError as exc:
+            raise self._cannot(exc) from exc
+
+    def __enter__(self) -> AtomicFile:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.discard()
+
+    def write(self, data: bytes | str) -> None:
+        """Add ``data`` (text as UTF-8) to the file."""
+        payload = data.encode("utf-8", "surrogateescape") if isinstance(data, str) else data
+        try:
+            self._stream.write(payload)
+        except OSError as exc:
+            raise self._cannot(exc) from exc
+
+    def commit(self, inputs: Iterable[str | Path] = ()) -> Path:
+        """Put the file in place, unless it is one of ``inputs``; the path written."""
+        for source in inputs:
+            if _same_file(self.target, Path(source)):
+                raise InputError(f"refusing to write over the input {source}", path=self.path)
+        try:
+            self._stream.close()
+            if self._temporary is not None:
+                if self._mode is not None:
+                    os.chmod(self._temporary, self._mode)
+                os.replace(self._temporary, self.target)
+                self._temporary = None
+        except OSError as exc:
+            raise self._cannot(exc) from exc
+        return self.target
+
+    def discard(self) -> None:
+        """Remove what was written, if it was not put in place."""
+        if self._stream is not None and not self._stream.closed:
+            with contextlib.suppress(OSError):  # the file goes anyway
+                self._stream.close()
+        if self._temporary is not None:
+            self._temporary.unlink(missing_ok=True)
+            self._temporary = None
+
+    def _cannot(self, exc: OSError) -> InputError:
+        self.discard()
+        return InputError(f"cannot write {self.path}: {exc.strerror}", path=self.path)
+
+
+def _target(path: str | Path, inputs: Iterable[str | Path]) -> Path:
+    """The file ``path`` names, once it is known to be one that may be written."""
     if not str(path):
         raise InputError("the output file name is empty", path="<output>")
     if str(path).endswith(("/", os.sep)):
         raise InputError(f"{path} names a folder (name a file in it)", path=str(path))
-    payload = data.encode("utf-8", "surrogateescape") if isinstance(data, str) else data
     try:
         target = Path(os.path.realpath(path))
         for source in inputs:
@@ -41,7 +126,6 @@ def write_atomic(path: str | Path, data: bytes | str, *, inputs: Iterable[str | 
             raise InputError(
                 f"{path} is a link to {target}, whose folder does not exist", path=str(path)
             )
-        special = target.exists() and not target.is_file()
         if target.is_file() and (not target.stat().st_mode & 0o222 or not _writable(target)):
             # As a shell's > refuses it (root included: the mode says "keep").
             raise InputError(
@@ -49,33 +133,6 @@ def write_atomic(path: str | Path, data: bytes | str, *, inputs: Iterable[str | 
             )
     except OSError as exc:  # a name too long, a loop of links, ...
         raise InputError(f"cannot write {path}: {exc.strerror}", path=str(path)) from exc
-    if special:
-        try:  # a device or a pipe: there is nothing to replace
-            with open(target, "wb") as stream:
-                stream.write(payload)
-        except OSError as exc:
-            raise InputError(f"cannot write {path}: {exc.strerror}", path=str(path)) from exc
-        return target
-    try:
-        target.parent.mkdir(parents=True, exist_ok=True)
-        # A new file gets the mode any new file gets: 0o666 less the umask, which the system
-        # applies by itself. A file replaced keeps its own mode, given once the data is in
-        # (until then only its owner may read it, as the file may be private).
-        mode = target.stat().st_mode & 0o7777 if target.exists() else None
-        handle, temporary = _create_temporary(target, 0o666 if mode is None else 0o600)
-    except OSError as exc:
-        raise InputError(f"cannot write {path}: {exc.strerror}", path=str(path)) from exc
-    try:
-        with os.fdopen(handle, "wb") as stream:
-            stream.write(payload)
-        if mode is not None:
-            os.chmod(temporary, mode)
-        os.replace(temporary, target)
-    except BaseException as exc:  # a full disk, or an interrupt: no half file is left
-        temporary.unlink(missing_ok=True)
-        if isinstance(exc, OSError):
-            raise InputError(f"cannot write {path}: {exc.strerror}", path=str(path)) from exc
-        raise
     return target
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import json
 import sys
 from collections.abc import Sequence
@@ -35,6 +36,7 @@ if TYPE_CHECKING:
     from ..check import CheckResult
     from ..config import Config
     from ..diagnostics import Diagnostic
+    from ..output import AtomicFile
     from ..report import FileReport
 
 FORMATS = ("text", "json", "sarif", "github")
@@ -290,34 +292,47 @@ def check(
         stop_on(exc)
     status = EXIT_OK
     reports: list[FileReport] = []
-    out: list[bytes] = []
     # Never written over: the files checked, what they read, the configuration files.
     inputs = [name for name in (*names, *found) if name and name != "-"]
-    for name, config in zip(names, configs, strict=True):
-        try:
-            result = check_input(name, args, packages, config)
-        except FishbotUrdfError as exc:
-            reports.append(_failure(exc, config))
+    sink = _tree_file(output, inputs) if fmt == "text" else None
+    with sink if sink is not None else contextlib.nullcontext():
+        for name, config in zip(names, configs, strict=True):
+            try:
+                result = check_input(name, args, packages, config)
+            except FishbotUrdfError as exc:
+                reports.append(_failure(exc, config))
+                if fmt == "text":
+                    emit_findings([fail(exc)])
+                status = max(status, status_of(exc))
+                continue
+            inputs.extend(result.files)
+            if output is not None:
+                inputs.extend(mesh_files(result.robot, result.path, packages))
+            if skip_includes and _is_include(result):
+                reports.append(_skipped(result, config))
+                continue
+            report = _report(result, config)
+            reports.append(report)
+            if not report.ok:
+                status = max(status, EXIT_INVALID)
             if fmt == "text":
-                emit_findings([fail(exc)])
-            status = max(status, status_of(exc))
-            continue
-        inputs.extend(result.files)
-        if output is not None:
-            inputs.extend(mesh_files(result.robot, result.path, packages))
-        if skip_includes and _is_include(result):
-            reports.append(_skipped(result, config))
-            continue
-        report = _report(result, config)
-        reports.append(report)
-        if not report.ok:
-            status = max(status, EXIT_INVALID)
-        if fmt == "text":
-            emit_findings(result.diagnostics)
-            if not quiet:
-                _tree(result, out if output else None)
-    _finish(fmt, reports, output, out, inputs)
+                emit_findings(result.diagnostics)
+                if not quiet:
+                    _tree(result, sink)
+        _finish(fmt, reports, output, sink, inputs)
     sys.exit(status)
+
+
+def _tree_file(output: str | None, inputs: list[str]) -> AtomicFile | None:
+    """The file the trees stream into, for -o FILE (checked now, put in place at the end)."""
+    if output is None or output == "-":
+        return None
+    from ..output import AtomicFile
+
+    try:
+        return AtomicFile(output, inputs=inputs)
+    except FishbotUrdfError as exc:
+        stop_on(exc)
 
 
 def _is_include(result: CheckResult) -> bool:
@@ -334,18 +349,23 @@ def _is_include(result: CheckResult) -> bool:
     )
 
 
-def _tree(result: CheckResult, into: list[bytes] | None) -> None:
+def _tree(result: CheckResult, sink: AtomicFile | None) -> None:
     """check_urdf's output whenever the tree can be printed, errors or not: a script
-    reading it keeps working, and the exit status tells the rest."""
+    reading it keeps working, and the exit status tells the rest. It is streamed: a deep
+    chain's tree is hundreds of megabytes."""
     from ..graph import tree_text
 
     topo = result.topology
     if result.analysis is None or topo is None or topo.root is None or topo.loop_from_root:
         return
-    if into is None:
+    if sink is None:
         write_chunks(tree_text(result.analysis))
-    else:
-        into.append("".join(tree_text(result.analysis)).encode("utf-8", "surrogateescape"))
+        return
+    try:
+        for chunk in tree_text(result.analysis):
+            sink.write(chunk)
+    except FishbotUrdfError as exc:  # a full disk
+        stop_on(exc)
 
 
 def _report(result: CheckResult, config: Config) -> FileReport:
@@ -390,7 +410,7 @@ def _finish(
     fmt: str,
     reports: list[FileReport],
     output: str | None,
-    out: list[bytes],
+    sink: AtomicFile | None,
     inputs: Sequence[str],
 ) -> None:
     """Write the report (or, for text, the trees) to stdout or ``output``."""
@@ -408,11 +428,15 @@ def _finish(
     elif fmt == "github":
         findings = (d for r in phrased_reports for d in r.diagnostics)
         data = github_annotations(findings).encode("utf-8", "surrogateescape")
-    else:
-        data = b"".join(out)
+    else:  # the trees: on stdout already, or in the file, put in place now
+        if sink is not None:
+            try:
+                sink.commit(inputs)
+            except FishbotUrdfError as exc:
+                stop_on(exc)
+        return
     if output is None or output == "-":
-        if fmt != "text" or out:
-            to_stdout(data)
+        to_stdout(data)
         return
     from ..output import write_atomic
 
