@@ -290,3 +290,22 @@ def test_joints_that_mimic_each_other_round_a_loop_are_each_reported(tmp_path: P
     loops = [line for line in result.stderr.splitlines() if "mimics in a loop" in line]
     assert [line.split("joint '")[1][0] for line in loops] == ["a", "b"]
     assert all("(a -> b -> a)" in line and line.endswith("[undefined-mimic]") for line in loops)
+
+
+def test_fill_on_a_closed_mesh_of_coordinates_near_the_floats_limit_writes_nothing(
+    tmp_path: Path,
+) -> None:
+    trimesh = pytest.importorskip("trimesh", reason="meshes are read by the optional trimesh")
+    import numpy as np
+
+    with np.errstate(all="ignore"):  # trimesh's own normals overflow
+        trimesh.creation.box(extents=(1.5e308, 1.5e308, 1.5e308)).export(tmp_path / "huge.obj")
+    path = tmp_path / "r.urdf"
+    path.write_text(_one_link('<mesh filename="huge.obj"/>'))
+    out = tmp_path / "out.urdf"
+    for given in (["--density", "1000"], ["--mass", "a=1"]):
+        result = CliRunner().invoke(cli, ["inertia", str(path), "--fill", *given, "-o", str(out)])
+        assert result.exit_code == 1, given
+        assert result.stderr.count("\n") == 2, result.stderr  # the finding, "nothing written"
+        assert "[fill-skipped]" in result.stderr, given
+        assert not out.exists(), given

@@ -154,3 +154,18 @@ def test_linked_packages_are_followed(tmp_path: Path, monkeypatch: pytest.Monkey
     (src / "loop").symlink_to(src, target_is_directory=True)  # a cycle is walked once
     monkeypatch.setenv("ROS_PACKAGE_PATH", str(src))
     assert find_package("fishbot_description") == src / "fishbot_description"
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="this system has no FIFOs")
+def test_a_package_xml_that_is_a_fifo_is_no_package_and_no_hang(tmp_path: Path) -> None:
+    os.mkfifo(tmp_path / "package.xml")  # nothing writes to it: a read would wait for ever
+    assert package_name(tmp_path / "package.xml") is None
+
+
+def test_a_package_xml_of_unclosed_comments_has_no_name(tmp_path: Path) -> None:
+    (tmp_path / "package.xml").write_text("<package>" + "<!--" * 50_000)
+    assert package_name(tmp_path / "package.xml") is None
+    (tmp_path / "package.xml").write_text(
+        '<package format="3"><!-- <name>no</name> --><name> pkg </name></package>'
+    )
+    assert package_name(tmp_path / "package.xml") == "pkg"

@@ -14,7 +14,7 @@ from xml.dom import expatbuilder, minidom
 from xml.parsers.expat import ExpatError
 
 from ..diagnostics import shown_path
-from ..errors import InputError
+from ..errors import FishbotUrdfError, InputError
 from ..inputs import read_input
 from ..model import Location
 from ..packages import PackageNotFoundError, find_package
@@ -257,6 +257,16 @@ class Run(Explaining):
         self.parsing = None
         return document
 
+    def _stumbled(self, exc: Exception) -> XacroError:
+        """xacro failed inside, on a value the file gave it (an include's name that is a
+        number, say): one located error, with what Python said."""
+        said = " ".join(str(exc).split()) or type(exc).__name__
+        return XacroError(
+            f"xacro cannot process this element: {said}",
+            where=source(self.node),
+            calls=self._calls(),
+        )
+
     def _locate(self, error: BaseException) -> None:
         """The element at fault, and the macro calls that led to it, from the frames of an
         error: the innermost element one of xacro's steps was working on."""
@@ -325,13 +335,17 @@ class Run(Explaining):
         except RuntimeError as exc:  # xacro's check of an element's attributes
             tag, _, missing = str(exc).partition(": missing attribute ")
             if not missing:
-                raise
+                raise self._stumbled(exc) from exc
             raise XacroError(
                 f"<{tag}> has no {missing.strip(chr(39))} attribute",
                 hint=f'write it: <{tag} {missing.strip(chr(39))}="...">',
                 where=source(self.node),
                 calls=self._calls(),
             ) from exc
+        except FishbotUrdfError:
+            raise
+        except Exception as exc:  # xacro stumbling on what the file gave it
+            raise self._stumbled(exc) from exc
         seen: dict[str, None] = {}
         for name in x.all_includes:
             seen.setdefault(name, None)

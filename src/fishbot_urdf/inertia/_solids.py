@@ -205,7 +205,7 @@ def volume(geometry: Geometry, resolve: Callable[[Mesh], Path] | None = None) ->
         return 4.0 / 3.0 * math.pi * geometry.radius * geometry.radius * geometry.radius
     if isinstance(geometry, Mesh):
         where = resolve(geometry) if resolve is not None else _mesh_file(geometry)
-        return float(_solid(where, geometry.scale).volume)
+        return _solid(where, geometry.scale).volume
     raise ArgumentError(
         f"no closed form for {type(geometry).__name__} (box, cylinder, sphere, mesh)",
         name="geometry",
@@ -216,9 +216,19 @@ _MESH_FORMATS = ("stl", "obj", "dae", "ply", "off", "glb")
 """Mesh files read for their volume (archives and formats that name other files are not)."""
 
 
-def _solid(path: Path, scale: Vector3 | None) -> Any:
-    """A closed trimesh mesh read from ``path``, scaled."""
+@dataclass(frozen=True, slots=True)
+class _Solid:
+    """What a closed mesh holds, filled with a density of 1 kg/m^3."""
+
+    volume: float
+    centre: Vector3
+    inertia: Matrix3  # about the centre
+
+
+def _solid(path: Path, scale: Vector3 | None) -> _Solid:
+    """The closed trimesh mesh read from ``path``, scaled, as plain numbers."""
     try:
+        import numpy as np
         import trimesh
     except ImportError:
         raise ToolNotFoundError(
@@ -234,27 +244,37 @@ def _solid(path: Path, scale: Vector3 | None) -> Any:
             path=str(path),
         )
     data = read_input(path)  # a regular file within the size limit
-    try:
-        mesh: Any = trimesh.load(io.BytesIO(data), file_type=kind, force="mesh")
-    except ImportError as exc:
-        if kind == "dae":  # COLLADA is read by the pycollada package, which is optional
-            raise ToolNotFoundError(
-                f"reading the COLLADA mesh {path} needs the pycollada package",
-                tool="pycollada",
-                hint="pip install pycollada",
+    # Coordinates near the floats' limit overflow inside trimesh: the numbers come out as
+    # inf or nan, refused by the caller, rather than as warnings on stderr.
+    with np.errstate(all="ignore"):
+        try:
+            mesh: Any = trimesh.load(io.BytesIO(data), file_type=kind, force="mesh")
+        except ImportError as exc:
+            if kind == "dae":  # COLLADA is read by the pycollada package, which is optional
+                raise ToolNotFoundError(
+                    f"reading the COLLADA mesh {path} needs the pycollada package",
+                    tool="pycollada",
+                    hint="pip install pycollada",
+                ) from exc
+            raise ShapeError(
+                f"cannot read the mesh {path} as {kind.upper()}", path=str(path)
             ) from exc
-        raise ShapeError(f"cannot read the mesh {path} as {kind.upper()}", path=str(path)) from exc
-    except Exception as exc:  # whatever a foreign reader makes of bytes that are no mesh
-        raise ShapeError(
-            f"cannot read the mesh {path} as {kind.upper()}: {exc}", path=str(path)
-        ) from exc
-    if type(mesh).__name__ != "Trimesh" or len(mesh.faces) == 0:
-        raise ShapeError(f"the mesh {path} holds no triangles", path=str(path))
-    if scale is not None:
-        mesh.apply_scale(scale)
-    if not mesh.is_watertight:
-        raise ShapeError(f"the mesh {path} is not closed, so it has no volume", path=str(path))
-    return mesh
+        except Exception as exc:  # whatever a foreign reader makes of bytes that are no mesh
+            raise ShapeError(
+                f"cannot read the mesh {path} as {kind.upper()}: {exc}", path=str(path)
+            ) from exc
+        if type(mesh).__name__ != "Trimesh" or len(mesh.faces) == 0:
+            raise ShapeError(f"the mesh {path} holds no triangles", path=str(path))
+        if scale is not None:
+            mesh.apply_scale(scale)
+        if not mesh.is_watertight:
+            raise ShapeError(f"the mesh {path} is not closed, so it has no volume", path=str(path))
+        mesh.density = 1.0
+        return _Solid(
+            float(mesh.volume),
+            tuple(float(c) for c in mesh.center_mass),  # type: ignore[arg-type]
+            _matrix3(mesh.moment_inertia),
+        )
 
 
 def mesh_inertia(
@@ -268,15 +288,16 @@ def mesh_inertia(
     (``pip install 'fishbot-urdf[mesh]'``).
 
     Raises:
-        ShapeError: The mesh is not closed.
-        InputError: The file cannot be read as a mesh.
+        ShapeError: The mesh is not closed, or cannot be read as a mesh.
+        InputError: The file cannot be read.
         ToolNotFoundError: trimesh is not installed.
     """
     solid = _solid(Path(path), scale)
-    solid.density = mass / float(solid.volume)
+    density = mass / solid.volume if solid.volume else math.inf
     frame = Pose.of(origin)
-    tensor = rotate_tensor(frame.rotation, _matrix3(solid.moment_inertia))
-    centre = frame.apply(tuple(float(c) for c in solid.center_mass))  # type: ignore[arg-type]
+    unit = tuple(tuple(density * v + 0.0 for v in row) for row in solid.inertia)
+    tensor = rotate_tensor(frame.rotation, unit)  # type: ignore[arg-type]
+    centre = frame.apply(solid.centre)
     return Inertial(mass=mass, inertia=_inertia(tensor), origin=Origin(xyz=centre))
 
 
