@@ -342,3 +342,31 @@ def test_a_yaml_file_that_is_a_fifo_is_refused(
     with pytest.raises(XacroError) as caught:
         expand(robot)
     assert "a FIFO (named pipe), not a regular file" in caught.value.message
+
+
+def test_expansion_leaves_stderr_to_the_other_threads(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    import sys
+    import threading
+
+    # Each expansion gives a warning (a property named like math's pi).
+    text = _robot('<xacro:property name="pi" value="3.14"/><link name="a${pi}"/>')
+    robot = _expand_in(tmp_path, {"robot.xacro": text}, monkeypatch)
+    stop = threading.Event()
+    written = [0]
+
+    def chatter() -> None:
+        while not stop.is_set():
+            sys.stderr.write("other thread\n")
+            written[0] += 1
+
+    thread = threading.Thread(target=chatter)
+    thread.start()
+    try:
+        expansions = [expand(robot) for _ in range(20)]
+    finally:
+        stop.set()
+        thread.join()
+    assert all(e.messages == ("warning: redefining global symbol: pi",) for e in expansions)
+    assert capsys.readouterr().err.count("other thread\n") == written[0] > 0
