@@ -180,6 +180,8 @@ def test_a_product_of_inertia_of_1e200_is_a_finding(tmp_path: Path, command: lis
 
 
 def test_a_joint_without_parent_holding_a_collision_is_a_finding(tmp_path: Path) -> None:
+    # c hangs from a joint with an empty parent and from base_link: the ground rule held c
+    # through one joint while the tree placed it through none (KeyError).
     path = tmp_path / "r.urdf"
     path.write_text(
         '<robot name="r"><link name="base_footprint"/>'
@@ -188,12 +190,15 @@ def test_a_joint_without_parent_holding_a_collision_is_a_finding(tmp_path: Path)
         '<link name="c"><collision><geometry><box size="1 1 1"/></geometry></collision></link>'
         '<joint name="j" type="fixed"><parent link="base_footprint"/><child link="base_link"/>'
         "</joint>"
-        '<joint name="k" type="fixed"><child link="c"/></joint></robot>'
+        '<joint name="k" type="fixed"><parent link=""/><child link="c"/></joint>'
+        '<joint name="m" type="fixed"><parent link="base_link"/><child link="c"/></joint>'
+        "</robot>"
     )
-    result = CliRunner().invoke(cli, ["check", str(path)])
-    assert result.exit_code == 1
-    assert "joint 'k': has no <parent>" in result.stderr
-    assert result.exception is None or isinstance(result.exception, SystemExit)
+    for command in (["check"], ["graph", "-o", "-"], ["inertia"]):
+        result = CliRunner().invoke(cli, [*command, str(path)])
+        assert result.exception is None or isinstance(result.exception, SystemExit), command
+        assert result.exit_code == 1, command
+        assert "joint 'k': <parent> has no 'link' attribute" in result.stderr, command
 
 
 def _one_link(collision: str) -> str:
@@ -309,3 +314,24 @@ def test_fill_on_a_closed_mesh_of_coordinates_near_the_floats_limit_writes_nothi
         assert result.stderr.count("\n") == 2, result.stderr  # the finding, "nothing written"
         assert "[fill-skipped]" in result.stderr, given
         assert not out.exists(), given
+
+
+def test_a_turned_wheel_inertia_with_a_zero_moment_is_findings_not_a_math_error(
+    tmp_path: Path,
+) -> None:
+    # Turned by rpy 1.57079 (not quite pi/2), izz = 0 leaves a moment of -1e-17 in the
+    # collision's frame, whose square root was a math domain error.
+    path = tmp_path / "r.urdf"
+    path.write_text(
+        '<robot name="r"><link name="base_link"/><joint name="j" type="continuous">'
+        '<parent link="base_link"/><child link="wheel"/><axis xyz="0 1 0"/></joint>'
+        '<link name="wheel"><inertial><origin rpy="1.57079 0 0"/><mass value="0.1"/>'
+        '<inertia ixx="1e-05" ixy="0" ixz="0" iyy="1e-05" iyz="0" izz="0"/></inertial>'
+        '<collision><origin rpy="1.57079 0 0"/>'
+        '<geometry><cylinder radius="0.032" length="0.04"/></geometry></collision></link></robot>'
+    )
+    for command in (["check"], ["graph", "-o", "-"], ["inertia"]):
+        result = CliRunner().invoke(cli, [*command, str(path)])
+        assert result.exception is None or isinstance(result.exception, SystemExit), command
+        assert result.exit_code == 1, command
+        assert "[massless-link]" in result.stderr, command
