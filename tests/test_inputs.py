@@ -114,3 +114,17 @@ def test_every_command_says_a_fifo_is_a_fifo(tmp_path: Path) -> None:
             assert result.stderr == (
                 f"{fifo}: error: is a FIFO (named pipe), not a regular file [io]\n"
             ), (name, command)
+
+
+def test_standard_input_is_read_within_the_limit_too() -> None:
+    from click.testing import CliRunner
+
+    from fishbot_urdf.cli import cli
+
+    robot = '<robot name="r"><link name="a"/></robot>' + " " * 2000
+    result = CliRunner().invoke(cli, ["check", "-", "--max-size", "0.001"], input=robot)
+    assert result.exit_code == 2
+    assert result.stderr == (
+        "<stdin>: error: is more than the limit of 1,048 bytes "
+        "(raise the limit with --max-size MIB) [io]\n"
+    )

@@ -30,14 +30,14 @@ _LIMIT: ContextVar[int] = ContextVar("fishbot_urdf_max_bytes", default=DEFAULT_M
 
 
 class InputTooLargeError(InputError):
-    """A file is bigger than the limit; ``size`` and ``limit`` are in bytes."""
+    """A file is bigger than the limit; ``size`` (None: not known, a stream) and ``limit``
+    are in bytes."""
 
     rule = "io"
 
-    def __init__(self, path: str, size: int, limit: int) -> None:
-        super().__init__(
-            f"is {_megabytes(size)}, more than the limit of {_megabytes(limit)}", path=path
-        )
+    def __init__(self, path: str, size: int | None, limit: int) -> None:
+        bigger = "is more" if size is None else f"is {_megabytes(size)}, more"
+        super().__init__(f"{bigger} than the limit of {_megabytes(limit)}", path=path)
         self.size = size
         self.limit = limit
 

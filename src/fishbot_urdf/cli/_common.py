@@ -164,7 +164,12 @@ def nearest_config(file: str) -> Config:
 
 def stdin_urdf() -> bytes:
     """Standard input, which must be URDF: xacro there has no folder for its includes."""
-    data = sys.stdin.buffer.read()
+    from ..inputs import InputTooLargeError, max_bytes
+
+    limit = max_bytes()
+    data = sys.stdin.buffer.read(limit + 1)  # within the size limit, as files are
+    if len(data) > limit:
+        raise InputTooLargeError("<stdin>", None, limit)
     if b"xmlns:xacro" in data[:4096] or b"<xacro:" in data:
         raise InputError(
             "standard input is read as URDF, and this is xacro (give the .xacro file's "
