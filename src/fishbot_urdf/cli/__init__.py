@@ -29,6 +29,9 @@ __all__ = ["cli", "main"]
 def cli() -> None:
     """fishbot: check and explore URDF robot descriptions, with or without ROS.
 
+    Exit status: 0 ok, 1 the robot has errors, 2 usage, configuration or I/O problem,
+    130 interrupted (Ctrl-C), 143 terminated.
+
     \b
     Examples:
       fishbot check robots/fishbot/urdf/first_robot.urdf
