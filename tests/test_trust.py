@@ -370,3 +370,43 @@ def test_expansion_leaves_stderr_to_the_other_threads(
         thread.join()
     assert all(e.messages == ("warning: redefining global symbol: pi",) for e in expansions)
     assert capsys.readouterr().err.count("other thread\n") == written[0] > 0
+
+
+def _doubling(levels: int) -> str:
+    """Each call of m calls m twice: 2^levels links."""
+    return _robot(
+        '<xacro:macro name="m" params="n"><xacro:if value="${n > 0}">'
+        '<xacro:m n="${n-1}"/><xacro:m n="${n-1}"/></xacro:if><link name="l"/></xacro:macro>\n'
+        f'<xacro:m n="{levels}"/>'
+    )
+
+
+def test_an_expansion_that_doubles_without_end_stops_at_the_size_limit(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    _expand_in(tmp_path, {"robot.xacro": _doubling(60)}, monkeypatch)
+    result = CliRunner().invoke(cli, ["expand", "robot.xacro", "--max-size", "0.01"])
+    assert result.exit_code == 2
+    assert result.stderr.startswith("robot.xacro:2:")
+    assert (
+        ": error: the expansion makes more than 327 elements (macros that call each other "
+        "without a bound?), in macro m called from robot.xacro:2,"
+    ) in result.stderr
+    assert result.stderr.endswith(
+        "(raise the limits with --timeout SECONDS and --max-size MIB) [xacro-error]\n"
+    )
+
+
+def test_an_expansion_that_doubles_without_end_stops_at_the_time_limit(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from fishbot_urdf.expand import ExpansionLimitError
+    from fishbot_urdf.inputs import time_limit
+
+    robot = _expand_in(tmp_path, {"robot.xacro": _doubling(60)}, monkeypatch)
+    with time_limit(0.2), pytest.raises(ExpansionLimitError) as caught:
+        expand(robot)
+    assert "the expansion takes longer than 0.2 s" in caught.value.message
+    # and the same file within its bounds expands
+    (tmp_path / "small.xacro").write_text(_doubling(3))
+    assert expand(tmp_path / "small.xacro").text.count("<link") == 15

@@ -246,15 +246,12 @@ def joint_facts(joint: Joint) -> list[str]:
     return facts
 
 
-DOT_TIMEOUT = 60.0
-"""Seconds `dot` may take to draw before it is stopped."""
-
-
-def pipe_dot(text: str, format: str, *, timeout: float = DOT_TIMEOUT) -> bytes:
+def pipe_dot(text: str, format: str, *, timeout: float | None = None) -> bytes:
     """Render DOT text with Graphviz's `dot` to ``format`` (``pdf``, ``svg`` or ``png``).
 
     `dot` runs in a process group of its own and is stopped, with everything it started,
-    when it takes longer than ``timeout`` seconds.
+    when it takes longer than ``timeout`` seconds (default: the time limit in force, see
+    :func:`fishbot_urdf.inputs.time_limit`).
 
     Raises:
         ToolNotFoundError: `dot` is not installed (the message says how to install it).
@@ -264,6 +261,10 @@ def pipe_dot(text: str, format: str, *, timeout: float = DOT_TIMEOUT) -> bytes:
     import shutil
     import subprocess
 
+    from .inputs import max_seconds
+
+    if timeout is None:
+        timeout = max_seconds()
     executable = shutil.which("dot")
     missing = ToolNotFoundError(
         f"Graphviz's dot program is needed for {format.upper()} output and was not found",
@@ -320,7 +321,7 @@ def _stop(process: Any) -> None:
 
 
 def draw(
-    robot: Robot | Analysis, format: str, *, detail: bool = False, timeout: float = DOT_TIMEOUT
+    robot: Robot | Analysis, format: str, *, detail: bool = False, timeout: float | None = None
 ) -> bytes:
     """The robot's graph as the bytes of a file in ``format`` (a key of ``FORMATS``);
     Graphviz's `dot`, where it draws, gets ``timeout`` seconds."""

@@ -1,12 +1,16 @@
-"""Reading the files a robot names: regular files only, and no bigger than a limit.
+"""Reading the files a robot names: regular files only, and no bigger than a limit; and
+how long the work on a robot may take.
 
 Every file the library reads on a robot's behalf (the robot itself, its includes, YAML
 files, package manifests, meshes) goes through :func:`read_input`, so a FIFO, a device such
 as ``/dev/zero`` or a file of many gigabytes is refused with one clear error instead of
 hanging or filling the memory.
 
-The limit belongs to the caller's context (a :class:`contextvars.ContextVar`), not to the
-process: :func:`size_limit` raises it for the code inside a ``with``, in that thread only.
+The limits belong to the caller's context (a :class:`contextvars.ContextVar`), not to the
+process: :func:`size_limit` and :func:`time_limit` change them for the code inside a
+``with``, in that thread only. The time limit bounds a xacro expansion (macros that call
+each other twice per level double the document at every level) and each run of
+Graphviz's `dot`.
 """
 
 from __future__ import annotations
@@ -21,12 +25,25 @@ from pathlib import Path
 
 from .errors import ArgumentError, InputError
 
-__all__ = ["DEFAULT_MAX_BYTES", "InputTooLargeError", "max_bytes", "read_input", "size_limit"]
+__all__ = [
+    "DEFAULT_MAX_BYTES",
+    "DEFAULT_MAX_SECONDS",
+    "InputTooLargeError",
+    "max_bytes",
+    "max_seconds",
+    "read_input",
+    "size_limit",
+    "time_limit",
+]
 
 DEFAULT_MAX_BYTES = 256 * 1024 * 1024
 """The largest file read by default: 256 MiB, about fifteen times a 100,000-link URDF."""
 
+DEFAULT_MAX_SECONDS = 60.0
+"""How long one xacro expansion, or one drawing by `dot`, may take by default."""
+
 _LIMIT: ContextVar[int] = ContextVar("fishbot_urdf_max_bytes", default=DEFAULT_MAX_BYTES)
+_SECONDS: ContextVar[float] = ContextVar("fishbot_urdf_max_seconds", default=DEFAULT_MAX_SECONDS)
 
 
 class InputTooLargeError(InputError):
@@ -57,6 +74,24 @@ def size_limit(limit: int) -> Iterator[None]:
         yield
     finally:
         _LIMIT.reset(token)
+
+
+def max_seconds() -> float:
+    """The time limit in force here, in seconds."""
+    return _SECONDS.get()
+
+
+@contextmanager
+def time_limit(seconds: float) -> Iterator[None]:
+    """Let an expansion or a drawing take up to ``seconds`` inside the ``with`` (this thread
+    or task only)."""
+    if not seconds > 0:
+        raise ArgumentError("the time limit must be a positive number of seconds")
+    token = _SECONDS.set(seconds)
+    try:
+        yield
+    finally:
+        _SECONDS.reset(token)
 
 
 def read_input(path: str | Path) -> bytes:

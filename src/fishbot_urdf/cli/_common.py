@@ -77,11 +77,12 @@ def fail(exc: FishbotUrdfError) -> Diagnostic:
 def status_of(exc: FishbotUrdfError) -> int:
     """Exit status for an error that stopped a file: 2 when the input or the setup is at
     fault (a file cannot be read or written, a package or a program is not found, the
-    configuration is wrong), 1 when the robot is."""
+    configuration is wrong, a limit is reached), 1 when the robot is."""
     from ..errors import ConfigError
+    from ..expand import ExpansionLimitError
     from ..packages import PackageNotFoundError
 
-    setup = (InputError, PackageNotFoundError, ToolError, ConfigError)
+    setup = (InputError, PackageNotFoundError, ToolError, ConfigError, ExpansionLimitError)
     return EXIT_USAGE if isinstance(exc, setup) else EXIT_INVALID
 
 
@@ -235,25 +236,32 @@ def package_option() -> Callable[[Wrapped], Wrapped]:
     )
 
 
-def max_size_option() -> Callable[[Wrapped], Wrapped]:
-    """``--max-size MIB``: the largest input file read; the command runs within that limit."""
+def limit_options() -> Callable[[Wrapped], Wrapped]:
+    """``--max-size MIB`` and ``--timeout SECONDS``: the command runs within those limits
+    (see :mod:`fishbot_urdf.inputs`)."""
 
     def decorate(function: Wrapped) -> Wrapped:
         @functools.wraps(function)
-        def run(*args: Any, max_size: float | None, **kwargs: Any) -> Any:
-            from ..inputs import max_bytes, size_limit
+        def run(*args: Any, max_size: float | None, timeout: float | None, **kwargs: Any) -> Any:
+            from ..inputs import max_bytes, max_seconds, size_limit, time_limit
 
-            limit = max_bytes() if max_size is None else int(max_size * 1024 * 1024)
-            with size_limit(max(limit, 1)):
+            limit = max_bytes() if max_size is None else max(1, int(max_size * 1024 * 1024))
+            with size_limit(limit), time_limit(max_seconds() if timeout is None else timeout):
                 return function(*args, **kwargs)
 
-        option = click.option(
+        size = click.option(
             "--max-size",
             type=Number(positive=True),
             metavar="MIB",
             help="Refuse a file bigger than this, in MiB (default 256).",
         )
-        return option(run)  # type: ignore[return-value]
+        seconds = click.option(
+            "--timeout",
+            type=Number(positive=True),
+            metavar="SECONDS",
+            help="Stop a xacro expansion, or Graphviz's dot, that takes longer (default 60).",
+        )
+        return size(seconds(run))  # type: ignore[return-value]
 
     return decorate
 

@@ -76,6 +76,7 @@ def error_hint(exc: FishbotUrdfError) -> tuple[str, str | None] | None:
     """The message and hint of an error that stops a command, phrased for the command line,
     or None to keep the library's."""
     from ..errors import ToolTimeoutError
+    from ..expand import ExpansionLimitError
     from ..inputs import InputTooLargeError
     from ..packages import PackageNotFoundError
 
@@ -83,6 +84,8 @@ def error_hint(exc: FishbotUrdfError) -> tuple[str, str | None] | None:
         return exc.message, "raise the limit with --max-size MIB"
     if isinstance(exc, ToolTimeoutError):
         return exc.message, "allow it longer with --timeout SECONDS"
+    if isinstance(exc, ExpansionLimitError):
+        return exc.message, "raise the limits with --timeout SECONDS and --max-size MIB"
     if isinstance(exc, PackageNotFoundError):
         places = [f"--package ({', '.join(exc.given) or 'none given'})", *exc.searched[1:]]
         return (

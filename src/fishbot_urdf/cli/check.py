@@ -21,7 +21,7 @@ from ._common import (
     check_input,
     emit_findings,
     fail,
-    max_size_option,
+    limit_options,
     mesh_files,
     package_option,
     packages_option,
@@ -211,7 +211,7 @@ class _Options:
     "(z = 0 of a footprint root link) before a warning. [default: 2]",
 )
 @package_option()
-@max_size_option()
+@limit_options()
 def check(
     files: Sequence[str],
     fmt: str,

@@ -15,7 +15,7 @@ if TYPE_CHECKING:
 from ._common import (
     EXIT_OK,
     emit_findings,
-    max_size_option,
+    limit_options,
     mesh_files,
     package_option,
     packages_option,
@@ -37,7 +37,7 @@ from ._common import (
 )
 @click.option("--deps", is_flag=True, help="Print the files the expansion reads instead.")
 @package_option()
-@max_size_option()
+@limit_options()
 def expand(
     file: str, args: Sequence[str], output: str, deps: bool, package_items: Sequence[str]
 ) -> None:

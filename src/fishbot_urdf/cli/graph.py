@@ -15,10 +15,9 @@ from ..errors import FishbotUrdfError
 from ._common import (
     EXIT_INVALID,
     EXIT_OK,
-    Number,
     check_input,
     emit_findings,
-    max_size_option,
+    limit_options,
     mesh_files,
     nearest_config,
     package_option,
@@ -54,23 +53,14 @@ _GRAPH_FORMATS = tuple(FORMATS)
     is_flag=True,
     help="Also show joint types (one colour each), axes, limits, mimics, and link masses.",
 )
-@click.option(
-    "--timeout",
-    type=Number(positive=True),
-    default=60,
-    show_default=True,
-    metavar="SECONDS",
-    help="Stop Graphviz's dot when it takes longer to draw.",
-)
 @package_option()
-@max_size_option()
+@limit_options()
 def graph(
     file: str,
     args: Sequence[str],
     output: str | None,
     fmt: str | None,
     detail: bool,
-    timeout: float,
     package_items: Sequence[str],
 ) -> None:
     """Draw the link/joint tree of a URDF or xacro file, like urdf_to_graphviz.
@@ -115,7 +105,7 @@ def graph(
         outputs = _graph_pair(names[0] if names else _file_name(result.analysis.robot.name), fmt)
     try:
         inputs = [*result.files, *mesh_files(result.robot, result.path, packages)]
-        _draw_all(result.analysis, outputs, detail, inputs, timeout)
+        _draw_all(result.analysis, outputs, detail, inputs)
     except FishbotUrdfError as exc:
         stop_on(exc)
     sys.exit(status)
@@ -149,11 +139,7 @@ def _graph_output(output: str, fmt: str | None) -> list[tuple[str, str]]:
 
 
 def _draw_all(
-    robot: Analysis,
-    outputs: list[tuple[str, str]],
-    detail: bool,
-    inputs: Sequence[str],
-    timeout: float,
+    robot: Analysis, outputs: list[tuple[str, str]], detail: bool, inputs: Sequence[str]
 ) -> None:
     """Write each output, saying "Created file" only for files really written."""
     from ..dot import draw
@@ -161,7 +147,7 @@ def _draw_all(
 
     for path, fmt in outputs:
         try:
-            data = draw(robot, fmt, detail=detail, timeout=timeout)
+            data = draw(robot, fmt, detail=detail)
         except FishbotUrdfError as exc:
             exc.path = path  # the finding is about the file that could not be made
             raise

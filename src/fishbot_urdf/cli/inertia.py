@@ -23,7 +23,7 @@ from ._common import (
     emit_findings,
     fail,
     format_option,
-    max_size_option,
+    limit_options,
     mesh_files,
     nearest_config,
     package_option,
@@ -241,7 +241,7 @@ class _RobotCommand(click.Command):
     help="With --fill: the mass of one link (repeatable); it wins over --density.",
 )
 @package_option()
-@max_size_option()
+@limit_options()
 def robot(
     file: str,
     args: Sequence[str],

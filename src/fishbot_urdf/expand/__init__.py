@@ -24,7 +24,7 @@ from pathlib import Path
 from ..errors import ArgumentError, FishbotUrdfError, InputError
 from ..model import Location
 
-__all__ = ["Expansion", "XacroError", "expand", "parse_args"]
+__all__ = ["Expansion", "ExpansionLimitError", "XacroError", "expand", "parse_args"]
 
 _LOCK = threading.RLock()
 
@@ -63,6 +63,11 @@ class XacroError(FishbotUrdfError):
             line=where.line if where else None,
             column=where.column if where else None,
         )
+
+
+class ExpansionLimitError(XacroError):
+    """An expansion was stopped for making more elements than the size limit allows, or for
+    taking longer than the time limit (see :mod:`fishbot_urdf.inputs`)."""
 
 
 @dataclass(frozen=True, slots=True)

@@ -7,6 +7,7 @@ import functools
 import io
 import os
 import threading
+import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
@@ -15,38 +16,54 @@ from xml.parsers.expat import ExpatError
 
 from ..diagnostics import shown_path
 from ..errors import FishbotUrdfError, InputError
-from ..inputs import read_input
+from ..inputs import max_bytes, max_seconds, read_input
 from ..model import Location
 from ..packages import PackageNotFoundError, find_package
-from . import Expansion, XacroError
+from . import Expansion, ExpansionLimitError, XacroError
 from ._errors import SOURCE_KEY, Explaining, source
 from ._guard import guard_symbols, guarded
 
 
+class _Overgrown(FishbotUrdfError):
+    """The expansion made more elements than its budget allows, or took too long."""
+
+
 class _KeepOnClone:
-    """Copies an element's source location to its clones (DOM user-data handler)."""
+    """Copies an element's source location to its clones (DOM user-data handler), and
+    counts the clones: macros that call each other twice per level double the document
+    with every level, and a budget stops that before it fills the memory."""
+
+    __slots__ = ("budget", "deadline", "left", "seconds")
+
+    def __init__(self, budget: int, seconds: float) -> None:
+        self.budget = self.left = budget
+        self.seconds = seconds
+        self.deadline = time.monotonic() + seconds
 
     def handle(self, operation: int, key: str, data: Any, src: Any, dst: Any) -> None:
         # The clone shares the original's user data: it only ever holds this one entry and
         # is never changed (a macro call clones thousands of elements, so this is hot).
         dst._user_data = src._user_data
-
-
-_KEEP = _KeepOnClone()
+        self.left -= 1
+        if self.left < 0:
+            raise _Overgrown(f"makes more than {self.budget:,} elements")
+        if not self.left & 63 and time.monotonic() > self.deadline:
+            raise _Overgrown(f"takes longer than {self.seconds:g} s")
 
 
 class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
     """minidom's builder, also noting where each element starts."""
 
-    def __init__(self, path: str) -> None:
+    def __init__(self, path: str, keeper: _KeepOnClone) -> None:
         super().__init__()
         self._path = path
+        self._keeper = keeper
 
     def start_element_handler(self, name: str, attributes: Any) -> None:
         parser = self.getParser()
         line, column = parser.CurrentLineNumber, parser.CurrentColumnNumber + 1
         super().start_element_handler(name, attributes)
-        self.curNode.setUserData(SOURCE_KEY, Location(self._path, line, column), _KEEP)
+        self.curNode.setUserData(SOURCE_KEY, Location(self._path, line, column), self._keeper)
 
     # The first element goes through another handler, which then calls the one above.
 
@@ -69,6 +86,9 @@ class Run(Explaining):
         self.properties: dict[str, Location | None] = {}  # where each property was defined
         self._saved: list[tuple[Any, str, Any]] = []
         self._messages = io.StringIO()  # what xacro would have printed on stderr
+        # Elements a run may make by macro calls: one per 32 bytes of the size limit (8.4
+        # million by default; a 100,000-link robot made of macros needs about 2 million).
+        self._keeper = _KeepOnClone(max(1, max_bytes() // 32), max_seconds())
 
     # -- the hooks -------------------------------------------------------------------------
     def __enter__(self) -> Run:
@@ -253,7 +273,7 @@ class Run(Explaining):
                 where=Location(shown_path(filename), 1, 1),
             )
         self.parsing = filename
-        document = _LocatingBuilder(shown_path(filename)).parseString(data)
+        document = _LocatingBuilder(shown_path(filename), self._keeper).parseString(data)
         self.parsing = None
         return document
 
@@ -341,6 +361,12 @@ class Run(Explaining):
                 hint=f'write it: <{tag} {missing.strip(chr(39))}="...">',
                 where=source(self.node),
                 calls=self._calls(),
+            ) from exc
+        except _Overgrown as exc:
+            raise ExpansionLimitError(
+                f"the expansion {exc} (macros that call each other without a bound?)",
+                where=source(self.node),
+                calls=self._calls()[:3],
             ) from exc
         except FishbotUrdfError:
             raise
