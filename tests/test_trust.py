@@ -410,3 +410,43 @@ def test_an_expansion_that_doubles_without_end_stops_at_the_time_limit(
     # and the same file within its bounds expands
     (tmp_path / "small.xacro").write_text(_doubling(3))
     assert expand(tmp_path / "small.xacro").text.count("<link") == 15
+
+
+@pytest.mark.parametrize(
+    ("expression", "what"),
+    [
+        ("10**10**8", "a number of more than 1,000,000 bits"),
+        ("1 << 10**9", "a number of more than 1,000,000 bits"),
+        ("(10**200000) * (10**200000)", "a number of more than 1,000,000 bits"),
+        ("'a' * 10**10", "a value of more than 10,000,000 items"),
+        ("[0] * 10**8", "a value of more than 10,000,000 items"),
+        ("python.sum(python.range(10**12))", "a range of more than 10,000,000 items"),
+        ("math.factorial(10**7)", "a math.factorial of a number past 100,000"),
+        ("factorial(10**7)", "a math.factorial of a number past 100,000"),
+    ],
+)
+def test_an_expression_that_would_build_a_huge_value_stops_before_it_does(
+    expression: str, what: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    text = _robot(f'<link name="${{{expression.replace("<", "&lt;")}}}"/>')
+    robot = _expand_in(tmp_path, {"robot.xacro": text}, monkeypatch)
+    with pytest.raises(XacroError) as caught:
+        expand(robot)
+    assert caught.value.rule == "xacro-unsafe"
+    assert f"would make {what}, more than a xacro expression may" in caught.value.message
+
+
+def test_arithmetic_within_the_bounds_is_what_xacro_makes(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    parts = [
+        "2**10",
+        "'ab' * 3",
+        "[0] * 4",
+        "3 * 0.5",
+        "1 &lt;&lt; 4",
+        "python.len(python.range(5))",
+    ]
+    text = _robot("".join(f'<link name="l{i}_${{{p}}}"/>' for i, p in enumerate(parts)))
+    robot = _expand_in(tmp_path, {"robot.xacro": text}, monkeypatch)
+    assert expand(robot).text == xacro_command(robot, cwd=tmp_path).stdout

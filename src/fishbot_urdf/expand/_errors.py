@@ -105,6 +105,15 @@ class Explaining:
             )
         if isinstance(inner, PackageNotFoundError):
             return self._located(inner)
+        if isinstance(inner, UnsafeExpression) and inner.too_big:
+            return XacroError(
+                f"expression {_shown(inner.expression)} would make {inner.what}, more than "
+                "a xacro expression may",
+                rule="xacro-unsafe",
+                hint="a robot description needs no value that large",
+                where=where,
+                calls=calls,
+            )
         if isinstance(inner, UnsafeExpression):
             return XacroError(
                 f"expression {_shown(inner.expression)} uses '{inner.what}', which is not "

@@ -39,10 +39,12 @@ class UnsafeExpression(FishbotUrdfError):
 
     rule = "xacro-unsafe"
 
-    def __init__(self, expression: str, what: str) -> None:
-        super().__init__(f"'{what}' is not allowed in an expression")
+    def __init__(self, expression: str, what: str, *, too_big: bool = False) -> None:
+        said = f"would make {what}" if too_big else f"'{what}' is not allowed"
+        super().__init__(f"{said} in an expression")
         self.expression = expression
         self.what = what
+        self.too_big = too_big  # a value past the bounds, not a name refused
 
 
 def check_expression(expression: str) -> ast.Expression:
@@ -67,9 +69,13 @@ def guarded(
     of its recursion, and the frames here count against how deep macros may nest.
     """
     tree = _parsed(expression)
-    _scan(tree, expression)
-    globals["__builtins__"] = dict(builtins or {})
-    return eval(compile(tree, "<expression>", "eval"), globals, locals)  # checked above
+    if _scan(tree, expression):  # arithmetic that can grow without bound: counted
+        tree = ast.fix_missing_locations(_Bounded().visit(tree))
+    globals["__builtins__"] = {**(builtins or {}), _ARITH: _arithmetic}
+    try:
+        return eval(compile(tree, "<expression>", "eval"), globals, locals)  # checked above
+    except UnsafeExpression as exc:  # a bound, met while it ran: name the whole expression
+        raise UnsafeExpression(expression, exc.what, too_big=exc.too_big) from None
 
 
 def _parsed(expression: str) -> ast.Expression:
@@ -78,28 +84,117 @@ def _parsed(expression: str) -> ast.Expression:
     return tree
 
 
-def _scan(tree: ast.AST, expression: str) -> None:
+def _scan(tree: ast.AST, expression: str) -> bool:
+    """Refuse what the expression must not name; whether it holds growing arithmetic."""
     found: list[tuple[int, int, str]] = []
+    growing = False
     todo = [tree]
     while todo:
         node = todo.pop()
         refused = _refused(node)
         if refused is not None:
             found.append((getattr(node, "lineno", 0), getattr(node, "end_col_offset", 0), refused))
+        growing = growing or (isinstance(node, ast.BinOp) and isinstance(node.op, _GROWING))
         todo.extend(ast.iter_child_nodes(node))
     if found:
         raise UnsafeExpression(expression, min(found)[2])  # the first, as it is written
+    return growing
+
+
+# -- bounds on what one expression may build -----------------------------------------
+_GROWING = (ast.Pow, ast.Mult, ast.LShift)
+_ARITH = "__fishbot_arithmetic__"  # a name no expression can write (it starts with __)
+MAX_ITEMS = 10_000_000
+"""The longest string or list, and the most items of a range, one expression may make."""
+MAX_BITS = 1_000_000
+"""The largest whole number one expression may make, in bits (about 300,000 digits)."""
+
+
+class _Bounded(ast.NodeTransformer):
+    """``a ** b``, ``a * b`` and ``a << b`` become calls that check the result's size first."""
+
+    def visit_BinOp(self, node: ast.BinOp) -> ast.AST:
+        self.generic_visit(node)
+        if not isinstance(node.op, _GROWING):
+            return node
+        call = ast.Call(
+            func=ast.Name(_ARITH, ast.Load()),
+            args=[ast.Constant(type(node.op).__name__), node.left, node.right],
+            keywords=[],
+        )
+        return ast.copy_location(call, node)
+
+
+def _arithmetic(op: str, a: Any, b: Any) -> Any:
+    whole = _whole(a) and _whole(b)
+    if op == "Pow":
+        if whole and b > 0 and abs(a) > 1 and b * (abs(a).bit_length() - 1) > MAX_BITS:
+            raise _too_big(f"a number of more than {MAX_BITS:,} bits")
+        return a**b
+    if op == "LShift":
+        if whole and a and b > MAX_BITS:
+            raise _too_big(f"a number of more than {MAX_BITS:,} bits")
+        return a << b
+    for sequence, count in ((a, b), (b, a)):
+        repeated = isinstance(sequence, str | bytes | list | tuple) and _whole(count)
+        if repeated and len(sequence) * count > MAX_ITEMS:
+            raise _too_big(f"a value of more than {MAX_ITEMS:,} items")
+    if whole and a.bit_length() + b.bit_length() > MAX_BITS:
+        raise _too_big(f"a number of more than {MAX_BITS:,} bits")
+    return a * b
+
+
+def _too_big(what: str) -> UnsafeExpression:
+    return UnsafeExpression("", what, too_big=True)
+
+
+def _whole(value: Any) -> bool:
+    return isinstance(value, int)
+
+
+def _bounded_range(function: Any) -> Any:
+    """xacro's ``range`` (the deprecated one keeps its warning), up to ``MAX_ITEMS`` items:
+    making a range is quick, going through ``range(10**12)`` is not."""
+
+    def run(*args: Any) -> range:
+        made: range = function(*args)
+        if len(made) > MAX_ITEMS:
+            raise _too_big(f"a range of more than {MAX_ITEMS:,} items")
+        return made
+
+    return run
+
+
+def _bounded_count(function: Any, most: int) -> Any:
+    """``math.factorial``, ``comb`` and ``perm`` up to ``most``: past it they run for
+    minutes."""
+
+    def run(*args: Any) -> Any:
+        if any(_whole(a) and a > most for a in args):
+            raise _too_big(f"a math.{function.__name__} of a number past {most:,}")
+        return function(*args)
+
+    return run
 
 
 def guard_symbols(symbols: dict[str, Any]) -> None:
     """Close what a running expression could reach through xacro's ``python`` functions."""
     python = symbols.get("python")
-    if python is None:
-        return
-    if "vars" in python:
-        python["vars"] = _vars
-    if "type" in python:
-        python["type"] = _type
+    if python is not None:
+        if "vars" in python:
+            python["vars"] = _vars
+        if "type" in python:
+            python["type"] = _type
+        if "range" in python:
+            python["range"] = _bounded_range(python["range"])
+    if "range" in symbols:  # the deprecated name outside the namespace
+        symbols["range"] = _bounded_range(symbols["range"])
+    for table in (symbols, symbols.get("math")):
+        if table is None:
+            continue
+        for name in ("factorial", "comb", "perm"):
+            if name in table:
+                table[name] = _bounded_count(table[name], 100_000)
 
 
 def _refused(node: ast.AST) -> str | None:

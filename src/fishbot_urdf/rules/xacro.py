@@ -259,6 +259,9 @@ XACRO_UNSAFE = Rule(
     "`str.format` on anything but a written string, `python.type` with three arguments, and "
     "`python.vars` shows no names that start with `_`. These are the ways out of the symbol "
     "table to the files and programs of the machine; a robot description never needs them. "
+    "An expression that would build a value too large to be a robot's (a number of more than "
+    "a million bits, a string, list or range of more than ten million items, a factorial past "
+    "100,000) is stopped before it does, too: it would run for hours or fill the memory. "
     "Write the value with the properties, arguments and `math`, `python` and `xacro` functions.",
     bad="""\
 <robot name="fishbot" xmlns:xacro="http://www.ros.org/wiki/xacro">
