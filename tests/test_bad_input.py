@@ -335,3 +335,24 @@ def test_a_turned_wheel_inertia_with_a_zero_moment_is_findings_not_a_math_error(
         assert result.exception is None or isinstance(result.exception, SystemExit), command
         assert result.exit_code == 1, command
         assert "[massless-link]" in result.stderr, command
+
+
+def test_the_shapes_that_made_scans_quadratic_read_as_before(tmp_path: Path) -> None:
+    # A quote followed by a run of newlines in a comment (the raw-white-space scan), and a
+    # comment full of suppression markers: the same outcome, at any size (benchmarks/
+    # adversarial.py times them at 1 MB).
+    quote = tmp_path / "quote.urdf"
+    quote.write_text('<robot name="r"><!-- x="' + "\n" * 2000 + ' --><link name="a"/></robot>')
+    result = CliRunner().invoke(cli, ["check", str(quote)])
+    assert (result.exit_code, result.stderr) == (0, "")
+    raw = tmp_path / "raw.urdf"
+    raw.write_text('<robot name="r"><link name="a"><visual><origin xyz="0 0\t1"/>'
+                   '<geometry><box size="1 1 1"/></geometry></visual></link></robot>')  # fmt: skip
+    assert check_file(raw).diagnostics  # a raw tab in a vector is still found
+    markers = tmp_path / "markers.urdf"
+    markers.write_text(
+        '<robot name="r"><link name="a"/><!--' + " fishbot: ignore[" * 2000 + "--></robot>"
+    )
+    result = CliRunner().invoke(cli, ["check", str(markers)])
+    assert result.exception is None or isinstance(result.exception, SystemExit)
+    assert result.exit_code in (0, 1)

@@ -109,3 +109,18 @@ def test_networkx_is_not_imported_by_check() -> None:
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
+
+
+def test_tree_text_of_a_deep_chain_indents_four_spaces_per_level() -> None:
+    from fishbot_urdf.graph import tree_text
+    from fishbot_urdf.parse import parse
+
+    depth = 3000
+    links = "".join(f'<link name="l{i}"/>' for i in range(depth + 1))
+    joints = "".join(
+        f'<joint name="j{i}" type="fixed"><parent link="l{i - 1}"/><child link="l{i}"/></joint>'
+        for i in range(1, depth + 1)
+    )
+    robot = parse(f'<robot name="c">{links}{joints}</robot>')
+    lines = "".join(tree_text(robot)).splitlines()
+    assert lines[3:] == [f"{'    ' * i}child(1):  l{i}" for i in range(1, depth + 1)]

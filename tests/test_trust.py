@@ -450,3 +450,35 @@ def test_arithmetic_within_the_bounds_is_what_xacro_makes(
     text = _robot("".join(f'<link name="l{i}_${{{p}}}"/>' for i, p in enumerate(parts)))
     robot = _expand_in(tmp_path, {"robot.xacro": text}, monkeypatch)
     assert expand(robot).text == xacro_command(robot, cwd=tmp_path).stdout
+
+
+@pytest.mark.parametrize(
+    "command",
+    [
+        ["check"],
+        ["graph", "-o", "-"],
+        ["inertia"],
+        ["expand"],
+        ["inertia", "--fill", "--density", "1", "-o", "out.urdf"],
+    ],
+)
+def test_the_escape_runs_through_no_command(
+    command: list[str], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    _expand_in(tmp_path, {"robot.urdf.xacro": PLACES["attribute"]}, monkeypatch)
+    result = CliRunner().invoke(cli, [command[0], "robot.urdf.xacro", *command[1:]])
+    assert result.exit_code == 1
+    assert result.stderr.endswith("[xacro-unsafe]\n")
+    assert not (tmp_path / CANARY).exists()
+
+
+def test_the_escape_runs_through_no_library_call(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import fishbot_urdf
+
+    _expand_in(tmp_path, {"robot.urdf.xacro": PLACES["attribute"]}, monkeypatch)
+    for call in (fishbot_urdf.load, fishbot_urdf.check_file):
+        with pytest.raises(XacroError):
+            call("robot.urdf.xacro")
+    assert not (tmp_path / CANARY).exists()
