@@ -19,9 +19,10 @@ import errno
 import os
 import stat
 from collections.abc import Iterator
-from contextlib import contextmanager
+from contextlib import AbstractContextManager, contextmanager
 from contextvars import ContextVar
 from pathlib import Path
+from typing import Any
 
 from .errors import ArgumentError, InputError
 
@@ -64,16 +65,11 @@ def max_bytes() -> int:
     return _LIMIT.get()
 
 
-@contextmanager
-def size_limit(limit: int) -> Iterator[None]:
+def size_limit(limit: int) -> AbstractContextManager[None]:
     """Read files of up to ``limit`` bytes inside the ``with`` (this thread or task only)."""
     if limit <= 0:
         raise ArgumentError("the size limit must be a positive number of bytes")
-    token = _LIMIT.set(limit)
-    try:
-        yield
-    finally:
-        _LIMIT.reset(token)
+    return _holding(_LIMIT, limit)
 
 
 def max_seconds() -> float:
@@ -81,17 +77,21 @@ def max_seconds() -> float:
     return _SECONDS.get()
 
 
-@contextmanager
-def time_limit(seconds: float) -> Iterator[None]:
+def time_limit(seconds: float) -> AbstractContextManager[None]:
     """Let an expansion or a drawing take up to ``seconds`` inside the ``with`` (this thread
     or task only)."""
     if not seconds > 0:
         raise ArgumentError("the time limit must be a positive number of seconds")
-    token = _SECONDS.set(seconds)
+    return _holding(_SECONDS, seconds)
+
+
+@contextmanager
+def _holding(variable: ContextVar[Any], value: Any) -> Iterator[None]:
+    token = variable.set(value)
     try:
         yield
     finally:
-        _SECONDS.reset(token)
+        variable.reset(token)
 
 
 def read_input(path: str | Path) -> bytes:
