@@ -62,16 +62,12 @@ def package_name(package_xml: str | Path) -> str | None:
     which ROS's tools refuse too, has no name)."""
     from lxml import etree
 
+    from .errors import XmlSyntaxError
+    from .xmlsource import parse_xml
+
     try:
-        data = read_input(package_xml)
-    except InputError:
-        return None
-    parser = etree.XMLParser(
-        resolve_entities=False, load_dtd=False, no_network=True, huge_tree=False
-    )
-    try:
-        root = etree.fromstring(data, parser)
-    except etree.XMLSyntaxError:
+        root = parse_xml(read_input(package_xml), str(package_xml))
+    except (InputError, XmlSyntaxError):
         return None
     if not isinstance(root.tag, str) or etree.QName(root).localname != "package":
         return None

@@ -306,7 +306,7 @@ def check(
                 status = max(status, status_of(exc))
                 continue
             inputs.extend(result.files)
-            if output is not None:
+            if output not in (None, "-"):
                 inputs.extend(mesh_files(result.robot, result.path, packages))
             if skip_includes and _is_include(result):
                 reports.append(_skipped(result, config))

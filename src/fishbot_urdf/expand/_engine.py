@@ -302,31 +302,25 @@ class Run(Explaining):
         }
         evaluating = guarded.__code__
         calls: list[tuple[str, Location | None]] = []
-        inner: BaseException | None = error.__context__
-        while inner is not None:  # what failed inside an expression: the symbols it saw
-            trace = inner.__traceback__
-            while trace is not None:
-                if trace.tb_frame.f_code is evaluating:
-                    self.symbols = trace.tb_frame.f_locals.get("globals")
-                trace = trace.tb_next
-            inner = inner.__context__
-        trace = error.__traceback__
-        while trace is not None:
-            frame = trace.tb_frame
-            if frame.f_code is evaluating:  # the symbols of the failing expression
-                self.symbols = frame.f_locals.get("globals")
+        # The symbols of the failing expression: its frame is in the error's traceback or,
+        # when xacro wrapped the error, in the traceback of the one it wrapped.
+        chained: BaseException | None = error
+        while chained is not None:
+            for frame in _frames(chained):
+                if frame.f_code is evaluating:
+                    self.symbols = frame.f_locals.get("globals")
+            chained = chained.__context__
+        for frame in _frames(error):
             local = steps.get(frame.f_code)
             node = frame.f_locals.get(local) if local else None
-            if node is not None:
-                if node.nodeType != node.ELEMENT_NODE:  # a text: its element is at fault
-                    node = node.parentNode
-                self.node = node
-                if frame.f_code is x.handle_macro_call.__code__ and node.tagName.startswith(
-                    "xacro:"
-                ):
-                    calls.append((node.tagName[6:], source(node)))
-                    self.macros = frame.f_locals.get("macros")
-            trace = trace.tb_next
+            if node is None:
+                continue
+            if node.nodeType != node.ELEMENT_NODE:  # a text: its element is at fault
+                node = node.parentNode
+            self.node = node
+            if frame.f_code is x.handle_macro_call.__code__ and node.tagName.startswith("xacro:"):
+                calls.append((node.tagName[6:], source(node)))
+                self.macros = frame.f_locals.get("macros")
         self.calls = calls
 
     # -- the run ---------------------------------------------------------------------------
@@ -379,6 +373,14 @@ class Run(Explaining):
         return Expansion(
             self.path, text, tuple(seen), tuple(_sources(document, self.path)), messages
         )
+
+
+def _frames(error: BaseException) -> Iterator[Any]:
+    """The frames of an error's traceback, outermost first."""
+    trace = error.__traceback__
+    while trace is not None:
+        yield trace.tb_frame
+        trace = trace.tb_next
 
 
 def _on_a_fresh_stack(work: Callable[[], Any]) -> Any:
