@@ -170,7 +170,8 @@ def _wheel(inertial: Inertial | None, joint: JointType = JointType.CONTINUOUS) -
     return Robot(
         "r",
         links=(Link("base", inertial=cylinder_inertia(1.0, 0.1, 0.1)), wheel),
-        joints=(Joint("j", joint, "base", "wheel", axis=(0.0, 1.0, 0.0)),),
+        # about its cylinder's axis (z), as a wheel turns
+        joints=(Joint("j", joint, "base", "wheel", axis=(0.0, 0.0, 1.0)),),
     )
 
 

@@ -117,6 +117,9 @@ def _findings(result: Result) -> list[tuple[str, str]]:
 def _check(tmp_path: Path, rule: Rule, text: str) -> Result:
     """`fishbot check --format json` on ``text``, written as a .urdf or a .urdf.xacro file."""
     (tmp_path / "wheel.urdf.xacro").write_text(WHEEL_XACRO, encoding="utf-8")
+    (tmp_path / "meshes").mkdir(exist_ok=True)
+    for mesh in ("base_link.stl", "base_link.step"):  # found, as the mesh rules' examples say
+        (tmp_path / "meshes" / mesh).write_bytes(b"")
     name = tmp_path / ("robot.urdf.xacro" if rule.language == "xacro" else "robot.urdf")
     name.write_text(text, encoding="utf-8")
     return CliRunner().invoke(cli, ["check", "--isolated", "--format", "json", str(name)])

@@ -45,7 +45,7 @@ def _everything(value: object) -> object:
 
 def _check(path: Path) -> object:
     try:
-        result = fishbot_urdf.check_file(path)
+        result = fishbot_urdf.check_file(path, packages={"demo": DATA / "valid" / "demo"})
     except FishbotUrdfError as exc:
         return ("raised", type(exc).__name__, str(exc))
     return (

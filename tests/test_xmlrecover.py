@@ -297,7 +297,9 @@ def test_positions_are_those_of_the_file_as_written() -> None:
 
 
 def _ours(path: Path) -> tuple[int, bytes, str]:
-    result = CliRunner().invoke(cli, ["check", str(path)])
+    # The cases put odd characters into mesh names, of files that are not there: what is
+    # compared here is how the file is read.
+    result = CliRunner().invoke(cli, ["check", "--ignore", "meshes", str(path)])
     assert result.exception is None or isinstance(result.exception, SystemExit), result.exception
     return result.exit_code, result.stdout_bytes, result.stderr
 

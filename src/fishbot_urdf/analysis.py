@@ -8,11 +8,12 @@ on; functions that take a robot take an analysis too.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import NamedTuple
 
+from .extensions import Reference
 from .graph import Topology, root, topology
 from .model import Joint, JointType, Link, Robot
 from .spatial import Pose
@@ -53,6 +54,7 @@ class Analysis:
     links: Mapping[str, Link] = field(repr=False)
     joints: Mapping[str, Joint] = field(repr=False)
     parent_joint: Mapping[str, Joint] = field(repr=False)
+    given_references: tuple[Reference, ...] | None = field(default=None, repr=False)
 
     @property
     def root(self) -> str:
@@ -74,6 +76,16 @@ class Analysis:
         return _bodies(self)
 
     @cached_property
+    def references(self) -> tuple[Reference, ...]:
+        """The names the robot's Gazebo, transmission and ros2_control elements give to its
+        links and joints (with their places when the file's reader gave them)."""
+        if self.given_references is not None:
+            return self.given_references
+        from .extensions import from_robot
+
+        return from_robot(self.robot)
+
+    @cached_property
     def zero_poses(self) -> Mapping[str, Pose]:
         """Every reached link's pose in its root's frame, every joint at zero."""
         from .kinematics import link_poses
@@ -81,9 +93,13 @@ class Analysis:
         return link_poses(self)
 
 
-def analyse(robot: Robot, path: str | None = None) -> Analysis:
+def analyse(
+    robot: Robot, path: str | None = None, references: Iterable[Reference] | None = None
+) -> Analysis:
     """Analyse ``robot`` (linear in its size). ``path`` names the file it came from (by
-    default, where the robot element was read)."""
+    default, where the robot element was read); ``references`` are the names its extension
+    elements give, as the file's reader found them (by default, read again from the
+    robot's extension elements, with no places)."""
     if path is None:
         path = robot.source.path if robot.source else "<robot>"
     links: dict[str, Link] = {}
@@ -95,7 +111,8 @@ def analyse(robot: Robot, path: str | None = None) -> Analysis:
         joints.setdefault(joint.name, joint)
         if joint.child in links and joint.parent != joint.child:
             parent_joint.setdefault(joint.child, joint)
-    return Analysis(robot, path, topology(robot), links, joints, parent_joint)
+    given = None if references is None else tuple(references)
+    return Analysis(robot, path, topology(robot), links, joints, parent_joint, given)
 
 
 def of(robot: Robot | Analysis) -> Analysis:

@@ -4,15 +4,27 @@ from __future__ import annotations
 
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field, replace
+from itertools import chain
 from pathlib import Path
 
 from .analysis import Analysis, analyse
 from .config import Config
-from .diagnostics import FOLLOWS, Diagnostic, Kind, shown_path, sort_key, without_consequences
+from .diagnostics import (
+    FOLLOWS,
+    Diagnostic,
+    Kind,
+    Subject,
+    shown_path,
+    sort_key,
+    without_consequences,
+)
 from .graph import Topology
 from .model import Robot
 from .parse import is_xacro_path, read
+from .rules.joints import joints
+from .rules.meshes import meshes
 from .rules.physics import GROUND_TOLERANCE, physics
+from .rules.references import references
 from .rules.structure import structure
 from .suppress import apply_suppressions, suppressions
 
@@ -79,8 +91,8 @@ def check_file(
     found = list(parsed.diagnostics)
     analysis = None
     if parsed.robot is not None:
-        analysis = analyse(parsed.robot, parsed.path)
-        found.extend(_rule_findings(analysis, found, config))
+        analysis = analyse(parsed.robot, parsed.path, parsed.references)
+        found.extend(_rule_findings(analysis, found, config, packages))
     if parsed.files and is_xacro_path(parsed.files[0]):  # the comments are in the sources
         sources: dict[str, bytes | None] = {shown_path(f): None for f in parsed.files}
     else:
@@ -100,31 +112,44 @@ def check_file(
     )
 
 
-def check(robot: Robot | Analysis, *, config: Config | None = None) -> tuple[Diagnostic, ...]:
+def check(
+    robot: Robot | Analysis,
+    *,
+    config: Config | None = None,
+    packages: Mapping[str, str | Path] | None = None,
+) -> tuple[Diagnostic, ...]:
     """Check a robot's structure and values; returns every finding of the selected rules,
-    sorted by position. (Comments are not read here: see `check_file`.)"""
+    sorted by position. ``packages`` are folders for the ``package://`` names of meshes
+    (looked up as for xacro's ``$(find)``). (Comments are not read here: see `check_file`.)"""
     analysis = robot if isinstance(robot, Analysis) else analyse(robot)
     config = config or Config()
-    found = without_consequences(config.apply(_rule_findings(analysis, (), config)))
+    found = without_consequences(config.apply(_rule_findings(analysis, (), config, packages)))
     return tuple(sorted(found, key=sort_key))
 
 
 def _rule_findings(
-    analysis: Analysis, read_findings: list[Diagnostic] | tuple[()], config: Config
+    analysis: Analysis,
+    read_findings: list[Diagnostic] | tuple[()],
+    config: Config,
+    packages: Mapping[str, str | Path] | None,
 ) -> Iterator[Diagnostic]:
     yield from structure(analysis)
-    # A link whose numbers could not be read has no trustworthy mass: its physics findings
-    # would only repeat the fault (a mass of "1kg" read as none is no "massless link").
-    unread: dict[str, set[str]] = {}
+    # A link or joint whose values could not be read has no trustworthy numbers: findings
+    # about them would only repeat the fault (a mass of "1kg" read as none is no "massless
+    # link", an effort limit left out is no "zero effort").
+    unread: dict[Subject, set[str]] = {}
     for d in read_findings:
-        if d.is_error and d.subject is not None and d.subject.kind is Kind.LINK:
-            unread.setdefault(d.subject.name, set()).add(d.rule)
+        if d.is_error and d.subject is not None and d.subject.kind in (Kind.LINK, Kind.JOINT):
+            unread.setdefault(d.subject, set()).add(d.rule)
     mm = config.ground_tolerance
     tolerance = GROUND_TOLERANCE if mm is None else mm / 1000.0
-    for finding in physics(analysis, ground_tolerance=tolerance):
-        subject = finding.subject
-        causes = unread.get(subject.name) if subject and subject.kind is Kind.LINK else None
+    for finding in chain(
+        joints(analysis),
+        references(analysis),
+        meshes(analysis, packages),
+        physics(analysis, ground_tolerance=tolerance),
+    ):
+        causes = unread.get(finding.subject) if finding.subject is not None else None
         if causes:
-            facts = {**finding.data, FOLLOWS: sorted(causes)}
-            finding = replace(finding, data=facts)
+            finding = replace(finding, data={**finding.data, FOLLOWS: sorted(causes)})
         yield finding

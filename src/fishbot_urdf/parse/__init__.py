@@ -13,6 +13,7 @@ from pathlib import Path
 
 from ..diagnostics import Diagnostic, Kind, Subject
 from ..errors import RobotError
+from ..extensions import Reference
 from ..model import Robot
 from ..rules.xacro import XACRO_WARNING
 from ..xmlsource import STRING_PATH, read_bytes, read_xml
@@ -33,6 +34,8 @@ class Parsed:
         files: Every file the robot was read from: the file itself and, for xacro, every
             file its expansion read (empty for bytes).
         data: The URDF read: the file's bytes, or a xacro file's expansion.
+        references: The names its Gazebo, transmission and ros2_control elements give to
+            links and joints, with their places.
     """
 
     path: str
@@ -40,6 +43,7 @@ class Parsed:
     diagnostics: tuple[Diagnostic, ...]
     files: tuple[str, ...] = ()
     data: bytes = field(default=b"", repr=False)
+    references: tuple[Reference, ...] = ()
 
 
 def is_xacro_path(path: str | Path) -> bool:
@@ -96,7 +100,8 @@ def read(
     root, locator, notes = document.root, document.locator, notes + document.recoveries
     reader = Reader(locator)
     robot = reader.robot(root)
-    return Parsed(name, robot, notes + tuple(reader.diagnostics), files, data)
+    found = notes + tuple(reader.diagnostics)
+    return Parsed(name, robot, found, files, data, tuple(reader.references))
 
 
 def xacro_warning(message: str, path: str) -> Diagnostic:

@@ -5,6 +5,7 @@ from __future__ import annotations
 from lxml import etree
 
 from ..diagnostics import Diagnostic, Kind, Severity, Subject
+from ..extensions import Reference
 from ..model import ZERO3, Location, Vector3
 from ..rules import Rule
 from ..rules.reading import BAD_NUMBER, BAD_VECTOR, MISSING_ATTRIBUTE, UNKNOWN_ELEMENT
@@ -33,6 +34,7 @@ class ReaderBase:
     def __init__(self, locator: Locator) -> None:
         self.locator = locator
         self.diagnostics: list[Diagnostic] = []
+        self.references: list[Reference] = []  # names extension elements give
         # What the element being read belongs to: the robot, a link, a joint, a material.
         self.subject = Subject(Kind.ROBOT, "")
 

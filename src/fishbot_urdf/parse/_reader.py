@@ -7,8 +7,10 @@ import re
 from lxml import etree
 
 from ..diagnostics import Kind, Subject
+from ..extensions import TAGS, collect
 from ..model import Joint, Link, Material, Robot
 from ..rules.reading import NO_ROBOT, ROBOT_NAME, ROBOT_VERSION
+from ._base import xml_text
 from ._joints import JointReader
 
 # urdfdom reads "MAJOR.MINOR" as two integers and supports only 1.0 ("1.00" and "01.0" too).
@@ -55,6 +57,9 @@ class Reader(JointReader):
                 joints.append(self.joint(child, locate(child)))
             elif tag == "material":
                 materials.append(self.material(child, locate(child), whole))
+            elif tag in TAGS:  # read for the names it gives to links and joints
+                extras.append(xml_text(child))
+                self.references.extend(collect(child, locate, self.locator.attribute))
             elif isinstance(tag, str):
                 extras.append(self.extra(child))
         return Robot(

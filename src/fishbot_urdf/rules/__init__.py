@@ -28,6 +28,9 @@ class Family(str, Enum):
     XML = "xml"
     URDF = "urdf"
     STRUCTURE = "structure"
+    JOINTS = "joints"
+    REFERENCES = "references"
+    MESHES = "meshes"
     PHYSICS = "physics"
     XACRO = "xacro"
     SETUP = "setup"
@@ -162,11 +165,11 @@ def _registry() -> Mapping[str, Rule]:
 
 
 def _collect() -> dict[str, Rule]:
-    from . import physics, reading, setup, structure, xacro, xml
+    from . import joints, meshes, physics, reading, references, setup, structure, xacro, xml
 
     found: dict[str, Rule] = {}
     order = list(Family)
-    modules = (xml, reading, structure, physics, xacro, setup)
+    modules = (xml, reading, structure, joints, references, meshes, physics, xacro, setup)
     rules = [r for module in modules for r in vars(module).values() if isinstance(r, Rule)]
     for rule in sorted(rules, key=lambda r: (order.index(r.family), r.id)):
         if rule.id in found and found[rule.id] is not rule:

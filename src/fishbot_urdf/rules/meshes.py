@@ -1,0 +1,269 @@
+"""Rules about mesh files: the name resolves to a file, with the right case, in a format the
+robot's programs load."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterator, Mapping
+from pathlib import Path
+
+from ..analysis import Analysis
+from ..diagnostics import Diagnostic, Kind, Severity, Subject, closest
+from ..model import Link, Mesh
+from . import Consumer, Family, Rule
+
+__all__ = ["meshes"]
+
+E, W = Severity.ERROR, Severity.WARNING
+_VIEWERS = (Consumer.URDFDOM, Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE, Consumer.PYBULLET)
+
+_ONE_BOX = """\
+<robot name="fishbot">
+  <link name="base_link">
+    <visual>
+      <geometry><mesh filename="{name}"/></geometry>
+    </visual>
+  </link>
+</robot>
+"""
+# The examples' folder holds meshes/base_link.stl and .step (empty files are found as well).
+_FOUND = "meshes/base_link.stl"
+
+MESH_NOT_FOUND = Rule(
+    "mesh-not-found",
+    E,
+    Family.MESHES,
+    summary="A <mesh filename> names a file that is not there.",
+    explanation="check_urdf never opens meshes, so a wrong mesh name passes it; RViz then shows "
+    "nothing for the part and Gazebo, MuJoCo and PyBullet refuse the robot. `package://` names "
+    "are looked up as for xacro's `$(find)`, relative names beside the robot file. When the "
+    "package itself is not found the file cannot be judged, and the finding is a warning that "
+    "says where it looked (give the folder with `--package NAME=PATH`).",
+    bad=_ONE_BOX.format(name="meshes/base.stl"),
+    good=_ONE_BOX.format(name=_FOUND),
+    consumers=_VIEWERS,
+)
+MESH_CASE = Rule(
+    "mesh-case",
+    E,
+    Family.MESHES,
+    summary="A mesh file name differs from the file's only in upper and lower case.",
+    explanation="macOS and Windows find `Base_Link.STL` when the file is `base_link.stl`, Linux "
+    "does not: the robot works on the laptop it was written on and loses its meshes on the "
+    "robot's computer and in CI. Write the name exactly as the file is named.",
+    bad=_ONE_BOX.format(name="meshes/Base_Link.stl"),
+    good=_ONE_BOX.format(name=_FOUND),
+    consumers=_VIEWERS,
+)
+MESH_URI = Rule(
+    "mesh-uri",
+    E,
+    Family.MESHES,
+    summary="A mesh file name is a malformed URI (package:///, package:/, file://relative, "
+    "backslashes).",
+    explanation="`package://NAME/path` names a file in ROS package NAME, so `package:///x` names "
+    "a package with no name and ROS's resource retriever fails on it. `file://` must be "
+    "followed by an absolute path, and backslashes only work on Windows. Write "
+    "`package://my_robot/meshes/base.stl`, a `file:///` path, or a path relative to the robot "
+    "file with forward slashes.",
+    bad=_ONE_BOX.format(name="package:///meshes/base_link.stl"),
+    good=_ONE_BOX.format(name=_FOUND),
+    consumers=_VIEWERS,
+)
+MESH_FORMAT = Rule(
+    "mesh-format",
+    W,
+    Family.MESHES,
+    summary="A mesh is in a format most robot programs cannot load (not STL, OBJ or COLLADA).",
+    explanation="RViz loads many formats, but Gazebo Classic loads STL, OBJ and COLLADA (.dae) "
+    "only, MuJoCo and PyBullet STL and OBJ, and CAD formats (STEP, IGES) or files without an "
+    "extension load nowhere. Export the mesh as STL or OBJ (COLLADA keeps colours for RViz and "
+    "Gazebo).",
+    bad=_ONE_BOX.format(name="meshes/base_link.step"),
+    good=_ONE_BOX.format(name=_FOUND),
+    consumers=(Consumer.GAZEBO, Consumer.MUJOCO, Consumer.PYBULLET),
+)
+
+_LOADED = frozenset({".stl", ".obj", ".dae"})
+_REMOTE = ("http://", "https://", "model://")  # not ours to fetch: Gazebo's model path, the web
+
+
+def meshes(
+    analysis: Analysis,
+    packages: Mapping[str, str | Path] | None = None,
+    environ: Mapping[str, str] | None = None,
+) -> Iterator[Diagnostic]:
+    """Every finding about the robot's mesh files. ``packages`` and ``environ`` are where
+    ``package://`` names are looked up (as for xacro's ``$(find)``)."""
+    finder = _Finder(analysis.path, packages or {}, os.environ if environ is None else environ)
+    for link in analysis.robot.links:
+        shapes = [part.geometry for part in link.visuals]
+        shapes += [part.geometry for part in link.collisions]
+        for shape in shapes:
+            if isinstance(shape, Mesh) and shape.filename:
+                yield from _mesh(analysis, link, shape, finder)
+
+
+def _mesh(analysis: Analysis, link: Link, mesh: Mesh, finder: _Finder) -> Iterator[Diagnostic]:
+    path, name = analysis.path, mesh.filename
+    subject = Subject(Kind.LINK, link.name)
+    named = f"link {link.name!r}: mesh {name!r}"
+    where = mesh.source
+
+    def report(rule: Rule, what: str, hint: str, severity: Severity | None = None) -> Diagnostic:
+        return rule.report(
+            f"{named} {what}", where, path=path, subject=subject, hint=hint, severity=severity
+        )
+
+    malformed = _malformed(name)
+    if malformed:
+        yield report(MESH_URI, malformed[0], malformed[1])
+        return
+    if name.startswith(_REMOTE):
+        return
+    extension = os.path.splitext(name)[1].lower()
+    if extension not in _LOADED:
+        kind = f"is a {extension} file" if extension else "has no file extension"
+        yield report(
+            MESH_FORMAT,
+            kind,
+            "Gazebo loads STL, OBJ and COLLADA; MuJoCo and PyBullet STL and OBJ: export it "
+            "as one of those",
+        )
+    try:
+        file = finder.file(name)
+    except _Unknown as exc:
+        yield report(
+            MESH_NOT_FOUND,
+            f"is in package {exc.package!r}, which is not found, so the file cannot be checked",
+            f"searched: {'; '.join(exc.searched)}; give its folder with --package "
+            f"{exc.package}=PATH",
+            severity=Severity.WARNING,
+        )
+        return
+    if file is None:
+        return  # a relative name with no robot file to be relative to
+    exact, other = finder.exists(file)
+    if exact:
+        return
+    if other is not None:
+        yield report(
+            MESH_CASE,
+            f"is found only as {other!r}, a name that differs in case",
+            "Linux file names are case-sensitive: write the name exactly as the file's",
+        )
+        return
+    close = finder.close(file)
+    guess = f"did you mean {close!r}? " if close else ""
+    yield report(MESH_NOT_FOUND, f"is not found (looked for {file})", guess + _fix(name))
+
+
+def _fix(name: str) -> str:
+    if name.startswith("package://"):
+        return "package:// names a file inside the package's folder"
+    if name.startswith("file://"):
+        return "file:// names an absolute path on this machine"
+    return "a relative name is read beside the robot file"
+
+
+def _malformed(name: str) -> tuple[str, str] | None:
+    """What is wrong with a mesh name written as a URI, and the fix; None if nothing is."""
+    if "\\" in name:
+        return "holds backslashes", "write forward slashes (/): backslashes work only on Windows"
+    if name.startswith("package://"):
+        package, _, rest = name[len("package://") :].partition("/")
+        if not package:
+            return (
+                "names a package with no name (package:///)",
+                "write package://PACKAGE/path, with the package's name after the two slashes",
+            )
+        if not rest:
+            return "names a package but no file in it", "write package://PACKAGE/path/to/mesh"
+        return None
+    if name.startswith(("package:", "package//")):
+        return "is not a package:// URI", "write package://PACKAGE/path, with two slashes"
+    if name.startswith("file://") and not name.startswith("file:///"):
+        return (
+            "is a file:// URI with a relative path (the first folder is read as a host name)",
+            "write file:///absolute/path, or a path relative to the robot file without file://",
+        )
+    return None
+
+
+class _Unknown(Exception):
+    def __init__(self, package: str, searched: tuple[str, ...]) -> None:
+        self.package, self.searched = package, searched
+
+
+class _Finder:
+    """Mesh names to files, with each package and folder looked up once."""
+
+    def __init__(self, robot: str, packages: Mapping[str, str | Path], env: Mapping[str, str]):
+        # A robot read from a string or stdin has no folder for relative names.
+        self.robot = None if robot.startswith("<") or robot == "-" else robot
+        self.packages, self.env = packages, env
+        self.found: dict[str, Path | _Unknown] = {}
+        self.listings: dict[Path, list[str] | None] = {}
+
+    def file(self, name: str) -> Path | None:
+        if name.startswith("package://"):
+            package, _, rest = name[len("package://") :].partition("/")
+            folder = self.found.get(package)
+            if folder is None:
+                folder = self.found[package] = self._package(package)
+            if isinstance(folder, _Unknown):
+                raise folder
+            return folder / rest
+        if name.startswith("file://"):
+            return Path(name[len("file://") :])
+        path = Path(name)
+        if path.is_absolute():
+            return path
+        return None if self.robot is None else Path(self.robot).parent / path
+
+    def _package(self, package: str) -> Path | _Unknown:
+        from ..packages import PackageNotFoundError, find_package
+
+        try:
+            return find_package(package, near=self.robot, packages=self.packages, environ=self.env)
+        except PackageNotFoundError as exc:
+            return _Unknown(package, exc.searched)
+
+    def _listing(self, folder: Path) -> list[str] | None:
+        if folder not in self.listings:
+            try:
+                self.listings[folder] = sorted(os.listdir(folder))
+            except OSError:
+                self.listings[folder] = None
+        return self.listings[folder]
+
+    def exists(self, file: Path) -> tuple[bool, str | None]:
+        """Whether ``file`` is there under exactly its name, and else the name of a file
+        whose name differs only in case."""
+        names = self._listing(file.parent)
+        if names is None:
+            # The folder is missing, or is named in another case itself.
+            return False, self._other_case_folder(file)
+        if file.name in names:
+            return True, None
+        lower = file.name.lower()
+        for entry in names:
+            if entry.lower() == lower:
+                return False, str(file.parent / entry)
+        return False, None
+
+    def _other_case_folder(self, file: Path) -> str | None:
+        parent = file.parent
+        names = self._listing(parent.parent) if parent != parent.parent else None
+        for entry in names or ():
+            if entry.lower() == parent.name.lower() and entry != parent.name:
+                found, other = self.exists(parent.parent / entry / file.name)
+                return str(parent.parent / entry / file.name) if found else other
+        return None
+
+    def close(self, file: Path) -> str | None:
+        names = self._listing(file.parent)
+        if not names:
+            return None
+        close = closest(file.name, names)
+        return None if close is None else str(file.parent / close)

@@ -1,0 +1,280 @@
+"""Rules about names given to the robot's parts: by Gazebo, transmission and ros2_control
+elements, by Gazebo's plugins, and by visuals naming a material."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from ..analysis import Analysis
+from ..diagnostics import Diagnostic, Kind, Severity, Subject, closest, listing, shown_path
+from ..extensions import Reference, Target
+from ..model import JointType, Location, Material
+from . import Consumer, Family, Rule
+
+__all__ = ["references"]
+
+E, W = Severity.ERROR, Severity.WARNING
+
+UNKNOWN_REFERENCE = Rule(
+    "unknown-reference",
+    E,
+    Family.REFERENCES,
+    summary="A <gazebo reference>, <transmission>, <ros2_control> or Gazebo plugin names a link "
+    "or joint the robot does not have.",
+    explanation="These elements name the robot's parts, and no URDF reader looks at them: a typo "
+    "passes check_urdf and RViz, then the simulation quietly goes wrong. Gazebo drops a "
+    "`<gazebo reference>` block that names nothing (the friction or colour never applies), the "
+    "controller manager refuses a `<ros2_control>` joint it cannot find, and a differential drive "
+    "plugin with a wrong joint never moves the wheels. Use the exact link or joint name.",
+    bad="""\
+<robot name="fishbot">
+  <link name="base_link"/>
+  <link name="left_wheel_link"/>
+  <joint name="left_wheel_joint" type="continuous">
+    <parent link="base_link"/><child link="left_wheel_link"/><axis xyz="0 1 0"/>
+  </joint>
+  <gazebo reference="left_wheel_lnk"><mu1>0.9</mu1></gazebo>
+  <ros2_control name="fishbot" type="system">
+    <joint name="left_whel_joint"><command_interface name="velocity"/></joint>
+  </ros2_control>
+</robot>
+""",
+    good="""\
+<robot name="fishbot">
+  <link name="base_link"/>
+  <link name="left_wheel_link"/>
+  <joint name="left_wheel_joint" type="continuous">
+    <parent link="base_link"/><child link="left_wheel_link"/><axis xyz="0 1 0"/>
+  </joint>
+  <gazebo reference="left_wheel_link"><mu1>0.9</mu1></gazebo>
+  <ros2_control name="fishbot" type="system">
+    <joint name="left_wheel_joint"><command_interface name="velocity"/></joint>
+  </ros2_control>
+</robot>
+""",
+    consumers=(Consumer.GAZEBO,),
+)
+CONTROL_INTERFACE = Rule(
+    "control-interface",
+    E,
+    Family.REFERENCES,
+    summary="A <ros2_control> joint is fixed or has more than one axis, or names an interface "
+    "that looks like a misspelt standard one.",
+    explanation="ros2_control drives joints of one degree of freedom through the standard "
+    "interfaces `position`, `velocity`, `acceleration` and `effort`. A fixed joint has nothing to "
+    "command, planar and floating joints are not supported by the Gazebo hardware plugins, and an "
+    "interface such as `postion` is taken as a custom one no controller claims, so the controller "
+    "fails to start. Control moving joints, and spell the interfaces as ros2_control does.",
+    bad="""\
+<robot name="fishbot">
+  <link name="base_link"/>
+  <link name="left_wheel_link"/>
+  <joint name="left_wheel_joint" type="continuous">
+    <parent link="base_link"/><child link="left_wheel_link"/><axis xyz="0 1 0"/>
+  </joint>
+  <ros2_control name="fishbot" type="system">
+    <joint name="left_wheel_joint"><command_interface name="velocty"/></joint>
+  </ros2_control>
+</robot>
+""",
+    good="""\
+<robot name="fishbot">
+  <link name="base_link"/>
+  <link name="left_wheel_link"/>
+  <joint name="left_wheel_joint" type="continuous">
+    <parent link="base_link"/><child link="left_wheel_link"/><axis xyz="0 1 0"/>
+  </joint>
+  <ros2_control name="fishbot" type="system">
+    <joint name="left_wheel_joint"><command_interface name="velocity"/></joint>
+  </ros2_control>
+</robot>
+""",
+    consumers=(Consumer.GAZEBO,),
+)
+UNDEFINED_MATERIAL = Rule(
+    "undefined-material",
+    W,
+    Family.REFERENCES,
+    summary="A visual names a material that has no colour or texture anywhere.",
+    explanation='`<material name="blue"/>` with no `<color>` inside borrows the colour of a '
+    "material of that name defined at the robot's top level (or in an earlier visual). When "
+    "there is none, check_urdf only warns `material 'blue' undefined` and RViz draws the part in "
+    "its default colour. Define the material once at the top level, or give the visual its "
+    "`<color>`.",
+    bad="""\
+<robot name="fishbot">
+  <link name="base_link">
+    <visual>
+      <geometry><box size="0.2 0.2 0.1"/></geometry>
+      <material name="blue"/>
+    </visual>
+  </link>
+</robot>
+""",
+    good="""\
+<robot name="fishbot">
+  <material name="blue"><color rgba="0 0 1 1"/></material>
+  <link name="base_link">
+    <visual>
+      <geometry><box size="0.2 0.2 0.1"/></geometry>
+      <material name="blue"/>
+    </visual>
+  </link>
+</robot>
+""",
+)
+MATERIAL_CONFLICT = Rule(
+    "material-conflict",
+    W,
+    Family.REFERENCES,
+    summary="One material name is given different colours in different places.",
+    explanation="urdfdom keeps one material per name: the top-level definition, or else the "
+    "first visual that defines it. Every later visual that uses the name with another "
+    "`<color>` is drawn in the first colour by RViz, while Gazebo and other readers use the "
+    "visual's own, so the robot looks different in each. Give each colour its own material "
+    "name.",
+    bad="""\
+<robot name="fishbot">
+  <link name="base_link">
+    <visual>
+      <geometry><box size="0.2 0.2 0.1"/></geometry>
+      <material name="paint"><color rgba="0 0 1 1"/></material>
+    </visual>
+    <visual>
+      <geometry><sphere radius="0.05"/></geometry>
+      <material name="paint"><color rgba="1 0 0 1"/></material>
+    </visual>
+  </link>
+</robot>
+""",
+    good="""\
+<robot name="fishbot">
+  <link name="base_link">
+    <visual>
+      <geometry><box size="0.2 0.2 0.1"/></geometry>
+      <material name="blue"><color rgba="0 0 1 1"/></material>
+    </visual>
+    <visual>
+      <geometry><sphere radius="0.05"/></geometry>
+      <material name="red"><color rgba="1 0 0 1"/></material>
+    </visual>
+  </link>
+</robot>
+""",
+    consumers=(Consumer.URDFDOM, Consumer.GAZEBO),
+)
+
+_STANDARD_INTERFACES = ("position", "velocity", "acceleration", "effort")
+_ONE_AXIS = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)
+
+
+def references(analysis: Analysis) -> Iterator[Diagnostic]:
+    """Every finding about names given to the robot's links, joints and materials."""
+    for ref in analysis.references:
+        yield from _reference(analysis, ref)
+    yield from _materials(analysis)
+
+
+def _reference(analysis: Analysis, ref: Reference) -> Iterator[Diagnostic]:
+    path, robot = analysis.path, analysis.robot
+    subject = Subject(Kind.ROBOT, robot.name)
+    names: list[str] = []
+    if ref.target is not Target.JOINT:
+        names.extend(analysis.links)
+    if ref.target is not Target.LINK:
+        names.extend(analysis.joints)
+    if ref.name not in names:
+        close = closest(ref.name, names)
+        hint = f"did you mean {close!r}?" if close else f"{ref.target.value}s: {listing(names)}"
+        yield UNKNOWN_REFERENCE.report(
+            f"{ref.context} names {ref.target.value} {ref.name!r}, which the robot does not have",
+            ref.source,
+            path=path,
+            subject=subject,
+            hint=hint,
+        )
+        return
+    joint = analysis.joints.get(ref.name) if ref.context == "<ros2_control> joint" else None
+    if joint is None:
+        return
+    if joint.type not in _ONE_AXIS:
+        yield CONTROL_INTERFACE.report(
+            f"{ref.context} {ref.name!r} is a {joint.type.value} joint",
+            ref.source,
+            path=path,
+            subject=Subject(Kind.JOINT, joint.name),
+            hint="ros2_control drives revolute, continuous and prismatic joints; "
+            "leave this one out",
+        )
+        return
+    for interface in ref.interfaces:
+        if interface.name in _STANDARD_INTERFACES:
+            continue
+        close = closest(interface.name, _STANDARD_INTERFACES)
+        if close is None:
+            continue  # a custom interface (a motor's temperature, say)
+        yield CONTROL_INTERFACE.report(
+            f"{ref.context} {ref.name!r}: {interface.kind} interface {interface.name!r} is not "
+            "a standard one",
+            interface.source or ref.source,
+            path=path,
+            subject=Subject(Kind.JOINT, joint.name),
+            hint=f"did you mean {close!r}? (standard: {', '.join(_STANDARD_INTERFACES)})",
+        )
+
+
+def _materials(analysis: Analysis) -> Iterator[Diagnostic]:
+    """Materials as urdfdom resolves them: top-level ones first, then each visual's in file
+    order; the first definition of a name is the one every visual gets."""
+    path = analysis.path
+    robot = analysis.robot
+    first: dict[str, Material] = {}
+    for top in robot.materials:
+        if top.name and (top.color or top.texture):
+            first.setdefault(top.name, top)
+    for link in robot.links:
+        for visual in link.visuals:
+            if visual.material is None or not visual.material.name:
+                continue
+            material = visual.material
+            defined = first.get(material.name)
+            if defined is None:
+                if material.color or material.texture:
+                    first[material.name] = material
+                    continue
+                names = [m.name for m in first.values()]
+                close = closest(material.name, names)
+                hint = f"did you mean {close!r}? " if close else ""
+                yield UNDEFINED_MATERIAL.report(
+                    f"link {link.name!r}: material {material.name!r} is not defined",
+                    material.source,
+                    path=path,
+                    subject=Subject(Kind.MATERIAL, material.name),
+                    hint=hint + "define it at the top level with a <color>, or give the visual "
+                    "its own <color>",
+                )
+            elif _differs(material, defined):
+                yield MATERIAL_CONFLICT.report(
+                    f"link {link.name!r}: material {material.name!r} is given "
+                    f"{_look(material)} here, but {_look(defined)}{_at(defined.source)}",
+                    material.source,
+                    path=path,
+                    subject=Subject(Kind.MATERIAL, material.name),
+                    hint="urdfdom (RViz) uses the first; give this colour its own name",
+                )
+
+
+def _differs(material: Material, defined: Material) -> bool:
+    if material.color is None and material.texture is None:
+        return False  # only names the material: that is how it is shared
+    return (material.color, material.texture) != (defined.color, defined.texture)
+
+
+def _look(material: Material) -> str:
+    if material.color is not None:
+        return "rgba " + " ".join(f"{v:g}" for v in material.color)
+    return f"texture {material.texture!r}" if material.texture else "no colour"
+
+
+def _at(where: Location | None) -> str:
+    return f" at {shown_path(where.path)}:{where.line}" if where is not None else " first"

@@ -1,0 +1,120 @@
+"""The joint rules: wheel axes, axis length, limits in degrees, zero limits, rpy in degrees,
+mimic chains."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+import fishbot_urdf
+from fishbot_urdf import Collision, Cylinder, Joint, JointType, Limit, Link, Mimic, Origin, Robot
+from fishbot_urdf.rules import Family, get
+
+
+def _rules(*joints: Joint, links: tuple[Link, ...] = ()) -> list[tuple[str, str]]:
+    names = {"base"} | {j.child for j in joints}
+    given = {link.name for link in links}
+    every = links + tuple(Link(n) for n in sorted(names - given))
+    found = fishbot_urdf.check(Robot("r", links=every, joints=joints))
+    # The physics rules have their own say about links without an <inertial>.
+    return [(d.rule, d.message) for d in found if get(d.rule).family is Family.JOINTS]
+
+
+def _wheel(rpy: tuple[float, float, float], radius: float = 0.03, length: float = 0.02) -> Link:
+    return Link("wheel", collisions=(Collision(Cylinder(radius, length), Origin(rpy=rpy)),))
+
+
+SIDEWAYS = (math.pi / 2, 0.0, 0.0)  # the cylinder's z axis turned onto -y
+
+
+@pytest.mark.parametrize(
+    ("axis", "rpy", "fires"),
+    [
+        ((0.0, 0.0, 1.0), SIDEWAYS, True),  # the turntable
+        ((0.0, 1.0, 0.0), SIDEWAYS, False),
+        ((0.0, -1.0, 0.0), SIDEWAYS, False),  # either sense of the axis
+        ((0.0, 0.0, 1.0), (0.0, 0.0, 0.0), False),  # a flat disc turning about z
+        ((1.0, 0.0, 0.0), (0.0, math.pi / 2, 0.0), False),  # pitch turns z onto x
+    ],
+)
+def test_a_wheel_turns_about_its_cylinders_axis(
+    axis: tuple[float, float, float], rpy: tuple[float, float, float], fires: bool
+) -> None:
+    joint = Joint("j", JointType.CONTINUOUS, "base", "wheel", axis=axis)
+    rules = [rule for rule, _ in _rules(joint, links=(_wheel(rpy),))]
+    assert ("wheel-axis" in rules) is fires
+
+
+def test_the_wheel_message_names_the_axis_to_write() -> None:
+    joint = Joint("j", JointType.CONTINUOUS, "base", "wheel", axis=(0.0, 0.0, 1.0))
+    [(rule, message)] = _rules(joint, links=(_wheel(SIDEWAYS),))
+    assert rule == "wheel-axis"
+    # R(pi/2, 0, 0) takes z to (0, -sin(pi/2), cos(pi/2)) = (0, -1, 0).
+    assert (
+        message == "joint 'j' turns about 0 0 1, but its wheel 'wheel' is a cylinder along 0 -1 0"
+    )
+
+
+def test_a_long_cylinder_on_a_continuous_joint_is_no_wheel() -> None:
+    joint = Joint("j", JointType.CONTINUOUS, "base", "wheel", axis=(0.0, 0.0, 1.0))
+    assert _rules(joint, links=(_wheel(SIDEWAYS, radius=0.01, length=0.5),)) == []
+
+
+def _revolute(**limit: float) -> Joint:
+    values = {"effort": 10.0, "velocity": 2.0, "lower": -1.0, "upper": 1.0, **limit}
+    return Joint("j", JointType.REVOLUTE, "base", "arm", limit=Limit(**values))
+
+
+@pytest.mark.parametrize(
+    ("limit", "rule"),
+    [
+        ({"lower": -90.0, "upper": 90.0}, "wide-limit"),
+        ({"lower": -2 * math.pi, "upper": 2 * math.pi}, None),
+        ({"lower": -6.2832, "upper": 6.2832}, None),  # 2 pi, rounded as people write it
+        ({"velocity": 180.0}, "velocity-degrees"),
+        ({"velocity": 100.0}, None),  # a placeholder, not degrees
+        ({"velocity": 15.0}, None),
+        ({"effort": 0.0}, "zero-limit"),
+        ({"velocity": 0.0}, "zero-limit"),
+    ],
+)
+def test_limits_that_read_as_degrees_or_zero(limit: dict[str, float], rule: str | None) -> None:
+    assert [r for r, _ in _rules(_revolute(**limit))] == ([rule] if rule else [])
+
+
+def test_a_mimic_joints_zero_limits_are_its_leaders_business() -> None:
+    leader = _revolute()
+    follower = Joint(
+        "f",
+        JointType.REVOLUTE,
+        "base",
+        "finger",
+        limit=Limit(effort=0.0, velocity=0.0, lower=-1.0, upper=1.0),
+        mimic=Mimic("j"),
+    )
+    assert _rules(leader, follower) == []
+
+
+def test_an_axis_must_be_of_unit_length() -> None:
+    joint = Joint("j", JointType.CONTINUOUS, "base", "arm", axis=(0.0, 0.0, 2.0))
+    assert _rules(joint) == [("axis-length", "joint 'j': axis 0 0 2 has length 2")]
+    rounded = Joint("j", JointType.CONTINUOUS, "base", "arm", axis=(0.0, 0.7071, 0.7071))
+    assert _rules(rounded) == []
+
+
+def test_rpy_in_degrees_on_any_origin() -> None:
+    turned = Origin(rpy=(0.0, 0.0, 90.0))
+    link = Link("arm", collisions=(Collision(Cylinder(0.01, 0.5), turned),))
+    joint = Joint("j", JointType.FIXED, "base", "arm", origin=Origin(rpy=(180.0, 0.0, 0.0)))
+    assert [r for r, _ in _rules(joint, links=(link,))] == ["rpy-degrees", "rpy-degrees"]
+
+
+def test_mimic_chains_and_a_zero_multiplier() -> None:
+    a = Joint("a", JointType.CONTINUOUS, "base", "l1")
+    b = Joint("b", JointType.CONTINUOUS, "base", "l2", mimic=Mimic("a"))
+    c = Joint("c", JointType.CONTINUOUS, "base", "l3", mimic=Mimic("b", multiplier=0.0))
+    assert _rules(a, b, c) == [
+        ("mimic-chain", "joint 'c' mimics 'b' with multiplier 0: it never moves"),
+        ("mimic-chain", "joint 'c' mimics 'b', which mimics 'a' in turn"),
+    ]

@@ -1,0 +1,127 @@
+"""The mesh rules: every mesh name resolves to a file, in its exact case, through a
+well-formed URI, in a format robot programs load."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from fishbot_urdf import check_file
+from fishbot_urdf.cli import cli
+
+ROBOT = """\
+<robot name="r">
+  <link name="base_link">
+    <visual><geometry><mesh filename="{name}"/></geometry></visual>
+  </link>
+</robot>
+"""
+
+
+@pytest.fixture
+def package(tmp_path: Path) -> Path:
+    """A ROS package "demo" with meshes/base_link.stl, and a robot file in its urdf/ folder."""
+    root = tmp_path / "demo"
+    (root / "meshes").mkdir(parents=True)
+    (root / "urdf").mkdir()
+    (root / "meshes" / "base_link.stl").write_bytes(b"solid s\nendsolid s\n")
+    (root / "package.xml").write_text(
+        '<package format="3"><name>demo</name></package>', encoding="utf-8"
+    )
+    return root
+
+
+def _found(package: Path, name: str, **packages: Path) -> list[tuple[str, str, str]]:
+    path = package / "urdf" / "robot.urdf"
+    path.write_text(ROBOT.format(name=name), encoding="utf-8")
+    found = check_file(path, packages=packages).diagnostics
+    return [(d.rule, d.severity.value, d.format().split(": ", 2)[2]) for d in found]
+
+
+@pytest.mark.parametrize(
+    "name",
+    [
+        "package://demo/meshes/base_link.stl",  # found by the package.xml above the robot
+        "../meshes/base_link.stl",  # beside the robot file
+        "{root}/meshes/base_link.stl",
+        "file://{root}/meshes/base_link.stl",
+        "https://example.com/base_link.stl",  # not ours to fetch
+    ],
+)
+def test_meshes_that_resolve(package: Path, name: str) -> None:
+    assert _found(package, name.format(root=package)) == []
+
+
+def test_a_missing_mesh_says_where_it_looked_and_suggests_a_name(package: Path) -> None:
+    found = _found(package, "package://demo/meshes/base_lnk.stl")
+    looked = package / "meshes" / "base_lnk.stl"
+    assert found == [
+        (
+            "mesh-not-found",
+            "error",
+            f"link 'base_link': mesh 'package://demo/meshes/base_lnk.stl' is not found "
+            f"(looked for {looked}) (did you mean '{package / 'meshes' / 'base_link.stl'}'? "
+            "package:// names a file inside the package's folder) [mesh-not-found]",
+        )
+    ]
+
+
+def test_a_mesh_named_in_another_case(package: Path) -> None:
+    [(rule, severity, message)] = _found(package, "package://demo/meshes/Base_Link.STL")
+    assert (rule, severity) == ("mesh-case", "error")
+    assert f"is found only as '{package / 'meshes' / 'base_link.stl'}'" in message
+    [(rule, _, _)] = _found(package, "package://demo/Meshes/base_link.stl")  # a folder too
+    assert rule == "mesh-case"
+
+
+@pytest.mark.parametrize(
+    ("name", "what"),
+    [
+        ("package:///demo/meshes/base_link.stl", "names a package with no name (package:///)"),
+        ("package://demo", "names a package but no file in it"),
+        ("package:/demo/meshes/base_link.stl", "is not a package:// URI"),
+        ("file://meshes/base_link.stl", "is a file:// URI with a relative path"),
+        ("..\\meshes\\base_link.stl", "holds backslashes"),
+    ],
+)
+def test_malformed_uris(package: Path, name: str, what: str) -> None:
+    [(rule, severity, message)] = _found(package, name)
+    assert (rule, severity) == ("mesh-uri", "error")
+    assert f"mesh {name!r} {what}" in message
+
+
+def test_a_package_not_found_is_a_warning_naming_the_places_searched(
+    package: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
+    monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
+    [(rule, severity, message)] = _found(package, "package://elsewhere/meshes/a.stl")
+    assert (rule, severity) == ("mesh-not-found", "warning")
+    assert "is in package 'elsewhere', which is not found, so the file cannot be checked" in message
+    assert "ROS_PACKAGE_PATH (not set)" in message
+    assert "give its folder with --package elsewhere=PATH" in message
+    other = package.parent / "elsewhere"
+    (other / "meshes").mkdir(parents=True)
+    (other / "meshes" / "a.stl").write_bytes(b"")
+    assert _found(package, "package://elsewhere/meshes/a.stl", elsewhere=other) == []
+
+
+@pytest.mark.parametrize(
+    ("name", "what"),
+    [("../meshes/base_link.step", "is a .step file"), ("../meshes/base_link", "has no file")],
+)
+def test_formats_few_programs_load(package: Path, name: str, what: str) -> None:
+    (package / "meshes" / Path(name).name).write_bytes(b"")
+    [(rule, severity, message)] = _found(package, name)
+    assert (rule, severity) == ("mesh-format", "warning")
+    assert what in message
+
+
+def test_the_command_line_finds_packages_given_and_stdin_has_no_folder(package: Path) -> None:
+    text = ROBOT.format(name="package://demo/meshes/base_link.stl")
+    given = ["check", "--package", f"demo={package}", "-"]
+    assert CliRunner().invoke(cli, given, input=text).exit_code == 0
+    relative = ROBOT.format(name="meshes/nowhere.stl")  # nothing to be relative to: not judged
+    assert CliRunner().invoke(cli, ["check", "-"], input=relative).exit_code == 0
