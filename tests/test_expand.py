@@ -817,3 +817,90 @@ def test_output_goes_through_links_and_into_devices(tmp_path: Path) -> None:
         refused = runner.invoke(cli, ["expand", str(tmp_path / "r.xacro"), "-o", bad])
         assert refused.exit_code == 2
         assert refused.output.count("\n") == 1
+
+
+# -- arguments no file declares, properties used before their definition -------------------
+
+ARGS_XACRO = """\
+<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="with_arm" default="false"/>
+  <xacro:property name="camera" value="$(arg use_camera)"/>
+  <link name="a"/>
+</robot>
+"""
+
+
+def test_an_argument_no_file_declares_is_a_warning_with_the_closest_name(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    Path("robot.urdf.xacro").write_text(ARGS_XACRO, encoding="utf-8")
+    given = ["expand", "robot.urdf.xacro", "use_camera:=true", "wiht_arm:=true", "_private:=1"]
+    result = CliRunner().invoke(cli, given)
+    assert result.exit_code == 0
+    assert result.stdout.startswith("<?xml")
+    assert result.stderr == (
+        "robot.urdf.xacro: warning: argument 'wiht_arm' is given, but no <xacro:arg> declares "
+        "it and nothing reads it (did you mean 'with_arm'?) [xacro-unknown-arg]\n"
+    )
+    # read by $(arg ...) without a declaration: known; declared: known
+    quiet = CliRunner().invoke(cli, ["expand", "robot.urdf.xacro", "use_camera:=1", "with_arm:=1"])
+    assert (quiet.exit_code, quiet.stderr) == (0, "")
+
+
+def test_under_strict_an_unknown_argument_fails_and_nothing_is_written(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    Path("robot.urdf.xacro").write_text(ARGS_XACRO, encoding="utf-8")
+    args = ["robot.urdf.xacro", "use_camera:=1", "wiht_arm:=true"]
+    result = CliRunner().invoke(cli, ["expand", "--strict", *args, "-o", "robot.urdf"])
+    assert result.exit_code == 1
+    assert "error: argument 'wiht_arm' is given" in result.stderr
+    assert not Path("robot.urdf").exists()
+    checked = CliRunner().invoke(cli, ["check", "--strict", *args])
+    assert checked.exit_code == 1
+    assert "[xacro-unknown-arg]" in checked.stderr
+    assert CliRunner().invoke(cli, ["check", *args]).exit_code == 0
+
+
+def test_a_property_used_before_its_definition_says_where_it_is_defined(tmp_path: Path) -> None:
+    path = tmp_path / "robot.urdf.xacro"
+    path.write_text(
+        """\
+<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="a">
+    <visual><geometry><box size="${wheel_w} 1 1"/></geometry></visual>
+  </link>
+  <xacro:property name="wheel_w" value="0.04"/>
+</robot>
+""",
+        encoding="utf-8",
+    )
+    with pytest.raises(XacroError) as caught:
+        expand(path)
+    assert caught.value.rule == "xacro-undefined"
+    assert (caught.value.line, caught.value.column) == (3, 23)
+    assert str(caught.value).endswith("'wheel_w' is used in ${wheel_w} before it is defined")
+    assert caught.value.hint == (
+        f"it is defined later, at {shown_path(str(path))}:5: move the definition above its "
+        "first use"
+    )
+
+
+def test_a_property_local_to_a_macro_is_no_later_definition(tmp_path: Path) -> None:
+    path = tmp_path / "robot.urdf.xacro"
+    path.write_text(
+        """\
+<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="m"><xacro:property name="wheel_w" value="1"/></xacro:macro>
+  <link name="a">
+    <visual><geometry><box size="${wheel_w} 1 1"/></geometry></visual>
+  </link>
+</robot>
+""",
+        encoding="utf-8",
+    )
+    with pytest.raises(XacroError) as caught:
+        expand(path)
+    assert "is not defined" in str(caught.value)

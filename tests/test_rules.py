@@ -82,6 +82,7 @@ WORKSPACE = {
 """,
     "fishbot.urdf.xacro": """\
 <robot name="fishbot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="use_sim" default="false"/>
   <xacro:include filename="$(find fishbot_description)/urdf/wheel.urdf.xacro"/>
   <link name="base_link"/>
   <xacro:wheel side="left"/>

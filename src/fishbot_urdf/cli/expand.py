@@ -13,6 +13,7 @@ from ..errors import FishbotUrdfError
 if TYPE_CHECKING:
     from ..expand import Expansion
 from ._common import (
+    EXIT_INVALID,
     EXIT_OK,
     emit_findings,
     limit_options,
@@ -36,19 +37,30 @@ from ._common import (
     help="Where to write the URDF; - is standard output. Folders are made as needed.",
 )
 @click.option("--deps", is_flag=True, help="Print the files the expansion reads instead.")
+@click.option(
+    "--strict",
+    is_flag=True,
+    help="Warnings (an argument no file declares, xacro's own) fail: exit 1, nothing written.",
+)
 @package_option()
 @limit_options()
 def expand(
-    file: str, args: Sequence[str], output: str, deps: bool, package_items: Sequence[str]
+    file: str,
+    args: Sequence[str],
+    output: str,
+    deps: bool,
+    strict: bool,
+    package_items: Sequence[str],
 ) -> None:
     """Expand a xacro file to URDF, as ROS's xacro command does, without ROS.
 
     ARGS are name:=value values for <xacro:arg>. $(find PKG) is resolved without ROS:
     --package first, then the package.xml above the file, ROS_PACKAGE_PATH,
     AMENT_PREFIX_PATH, the colcon workspace around the file, and ament_index_python.
-    Errors point at the xacro source and the macro calls that led there. Exit status: 0
-    done, 1 xacro refuses the input, 2 a file could not be read or written, a package was
-    not found, or the command line is wrong.
+    Errors point at the xacro source and the macro calls that led there. An argument that
+    no <xacro:arg> declares is a warning (xacro ignores it silently). Exit status: 0 done,
+    1 xacro refuses the input (or, with --strict, warns), 2 a file could not be read or
+    written, a package was not found, or the command line is wrong.
 
     \b
     Examples:
@@ -56,14 +68,27 @@ def expand(
       fishbot expand robot.urdf.xacro use_gpu:=false -o build/robot.urdf
       fishbot expand robot.urdf.xacro --package my_description=src/my_description
       fishbot expand robot.urdf.xacro --deps
+      fishbot expand --strict robot.urdf.xacro use_sim:=true
     """
+    from dataclasses import replace
+
+    from ..diagnostics import Severity
+    from ..expand import declared_args
     from ..expand import expand as run
     from ..output import write_atomic
+    from ..parse import xacro_warning
+    from ..rules.xacro import unknown_args
 
     values = xacro_args(args)
     packages = packages_option(package_items)
     try:
         expansion = run(file, args=values, packages=packages)
+        findings = [xacro_warning(message, file) for message in expansion.messages]
+        if values:
+            findings += unknown_args(values, declared_args(expansion), file)
+        if strict and findings:
+            emit_findings(replace(d, severity=Severity.ERROR) for d in findings)
+            sys.exit(EXIT_INVALID)
         if deps:  # like xacro's, but one line in the order first read
             text = " ".join(expansion.dependencies) + "\n" if expansion.dependencies else ""
         else:
@@ -75,9 +100,7 @@ def expand(
             write_atomic(output, text, inputs=[file, *expansion.dependencies, *meshes])
     except FishbotUrdfError as exc:
         stop_on(exc)
-    from ..parse import xacro_warning
-
-    emit_findings(xacro_warning(message, file) for message in expansion.messages)
+    emit_findings(findings)
     sys.exit(EXIT_OK)
 
 

@@ -16,6 +16,7 @@ captured instead of printed. The hooks:
 
 from __future__ import annotations
 
+import re
 import threading
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -24,7 +25,14 @@ from pathlib import Path
 from ..errors import ArgumentError, FishbotUrdfError, InputError
 from ..model import Location
 
-__all__ = ["Expansion", "ExpansionLimitError", "XacroError", "expand", "parse_args"]
+__all__ = [
+    "Expansion",
+    "ExpansionLimitError",
+    "XacroError",
+    "declared_args",
+    "expand",
+    "parse_args",
+]
 
 _LOCK = threading.RLock()
 
@@ -136,6 +144,34 @@ def expand(
 
     with _LOCK, Run(name, dict(args or {}), dict(packages or {})) as run:
         return run.expand()
+
+
+# How a xacro file declares or reads an argument: <xacro:arg name="..."> (any prefix),
+# $(arg name), and xacro.arg('name') in an expression.
+_ARG_NAMES = re.compile(
+    rb"<[\w.-]+:arg\b[^>]*?\sname\s*=\s*([\"'])(.*?)\1"
+    rb"|\$\(arg\s+([^)\s]+)\s*\)"
+    rb"|xacro\.arg\(\s*([\"'])(.*?)\4"
+)
+
+
+def declared_args(expansion: Expansion) -> frozenset[str]:
+    """Every argument name the expanded files declare with ``<xacro:arg>`` or read with
+    ``$(arg ...)``: the names a ``name:=value`` may give. Files that cannot be read again
+    declare nothing."""
+    from ..inputs import read_input
+
+    names: set[str] = set()
+    for file in (expansion.path, *expansion.dependencies):
+        try:
+            data = read_input(file)
+        except (InputError, OSError):
+            continue
+        for match in _ARG_NAMES.finditer(data):
+            found = match.group(2) or match.group(3) or match.group(5)
+            if found:
+                names.add(found.decode("utf-8", "replace"))
+    return frozenset(names)
 
 
 def _place(site: Location | None) -> str:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
 from typing import Any
 from xml.parsers.expat import ExpatError
@@ -188,6 +189,16 @@ class Explaining:
             parts = str(inner).split("'")
             name = parts[1] if len(parts) > 2 else str(inner)
         expression = str(exc.suffix or "").strip().removeprefix("when evaluating expression ")
+        later = self._defined_later(name, where)
+        if later is not None:
+            return XacroError(
+                f"'{name}' is used in ${{{expression.strip(chr(39))}}} before it is defined",
+                rule="xacro-undefined",
+                hint=f"it is defined later, at {shown_path(later.path)}:{later.line}: "
+                "move the definition above its first use",
+                where=where,
+                calls=calls,
+            )
         return XacroError(
             f"'{name}' is not defined in ${{{expression.strip(chr(39))}}}",
             rule="xacro-undefined",
@@ -195,6 +206,32 @@ class Explaining:
             where=where,
             calls=calls,
         )
+
+    def _defined_later(self, name: str, where: Location | None) -> Location | None:
+        """Where a ``<xacro:property name=...>`` of ``name`` is written after ``where``, in
+        its file or in another file read so far (one before it in the same file is in a
+        scope the use cannot see)."""
+        from ..inputs import read_input
+
+        pattern = re.compile(
+            rb"<[\w.-]+:property\b[^>]*?\sname\s*=\s*([\"'])"
+            + re.escape(name.encode("utf-8"))
+            + rb"\1"
+        )
+        files = dict.fromkeys([self.path, *self.xacro.all_includes])
+        for file in files:
+            try:
+                data = read_input(os.path.join(self.xacro.root_dir, file))
+            except (FishbotUrdfError, OSError):
+                continue
+            for match in pattern.finditer(data):
+                line = data.count(b"\n", 0, match.start()) + 1
+                same = where is not None and os.path.abspath(where.path) == os.path.abspath(
+                    os.path.join(self.xacro.root_dir, file)
+                )
+                if not same or where is None or line > where.line:
+                    return Location(file, line, match.start() - data.rfind(b"\n", 0, match.start()))
+        return None
 
 
 def _shown(expression: str) -> str:

@@ -15,7 +15,7 @@ from ..diagnostics import Diagnostic, Kind, Subject
 from ..errors import RobotError
 from ..extensions import Reference
 from ..model import Robot
-from ..rules.xacro import XACRO_WARNING
+from ..rules.xacro import XACRO_WARNING, unknown_args
 from ..xmlsource import STRING_PATH, read_bytes, read_xml
 from ._reader import Reader
 from .values import to_double
@@ -83,13 +83,15 @@ def read(
     if isinstance(source, bytes):
         data, name = source, path or STRING_PATH
     elif is_xacro_path(source):
-        from ..expand import expand
+        from ..expand import declared_args, expand
 
         expansion = expand(source, args=args, packages=packages)
         # A file name that is no UTF-8 (the banner names the file) is no XML text either.
         data = expansion.text.encode("utf-8", "replace")
         name, origins = path or str(source), expansion.sources
         notes = tuple(xacro_warning(message, name) for message in expansion.messages)
+        if args:
+            notes += tuple(unknown_args(args, declared_args(expansion), name))
         files = (str(source), *expansion.dependencies)
     else:
         name = path or str(source)

@@ -6,7 +6,9 @@ reports xacro's warnings.
 
 from __future__ import annotations
 
-from ..diagnostics import Severity
+from collections.abc import Collection, Iterable, Iterator
+
+from ..diagnostics import Diagnostic, Kind, Severity, Subject, closest, listing
 from . import Consumer, Family, Rule
 
 _XACRO = (Consumer.XACRO,)
@@ -110,6 +112,28 @@ XACRO_UNDEFINED = Rule(
     consumers=_XACRO,
     language="xacro",
     fatal=True,
+)
+XACRO_UNKNOWN_ARG = Rule(
+    "xacro-unknown-arg",
+    W,
+    Family.XACRO,
+    summary="A name:=value argument names an argument the xacro files never declare.",
+    explanation="xacro takes any `name:=value` and quietly ignores the ones no `<xacro:arg>` "
+    "or `$(arg ...)` reads, so a misspelt argument leaves its default in place and the robot "
+    "is built without the arm, the sensor or the simulation tags that were asked for. Spell the "
+    "argument as the file declares it; `--strict` makes this an error for CI.",
+    bad="""\
+# fishbot.urdf.xacro declares <xacro:arg name="use_sim" default="false"/>
+fishbot check --strict --package fishbot_description=src/fishbot_description \\
+  fishbot.urdf.xacro use_simm:=true
+""",
+    good="""\
+# fishbot.urdf.xacro declares <xacro:arg name="use_sim" default="false"/>
+fishbot check --strict --package fishbot_description=src/fishbot_description \\
+  fishbot.urdf.xacro use_sim:=true
+""",
+    consumers=_XACRO,
+    language="shell",
 )
 XACRO_NAMESPACE = Rule(
     "xacro-namespace",
@@ -279,3 +303,26 @@ XACRO_UNSAFE = Rule(
     language="xacro",
     fatal=True,
 )
+
+
+def unknown_args(
+    given: Iterable[str], declared: Collection[str], path: str
+) -> Iterator[Diagnostic]:
+    """A finding for each argument given that no file declares, with the closest name."""
+    for name in given:
+        if name in declared:
+            continue
+        close = closest(name, declared)
+        if close:
+            hint = f"did you mean {close!r}?"
+        elif declared:
+            hint = f"declared: {listing(declared)}"
+        else:
+            hint = "the files declare no arguments"
+        yield XACRO_UNKNOWN_ARG.report(
+            f"argument {name!r} is given, but no <xacro:arg> declares it and nothing reads it",
+            None,
+            path=path,
+            subject=Subject(Kind.FILE, path),
+            hint=hint,
+        )
