@@ -32,8 +32,9 @@ def test_fishbot_flowchart() -> None:
     # Per joint: an edge from the parent with the origin, and one to the child.
     ids = {label: node for node, label in nodes.items()}
     base_joint = ids["base_joint"]
+    # The origin as written (DOT copies urdf_to_graphviz's recovered "rpy: 0 -0 0").
     assert (
-        f'    {ids["base_footprint"]} -->|"xyz: 0 0 0.091<br>rpy: 0 -0 0"| {base_joint}'
+        f'    {ids["base_footprint"]} -->|"xyz: 0 0 0.091<br>rpy: 0 0 0"| {base_joint}'
     ) in lines
     assert f"    {base_joint} --> {ids['base_link']}" in lines
     assert len([line for line in lines if " --> " in line or " -->|" in line]) == 2 * len(joints)
@@ -73,3 +74,12 @@ def test_detail_colours_joints_by_type() -> None:
 def test_a_mermaid_directive_in_a_name_stays_a_name() -> None:
     robot = fishbot_urdf.Robot("r", (fishbot_urdf.Link("%%{init: {}}%%"),))
     assert '    L0["#37;#37;{init: {}}#37;#37;"]' in fishbot_urdf.to_mermaid(robot).splitlines()
+
+
+def test_angles_are_shown_as_written_without_negative_zero() -> None:
+    robot = fishbot_urdf.parse(
+        '<robot name="r"><link name="a"/><link name="b"/>'
+        '<joint name="j" type="fixed"><parent link="a"/><child link="b"/>'
+        '<origin xyz="-0 0 0" rpy="1.5708 -0.0 3"/></joint></robot>'
+    )
+    assert '-->|"xyz: 0 0 0<br>rpy: 1.5708 0 3"|' in fishbot_urdf.to_mermaid(robot)

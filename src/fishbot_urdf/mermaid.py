@@ -5,8 +5,8 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from .analysis import Analysis
-from .dot import JOINT_COLORS, Drawing, drawing, joint_facts, link_facts, origin_numbers
-from .model import Robot
+from .dot import JOINT_COLORS, Drawing, drawing, joint_facts, link_facts
+from .model import Robot, Vector3
 
 __all__ = ["to_mermaid"]
 
@@ -54,7 +54,8 @@ def _lines(plan: Drawing, detail: bool) -> Iterator[str]:
     for i, edge in enumerate(plan.edges):
         joint = edge.joint
         label = "\n".join([edge.name, *joint_facts(joint)]) if detail else edge.name
-        xyz, rpy = origin_numbers(joint)
+        # As written (urdf_to_graphviz's recovered rpy, with its -0, is DOT's to copy).
+        xyz, rpy = _plain(joint.origin.xyz), _plain(joint.origin.rpy)
         yield f'    J{i}(["{_text(label)}"])\n'
         yield f'    {ids[edge.parent]} -->|"xyz: {xyz}<br>rpy: {rpy}"| J{i}\n'
         yield f"    J{i} --> {ids[edge.child]}\n"
@@ -73,3 +74,8 @@ def _lines(plan: Drawing, detail: bool) -> Iterator[str]:
     for group, members in groups.items():
         yield f"    classDef {group} {styles[group]}\n"
         yield f"    class {','.join(members)} {group}\n"
+
+
+def _plain(values: Vector3) -> str:
+    """Numbers as %g writes them, with no negative zero."""
+    return " ".join(f"{v + 0.0:g}" for v in values)
