@@ -305,3 +305,31 @@ def test_a_bad_mass_is_reported_once(tmp_path: Path) -> None:
         code, lines = _findings(_write(tmp_path, "bad.urdf", text))
         assert code == 1
         assert [line.rsplit("[", 1)[1] for line in lines] == [f"{rule}]"], lines
+
+
+def test_an_isotropic_inertia_on_a_cylinder_is_a_size_not_an_axis(tmp_path: Path) -> None:
+    # I = 1 everywhere, m = 0.2: r = sqrt(2 I / m) = sqrt(10) = 3.16, and
+    # h = sqrt(12 I / m - 3 r^2) = sqrt(60 - 30) = 5.48, whichever axis is taken.
+    path = tmp_path / "robot.urdf"
+    path.write_text(
+        """\
+<robot name="r">
+  <link name="base_link"/>
+  <link name="wheel">
+    <collision><origin rpy="1.5708 0 0"/>
+      <geometry><cylinder radius="0.032" length="0.04"/></geometry></collision>
+    <inertial><mass value="0.2"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/>
+    </inertial>
+  </link>
+  <joint name="j" type="continuous">
+    <parent link="base_link"/><child link="wheel"/><axis xyz="0 1 0"/></joint>
+</robot>
+""",
+        encoding="utf-8",
+    )
+    [finding] = fishbot_urdf.check_file(path).diagnostics
+    assert finding.rule == "inertia-mismatch"
+    assert finding.message == (
+        "link 'wheel': inertial matches a cylinder r=3.16 h=5.48 (its three moments are equal, "
+        "so along any axis), but the collision cylinder has r=0.032 h=0.04"
+    )

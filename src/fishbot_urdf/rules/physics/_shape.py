@@ -119,8 +119,14 @@ def _describe(
             + ", but the collision box is "
             + " x ".join(short(s) for s in shape.size)
         )
-    # A cylinder: its axis is where the odd moment out is.
-    k = min(range(3), key=lambda i: abs(diagonal[(i + 1) % 3] - diagonal[(i + 2) % 3]))
+    # A cylinder: its axis is where the odd moment out is; with three equal moments
+    # (1, 1, 1, a placeholder) any axis fits, and only the size can be wrong.
+    equal = max(diagonal) - min(diagonal) <= MISMATCH * max(diagonal)
+    k = (
+        2
+        if equal
+        else min(range(3), key=lambda i: abs(diagonal[(i + 1) % 3] - diagonal[(i + 2) % 3]))
+    )
     across = (diagonal[(k + 1) % 3] + diagonal[(k + 2) % 3]) / 2.0
     if abs(diagonal[(k + 1) % 3] - diagonal[(k + 2) % 3]) > MISMATCH * across:
         return None
@@ -130,6 +136,8 @@ def _describe(
         return None
     length = math.sqrt(square)
     found = f"inertial matches a cylinder r={short(radius)} h={short(length)}"
+    if equal:
+        found += " (its three moments are equal, so along any axis)"
     if k != 2:
         return (
             f"{found} along the link's {_axis(turn, k)} axis, "
