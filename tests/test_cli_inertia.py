@@ -154,7 +154,9 @@ def test_the_fishbot_mass_table() -> None:
         "x",
         "y",
         "z",
-        "(m)",
+        "(m,",
+        "link",
+        "frame)",
         "principal",
         "moments",
         "(kg*m^2)",
@@ -431,3 +433,49 @@ def test_a_full_disk_is_one_line_and_status_2() -> None:
             )
         assert proc.returncode == 2, proc.stderr
         assert proc.stderr == "<stdout>: error: cannot write: No space left on device [io]\n"
+
+
+ARM_WITH_MASS = """\
+<robot name="arm">
+  <link name="base"><inertial><mass value="1"/>
+    <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="arm"><inertial><origin xyz="1 0 0"/><mass value="1"/>
+    <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="arm"/>
+    <axis xyz="0 0 1"/><limit lower="-2" upper="2" effort="1" velocity="1"/></joint>
+</robot>
+"""
+
+
+def test_joint_positions_move_the_total_centre_of_mass(tmp_path: Path) -> None:
+    # Two 1 kg masses, one at the base's origin, one 1 m out along the arm: the centre of
+    # mass is halfway, at (0.5, 0, 0); with the shoulder turned 90 degrees about z the arm's
+    # mass is at (0, 1, 0), so the centre is at (0, 0.5, 0).
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM_WITH_MASS, encoding="utf-8")
+    zero = CliRunner().invoke(cli, ["inertia", str(path), "--format", "json"])
+    assert json.loads(zero.stdout)["total"]["com"] == [0.5, 0.0, 0.0]
+    for given in ("shoulder=90deg", f"shoulder={math.pi / 2}"):
+        turned = CliRunner().invoke(cli, ["inertia", str(path), "-j", given, "--format", "json"])
+        report = json.loads(turned.stdout)
+        assert report["total"]["com"] == pytest.approx([0.0, 0.5, 0.0], abs=1e-12)
+        assert report["positions"] == {"shoulder": pytest.approx(math.pi / 2)}
+    text = CliRunner().invoke(cli, ["inertia", str(path), "-j", "shoulder=90deg"]).stdout
+    assert "com x y z (m, link frame)" in text.splitlines()[0]
+    assert text.rstrip().endswith("(joints at shoulder=1.571, the rest at zero)")
+
+
+@pytest.mark.parametrize(
+    ("given", "said"),
+    [
+        ("shoulder=3", "joint 'shoulder': position 3 is outside its limits -2 .. 2"),
+        ("shouldr=1", "no joint 'shouldr' (did you mean 'shoulder'?"),
+        ("shoulder", "'shoulder' is not NAME=VALUE with a number VALUE"),
+    ],
+)
+def test_a_wrong_joint_position_is_a_usage_error(tmp_path: Path, given: str, said: str) -> None:
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM_WITH_MASS, encoding="utf-8")
+    result = CliRunner().invoke(cli, ["inertia", str(path), "-j", given])
+    assert result.exit_code == 2
+    assert said in result.stderr

@@ -26,7 +26,8 @@ def joint_positions(
     Raises:
         UnknownNameError: ``positions`` names a joint the robot does not have.
         ArgumentError: ``positions`` names a fixed, floating or planar joint (whose pose
-            is not one number), or gives a position that is not a finite number.
+            is not one number), or gives a position that is not a finite number, or is
+            outside a revolute or prismatic joint's limits.
     """
     model = robot if isinstance(robot, Robot) else robot.robot
     given = dict(positions or {})
@@ -44,6 +45,14 @@ def joint_positions(
         if not math.isfinite(given[name]):
             raise ArgumentError(
                 f"joint {name!r}: position {given[name]} is not a finite number", name=name
+            )
+        limit = joint.limit
+        bounded = joint.type is not JointType.CONTINUOUS and limit is not None
+        if bounded and limit and not limit.lower - 1e-9 <= given[name] <= limit.upper + 1e-9:
+            raise ArgumentError(
+                f"joint {name!r}: position {given[name]:g} is outside its limits "
+                f"{limit.lower:g} .. {limit.upper:g}",
+                name=name,
             )
     values: dict[str, float] = {}
 

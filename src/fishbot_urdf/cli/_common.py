@@ -236,6 +236,43 @@ def package_option() -> Callable[[Wrapped], Wrapped]:
     )
 
 
+def joint_option() -> Callable[[Wrapped], Wrapped]:
+    """``-j/--joint NAME=VALUE`` (repeatable), stored as ``joint_items``: a joint position,
+    written with ``=`` so that it is never taken for a xacro ``name:=value``."""
+    return click.option(
+        "-j",
+        "--joint",
+        "joint_items",
+        multiple=True,
+        metavar="NAME=VALUE",
+        help="A joint's position (repeatable): radians for revolute and continuous joints "
+        "(or degrees, written 90deg), metres for prismatic ones. Joints not given are at 0; "
+        "mimic joints follow.",
+    )
+
+
+def joint_positions(items: Sequence[str]) -> dict[str, float]:
+    """``-j NAME=VALUE`` values as a mapping (``90deg`` in radians)."""
+    found: dict[str, float] = {}
+    for item in items:
+        name, sep, text = item.partition("=")
+        text = text.strip()
+        degrees = text.lower().endswith("deg")
+        try:
+            value = float(text[:-3] if degrees else text)
+        except ValueError:
+            value = math.nan
+        if not sep or not name.strip() or not math.isfinite(value):
+            raise click.BadParameter(
+                f"{item!r} is not NAME=VALUE with a number VALUE (1.57, or 90deg)",
+                param_hint="--joint",
+            )
+        if name.strip() in found:
+            raise click.BadParameter(f"joint {name.strip()!r} is given twice", param_hint="--joint")
+        found[name.strip()] = math.radians(value) if degrees else value
+    return found
+
+
 def limit_options() -> Callable[[Wrapped], Wrapped]:
     """``--max-size MIB`` and ``--timeout SECONDS``: the command runs within those limits
     (see :mod:`fishbot_urdf.inputs`)."""

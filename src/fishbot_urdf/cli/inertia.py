@@ -23,6 +23,8 @@ from ._common import (
     emit_findings,
     fail,
     format_option,
+    joint_option,
+    joint_positions,
     limit_options,
     mesh_files,
     nearest_config,
@@ -86,6 +88,7 @@ def inertia() -> None:
       fishbot inertia sphere --mass 0.02 --radius 0.016 --format json
       fishbot inertia robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
       fishbot inertia robot.urdf --format json
+      fishbot inertia arm.urdf -j shoulder=90deg -j elbow=-0.5
       fishbot inertia robot.urdf --fill --density 1000 -o robot_filled.urdf
       fishbot inertia robot.urdf --fill --mass base_link=1 --mass wheel=0.1 -o out.urdf
 
@@ -240,6 +243,7 @@ class _RobotCommand(click.Command):
     metavar="LINK=KG",
     help="With --fill: the mass of one link (repeatable); it wins over --density.",
 )
+@joint_option()
 @package_option()
 @limit_options()
 def robot(
@@ -250,13 +254,15 @@ def robot(
     output: str | None,
     density: float | None,
     masses: Sequence[str],
+    joint_items: Sequence[str],
     package_items: Sequence[str],
 ) -> None:
     """The mass table of ROBOT, a URDF or xacro file (- reads a URDF from standard input).
 
-    One line per link: mass, centre of mass, principal moments, and the `fishbot check`
-    rules that concern it; then the robot's total mass, centre of mass and principal
-    moments at the zero configuration. With --fill -o OUT, a copy in which each link with
+    One line per link: mass, centre of mass (in the link's own frame), principal moments,
+    and the `fishbot check` rules that concern it; then the robot's total mass, centre of
+    mass (in the root link's frame) and principal moments, with every joint at zero or
+    where -j puts it. With --fill -o OUT, a copy in which each link with
     collision shapes and no <inertial> gets one. Exit status: 0 done, 1 the robot has
     errors or --fill left a link out, 2 a file could not be read or written, or the
     command line is wrong.
@@ -265,6 +271,7 @@ def robot(
     Examples:
       fishbot inertia robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
       fishbot inertia robot.urdf --format json
+      fishbot inertia arm.urdf -j shoulder=90deg -j elbow=-0.5
       fishbot inertia robot.urdf --fill --density 1000 -o robot_filled.urdf
     """
     if any(":=" not in a for a in args):
@@ -275,12 +282,15 @@ def robot(
         raise click.UsageError("-o, --density and --mass go with --fill")
     if fill and density is None and not masses:
         raise click.UsageError("--fill needs --density KG_PER_M3 or --mass LINK=KG")
+    if fill and joint_items:
+        raise click.UsageError("--fill writes each link's own inertial: it takes no --joint")
     if fill and fmt == "json":
         raise click.UsageError("--fill writes a URDF: it takes no --format")
     if file == "-" and args:
         raise click.UsageError("name:=value arguments are for a .xacro file, not standard input")
     values = xacro_args(args)
     packages = packages_option(package_items)
+    positions = joint_positions(joint_items)
     config = nearest_config(file)
     try:
         result = check_input(file, values, packages, config)
@@ -296,9 +306,13 @@ def robot(
     emit_findings(result.diagnostics)
     if result.analysis is None:
         sys.exit(EXIT_INVALID)
+    from ..errors import ArgumentError, UnknownNameError
     from ..inertia import mass_table
 
-    table = mass_table(result.analysis, result.diagnostics)
+    try:
+        table = mass_table(result.analysis, result.diagnostics, positions)
+    except (ArgumentError, UnknownNameError) as exc:
+        raise click.BadParameter(exc.message, param_hint="--joint") from None
     if fmt == "json":
         report = {
             "ok": result.ok,

@@ -4,7 +4,7 @@ rules that concern it, and the whole robot's."""
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -48,7 +48,7 @@ class LinkMass:
 
 @dataclass(frozen=True, slots=True)
 class MassTable:
-    """The mass table of a robot at the zero configuration.
+    """The mass table of a robot at one configuration (every joint at zero, unless given).
 
     Attributes:
         robot: The robot's name.
@@ -57,6 +57,7 @@ class MassTable:
         frame: The root link, whose frame ``total`` is given in.
         left_out: Links left out of the total: no root reaches them.
         problem: Why there is no total (no single root), or None.
+        positions: The joint positions given (rad or m), by name; the rest were at zero.
     """
 
     robot: str
@@ -65,6 +66,7 @@ class MassTable:
     frame: str | None
     left_out: tuple[str, ...]
     problem: str | None
+    positions: tuple[tuple[str, float], ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """The table, JSON-ready."""
@@ -90,11 +92,18 @@ class MassTable:
                 "principal_moments": list(total.principal_moments),
             },
             "problem": self.problem,
+            "positions": dict(self.positions),
         }
 
     def to_text(self) -> str:
         """The table as aligned text, then a line for the whole robot."""
-        header = ("link", "mass kg", "com x y z (m)", "principal moments (kg*m^2)", "checks")
+        header = (
+            "link",
+            "mass kg",
+            "com x y z (m, link frame)",
+            "principal moments (kg*m^2)",
+            "checks",
+        )
         lines: list[tuple[str, ...]] = [header]
         for line in self.links:
             checks = ", ".join(line.rules) or "ok"
@@ -119,7 +128,7 @@ class MassTable:
                 f"total: {_g(total.mass)} kg; centre of mass "
                 f"{' '.join(_g(v) for v in total.com)} m in {self.frame}; principal moments "
                 f"about it {' '.join(_g(v) for v in total.principal_moments)} kg*m^2 "
-                "(zero configuration)"
+                f"({self._configuration()})"
             )
         if total is not None and self.left_out:
             out.append(
@@ -127,15 +136,33 @@ class MassTable:
             )
         return "\n".join(out) + "\n"
 
+    def _configuration(self) -> str:
+        if not self.positions:
+            return "zero configuration"
+        given = ", ".join(f"{name}={_g(value)}" for name, value in self.positions)
+        return f"joints at {given}, the rest at zero"
+
 
 def _g(value: float) -> str:
     text = f"{value:.4g}"
     return "0" if text in ("-0", "0") else text
 
 
-def mass_table(robot: Robot | Analysis, diagnostics: Iterable[Diagnostic] = ()) -> MassTable:
-    """The mass table of ``robot`` at the zero configuration; each line lists the rules of
-    ``diagnostics`` (its findings, from `check_file`) whose subject is that link."""
+def mass_table(
+    robot: Robot | Analysis,
+    diagnostics: Iterable[Diagnostic] = (),
+    positions: Mapping[str, float] | None = None,
+) -> MassTable:
+    """The mass table of ``robot`` with its joints at ``positions`` (rad or m; the rest at
+    zero, mimic joints following); each line lists the rules of ``diagnostics`` (its
+    findings, from `check_file`) whose subject is that link. Each link's centre of mass is
+    in its own frame; the total's is in the root link's.
+
+    Raises:
+        UnknownNameError: ``positions`` names a joint that does not exist.
+        ArgumentError: ``positions`` names a joint that does not move, or a position outside
+            its limits.
+    """
     from ._robot import mass_properties
 
     analysis = of(robot)
@@ -154,10 +181,11 @@ def mass_table(robot: Robot | Analysis, diagnostics: Iterable[Diagnostic] = ()) 
         )
         for link in model.links
     )
+    given = tuple((positions or {}).items())
     try:
-        total = mass_properties(analysis)
+        total = mass_properties(analysis, positions)
     except StructureError as exc:
-        return MassTable(model.name, lines, None, None, (), exc.message)
+        return MassTable(model.name, lines, None, None, (), exc.message, given)
     i = total.inertia
     numbers = (total.mass, *total.com, i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz)
     if not all(math.isfinite(n) for n in (*numbers, *total.principal_moments)):
@@ -165,8 +193,8 @@ def mass_table(robot: Robot | Analysis, diagnostics: Iterable[Diagnostic] = ()) 
             "no total: the links' masses and inertias add up beyond the largest number a "
             "float holds (about 1.8e308)"
         )
-        return MassTable(model.name, lines, None, None, (), problem)
+        return MassTable(model.name, lines, None, None, (), problem, given)
     topo = analysis.topology
     # links in a joint loop are not placed, so not counted
     left_out = tuple(link.name for link in model.links if link.name not in topo.reachable)
-    return MassTable(model.name, lines, total, topo.root, left_out, None)
+    return MassTable(model.name, lines, total, topo.root, left_out, None, given)
