@@ -490,3 +490,27 @@ def urdf_to_graphviz_form(name: str) -> dict[str, Any]:
         _stale(f"urdf_to_graphviz no longer behaves as recorded in the run {name!r}")
     assert golden is not None
     return golden
+
+
+def binary_stl(triangles: list[tuple[float, ...]]) -> bytes:
+    """A binary STL file of ``triangles``, each nine numbers (three corners)."""
+    import struct
+
+    body = b"".join(struct.pack("<12fH", 0.0, 0.0, 0.0, *t, 0) for t in triangles)
+    return b"\0" * 80 + struct.pack("<I", len(triangles)) + body
+
+
+def box_stl(x: float, y: float, z: float) -> bytes:
+    """A closed box from (0, 0, 0) to (x, y, z), as twelve triangles."""
+    c = [(i * x, j * y, k * z) for i in (0, 1) for j in (0, 1) for k in (0, 1)]
+    faces = [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1)]
+    faces += [(2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]
+    return binary_stl([(*c[a], *c[b], *c[d]) for a, b, d in faces])
+
+
+def fine_stl(count: int, size: float = 0.1) -> bytes:
+    """``count`` small triangles spread over a cube of side ``size``."""
+    step = size / count
+    return binary_stl(
+        [(i * step, 0.0, 0.0, i * step, size, 0.0, 0.0, 0.0, size) for i in range(count)]
+    )

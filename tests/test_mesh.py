@@ -120,3 +120,30 @@ def test_geometry_inertia_and_volume_read_a_mesh_from_its_filename(tmp_path: Pat
     # Half the size: sides 0.15 0.1 0.05.
     _close(fishbot_urdf.geometry_inertia(mesh, 1.0), box_inertia(1.0, 0.15, 0.1, 0.05), 1e-6)
     assert fishbot_urdf.volume(fishbot_urdf.Mesh(f"file://{path}")) == pytest.approx(0.006)
+
+
+def test_fill_refuses_a_mesh_in_millimetres(tmp_path: Path) -> None:
+    # A 300 x 200 x 100 mm box exported without a unit: 300 m across when read as metres.
+    trimesh.creation.box(extents=(300, 200, 100)).export(tmp_path / "part.stl")
+    source = tmp_path / "robot.urdf"
+    mesh = '<mesh filename="part.stl"{scale}/>'
+    robot = (
+        '<robot name="m"><link name="a"/><link name="b"><collision><geometry>{mesh}'
+        "</geometry></collision></link>"
+        '<joint name="j" type="continuous"><parent link="a"/><child link="b"/></joint></robot>'
+    )
+    source.write_text(robot.format(mesh=mesh.format(scale="")), encoding="utf-8")
+    out = tmp_path / "out.urdf"
+    given = ["inertia", str(source), "--fill", "--density", "1000", "-o", str(out)]
+    result = CliRunner().invoke(cli, given)
+    assert result.exit_code == 1
+    assert "is 300 m across, too large for a robot part" in result.stderr
+    assert 'add scale="0.001 0.001 0.001"' in result.stderr
+    assert not out.exists()
+    scaled = mesh.format(scale=' scale="0.001 0.001 0.001"')
+    source.write_text(robot.format(mesh=scaled), encoding="utf-8")
+    assert CliRunner().invoke(cli, given).exit_code == 0
+    made = fishbot_urdf.load(out).link("b").inertial
+    assert made is not None
+    # 1000 kg/m^3 * 0.3 * 0.2 * 0.1 m^3 = 6 kg
+    assert made.mass == pytest.approx(6.0)

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from conftest import box_stl, fine_stl
 
 from fishbot_urdf import check_file
 from fishbot_urdf.cli import cli
@@ -125,3 +126,79 @@ def test_the_command_line_finds_packages_given_and_stdin_has_no_folder(package: 
     assert CliRunner().invoke(cli, given, input=text).exit_code == 0
     relative = ROBOT.format(name="meshes/nowhere.stl")  # nothing to be relative to: not judged
     assert CliRunner().invoke(cli, ["check", "-"], input=relative).exit_code == 0
+
+
+# -- what the mesh files hold ----------------------------------------------------------------
+
+SIZED = """\
+<robot name="r">
+  <link name="base_link">
+    <visual><geometry><mesh filename="../meshes/part.stl"{scale}/></geometry></visual>
+    {other}
+  </link>
+</robot>
+"""
+
+
+@pytest.mark.parametrize(
+    ("size", "scale", "other", "said"),
+    [
+        # 200 units: 200 m as metres, more than any robot part
+        (
+            200,
+            "",
+            "",
+            "is 200 m across, more than any robot part; in millimetres it would be 0.2 m",
+        ),
+        (200, ' scale="0.001 0.001 0.001"', "", None),
+        (3, "", "", None),  # 3 m: large, but a part may be
+        # 3 units against a 3 mm box beside it
+        (
+            3,
+            "",
+            '<visual><geometry><box size="0.003 0.003 0.003"/></geometry></visual>',
+            "is 3 m across, but its box says the link is about 0.003 m",
+        ),
+        # 200 units beside a 150 m box: a large part in metres (a field, a building)
+        (200, "", '<visual><geometry><box size="150 150 1"/></geometry></visual>', None),
+        # 3 units against an inertia: a 1 kg rod of length L has I = L^2 / 12; L = 0.003
+        (
+            3,
+            "",
+            '<inertial><mass value="1"/><inertia ixx="7.5e-7" iyy="7.5e-7" '
+            'izz="1e-8" ixy="0" ixz="0" iyz="0"/></inertial>',
+            "is 3 m across, but its inertia says the link is about 0.003 m",
+        ),
+    ],
+)
+def test_a_mesh_in_millimetres(
+    package: Path, size: float, scale: str, other: str, said: str | None
+) -> None:
+    (package / "meshes" / "part.stl").write_bytes(box_stl(size, size / 2, size / 4))
+    path = package / "urdf" / "robot.urdf"
+    path.write_text(SIZED.format(scale=scale, other=other), encoding="utf-8")
+    found = [d for d in check_file(path).diagnostics if d.rule == "mesh-units"]
+    if said is None:
+        assert found == []
+    else:
+        [finding] = found
+        assert said in finding.message
+        assert (
+            finding.hint == 'if it is in millimetres, add scale="0.001 0.001 0.001" to the <mesh>'
+        )
+
+
+def test_a_fine_collision_mesh_is_a_note_a_fine_visual_one_nothing(package: Path) -> None:
+    (package / "meshes" / "fine.stl").write_bytes(fine_stl(25_000))
+    path = package / "urdf" / "robot.urdf"
+    mesh = '<geometry><mesh filename="../meshes/fine.stl"/></geometry>'
+    path.write_text(f'<robot name="r"><link name="a"><visual>{mesh}</visual></link></robot>')
+    assert [d.rule for d in check_file(path).diagnostics] == []
+    path.write_text(
+        f'<robot name="r"><link name="a"><collision>{mesh}</collision>'
+        '<inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/>'
+        "</inertial></link></robot>"
+    )
+    [finding] = check_file(path).diagnostics
+    assert (finding.rule, finding.severity.value) == ("mesh-faces", "note")
+    assert "has 25000 faces, too many for a collision shape" in finding.message

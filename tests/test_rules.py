@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner, Result
-from conftest import ROOT, require_tool, run_check_urdf
+from conftest import ROOT, box_stl, fine_stl, require_tool, run_check_urdf
 
 import fishbot_urdf
 from fishbot_urdf.cli import cli
@@ -121,6 +121,9 @@ def _check(tmp_path: Path, rule: Rule, text: str) -> Result:
     (tmp_path / "meshes").mkdir(exist_ok=True)
     for mesh in ("base_link.stl", "base_link.step"):  # found, as the mesh rules' examples say
         (tmp_path / "meshes" / mesh).write_bytes(b"")
+    (tmp_path / "meshes" / "base_link_mm.stl").write_bytes(box_stl(200, 200, 100))
+    if "base_link_fine" in text:
+        (tmp_path / "meshes" / "base_link_fine.stl").write_bytes(fine_stl(30_000))
     name = tmp_path / ("robot.urdf.xacro" if rule.language == "xacro" else "robot.urdf")
     name.write_text(text, encoding="utf-8")
     return CliRunner().invoke(cli, ["check", "--isolated", "--format", "json", str(name)])

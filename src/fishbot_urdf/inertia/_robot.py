@@ -15,7 +15,7 @@ from ..kinematics import link_poses
 from ..model import Inertial, Link, Mesh, Origin, Robot
 from ..rules.setup import FILL_SKIPPED
 from ..spatial import Pose
-from ._solids import MassProperties, combine, exact_sum, geometry_inertia, volume
+from ._solids import MassProperties, combine, exact_sum, geometry_inertia, plausible_mesh, volume
 
 __all__ = ["Filling", "fill_inertials", "link_inertial", "mass_properties"]
 
@@ -68,7 +68,8 @@ def link_inertial(
         ArgumentError: Neither or both of density and mass are given, or one is not a
             finite number > 0.
         ShapeError: The link has no collision shape, or its shapes have no volume (an open
-            mesh).
+            mesh), or a mesh is too large to be a robot part (in millimetres, read as
+            metres).
         PackageNotFoundError: A mesh's package is not found.
         ToolNotFoundError: A mesh needs trimesh, which is not installed.
     """
@@ -78,6 +79,9 @@ def link_inertial(
         raise ArgumentError("give the density or the mass, not both", name="density")
     _positive(density, "density")
     _positive(mass, "mass")
+    for collision in link.collisions:
+        if isinstance(collision.geometry, Mesh):
+            plausible_mesh(collision.geometry, resolve)
     shapes = [(c, volume(c.geometry, resolve)) for c in link.collisions]
     if not shapes:
         raise ShapeError(f"link {link.name!r} has no collision shape")

@@ -223,6 +223,7 @@ class _Solid:
     volume: float
     centre: Vector3
     inertia: Matrix3  # about the centre
+    extent: float  # the largest side of the box around it (m)
 
 
 def _solid(path: Path, scale: Vector3 | None) -> _Solid:
@@ -274,6 +275,27 @@ def _solid(path: Path, scale: Vector3 | None) -> _Solid:
             float(mesh.volume),
             tuple(float(c) for c in mesh.center_mass),  # type: ignore[arg-type]
             _matrix3(mesh.moment_inertia),
+            float(max(mesh.extents)),
+        )
+
+
+LARGEST_PART = 5.0
+"""Metres: a mesh larger than this is no robot part (a file in millimetres, read as metres)."""
+
+
+def plausible_mesh(geometry: Mesh, resolve: Callable[[Mesh], Path] | None = None) -> None:
+    """Refuse a mesh too large to be a robot part: its inertia would be written in tonnes.
+
+    Raises:
+        ShapeError: The mesh is more than `LARGEST_PART` across (or not closed, or unread).
+    """
+    where = resolve(geometry) if resolve is not None else _mesh_file(geometry)
+    extent = _solid(where, geometry.scale).extent
+    if extent > LARGEST_PART:
+        raise ShapeError(
+            f"the mesh {where} is {extent:.4g} m across, too large for a robot part: "
+            'in millimetres? add scale="0.001 0.001 0.001" to its <mesh>',
+            path=str(where),
         )
 
 

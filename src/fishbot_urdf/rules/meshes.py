@@ -3,13 +3,15 @@ robot's programs load."""
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Iterator, Mapping
 from pathlib import Path
 
 from ..analysis import Analysis
 from ..diagnostics import Diagnostic, Kind, Severity, Subject, closest
-from ..model import Link, Mesh
+from ..meshfile import MeshFacts, mesh_facts
+from ..model import Box, Cylinder, Link, Mesh, Sphere
 from . import Consumer, Family, Rule
 
 __all__ = ["meshes"]
@@ -26,7 +28,19 @@ _ONE_BOX = """\
   </link>
 </robot>
 """
-# The examples' folder holds meshes/base_link.stl and .step (empty files are found as well).
+_COLLIDING = """\
+<robot name="fishbot">
+  <link name="base_link">
+    <collision>
+      <geometry><mesh filename="{name}"/></geometry>
+    </collision>
+    <inertial><mass value="1"/>
+      <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+</robot>
+"""
+# The examples' folder holds meshes/base_link.stl and .step (empty), base_link_mm.stl (a
+# box 200 x 200 x 100 units) and base_link_fine.stl (30 000 triangles).
 _FOUND = "meshes/base_link.stl"
 
 MESH_NOT_FOUND = Rule(
@@ -84,8 +98,38 @@ MESH_FORMAT = Rule(
     consumers=(Consumer.GAZEBO, Consumer.MUJOCO, Consumer.PYBULLET),
 )
 
+MESH_UNITS = Rule(
+    "mesh-units",
+    W,
+    Family.MESHES,
+    summary="A mesh's size says it is in millimetres (an STL or OBJ file read as metres).",
+    explanation="URDF lengths are metres, and STL and OBJ files carry no unit, so a part "
+    "exported from CAD in millimetres comes in a thousand times too big: RViz shows a giant, "
+    "and `fishbot inertia --fill` makes a link of tonnes. The mesh is judged by plain sense (a "
+    "part more than 5 m across) and against the link's other shapes and its inertia. Add "
+    '`scale="0.001 0.001 0.001"` to the `<mesh>`, or export in metres.',
+    bad=_ONE_BOX.format(name="meshes/base_link_mm.stl"),
+    good=_ONE_BOX.format(name=_FOUND),
+    consumers=_VIEWERS,
+)
+MESH_FACES = Rule(
+    "mesh-faces",
+    Severity.NOTE,
+    Family.MESHES,
+    summary="A collision mesh has so many faces that simulators slow down.",
+    explanation="Physics engines test collision meshes triangle by triangle, and a mesh of tens "
+    "of thousands of faces (a visual mesh reused for collision, often) makes every step slow; "
+    "MuJoCo and PyBullet replace it with its convex hull anyway. Simplify it (a few hundred "
+    "faces, or its convex hull) or use boxes, cylinders and spheres for collision.",
+    bad=_COLLIDING.format(name="meshes/base_link_fine.stl"),
+    good=_COLLIDING.format(name=_FOUND),
+    consumers=(Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE, Consumer.PYBULLET),
+)
+
 _LOADED = frozenset({".stl", ".obj", ".dae"})
 _REMOTE = ("http://", "https://", "model://")  # not ours to fetch: Gazebo's model path, the web
+_MOST_FACES = 20_000  # a collision mesh above this is slow to simulate
+_LARGEST_PART = 5.0  # metres: a robot part larger than this is implausible
 
 
 def meshes(
@@ -97,14 +141,16 @@ def meshes(
     ``package://`` names are looked up (as for xacro's ``$(find)``)."""
     finder = _Finder(analysis.path, packages or {}, os.environ if environ is None else environ)
     for link in analysis.robot.links:
-        shapes = [part.geometry for part in link.visuals]
-        shapes += [part.geometry for part in link.collisions]
-        for shape in shapes:
+        shapes = [(part.geometry, False) for part in link.visuals]
+        shapes += [(part.geometry, True) for part in link.collisions]
+        for shape, collides in shapes:
             if isinstance(shape, Mesh) and shape.filename:
-                yield from _mesh(analysis, link, shape, finder)
+                yield from _mesh(analysis, link, shape, finder, collides)
 
 
-def _mesh(analysis: Analysis, link: Link, mesh: Mesh, finder: _Finder) -> Iterator[Diagnostic]:
+def _mesh(
+    analysis: Analysis, link: Link, mesh: Mesh, finder: _Finder, collides: bool
+) -> Iterator[Diagnostic]:
     path, name = analysis.path, mesh.filename
     subject = Subject(Kind.LINK, link.name)
     named = f"link {link.name!r}: mesh {name!r}"
@@ -145,6 +191,23 @@ def _mesh(analysis: Analysis, link: Link, mesh: Mesh, finder: _Finder) -> Iterat
         return  # a relative name with no robot file to be relative to
     exact, other = finder.exists(file)
     if exact:
+        facts = finder.facts(file)
+        if facts is None:
+            return
+        if collides and facts.faces > _MOST_FACES:
+            yield report(
+                MESH_FACES,
+                f"has {facts.faces} faces, too many for a collision shape",
+                "simplify it to a few hundred faces or its convex hull, or collide with boxes, "
+                "cylinders and spheres",
+            )
+        units = _millimetres(link, facts.extent(mesh.scale))
+        if units is not None:
+            yield report(
+                MESH_UNITS,
+                units,
+                'if it is in millimetres, add scale="0.001 0.001 0.001" to the <mesh>',
+            )
         return
     if other is not None:
         yield report(
@@ -156,6 +219,55 @@ def _mesh(analysis: Analysis, link: Link, mesh: Mesh, finder: _Finder) -> Iterat
     close = finder.close(file)
     guess = f"did you mean {close!r}? " if close else ""
     yield report(MESH_NOT_FOUND, f"is not found (looked for {file})", guess + _fix(name))
+
+
+def _millimetres(link: Link, extent: float) -> str | None:
+    """Why a mesh ``extent`` metres across reads as millimetres, or None if it does not.
+
+    Plain sense: no robot part is more than 5 m across, unless the link's other shapes or
+    its inertia say it is that large too. Against them: a mesh 200 to 5000 times larger
+    than what they say.
+    """
+    shrunk = extent / 1000.0
+    sizes = list(_sizes(link))
+    if any(size >= extent / 20 for size, _ in sizes):
+        return None  # the rest of the link is as large: a big part, in metres
+    if extent > _LARGEST_PART and shrunk >= 0.001:
+        return (
+            f"is {extent:.4g} m across, more than any robot part; in millimetres it would be "
+            f"{shrunk:.4g} m"
+        )
+    for size, what in sizes:
+        if extent > 0.3 and 200 <= extent / size <= 5000:
+            return (
+                f"is {extent:.4g} m across, but {what} says the link is about {size:.3g} m; "
+                f"in millimetres it would be {shrunk:.4g} m"
+            )
+    return None
+
+
+def _sizes(link: Link) -> Iterator[tuple[float, str]]:
+    """How large the link's other evidence says it is (m): its shapes, its inertia."""
+    shapes = [part.geometry for part in link.visuals]
+    shapes += [part.geometry for part in link.collisions]
+    for shape in shapes:
+        if isinstance(shape, Box):
+            size, what = max(shape.size), "its box"
+        elif isinstance(shape, Cylinder):
+            size, what = max(2 * shape.radius, shape.length), "its cylinder"
+        elif isinstance(shape, Sphere):
+            size, what = 2 * shape.radius, "its sphere"
+        else:
+            continue
+        if size > 0:
+            yield size, what
+    inertial = link.inertial
+    if inertial is not None and inertial.mass > 0:
+        i = inertial.inertia
+        largest = max(i.ixx, i.iyy, i.izz)
+        if largest > 0:
+            # A rod of length L has I = m L^2 / 12: the longest the inertia allows.
+            yield math.sqrt(12.0 * largest / inertial.mass), "its inertia"
 
 
 def _fix(name: str) -> str:
@@ -204,6 +316,7 @@ class _Finder:
         self.packages, self.env = packages, env
         self.found: dict[str, Path | _Unknown] = {}
         self.listings: dict[Path, list[str] | None] = {}
+        self.read: dict[Path, MeshFacts | None] = {}
 
     def file(self, name: str) -> Path | None:
         if name.startswith("package://"):
@@ -260,6 +373,11 @@ class _Finder:
                 found, other = self.exists(parent.parent / entry / file.name)
                 return str(parent.parent / entry / file.name) if found else other
         return None
+
+    def facts(self, file: Path) -> MeshFacts | None:
+        if file not in self.read:
+            self.read[file] = mesh_facts(file)
+        return self.read[file]
 
     def close(self, file: Path) -> str | None:
         names = self._listing(file.parent)
