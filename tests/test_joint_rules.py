@@ -72,15 +72,28 @@ def _revolute(**limit: float) -> Joint:
         ({"lower": -90.0, "upper": 90.0}, "wide-limit"),
         ({"lower": -2 * math.pi, "upper": 2 * math.pi}, None),
         ({"lower": -6.2832, "upper": 6.2832}, None),  # 2 pi, rounded as people write it
+        ({"lower": -6.98132, "upper": 6.98132}, None),  # a wrist's +-400 degrees, in radians
+        ({"upper": 1e16}, "wide-limit"),  # "no limit": a continuous joint
         ({"velocity": 180.0}, "velocity-degrees"),
         ({"velocity": 100.0}, None),  # a placeholder, not degrees
         ({"velocity": 15.0}, None),
+        ({"velocity": 30.0}, None),  # a fast legged-robot motor
         ({"effort": 0.0}, "zero-limit"),
         ({"velocity": 0.0}, "zero-limit"),
     ],
 )
 def test_limits_that_read_as_degrees_or_zero(limit: dict[str, float], rule: str | None) -> None:
     assert [r for r, _ in _rules(_revolute(**limit))] == ([rule] if rule else [])
+
+
+def test_the_zero_limit_message_says_what_each_zero_means() -> None:
+    assert _rules(_revolute(effort=0.0, velocity=0.0)) == [
+        (
+            "zero-limit",
+            "joint 'j': effort and velocity limits are 0: no motor may drive it and "
+            "it may not move",
+        )
+    ]
 
 
 def test_a_mimic_joints_zero_limits_are_its_leaders_business() -> None:

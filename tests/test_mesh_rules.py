@@ -202,3 +202,21 @@ def test_a_fine_collision_mesh_is_a_note_a_fine_visual_one_nothing(package: Path
     [finding] = check_file(path).diagnostics
     assert (finding.rule, finding.severity.value) == ("mesh-faces", "note")
     assert "has 25000 faces, too many for a collision shape" in finding.message
+
+
+def test_a_package_not_found_is_reported_once_for_all_its_meshes(
+    package: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
+    monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
+    path = package / "urdf" / "robot.urdf"
+    mesh = '<geometry><mesh filename="package://elsewhere/{}.stl"/></geometry>'
+    path.write_text(
+        f'<robot name="r"><link name="a"><visual>{mesh.format("a")}</visual>'
+        f"<visual>{mesh.format('b')}</visual><visual>{mesh.format('c')}</visual></link></robot>"
+    )
+    [finding] = check_file(path).diagnostics
+    assert finding.message == (
+        "link 'a': mesh 'package://elsewhere/a.stl' is in package 'elsewhere', which is not "
+        "found, so the file cannot be checked (nor 2 other meshes of it)"
+    )

@@ -89,10 +89,11 @@ WIDE_LIMIT = Rule(
     "wide-limit",
     W,
     Family.JOINTS,
-    summary="A revolute joint's limits reach past a whole turn (2 pi), as degrees would.",
-    explanation="Joint limits are in radians. A lower or upper limit beyond +-6.2832 is more "
-    "than a full turn each way, which usually means degrees were written (90 for 1.5708), or "
-    "a large number stands for 'no limit'. A joint that turns without end is `continuous`; "
+    summary="A revolute joint's limits reach past two whole turns (4 pi), as degrees would.",
+    explanation="Joint limits are in radians. A lower or upper limit beyond +-12.566 is more "
+    "than two full turns each way, which means degrees were written (90 for 1.5708), or a "
+    "large number stands for 'no limit'. Real joints that turn a little more than once (a "
+    "wrist's +-400 degrees) stay below it. A joint that turns without end is `continuous`; "
     "otherwise convert the limits to radians.",
     bad=_arm(lower="-90", upper="90"),
     good=_arm(),
@@ -104,9 +105,10 @@ VELOCITY_DEGREES = Rule(
     Family.JOINTS,
     summary="A revolute joint's velocity limit reads as degrees per second.",
     explanation="Velocity limits are in radians per second. A revolute joint limited to a round "
-    "number of degrees per second (90, 180, 360) is more than 30 rad/s, far beyond what arm "
-    "joints do, so planners and controllers take the joint as many times faster than it is. "
-    "Divide by 57.3 (180 deg/s is 3.1416 rad/s).",
+    "number of degrees per second (45, 90, 180, 360: a multiple of 15 from 45 up) is beyond "
+    "what robot joints do (fast legged-robot motors reach about 30 rad/s), so planners and "
+    "controllers take the joint as many times faster than it is. Divide by 57.3 (180 deg/s is "
+    "3.1416 rad/s).",
     bad=_arm(velocity="180"),
     good=_arm(),
     consumers=_ALL,
@@ -209,19 +211,25 @@ def _joint(analysis: Analysis, joint: Joint) -> Iterator[Diagnostic]:
     where = limit.source or joint.source
     if joint.type is JointType.REVOLUTE:
         wide = [(n, v) for n, v in (("lower", limit.lower), ("upper", limit.upper))]
-        wide = [(n, v) for n, v in wide if abs(v) > _TURN + _SLACK]
+        wide = [(n, v) for n, v in wide if abs(v) > 2 * _TURN + _SLACK]
         if wide:
-            said = ", ".join(f"{n} {v:g}" for n, v in wide)
+            said = " and ".join(f"{n} limit {v:g}" for n, v in wide)
+            first = wide[0][1]
+            degrees = (
+                f"if {first:g} is degrees, it is {math.radians(first):.4g} rad; "
+                if abs(first) <= 720
+                else ""
+            )
             yield WIDE_LIMIT.report(
-                f"{named}: {said} is more than a whole turn",
+                f"{named}: {said} {'are' if len(wide) > 1 else 'is'} more than two whole turns",
                 where,
                 path=path,
                 subject=subject,
-                hint=f"limits are in radians ({wide[0][1]:g} degrees is "
-                f"{math.radians(wide[0][1]):.4g}); a joint that turns without end is continuous",
+                hint=f"limits are in radians: {degrees}a joint that turns without end is "
+                "continuous",
             )
         velocity = limit.velocity
-        if velocity >= 30 and velocity % 15 == 0:
+        if velocity >= 45 and velocity % 15 == 0:
             yield VELOCITY_DEGREES.report(
                 f"{named}: velocity limit {velocity:g} reads as degrees per second",
                 where,
@@ -233,8 +241,13 @@ def _joint(analysis: Analysis, joint: Joint) -> Iterator[Diagnostic]:
     if joint.mimic is None:
         zero = [n for n, v in (("effort", limit.effort), ("velocity", limit.velocity)) if v == 0]
         if zero:
+            what = {
+                "effort": "no motor may drive it",
+                "velocity": "it may not move",
+            }
+            said = " and ".join(zero) + (" limits are" if len(zero) > 1 else " limit is")
             yield ZERO_LIMIT.report(
-                f"{named}: {' and '.join(zero)} limit is 0, so the joint cannot move",
+                f"{named}: {said} 0: {' and '.join(what[z] for z in zero)}",
                 where,
                 path=path,
                 subject=subject,

@@ -146,6 +146,20 @@ def meshes(
         for shape, collides in shapes:
             if isinstance(shape, Mesh) and shape.filename:
                 yield from _mesh(analysis, link, shape, finder, collides)
+    for unknown, named in finder.unknown.values():
+        link, mesh = named[0]
+        others = len(named) - 1
+        also = f" (nor {others} other mesh{'es' if others > 1 else ''} of it)" if others else ""
+        yield MESH_NOT_FOUND.report(
+            f"link {link.name!r}: mesh {mesh.filename!r} is in package {unknown.package!r}, "
+            f"which is not found, so the file cannot be checked{also}",
+            mesh.source,
+            path=analysis.path,
+            subject=Subject(Kind.LINK, link.name),
+            hint=f"searched: {'; '.join(unknown.searched)}; give its folder with --package "
+            f"{unknown.package}=PATH",
+            severity=Severity.WARNING,
+        )
 
 
 def _mesh(
@@ -178,14 +192,8 @@ def _mesh(
         )
     try:
         file = finder.file(name)
-    except _Unknown as exc:
-        yield report(
-            MESH_NOT_FOUND,
-            f"is in package {exc.package!r}, which is not found, so the file cannot be checked",
-            f"searched: {'; '.join(exc.searched)}; give its folder with --package "
-            f"{exc.package}=PATH",
-            severity=Severity.WARNING,
-        )
+    except _Unknown as exc:  # reported once per package, after every mesh is seen
+        finder.unknown.setdefault(exc.package, (exc, []))[1].append((link, mesh))
         return
     if file is None:
         return  # a relative name with no robot file to be relative to
@@ -317,6 +325,8 @@ class _Finder:
         self.found: dict[str, Path | _Unknown] = {}
         self.listings: dict[Path, list[str] | None] = {}
         self.read: dict[Path, MeshFacts | None] = {}
+        # Packages not found: the error, and every (link, mesh) in them.
+        self.unknown: dict[str, tuple[_Unknown, list[tuple[Link, Mesh]]]] = {}
 
     def file(self, name: str) -> Path | None:
         if name.startswith("package://"):
