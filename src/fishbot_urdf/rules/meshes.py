@@ -50,9 +50,11 @@ MESH_NOT_FOUND = Rule(
     summary="A <mesh filename> names a file that is not there.",
     explanation="check_urdf never opens meshes, so a wrong mesh name passes it; RViz then shows "
     "nothing for the part and Gazebo, MuJoCo and PyBullet refuse the robot. `package://` names "
-    "are looked up as for xacro's `$(find)`, relative names beside the robot file. When the "
-    "package itself is not found the file cannot be judged, and the finding is a warning that "
-    "says where it looked (give the folder with `--package NAME=PATH`).",
+    "are looked up as for xacro's `$(find)`, relative names beside the robot file; a package "
+    "that is not found makes one warning naming the places searched (`--package NAME=PATH` "
+    "tells where it is). Among robots shipped in PyPI packages about 7% fail it: packages that "
+    "ship a robot without its meshes (fetched later, or left behind when it was copied), "
+    "absolute paths of the author's machine, and a package whose folder is not its name.",
     bad=_ONE_BOX.format(name="meshes/base.stl"),
     good=_ONE_BOX.format(name=_FOUND),
     consumers=_VIEWERS,
