@@ -14,13 +14,14 @@ it is installed.
 from __future__ import annotations
 
 import argparse
-import shutil
 import subprocess
 import sys
 import tempfile
 import time
 from collections.abc import Callable
 from pathlib import Path
+
+from robots import ros_tool
 
 FISHBOT = [sys.executable, "-m", "fishbot_urdf"]
 ROBOT = b'<robot name="r">'
@@ -138,7 +139,7 @@ def main() -> int:
     parser.add_argument("--size", type=int, default=1_000_000, help="bytes per file")
     parser.add_argument("only", nargs="*", help="run the cases whose name contains this")
     options = parser.parse_args()
-    check_urdf = shutil.which("check_urdf")
+    check_urdf = ros_tool("check_urdf")
     over = 0
     print(f"| case ({options.size:,} bytes) | fishbot | check_urdf |")
     print("| --- | ---: | ---: |")

@@ -24,7 +24,7 @@ import time
 from collections.abc import Sequence
 from pathlib import Path
 
-from robots import write_all
+from robots import ros_tool, write_all
 
 FISHBOT = [sys.executable, "-m", "fishbot_urdf"]
 if shutil.which("fishbot"):
@@ -48,7 +48,7 @@ def timed(args: Sequence[str], cwd: Path, repeat: int, env: dict[str, str] | Non
 
 
 def main(quick: bool) -> None:
-    tool = shutil.which("urdf_to_graphviz")
+    tool = ros_tool("urdf_to_graphviz")
     if tool is None:
         sys.exit(
             "urdf_to_graphviz is not installed (Debian/Ubuntu: apt-get install liburdfdom-tools)"

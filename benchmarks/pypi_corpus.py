@@ -52,6 +52,8 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
+from robots import ros_tool
+
 
 @dataclass(frozen=True)
 class Pin:
@@ -130,6 +132,8 @@ OURS_TIMEOUT = 120.0  # seconds for one fishbot check of one file
 ERROR_RULE = re.compile(r": error: .*\[([a-z0-9-]+)\]$")
 TIMED_OUT = -999  # the status recorded for a process that was killed at its timeout
 FISHBOT = [sys.executable, "-m", "fishbot_urdf"]
+CHECK_URDF = ros_tool("check_urdf")
+
 if shutil.which("fishbot"):
     FISHBOT = [str(shutil.which("fishbot"))]
 
@@ -277,7 +281,7 @@ def check_all(roots: dict[str, Path], files: dict[str, list[Path]], jobs: int) -
     def both(item: tuple[str, Path]) -> Result:
         package, path = item
         full = str(roots[package] / path)
-        reference = run(["check_urdf", full], REFERENCE_TIMEOUT)
+        reference = run([CHECK_URDF or "check_urdf", full], REFERENCE_TIMEOUT)
         ours = run([*FISHBOT, "check", full], OURS_TIMEOUT)
         return Result(package, path, reference, ours)
 
@@ -444,7 +448,7 @@ def main(argv: Sequence[str] | None = None) -> None:
     pins = [pin for pin in PINS if not options.only or pin.name in options.only]
     if not pins:
         raise SystemExit(f"--only: no such package (known: {', '.join(p.name for p in PINS)})")
-    if not options.list and not shutil.which("check_urdf"):
+    if not options.list and not CHECK_URDF:
         raise SystemExit("check_urdf is not on PATH (apt-get install liburdfdom-tools)")
 
     archives: dict[str, Path] = {}
@@ -506,7 +510,7 @@ def main(argv: Sequence[str] | None = None) -> None:
     if not options.no_timing:
         accepted = [str(roots[r.package] / r.path) for r in results if r.accepted]
         ours = best_of(3, [[*FISHBOT, "check", *accepted]])
-        theirs = best_of(3, (["check_urdf", path] for path in accepted))
+        theirs = best_of(3, ([CHECK_URDF or "check_urdf", path] for path in accepted))
         print(
             f"\n## Time over the {len(accepted)} files check_urdf accepts (best of 3)\n\n"
             + table(

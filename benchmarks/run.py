@@ -22,7 +22,7 @@ from pathlib import Path
 from lxml import etree
 
 import fishbot_urdf
-from robots import write_all
+from robots import ros_tool, write_all
 
 HERE = Path(__file__).resolve().parent
 FIRST = HERE.parent / "robots" / "fishbot" / "urdf" / "first_robot.urdf"
@@ -53,7 +53,7 @@ def corpus() -> list[Path]:
 
 
 def main() -> None:
-    check_urdf = shutil.which("check_urdf")
+    check_urdf = ros_tool("check_urdf")
     with tempfile.TemporaryDirectory() as folder:
         print(
             "| robot | links | check_urdf (s) | fishbot check (s) | ratio | lxml parse (s) | "

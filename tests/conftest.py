@@ -32,9 +32,28 @@ STUB = Path(__file__).resolve().parent / "ament_stub"
 REQUIRE_TOOLS = os.environ.get("FISHBOT_REQUIRE_TOOLS") == "1"
 
 
+# The ROS tools come from the system (liburdfdom-tools). pin, a test dependency, brings
+# cmeel-urdfdom, whose own check_urdf and urdf_to_graphviz (another urdfdom, built on
+# TinyXML2) land in this environment's scripts folder: they are not what the golden files
+# record, so that folder is not searched for them.
+SYSTEM_TOOLS = ("check_urdf", "urdf_to_graphviz")
+
+
+def find_tool(name: str) -> str | None:
+    """The path of tool ``name`` on PATH (for the ROS tools, outside this environment)."""
+    if name not in SYSTEM_TOOLS:
+        return shutil.which(name)
+    import sysconfig
+
+    ours = {os.path.realpath(sysconfig.get_path("scripts")), os.path.realpath(sys.prefix + "/bin")}
+    folders = os.environ.get("PATH", "").split(os.pathsep)
+    kept = [f for f in folders if f and os.path.realpath(f) not in ours]
+    return shutil.which(name, path=os.pathsep.join(kept))
+
+
 def require_tool(name: str, package: str) -> str:
     """The path of tool ``name``; skip (or, with FISHBOT_REQUIRE_TOOLS=1, fail) when missing."""
-    found = shutil.which(name)
+    found = find_tool(name)
     if found is None:
         message = f"{name} is not installed (Debian/Ubuntu: apt-get install {package})"
         if REQUIRE_TOOLS:
@@ -46,7 +65,7 @@ def require_tool(name: str, package: str) -> str:
 def live_tool(name: str, package: str) -> str | None:
     """The path of tool ``name`` to run live beside its golden output: None when it is missing
     (the golden output stands alone), a failure when FISHBOT_REQUIRE_TOOLS=1."""
-    found = shutil.which(name)
+    found = find_tool(name)
     if found is None and REQUIRE_TOOLS:
         pytest.fail(
             f"{name} is not installed (Debian/Ubuntu: apt-get install {package}); "

@@ -44,7 +44,14 @@ from .inertia import (
     sphere_inertia,
     volume,
 )
-from .kinematics import joint_positions, link_poses
+from .kinematics import (
+    Kinematics,
+    forward_kinematics,
+    jacobian,
+    joint_positions,
+    link_poses,
+    transform,
+)
 from .mermaid import to_mermaid
 from .model import (
     Box,
@@ -100,6 +107,7 @@ __all__ = [
     "Joint",
     "JointType",
     "Kind",
+    "Kinematics",
     "Limit",
     "Link",
     "LinkMass",
@@ -143,9 +151,11 @@ __all__ = [
     "fill_inertials",
     "find_config",
     "find_package",
+    "forward_kinematics",
     "geometry_inertia",
     "github_annotations",
     "inertial_xml",
+    "jacobian",
     "joint_positions",
     "json_report",
     "leaves",
@@ -170,6 +180,7 @@ __all__ = [
     "to_networkx",
     "to_urdf",
     "topology",
+    "transform",
     "tree_text",
     "volume",
 ]

@@ -118,6 +118,11 @@ class Pose:
             add(mat_vec(self.rotation, inner.translation), self.translation),
         )
 
+    def inverse(self) -> Pose:
+        """The pose of the outer frame in this one (``p.then(p.inverse())`` is the identity)."""
+        back = transpose(self.rotation)
+        return Pose(back, scale(mat_vec(back, self.translation), -1.0))
+
     def apply(self, point: Vector3) -> Vector3:
         """Where ``point`` (in this frame) lies in the outer frame."""
         return add(mat_vec(self.rotation, point), self.translation)

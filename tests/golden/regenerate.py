@@ -27,7 +27,6 @@ from __future__ import annotations
 
 import json
 import os
-import shutil
 import signal
 import subprocess
 import sys
@@ -46,6 +45,7 @@ from conftest import (
     GoldenInput,
     ToolRun,
     expand,
+    find_tool,
     golden_inputs,
     installed_corpus_version,
     repo_id,
@@ -187,7 +187,7 @@ def store(files: dict[str, bytes]) -> tuple[list[str], list[str]]:
 
 
 def main() -> int:
-    tools = {name: shutil.which(name) for name in TOOLS}
+    tools = {name: find_tool(name) for name in TOOLS}
     missing = sorted(name for name, path in tools.items() if path is None)
     if missing:
         packages = " ".join(sorted({TOOLS[name] for name in missing}))

@@ -1,16 +1,28 @@
-"""Forward kinematics: where every link's frame is, at a joint configuration."""
+"""Forward kinematics: where every link's frame is, at a joint configuration.
+
+`link_poses` is plain Python, for `check` (which imports no numpy); `Kinematics` (in
+``_batched``) is numpy, for many configurations at once, frame queries and Jacobians.
+"""
 
 from __future__ import annotations
 
 import math
 from collections.abc import Mapping
 
-from .analysis import Analysis, of
-from .errors import ArgumentError, UnknownNameError
-from .model import Joint, JointType, Robot
-from .spatial import Pose, axis_angle, scale
+from ..analysis import Analysis, of
+from ..errors import ArgumentError, UnknownNameError
+from ..model import Joint, JointType, Robot
+from ..spatial import Pose, axis_angle, scale
+from ._batched import Kinematics, forward_kinematics, jacobian, transform
 
-__all__ = ["joint_positions", "link_poses"]
+__all__ = [
+    "Kinematics",
+    "forward_kinematics",
+    "jacobian",
+    "joint_positions",
+    "link_poses",
+    "transform",
+]
 
 _MOVING = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)
 

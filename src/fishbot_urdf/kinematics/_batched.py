@@ -1,0 +1,450 @@
+"""Forward kinematics in numpy, for many configurations at once.
+
+A `Kinematics` is built once per robot: the links in an order that puts every parent before
+its children (found without recursion, so a 10 000-link chain is fine), and per joint the
+constant matrices its motion needs. Evaluating it for a batch of configurations is then one
+small numpy step per link, over the whole batch.
+
+Configuration vectors hold one number per *variable*, in `Kinematics.variables` order: the
+moving joints in file order, mimic joints left out (they follow their leader), with
+
+- revolute, continuous: the angle (rad) about the axis;
+- prismatic: the distance (m) along the axis;
+- planar: ``x``, ``y`` (m) along two directions of the plane normal to the axis, then
+  ``yaw`` (rad) about the axis; for the axis ``0 0 1`` the directions are x and y, for
+  another axis they are x and y turned by the shortest rotation from z to it;
+- floating: ``x``, ``y``, ``z`` (m), then ``roll``, ``pitch``, ``yaw`` (rad, as in an
+  ``<origin rpy>``).
+
+numpy is imported when a `Kinematics` is built, not with this module.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from ..analysis import Analysis, of
+from ..errors import ArgumentError, UnknownNameError
+from ..graph import root
+from ..model import Joint, JointType, Robot
+from ..spatial import rpy_matrix
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+__all__ = ["Kinematics", "forward_kinematics", "jacobian", "transform"]
+
+_ONE = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)
+_PARTS = {
+    JointType.PLANAR: ("x", "y", "yaw"),
+    JointType.FLOATING: ("x", "y", "z", "roll", "pitch", "yaw"),
+}
+Configuration = Any  # an array of shape (n,) or (B, n), or a mapping of names to values
+
+
+@dataclass(frozen=True, slots=True)
+class _Step:
+    """How one link is placed from its parent (``parent`` -1: the root)."""
+
+    link: int
+    parent: int
+    joint: Joint | None
+    kind: JointType
+    column: int  # its first variable, or its leader's for a mimic (-1: none)
+    multiplier: float
+    offset: float
+
+
+class Kinematics:
+    """The forward kinematics of one robot (a tree with one root), in numpy.
+
+    Attributes:
+        links: Every link reached from the root, parents before children; ``forward``
+            gives their poses in this order.
+        variables: The configuration's entries, by name: a joint's name, or
+            ``joint.x``-style names for planar and floating joints.
+        joints: The joints that own variables, in file order.
+        root: The root link, whose frame poses are given in.
+    """
+
+    def __init__(self, robot: Robot | Analysis) -> None:
+        """Raises:
+        StructureError: The robot has no root or several, or a joint loop below its root.
+        """
+        import numpy as np
+
+        analysis = of(robot)
+        self.analysis = analysis
+        self.root = root(analysis)
+        if analysis.topology.loop_from_root:
+            from ..errors import StructureError
+
+            raise StructureError(f"robot {analysis.robot.name!r} has a joint loop below its root")
+        owners = [
+            j
+            for j in analysis.robot.joints
+            if analysis.parent_joint.get(j.child) is j
+            and (j.type in _PARTS or (j.type in _ONE and _leader(analysis, j) is None))
+        ]
+        variables: list[str] = []
+        first: dict[str, int] = {}
+        for joint in owners:
+            first[joint.name] = len(variables)
+            parts = _PARTS.get(joint.type)
+            variables.extend(f"{joint.name}.{p}" for p in parts) if parts else variables.append(
+                joint.name
+            )
+        self.joints: tuple[str, ...] = tuple(j.name for j in owners)
+        self.variables: tuple[str, ...] = tuple(variables)
+        self._first = first
+        index = {self.root: 0}
+        order = [self.root]
+        steps: list[_Step] = []
+        children = analysis.topology.children
+        pending = [self.root]
+        while pending:  # depth first, without recursion
+            name = pending.pop()
+            for joint in children[name]:
+                child = joint.child
+                if child in index or analysis.parent_joint.get(child) is not joint:
+                    continue
+                index[child] = len(order)
+                order.append(child)
+                pending.append(child)
+                steps.append(self._step(analysis, joint, index[name], index[child]))
+        self.links: tuple[str, ...] = tuple(order)
+        self._index = index
+        self._steps = steps
+        self._constants = [_constants(np, s.joint) for s in steps]
+
+    # -- configurations ------------------------------------------------------------------
+    def _step(self, analysis: Analysis, joint: Joint, parent: int, link: int) -> _Step:
+        if joint.type in _PARTS:
+            return _Step(link, parent, joint, joint.type, self._first[joint.name], 1.0, 0.0)
+        if joint.type not in _ONE:
+            return _Step(link, parent, joint, JointType.FIXED, -1, 0.0, 0.0)
+        lead = _leader(analysis, joint)
+        if lead is None:
+            return _Step(link, parent, joint, joint.type, self._first[joint.name], 1.0, 0.0)
+        leader, multiplier, offset = lead
+        column = self._first.get(leader, -1)
+        return _Step(link, parent, joint, joint.type, column, multiplier, offset)
+
+    def configuration(self, positions: Mapping[str, float] | None = None) -> NDArray[Any]:
+        """The configuration vector of ``positions`` (by variable name; the rest are 0).
+
+        Raises:
+            UnknownNameError: A name is no variable (the error names the closest).
+            ArgumentError: A value is not finite, or outside a joint's limits.
+        """
+        import numpy as np
+
+        q = np.zeros(len(self.variables))
+        where = {name: i for i, name in enumerate(self.variables)}
+        joints = self.analysis.joints
+        for name, value in (positions or {}).items():
+            if name not in where:
+                raise UnknownNameError("joint", name, self.variables)
+            value = float(value)
+            joint = joints.get(name)
+            if not math.isfinite(value):
+                raise ArgumentError(f"joint {name!r}: position {value} is not finite", name=name)
+            limit = joint.limit if joint is not None else None
+            if (
+                joint is not None
+                and limit is not None
+                and joint.type in (JointType.REVOLUTE, JointType.PRISMATIC)
+                and not limit.lower - 1e-9 <= value <= limit.upper + 1e-9
+            ):
+                raise ArgumentError(
+                    f"joint {name!r}: position {value:g} is outside its limits "
+                    f"{limit.lower:g} .. {limit.upper:g}",
+                    name=name,
+                )
+            q[where[name]] = value
+        return q
+
+    def _batch(self, q: Configuration) -> tuple[NDArray[Any], bool]:
+        import numpy as np
+
+        if isinstance(q, Mapping):
+            q = self.configuration(q)
+        array = np.asarray(q, dtype=float)
+        single = array.ndim == 1
+        if array.ndim not in (1, 2) or array.shape[-1] != len(self.variables):
+            raise ArgumentError(
+                f"a configuration has shape (n,) or (B, n) with n = {len(self.variables)} "
+                f"(the variables), not {array.shape}",
+                name="q",
+            )
+        return array.reshape(1, -1) if single else array, single
+
+    # -- poses ---------------------------------------------------------------------------
+    def _frames(self, q: NDArray[Any]) -> tuple[NDArray[Any], NDArray[Any]]:
+        """Rotations (B, L, 3, 3) and positions (B, L, 3) of every link in the root frame."""
+        import numpy as np
+
+        batch = q.shape[0]
+        rotations = np.empty((batch, len(self.links), 3, 3))
+        positions = np.empty((batch, len(self.links), 3))
+        rotations[:, 0] = np.eye(3)
+        positions[:, 0] = 0.0
+        for step, constants in zip(self._steps, self._constants, strict=True):
+            parent_r = rotations[:, step.parent]
+            at = positions[:, step.parent] + parent_r @ constants.xyz
+            rotations[:, step.link], positions[:, step.link] = _move(
+                np, step, constants, q, parent_r, at
+            )
+        return rotations, positions
+
+    def forward(self, q: Configuration) -> NDArray[Any]:
+        """Every link's 4x4 pose in the root frame: shape (L, 4, 4) for one configuration
+        (an array of shape (n,), or a mapping of variable names to values), (B, L, 4, 4)
+        for a batch (B, n). Links are in ``links`` order."""
+        import numpy as np
+
+        array, single = self._batch(q)
+        rotations, positions = self._frames(array)
+        poses = np.zeros((*rotations.shape[:2], 4, 4))
+        poses[..., :3, :3] = rotations
+        poses[..., :3, 3] = positions
+        poses[..., 3, 3] = 1.0
+        return poses[0] if single else poses
+
+    def link_index(self, name: str) -> int:
+        """Where link ``name`` is in ``links``.
+
+        Raises:
+            UnknownNameError: No link reached from the root has that name.
+        """
+        try:
+            return self._index[name]
+        except KeyError:
+            raise UnknownNameError("link", name, self.links) from None
+
+    def transform(self, q: Configuration, frame_from: str, frame_to: str) -> NDArray[Any]:
+        """The pose of ``frame_to`` in ``frame_from`` (it maps points given in
+        ``frame_to`` to ``frame_from``), as ``tf2_echo frame_from frame_to`` prints it:
+        (4, 4), or (B, 4, 4) for a batch.
+
+        Raises:
+            UnknownNameError: A frame is no link reached from the root.
+        """
+        import numpy as np
+
+        a, b = self.link_index(frame_from), self.link_index(frame_to)
+        array, single = self._batch(q)
+        rotations, positions = self._frames(array)
+        ra, pa, rb, pb = rotations[:, a], positions[:, a], rotations[:, b], positions[:, b]
+        inverse = np.swapaxes(ra, -1, -2)
+        result = np.zeros((array.shape[0], 4, 4))
+        result[:, :3, :3] = inverse @ rb
+        result[:, :3, 3] = (inverse @ (pb - pa)[..., None])[..., 0]
+        result[:, 3, 3] = 1.0
+        return result[0] if single else result
+
+    def jacobian(self, q: Configuration, frame: str) -> NDArray[Any]:
+        """The geometric Jacobian of link ``frame``: (6, n), or (B, 6, n) for a batch.
+
+        Rows: the velocity of the frame's origin (x, y, z), then its angular velocity, both
+        in the root frame's axes (pinocchio's LOCAL_WORLD_ALIGNED). Columns: the variables.
+        For planar and floating joints the columns are the joint's velocities along and
+        about its child frame's axes (as pinocchio's), not derivatives of the parameters.
+
+        Raises:
+            UnknownNameError: ``frame`` is no link reached from the root.
+        """
+        import numpy as np
+
+        target = self.link_index(frame)
+        array, single = self._batch(q)
+        rotations, positions = self._frames(array)
+        batch = array.shape[0]
+        result = np.zeros((batch, 6, len(self.variables)))
+        by_link = {s.link: (s, c) for s, c in zip(self._steps, self._constants, strict=True)}
+        end = positions[:, target]
+        link = target
+        while link != 0:  # up the tree to the root
+            step, constants = by_link[link]
+            parent_r = rotations[:, step.parent]
+            joint_r = parent_r @ constants.rotation
+            child_p = positions[:, link]
+            if step.column >= 0 and step.kind is not JointType.FIXED:
+                _columns(np, step, constants, result, joint_r, rotations[:, link], child_p, end)
+            link = step.parent
+        return result[0] if single else result
+
+
+@dataclass(frozen=True, slots=True)
+class _Constants:
+    """What one joint's motion needs, computed once: its origin's rotation and translation,
+    its unit axis, and for rotations R_o @ K and R_o @ k k^T (Rodrigues, premultiplied)."""
+
+    rotation: Any
+    xyz: Any
+    axis: Any
+    cross: Any
+    outer: Any
+    plane: Any  # planar joints: the two directions of the plane (3, 2)
+
+
+def _constants(np: Any, joint: Joint | None) -> _Constants:
+    if joint is None:
+        eye = np.eye(3)
+        return _Constants(eye, np.zeros(3), np.zeros(3), eye, eye, None)
+    rotation = np.array(rpy_matrix(joint.origin.rpy), dtype=float)
+    xyz = np.array(joint.origin.xyz, dtype=float)
+    axis = np.array(joint.axis, dtype=float)
+    norm = float(np.linalg.norm(axis))
+    axis = axis / norm if norm > 0 else axis
+    skew = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
+    plane = None
+    if joint.type is JointType.PLANAR:
+        plane = _plane(np, axis)
+    return _Constants(rotation, xyz, axis, rotation @ skew, rotation @ np.outer(axis, axis), plane)
+
+
+def _plane(np: Any, n: Any) -> Any:
+    """x and y turned by the shortest rotation from z to ``n`` (as columns)."""
+    z = np.array([0.0, 0.0, 1.0])
+    v = np.cross(z, n)
+    c = float(z @ n)
+    if np.linalg.norm(v) < 1e-12:
+        turn = np.eye(3) if c > 0 else np.diag([1.0, -1.0, -1.0])
+    else:
+        k = np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+        turn = np.eye(3) + k + k @ k / (1.0 + c)
+    return turn[:, :2]
+
+
+def _value(np: Any, step: _Step, q: Any) -> Any:
+    if step.column < 0:  # a mimic of a joint that is not placed: held at its offset
+        return np.full(q.shape[0], step.offset)
+    return step.multiplier * q[:, step.column] + step.offset
+
+
+def _rotation(np: Any, constants: _Constants, angle: Any) -> Any:
+    """R_o @ Rot(axis, angle) for a batch of angles: A + sin B + (1 - cos)(C - A)."""
+    s = np.sin(angle)[:, None, None]
+    c = np.cos(angle)[:, None, None]
+    a = constants.rotation
+    return a + s * constants.cross + (1.0 - c) * (constants.outer - a)
+
+
+def _move(
+    np: Any, step: _Step, constants: _Constants, q: Any, parent_r: Any, at: Any
+) -> tuple[Any, Any]:
+    """The rotation and position of ``step``'s link; ``at`` is its joint frame's origin."""
+    kind = step.kind
+    if kind is JointType.FIXED:
+        return parent_r @ constants.rotation, at
+    if kind in (JointType.REVOLUTE, JointType.CONTINUOUS):
+        return parent_r @ _rotation(np, constants, _value(np, step, q)), at
+    joint_r = parent_r @ constants.rotation
+    if kind is JointType.PRISMATIC:
+        return joint_r, at + _value(np, step, q)[:, None] * (joint_r @ constants.axis)
+    c = step.column
+    if kind is JointType.PLANAR:
+        shift = q[:, c : c + 2] @ constants.plane.T
+        turned = _rotation(np, constants, q[:, c + 2])
+        return parent_r @ turned, at + (joint_r @ shift[..., None])[..., 0]
+    # floating: x y z, then roll pitch yaw
+    shift = q[:, c : c + 3]
+    return joint_r @ _rpy(np, q[:, c + 3 : c + 6]), at + (joint_r @ shift[..., None])[..., 0]
+
+
+def _rpy(np: Any, angles: Any) -> Any:
+    """R = Rz(yaw) Ry(pitch) Rx(roll) for a batch (B, 3) of angles."""
+    cr, cp, cy = (np.cos(angles[:, i]) for i in range(3))
+    sr, sp, sy = (np.sin(angles[:, i]) for i in range(3))
+    out = np.empty((angles.shape[0], 3, 3))
+    out[:, 0, 0] = cy * cp
+    out[:, 0, 1] = cy * sp * sr - sy * cr
+    out[:, 0, 2] = cy * sp * cr + sy * sr
+    out[:, 1, 0] = sy * cp
+    out[:, 1, 1] = sy * sp * sr + cy * cr
+    out[:, 1, 2] = sy * sp * cr - cy * sr
+    out[:, 2, 0] = -sp
+    out[:, 2, 1] = cp * sr
+    out[:, 2, 2] = cp * cr
+    return out
+
+
+def _columns(
+    np: Any,
+    step: _Step,
+    constants: _Constants,
+    result: Any,
+    joint_r: Any,
+    child_r: Any,
+    child_p: Any,
+    end: Any,
+) -> None:
+    """Add the Jacobian columns of ``step``'s joint (a mimic's, times its multiplier, to its
+    leader's)."""
+    kind, c = step.kind, step.column
+
+    def turn(axis: Any, about: Any) -> Any:
+        return np.concatenate([np.cross(axis, end - about), axis], axis=1)
+
+    def slide(axis: Any) -> Any:
+        return np.concatenate([axis, np.zeros_like(axis)], axis=1)
+
+    if kind in (JointType.REVOLUTE, JointType.CONTINUOUS):
+        result[:, :, c] += step.multiplier * turn(joint_r @ constants.axis, child_p)
+    elif kind is JointType.PRISMATIC:
+        result[:, :, c] += step.multiplier * slide(joint_r @ constants.axis)
+    elif kind is JointType.PLANAR:
+        for i in range(2):
+            result[:, :, c + i] += slide(child_r @ constants.plane[:, i])
+        result[:, :, c + 2] += turn(joint_r @ constants.axis, child_p)
+    else:
+        for i in range(3):
+            result[:, :, c + i] += slide(child_r[:, :, i])
+            result[:, :, c + 3 + i] += turn(child_r[:, :, i], child_p)
+
+
+def _leader(analysis: Analysis, joint: Joint) -> tuple[str, float, float] | None:
+    """The joint a mimic joint follows in the end (chains combined), with the combined
+    multiplier and offset; None for a joint that is no mimic, or whose mimics loop or end
+    at a joint that is not of one variable."""
+    if joint.mimic is None:
+        return None
+    multiplier, offset = 1.0, 0.0
+    seen = {joint.name}
+    current = joint
+    while current.mimic is not None:
+        leader = analysis.joints.get(current.mimic.joint)
+        if leader is None or leader.name in seen or leader.type not in _ONE:
+            return None
+        multiplier, offset = (
+            multiplier * current.mimic.multiplier,
+            multiplier * current.mimic.offset + offset,
+        )
+        seen.add(leader.name)
+        current = leader
+    return current.name, multiplier, offset
+
+
+def forward_kinematics(robot: Robot | Analysis | Kinematics, q: Configuration) -> NDArray[Any]:
+    """Every link's 4x4 pose in the root frame (see `Kinematics.forward`)."""
+    return _of(robot).forward(q)
+
+
+def transform(
+    robot: Robot | Analysis | Kinematics, q: Configuration, frame_from: str, frame_to: str
+) -> NDArray[Any]:
+    """The pose of ``frame_to`` in ``frame_from`` (see `Kinematics.transform`)."""
+    return _of(robot).transform(q, frame_from, frame_to)
+
+
+def jacobian(robot: Robot | Analysis | Kinematics, q: Configuration, frame: str) -> NDArray[Any]:
+    """The geometric Jacobian of link ``frame`` (see `Kinematics.jacobian`)."""
+    return _of(robot).jacobian(q, frame)
+
+
+def _of(robot: Robot | Analysis | Kinematics) -> Kinematics:
+    return robot if isinstance(robot, Kinematics) else Kinematics(robot)
