@@ -119,6 +119,12 @@ class Kinematics:
         self._index = index
         self._steps = steps
         self._constants = [_constants(np, s.joint) for s in steps]
+        # Origins turned about their joint's axis add to the joint's angle.
+        self._phases = np.zeros((len(variables), 1))
+        for step, constants in zip(steps, self._constants, strict=True):
+            if constants.phase and _plain(step):
+                self._phases[step.column] = constants.phase
+        self._phased = bool(np.any(self._phases))
 
     # -- configurations ------------------------------------------------------------------
     def _step(self, analysis: Analysis, joint: Joint, parent: int, link: int) -> _Step:
@@ -183,22 +189,32 @@ class Kinematics:
         return array.reshape(1, -1) if single else array, single
 
     # -- poses ---------------------------------------------------------------------------
+    def _poses(self, q: NDArray[Any]) -> NDArray[Any]:
+        """Every link's pose, transposed, as an array (L, 4, 4, B): ``[l, j, i, b]`` is
+        entry (i, j) of link l's pose in configuration b. With the batch last each step
+        works on contiguous rows of B numbers, and with the poses transposed a constant
+        rotation applies from the left, as one matrix product over the whole batch."""
+        import numpy as np
+
+        batch = q.shape[0]
+        poses = np.empty((len(self.links), 4, 4, batch))  # every step writes its link
+        poses[:, :3, 3] = 0.0
+        poses[:, 3, 3] = 1.0
+        poses[0, :, :3] = np.eye(4)[:, :3, None]
+        columns = np.ascontiguousarray(q.T)
+        angles = columns + self._phases if self._phased else columns
+        sines, cosines = np.sin(angles), np.cos(angles)
+        for step, constants in zip(self._steps, self._constants, strict=True):
+            _place(np, step, constants, poses, columns, sines, cosines)
+        return poses
+
     def _frames(self, q: NDArray[Any]) -> tuple[NDArray[Any], NDArray[Any]]:
         """Rotations (B, L, 3, 3) and positions (B, L, 3) of every link in the root frame."""
         import numpy as np
 
-        batch = q.shape[0]
-        rotations = np.empty((batch, len(self.links), 3, 3))
-        positions = np.empty((batch, len(self.links), 3))
-        rotations[:, 0] = np.eye(3)
-        positions[:, 0] = 0.0
-        for step, constants in zip(self._steps, self._constants, strict=True):
-            parent_r = rotations[:, step.parent]
-            at = positions[:, step.parent] + parent_r @ constants.xyz
-            rotations[:, step.link], positions[:, step.link] = _move(
-                np, step, constants, q, parent_r, at
-            )
-        return rotations, positions
+        poses = self._poses(q)
+        rotations = np.moveaxis(poses[:, :3, :3], -1, 0).swapaxes(-1, -2)
+        return rotations, np.moveaxis(poses[:, 3, :3], -1, 0)
 
     def forward(self, q: Configuration) -> NDArray[Any]:
         """Every link's 4x4 pose in the root frame: shape (L, 4, 4) for one configuration
@@ -207,11 +223,8 @@ class Kinematics:
         import numpy as np
 
         array, single = self._batch(q)
-        rotations, positions = self._frames(array)
-        poses = np.zeros((*rotations.shape[:2], 4, 4))
-        poses[..., :3, :3] = rotations
-        poses[..., :3, 3] = positions
-        poses[..., 3, 3] = 1.0
+        # A view of the transposed, batch-last array, as (B, L, 4, 4) poses: no copy.
+        poses = np.moveaxis(self._poses(array), -1, 0).swapaxes(-1, -2)
         return poses[0] if single else poses
 
     def link_index(self, name: str) -> int:
@@ -281,7 +294,8 @@ class Kinematics:
 @dataclass(frozen=True, slots=True)
 class _Constants:
     """What one joint's motion needs, computed once: its origin's rotation and translation,
-    its unit axis, and for rotations R_o @ K and R_o @ k k^T (Rodrigues, premultiplied)."""
+    its unit axis, and for rotations about an axis that is not x, y or z, K and k k^T
+    (Rodrigues)."""
 
     rotation: Any
     xyz: Any
@@ -289,22 +303,133 @@ class _Constants:
     cross: Any
     outer: Any
     plane: Any  # planar joints: the two directions of the plane (3, 2)
+    turned: bool  # the origin has a rotation (not folded into ``phase``)
+    offsets: tuple[tuple[int, float], ...]  # the origin's non-zero coordinates
+    aligned: tuple[int, float] | None  # the axis is +-x, +-y or +-z: (which, sign)
+    phase: float  # an origin turned about the joint's own axis: the angle added to its own
 
 
 def _constants(np: Any, joint: Joint | None) -> _Constants:
     if joint is None:
         eye = np.eye(3)
-        return _Constants(eye, np.zeros(3), np.zeros(3), eye, eye, None)
+        return _Constants(eye, np.zeros(3), np.zeros(3), eye, eye, None, False, (), None, 0.0)
     rotation = np.array(rpy_matrix(joint.origin.rpy), dtype=float)
     xyz = np.array(joint.origin.xyz, dtype=float)
     axis = np.array(joint.axis, dtype=float)
     norm = float(np.linalg.norm(axis))
     axis = axis / norm if norm > 0 else axis
     skew = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
-    plane = None
-    if joint.type is JointType.PLANAR:
-        plane = _plane(np, axis)
-    return _Constants(rotation, xyz, axis, rotation @ skew, rotation @ np.outer(axis, axis), plane)
+    plane = _plane(np, axis) if joint.type is JointType.PLANAR else None
+    aligned = None
+    for i in range(3):
+        if abs(axis[i]) == 1.0:
+            aligned = (i, float(axis[i]))
+    offsets = tuple((i, float(v)) for i, v in enumerate(xyz) if v != 0.0)
+    turned = bool(np.any(rotation != np.eye(3)))
+    phase = 0.0
+    revolving = joint.type in (JointType.REVOLUTE, JointType.CONTINUOUS)
+    if turned and revolving and aligned is not None:
+        # R_o = Rot(axis, phase) when R_o keeps the axis: then R_o Rot(axis, q) is
+        # Rot(axis, q + phase), and the origin's rotation costs nothing.
+        i, sign = aligned
+        a, b = (i + 1) % 3, (i + 2) % 3
+        keeps = abs(rotation[i, i] - 1.0) < 1e-15 and not rotation[i, a] and not rotation[a, i]
+        keeps = keeps and not rotation[i, b] and not rotation[b, i]
+        if keeps:
+            phase = sign * math.atan2(rotation[b, a], rotation[a, a])
+            turned = False
+    return _Constants(
+        rotation, xyz, axis, skew, np.outer(axis, axis), plane, turned, offsets, aligned, phase
+    )
+
+
+def _place(
+    np: Any,
+    step: _Step,
+    constants: _Constants,
+    poses: Any,
+    columns: Any,
+    sines: Any,
+    cosines: Any,
+) -> None:
+    """Fill in the pose of ``step``'s link from its parent's, both transposed in ``poses``:
+    row k of a rotation block is the rotation's column k, row 3 the position."""
+    parent_r, parent_p = poses[step.parent, :3, :3], poses[step.parent, 3, :3]
+    rotation, position = poses[step.link, :3, :3], poses[step.link, 3, :3]
+    position[...] = parent_p
+    for i, value in constants.offsets:  # the joint frame's origin
+        position += value * parent_r[i]
+    width = 3 * parent_r.shape[-1]
+    if constants.turned:  # the joint frame's axes: (R_p R_o)^T = R_o^T R_p^T
+        np.matmul(constants.rotation.T, parent_r.reshape(3, width), out=rotation.reshape(3, width))
+    else:
+        rotation[...] = parent_r
+    kind = step.kind
+    if kind is JointType.FIXED:
+        return
+    if kind in _PARTS:
+        _place_many(np, step, constants, rotation, position, columns)
+        return
+    plain = _plain(step)
+    if plain:
+        value = columns[step.column]
+    elif step.column >= 0:
+        value = step.multiplier * columns[step.column] + step.offset
+    else:  # a mimic of a joint that is not placed: held at its offset
+        value = np.full(columns.shape[1], step.offset)
+    if kind is JointType.PRISMATIC:
+        if constants.aligned is not None:
+            i, sign = constants.aligned
+            position += (sign * value) * rotation[i]
+        else:
+            position += value * np.einsum("kib,k->ib", rotation, constants.axis)
+        return
+    s = sines[step.column] if plain else np.sin(value + constants.phase)
+    c = cosines[step.column] if plain else np.cos(value + constants.phase)
+    if constants.aligned is not None:  # two columns turn, as in Rz = [[c, -s], [s, c]]
+        i, sign = constants.aligned
+        a, b = (i + 1) % 3, (i + 2) % 3
+        first, second = rotation[a], rotation[b]
+        kept = first.copy()
+        signed = s if sign > 0 else -s
+        first *= c
+        first += second * signed
+        second *= c
+        second -= kept * signed
+        return
+    # Rodrigues: (J (I c + K s + k k^T (1 - c)))^T = J^T c + K^T J^T s + k k^T J^T (1 - c)
+    joint_r = rotation.copy().reshape(3, width)
+    crossed = (constants.cross.T @ joint_r).reshape(rotation.shape)
+    along = (constants.outer @ joint_r).reshape(rotation.shape)
+    rotation[...] = joint_r.reshape(rotation.shape) * c + crossed * s + along * (1.0 - c)
+
+
+def _plain(step: _Step) -> bool:
+    """The step's joint owns its variable (no mimic's multiplier or offset)."""
+    return step.column >= 0 and step.multiplier == 1.0 and step.offset == 0.0
+
+
+def _place_many(
+    np: Any, step: _Step, constants: _Constants, rotation: Any, position: Any, columns: Any
+) -> None:
+    """Planar and floating joints: several variables each (rotation and position are the
+    link's transposed rotation and its position, as `_place` keeps them)."""
+    c = step.column
+    joint_r = rotation.copy()
+    if step.kind is JointType.PLANAR:
+        shift = constants.plane @ columns[c : c + 2]  # (3, B) in the joint frame
+        angle = columns[c + 2]
+        s, co = np.sin(angle), np.cos(angle)
+        local = (
+            np.eye(3)[:, :, None] * co
+            + constants.cross[:, :, None] * s
+            + constants.outer[:, :, None] * (1.0 - co)
+        )
+    else:
+        shift = columns[c : c + 3]
+        local = np.moveaxis(_rpy(np, columns[c + 3 : c + 6].T), 0, -1)
+    position += np.einsum("kib,kb->ib", joint_r, shift)
+    np.einsum("kib,kjb->ijb", local, joint_r, out=rotation)
 
 
 def _plane(np: Any, n: Any) -> Any:
@@ -318,42 +443,6 @@ def _plane(np: Any, n: Any) -> Any:
         k = np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
         turn = np.eye(3) + k + k @ k / (1.0 + c)
     return turn[:, :2]
-
-
-def _value(np: Any, step: _Step, q: Any) -> Any:
-    if step.column < 0:  # a mimic of a joint that is not placed: held at its offset
-        return np.full(q.shape[0], step.offset)
-    return step.multiplier * q[:, step.column] + step.offset
-
-
-def _rotation(np: Any, constants: _Constants, angle: Any) -> Any:
-    """R_o @ Rot(axis, angle) for a batch of angles: A + sin B + (1 - cos)(C - A)."""
-    s = np.sin(angle)[:, None, None]
-    c = np.cos(angle)[:, None, None]
-    a = constants.rotation
-    return a + s * constants.cross + (1.0 - c) * (constants.outer - a)
-
-
-def _move(
-    np: Any, step: _Step, constants: _Constants, q: Any, parent_r: Any, at: Any
-) -> tuple[Any, Any]:
-    """The rotation and position of ``step``'s link; ``at`` is its joint frame's origin."""
-    kind = step.kind
-    if kind is JointType.FIXED:
-        return parent_r @ constants.rotation, at
-    if kind in (JointType.REVOLUTE, JointType.CONTINUOUS):
-        return parent_r @ _rotation(np, constants, _value(np, step, q)), at
-    joint_r = parent_r @ constants.rotation
-    if kind is JointType.PRISMATIC:
-        return joint_r, at + _value(np, step, q)[:, None] * (joint_r @ constants.axis)
-    c = step.column
-    if kind is JointType.PLANAR:
-        shift = q[:, c : c + 2] @ constants.plane.T
-        turned = _rotation(np, constants, q[:, c + 2])
-        return parent_r @ turned, at + (joint_r @ shift[..., None])[..., 0]
-    # floating: x y z, then roll pitch yaw
-    shift = q[:, c : c + 3]
-    return joint_r @ _rpy(np, q[:, c + 3 : c + 6]), at + (joint_r @ shift[..., None])[..., 0]
 
 
 def _rpy(np: Any, angles: Any) -> Any:
