@@ -20,6 +20,7 @@ from .expand import expand
 from .graph import graph
 from .inertia import inertia
 from .rules import rules
+from .tf import tf
 
 __all__ = ["cli", "main"]
 
@@ -42,10 +43,11 @@ def cli() -> None:
       fishbot graph robot.urdf.xacro -o tree.pdf
       fishbot inertia cylinder --mass 1 --radius 0.1 --length 0.12
       fishbot inertia robot.urdf.xacro
+      fishbot tf robot.urdf.xacro base_link laser_link -j left_wheel_joint=90deg
     """
 
 
-for _command in (check, rules, expand, graph, inertia):
+for _command in (check, rules, expand, graph, inertia, tf):
     cli.add_command(_command)
 
 

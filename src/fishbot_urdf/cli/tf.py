@@ -1,0 +1,164 @@
+"""`fishbot tf`: where one frame of the robot is in another, as ROS's tf2_echo prints it."""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+from collections.abc import Sequence
+from typing import Any
+
+import click
+
+from ..errors import FishbotUrdfError
+from ._common import (
+    EXIT_INVALID,
+    EXIT_OK,
+    check_input,
+    emit_findings,
+    format_option,
+    joint_option,
+    limit_options,
+    nearest_config,
+    package_option,
+    packages_option,
+    stop_on,
+    to_stdout,
+    xacro_args,
+)
+
+
+@click.command()
+@click.argument("file", type=click.Path(allow_dash=True))
+@click.argument("frame_from", metavar="FROM")
+@click.argument("frame_to", metavar="TO")
+@click.argument("args", nargs=-1, metavar="[name:=value]...")
+@joint_option()
+@format_option(
+    ("text", "json"), "text: as tf2_echo prints it; json: the same numbers for programs."
+)
+@package_option()
+@limit_options()
+def tf(
+    file: str,
+    frame_from: str,
+    frame_to: str,
+    args: Sequence[str],
+    joint_items: Sequence[str],
+    fmt: str,
+    package_items: Sequence[str],
+) -> None:
+    """Where frame TO is in frame FROM (both links of FILE, a URDF or xacro file), as
+    `ros2 run tf2_ros tf2_echo FROM TO` prints it with robot_state_publisher running.
+
+    Joints are at 0 unless -j places them (mimic joints follow their leader). Planar and
+    floating joints take JOINT.x, JOINT.y, JOINT.yaw (planar) or JOINT.x ... JOINT.yaw
+    (floating: x y z roll pitch yaw). Exit status: 0 done, 1 the robot has errors, 2 a
+    frame or joint that does not exist, a position outside its limits, a file that cannot
+    be read, or a wrong command line.
+
+    \b
+    Examples:
+      fishbot tf robots/fishbot/urdf/fishbot/fishbot.urdf.xacro base_link laser_link
+      fishbot tf arm.urdf base_link tool0 -j shoulder=90deg -j elbow=-0.5
+      fishbot tf robot.urdf.xacro base_link camera_link use_sim:=true --format json
+    """
+    from ..diagnostics import has_errors
+    from ..errors import ArgumentError, StructureError, UnknownNameError
+    from ..kinematics import Kinematics
+    from ._common import joint_positions
+
+    if file == "-" and args:
+        raise click.UsageError("name:=value arguments are for a .xacro file, not standard input")
+    values = xacro_args(args)
+    positions = joint_positions(joint_items)
+    try:
+        result = check_input(file, values, packages_option(package_items), nearest_config(file))
+    except FishbotUrdfError as exc:
+        stop_on(exc)
+    if result.analysis is None or has_errors(result.diagnostics):
+        emit_findings(d for d in result.diagnostics if d.is_error)
+        sys.exit(EXIT_INVALID)
+    try:
+        kinematics = Kinematics(result.analysis)
+        for name in (frame_from, frame_to):
+            kinematics.link_index(name)
+        pose = kinematics.transform(kinematics.configuration(positions), frame_from, frame_to)
+    except UnknownNameError as exc:
+        raise click.UsageError(exc.message) from None
+    except ArgumentError as exc:
+        raise click.BadParameter(exc.message, param_hint="--joint") from None
+    except StructureError as exc:
+        stop_on(exc)
+    matrix = [[float(v) for v in row] for row in pose]
+    report = _report(matrix)
+    if fmt == "json":
+        report = {"from": frame_from, "to": frame_to, "positions": positions, **report}
+        to_stdout((json.dumps(report, indent=2) + "\n").encode("utf-8"))
+    else:
+        to_stdout(_tf2_echo(report).encode("utf-8"))
+    sys.exit(EXIT_OK)
+
+
+def _report(matrix: list[list[float]]) -> dict[str, Any]:
+    rotation = [row[:3] for row in matrix[:3]]
+    roll, pitch, yaw = _euler_ypr(rotation)
+    return {
+        "translation": [matrix[0][3], matrix[1][3], matrix[2][3]],
+        "quaternion_xyzw": _quaternion(rotation),
+        "rpy": [roll, pitch, yaw],
+        "rpy_degrees": [math.degrees(roll), math.degrees(pitch), math.degrees(yaw)],
+        "matrix": matrix,
+    }
+
+
+def _quaternion(m: list[list[float]]) -> list[float]:
+    """x, y, z, w of a rotation matrix, by the largest of w, x, y, z (as tf2's
+    Matrix3x3::getRotation picks)."""
+    trace = m[0][0] + m[1][1] + m[2][2]
+    if trace > 0.0:
+        s = math.sqrt(trace + 1.0)
+        w, s = s * 0.5, 0.5 / s
+        return [(m[2][1] - m[1][2]) * s, (m[0][2] - m[2][0]) * s, (m[1][0] - m[0][1]) * s, w]
+    i = max(range(3), key=lambda d: m[d][d])  # the first of the largest, as tf2's order
+    j, k = (i + 1) % 3, (i + 2) % 3
+    s = math.sqrt(m[i][i] - m[j][j] - m[k][k] + 1.0)
+    out = [0.0, 0.0, 0.0, 0.0]
+    out[i], s = s * 0.5, 0.5 / s
+    out[3] = (m[k][j] - m[j][k]) * s
+    out[j] = (m[j][i] + m[i][j]) * s
+    out[k] = (m[k][i] + m[i][k]) * s
+    return out
+
+
+def _euler_ypr(m: list[list[float]]) -> tuple[float, float, float]:
+    """Roll, pitch, yaw (R = Rz(yaw) Ry(pitch) Rx(roll)), pitch in [-pi/2, pi/2], as tf2's
+    Matrix3x3::getEulerYPR gives them (its -0.0 pitch included)."""
+    if abs(m[2][0]) >= 1.0:
+        yaw = 0.0
+        if m[2][0] < 0:
+            delta = math.atan2(m[0][1], m[0][2])
+            return delta, math.pi / 2, yaw
+        delta = math.atan2(-m[0][1], -m[0][2])
+        return delta, -math.pi / 2, yaw
+    pitch = -math.asin(m[2][0])
+    c = math.cos(pitch)
+    roll = math.atan2(m[2][1] / c, m[2][2] / c)
+    yaw = math.atan2(m[1][0] / c, m[0][0] / c)
+    return roll, pitch, yaw
+
+
+def _tf2_echo(report: dict[str, Any]) -> str:
+    def listed(values: list[float]) -> str:
+        return "[" + ", ".join(f"{v:.3f}" for v in values) + "]"
+
+    lines = [
+        "At time 0.0",
+        f"- Translation: {listed(report['translation'])}",
+        f"- Rotation: in Quaternion (xyzw) {listed(report['quaternion_xyzw'])}",
+        f"- Rotation: in RPY (radian) {listed(report['rpy'])}",
+        f"- Rotation: in RPY (degree) {listed(report['rpy_degrees'])}",
+        "- Matrix:",
+    ]
+    lines += ["".join(f" {v:6.3f}" for v in row) for row in report["matrix"]]
+    return "\n".join(lines) + "\n"

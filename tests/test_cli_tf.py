@@ -1,0 +1,104 @@
+"""`fishbot tf`: one frame in another, as tf2_echo prints it, with joint positions."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+from conftest import FISHBOT
+
+import fishbot_urdf
+from fishbot_urdf.cli import cli
+
+XACRO = FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"
+
+
+def _tf(*args: str) -> tuple[int, str, str]:
+    result = CliRunner().invoke(cli, ["tf", *args])
+    return result.exit_code, result.stdout, result.stderr
+
+
+def test_the_output_is_tf2_echos() -> None:
+    code, out, err = _tf(str(XACRO), "base_link", "left_wheel_link", "-j", "left_wheel_joint=90deg")
+    assert (code, err) == (0, "")
+    # fishbot.urdf.xacro puts the left wheel joint at (0, wheel_y, wheel_z) = (0, 0.10,
+    # -0.06) with its axis along y; 90 degrees about y takes x to -z and z to x, the
+    # quaternion (0, sin 45, 0, cos 45).
+    assert out == (
+        "At time 0.0\n"
+        "- Translation: [0.000, 0.100, -0.060]\n"
+        "- Rotation: in Quaternion (xyzw) [0.000, 0.707, 0.000, 0.707]\n"
+        "- Rotation: in RPY (radian) [0.000, 1.571, 0.000]\n"
+        "- Rotation: in RPY (degree) [0.000, 90.000, 0.000]\n"
+        "- Matrix:\n"
+        "  0.000  0.000  1.000  0.000\n"
+        "  0.000  1.000  0.000  0.100\n"
+        " -1.000  0.000  0.000 -0.060\n"
+        "  0.000  0.000  0.000  1.000\n"
+    )
+
+
+def test_json_has_the_numbers_of_the_plain_poses() -> None:
+    code, out, _ = _tf(
+        str(XACRO),
+        "laser_link",
+        "right_wheel_link",
+        "-j",
+        "right_wheel_joint=0.3",
+        "--format",
+        "json",
+    )
+    assert code == 0
+    report = json.loads(out)
+    robot = fishbot_urdf.load(XACRO)
+    poses = fishbot_urdf.link_poses(robot, {"right_wheel_joint": 0.3})
+    expected = poses["laser_link"].inverse().then(poses["right_wheel_link"])
+    np.testing.assert_allclose(report["matrix"], expected.matrix(), atol=1e-15)
+    assert report["from"] == "laser_link" and report["positions"] == {"right_wheel_joint": 0.3}
+    x, y, z, w = report["quaternion_xyzw"]
+    assert x * x + y * y + z * z + w * w == pytest.approx(1.0)
+    roll, pitch, yaw = report["rpy"]
+    rebuilt = fishbot_urdf.spatial.rpy_matrix((roll, pitch, yaw))
+    np.testing.assert_allclose(np.array(rebuilt), np.array(report["matrix"])[:3, :3], atol=1e-12)
+    assert report["rpy_degrees"] == pytest.approx([math.degrees(a) for a in report["rpy"]])
+
+
+@pytest.mark.parametrize(
+    ("args", "said"),
+    [
+        (("base_lnk", "laser_link"), "no link 'base_lnk' (did you mean 'base_link'?"),
+        (
+            ("base_link", "laser_link", "-j", "left_whel_joint=1"),
+            "did you mean 'left_wheel_joint'?",
+        ),
+        (("base_link", "laser_link", "-j", "left_wheel_joint=x"), "is not NAME=VALUE"),
+    ],
+)
+def test_wrong_frames_and_joints_are_one_line_and_exit_2(args: tuple[str, ...], said: str) -> None:
+    code, out, err = _tf(str(XACRO), *args)
+    assert (code, out) == (2, "")
+    assert said in err
+
+
+def test_a_position_outside_the_limits_and_a_broken_robot(tmp_path: Path) -> None:
+    arm = tmp_path / "arm.urdf"
+    arm.write_text(
+        '<robot name="arm"><link name="a"/><link name="b"/>'
+        '<joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+        '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>'
+    )
+    code, _, err = _tf(str(arm), "a", "b", "-j", "j=2")
+    assert code == 2
+    assert "joint 'j': position 2 is outside its limits -1 .. 1" in err
+    broken = tmp_path / "broken.urdf"
+    broken.write_text(
+        '<robot name="r"><link name="a"/><joint name="j" type="fixed">'
+        '<parent link="a"/><child link="b"/></joint></robot>'
+    )
+    code, out, err = _tf(str(broken), "a", "b")
+    assert (code, out) == (1, "")
+    assert "[undefined-link]" in err
