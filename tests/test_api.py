@@ -144,6 +144,24 @@ def test_readme_shows_the_fishbot_graph_made_by_the_tool() -> None:
         assert image.width > image.height > 300  # a wide tree: nine joints under one base
 
 
+def test_readme_shows_the_fishbot_rendered_by_the_tool(tmp_path: Path) -> None:
+    readme = (ROOT / "README.md").read_text()
+    command = "fishbot render robots/fishbot/urdf/fishbot/fishbot.urdf.xacro -o docs/fishbot.png"
+    assert command in readme.replace("\n", " ")
+    assert "](docs/fishbot.png)" in readme
+    import numpy as np
+    from PIL import Image
+
+    fresh = tmp_path / "fishbot.png"
+    args = command.split()[1:]
+    args[args.index("docs/fishbot.png")] = str(fresh)
+    subprocess.run([sys.executable, "-m", "fishbot_urdf", *args], cwd=ROOT, check=True)
+    with Image.open(ROOT / "docs" / "fishbot.png") as kept, Image.open(fresh) as made:
+        assert kept.size == made.size == (800, 600)
+        difference = np.abs(np.asarray(kept, dtype=int) - np.asarray(made, dtype=int))
+    assert difference.mean() < 0.5  # the picture in the README is the tool's, as it is now
+
+
 def test_mass_example_output() -> None:
     lines = _run_example("fishbot_mass.py").stdout.splitlines()
     parts = {line.split()[0]: line.split()[1:] for line in lines[1:10]}

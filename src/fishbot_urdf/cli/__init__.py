@@ -19,6 +19,7 @@ from .check import check
 from .expand import expand
 from .graph import graph
 from .inertia import inertia
+from .render import render
 from .rules import rules
 from .tf import tf
 
@@ -44,10 +45,11 @@ def cli() -> None:
       fishbot inertia cylinder --mass 1 --radius 0.1 --length 0.12
       fishbot inertia robot.urdf.xacro
       fishbot tf robot.urdf.xacro base_link laser_link -j left_wheel_joint=90deg
+      fishbot render robot.urdf.xacro -o robot.png --view side
     """
 
 
-for _command in (check, rules, expand, graph, inertia, tf):
+for _command in (check, rules, expand, graph, inertia, tf, render):
     cli.add_command(_command)
 
 

@@ -236,6 +236,16 @@ def package_option() -> Callable[[Wrapped], Wrapped]:
     )
 
 
+def posing_errors(diagnostics: Iterable[Diagnostic]) -> list[Diagnostic]:
+    """The errors that leave a robot's shape or tree in doubt (reading, URDF and structure
+    rules): `tf` and `render` stop on them; physics and mesh findings are `check`'s."""
+    from ..rules import Family, all_rules
+
+    shaping = {Family.XML, Family.URDF, Family.STRUCTURE, Family.XACRO}
+    ids = {rule.id for rule in all_rules() if rule.family in shaping}
+    return [d for d in diagnostics if d.is_error and d.rule in ids]
+
+
 def joint_option() -> Callable[[Wrapped], Wrapped]:
     """``-j/--joint NAME=VALUE`` (repeatable), stored as ``joint_items``: a joint position,
     written with ``=`` so that it is never taken for a xacro ``name:=value``."""

@@ -22,6 +22,7 @@ from ._common import (
     nearest_config,
     package_option,
     packages_option,
+    posing_errors,
     stop_on,
     to_stdout,
     xacro_args,
@@ -63,7 +64,6 @@ def tf(
       fishbot tf arm.urdf base_link tool0 -j shoulder=90deg -j elbow=-0.5
       fishbot tf robot.urdf.xacro base_link camera_link use_sim:=true --format json
     """
-    from ..diagnostics import has_errors
     from ..errors import ArgumentError, StructureError, UnknownNameError
     from ..kinematics import Kinematics
     from ._common import joint_positions
@@ -76,8 +76,9 @@ def tf(
         result = check_input(file, values, packages_option(package_items), nearest_config(file))
     except FishbotUrdfError as exc:
         stop_on(exc)
-    if result.analysis is None or has_errors(result.diagnostics):
-        emit_findings(d for d in result.diagnostics if d.is_error)
+    blocking = posing_errors(result.diagnostics)
+    if result.analysis is None or blocking:
+        emit_findings(blocking)
         sys.exit(EXIT_INVALID)
     try:
         kinematics = Kinematics(result.analysis)

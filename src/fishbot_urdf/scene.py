@@ -1,0 +1,323 @@
+"""A robot as triangles to draw: every visual (or collision) shape, tessellated or read from
+its mesh file, placed by the forward kinematics at a joint configuration, in the root
+link's frame. `fishbot render` rasterises a scene; `fishbot view` sends one to the browser.
+
+numpy is imported when a scene is built. Meshes are read from STL and OBJ here; other
+formats need trimesh (the `mesh` extra). A mesh that cannot be read is drawn as its
+bounding box when its size is known (a COLLADA file's positions), else left out, and named
+in ``Scene.warnings``.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from .analysis import Analysis, of
+from .model import Box, Cylinder, Geometry, Link, Material, Mesh, Origin, Robot, Sphere
+from .spatial import rpy_matrix
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+__all__ = ["Part", "Scene", "build_scene"]
+
+GREY = (0.7, 0.7, 0.72, 1.0)  # RViz draws a visual without a material in a light grey
+_SEGMENTS = 48  # around a cylinder or sphere
+
+
+@dataclass(frozen=True)
+class Part:
+    """One shape, posed: triangles (T, 3, 3) in the root frame, and its colour.
+
+    Attributes:
+        link: The link it belongs to.
+        triangles: The corners of every triangle, in metres, in the root frame.
+        color: Red, green, blue, alpha, each 0..1.
+        local: The same triangles in the link's frame (what a viewer poses itself).
+        pose: The link's 4x4 pose in the root frame.
+    """
+
+    link: str
+    triangles: NDArray[Any]
+    color: tuple[float, float, float, float]
+    local: NDArray[Any] = field(repr=False)
+    pose: NDArray[Any] = field(repr=False)
+
+
+@dataclass(frozen=True)
+class Scene:
+    """Every drawn shape of a robot, and what could not be drawn as it is.
+
+    Attributes:
+        parts: The shapes, in link order.
+        warnings: One line for each mesh drawn as its bounding box, or not at all.
+        poses: Every link's 4x4 pose in the root frame, by name.
+    """
+
+    parts: tuple[Part, ...]
+    warnings: tuple[str, ...]
+    poses: Mapping[str, NDArray[Any]]
+
+    def bounds(self) -> tuple[NDArray[Any], NDArray[Any]]:
+        """The smallest and largest corner of the box around every part (or of the link
+        frames, when nothing is drawn)."""
+        import numpy as np
+
+        points = [p.triangles.reshape(-1, 3) for p in self.parts if len(p.triangles)]
+        if not points:
+            points = [np.array([pose[:3, 3] for pose in self.poses.values()])]
+        every = np.concatenate(points)
+        return every.min(axis=0), every.max(axis=0)
+
+
+def build_scene(
+    robot: Robot | Analysis,
+    q: Any = None,
+    *,
+    collision: bool = False,
+    packages: Mapping[str, str | Path] | None = None,
+    path: str | None = None,
+) -> Scene:
+    """The robot's visual (or ``collision``) shapes posed at configuration ``q`` (see
+    `fishbot_urdf.Kinematics`; None: every joint at zero). ``path`` is the robot file
+    relative mesh names are read beside (default: where the robot was read);
+    ``packages`` resolve ``package://`` names as for ``$(find)``.
+
+    Raises:
+        StructureError: The robot has no single root.
+        UnknownNameError, ArgumentError: ``q`` names an unknown joint or a bad value.
+    """
+    import numpy as np
+
+    from .kinematics import Kinematics
+
+    analysis = of(robot)
+    kin = Kinematics(analysis)
+    config = np.zeros(len(kin.variables)) if q is None else q
+    poses_array = kin.forward(config)
+    poses = {name: poses_array[i] for i, name in enumerate(kin.links)}
+    materials = {m.name: m for m in analysis.robot.materials if m.name}
+    near = path or analysis.path
+    loader = _Loader(near, packages or {})
+    parts: list[Part] = []
+    for link in analysis.robot.links:
+        if link.name not in poses:
+            continue
+        pose = poses[link.name]
+        shapes: list[tuple[Geometry, Origin, Material | None]]
+        if collision:
+            shapes = [(c.geometry, c.origin, None) for c in link.collisions]
+        else:
+            shapes = [(v.geometry, v.origin, v.material) for v in link.visuals]
+        for geometry, origin, material in shapes:
+            local = loader.triangles(link, geometry)
+            if local is None or not len(local):
+                continue
+            placed = _apply(np, _origin_matrix(np, origin), local)
+            world = _apply(np, pose, placed)
+            color = (0.55, 0.7, 0.85, 1.0) if collision else _color(material, materials)
+            parts.append(Part(link.name, world, color, placed, pose))
+    return Scene(tuple(parts), tuple(loader.warnings), poses)
+
+
+def _apply(np: Any, matrix: Any, triangles: Any) -> Any:
+    return triangles @ matrix[:3, :3].T + matrix[:3, 3]
+
+
+def _origin_matrix(np: Any, origin: Origin) -> Any:
+    out = np.eye(4)
+    out[:3, :3] = np.array(rpy_matrix(origin.rpy))
+    out[:3, 3] = origin.xyz
+    return out
+
+
+def _color(
+    material: Material | None, materials: Mapping[str, Material]
+) -> tuple[float, float, float, float]:
+    """A visual's colour as urdfdom resolves it: the top-level material of its name first."""
+    if material is None:
+        return GREY
+    defined = materials.get(material.name)
+    for candidate in (defined, material):
+        if candidate is not None and candidate.color is not None:
+            r, g, b, a = candidate.color
+            return (r, g, b, a)
+    return GREY
+
+
+class _Loader:
+    """Shapes to triangles in their own frame; each mesh file read once."""
+
+    def __init__(self, robot: str, packages: Mapping[str, str | Path]) -> None:
+        self.robot = robot
+        self.packages = packages
+        self.read: dict[tuple[str, tuple[float, ...]], Any] = {}
+        self.warnings: list[str] = []
+
+    def triangles(self, link: Link, geometry: Geometry) -> Any:
+        import numpy as np
+
+        if isinstance(geometry, Box):
+            return _box(np, *geometry.size)
+        if isinstance(geometry, Cylinder):
+            return _cylinder(np, geometry.radius, geometry.length)
+        if isinstance(geometry, Sphere):
+            return _sphere(np, geometry.radius)
+        if isinstance(geometry, Mesh):
+            scale = geometry.scale or (1.0, 1.0, 1.0)
+            key = (geometry.filename, tuple(scale))
+            if key not in self.read:
+                self.read[key] = self._mesh(np, link, geometry, scale)
+            return self.read[key]
+        return None
+
+    def _mesh(self, np: Any, link: Link, mesh: Mesh, scale: tuple[float, ...]) -> Any:
+        from .errors import FishbotUrdfError
+        from .packages import resolve_package_uri
+
+        shown = f"link {link.name!r}: mesh {mesh.filename!r}"
+        near = self.robot if not self.robot.startswith("<") else None
+        try:
+            file = resolve_package_uri(mesh.filename, near=near, packages=self.packages)
+        except FishbotUrdfError as exc:
+            self.warnings.append(f"{shown} is not drawn: {exc.message}")
+            return None
+        try:
+            triangles = _read_mesh(np, file)
+        except (OSError, FishbotUrdfError) as exc:
+            triangles = None
+            reason = getattr(exc, "message", None) or str(exc) or type(exc).__name__
+        else:
+            reason = ""
+        if triangles is not None:
+            return triangles * np.asarray(scale)
+        box = _bounds_of(np, file)
+        if box is None:
+            self.warnings.append(f"{shown} cannot be read ({reason}), nor its size: not drawn")
+            return None
+        low, high = box[0] * np.asarray(scale), box[1] * np.asarray(scale)
+        self.warnings.append(f"{shown} cannot be read ({reason}): drawn as its bounding box")
+        return _box(np, *(high - low)) + (low + high) / 2
+
+
+def _read_mesh(np: Any, file: Path) -> Any:
+    """Triangles (T, 3, 3) of an STL or OBJ file (others through trimesh, if installed)."""
+    from .errors import ShapeError
+    from .inputs import read_input
+
+    kind = file.suffix.lower()
+    if kind == ".stl":
+        return _stl(np, read_input(file))
+    if kind == ".obj":
+        return _obj(np, read_input(file))
+    try:
+        import trimesh
+    except ImportError:
+        raise ShapeError(f"{kind or 'no extension'}: pip install 'fishbot-urdf[mesh]'") from None
+    try:
+        loaded: Any = trimesh.load(str(file), force="mesh")
+    except Exception as exc:  # whatever a foreign reader makes of a file it cannot read
+        raise ShapeError(str(exc) or type(exc).__name__) from exc
+    if not hasattr(loaded, "triangles") or not len(loaded.faces):
+        raise ShapeError("no triangles")
+    return np.asarray(loaded.triangles, dtype=float)
+
+
+def _stl(np: Any, data: bytes) -> Any:
+    from .errors import ShapeError
+
+    if len(data) >= 84:
+        count = int.from_bytes(data[80:84], "little")
+        if len(data) == 84 + 50 * count:
+            record = np.dtype([("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("a", "<u2")])
+            return np.frombuffer(data, record, count, 84)["corners"].astype(float)
+    numbers = re.findall(rb"vertex\s+(\S+)\s+(\S+)\s+(\S+)", data)
+    if not numbers:
+        raise ShapeError("no triangles in the STL file")
+    corners = np.array(numbers, dtype=float)
+    return corners[: len(corners) // 3 * 3].reshape(-1, 3, 3)
+
+
+def _obj(np: Any, data: bytes) -> Any:
+    from .errors import ShapeError
+
+    vertices = np.array(
+        re.findall(rb"^[ \t]*v[ \t]+(\S+)[ \t]+(\S+)[ \t]+(\S+)", data, re.MULTILINE), dtype=float
+    )
+    triangles: list[tuple[int, int, int]] = []
+    for face in re.findall(rb"^[ \t]*f[ \t]+(.+)$", data, re.MULTILINE):
+        index = [int(token.split(b"/")[0]) for token in face.split()]
+        index = [i - 1 if i > 0 else len(vertices) + i for i in index]
+        triangles.extend((index[0], index[k], index[k + 1]) for k in range(1, len(index) - 1))
+    if not triangles or not len(vertices):
+        raise ShapeError("no faces in the OBJ file")
+    return vertices[np.array(triangles)]
+
+
+def _bounds_of(np: Any, file: Path) -> tuple[Any, Any] | None:
+    """The box around a mesh file's vertices without reading it as a mesh: a COLLADA file's
+    position arrays (its nodes' transforms left out)."""
+    from .inputs import read_input
+
+    try:
+        data = read_input(file)
+    except Exception:
+        return None
+    arrays = re.findall(rb"<float_array[^>]*positions?[^>]*>([^<]*)<", data, re.IGNORECASE)
+    numbers = [float(v) for chunk in arrays for v in chunk.split()]
+    if len(numbers) < 3:
+        return None
+    points = np.array(numbers[: len(numbers) // 3 * 3]).reshape(-1, 3)
+    return points.min(axis=0), points.max(axis=0)
+
+
+def _box(np: Any, x: float, y: float, z: float) -> Any:
+    c = np.array([[i, j, k] for i in (-0.5, 0.5) for j in (-0.5, 0.5) for k in (-0.5, 0.5)])
+    c = c * np.array([x, y, z])
+    faces = [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1)]
+    faces += [(2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]
+    return c[np.array(faces)]
+
+
+def _cylinder(np: Any, radius: float, length: float) -> Any:
+    angles = np.linspace(0.0, 2 * math.pi, _SEGMENTS + 1)
+    ring = np.stack([radius * np.cos(angles), radius * np.sin(angles)], axis=1)
+    half = length / 2
+    out = []
+    for k in range(_SEGMENTS):
+        (x0, y0), (x1, y1) = ring[k], ring[k + 1]
+        out.append([[x0, y0, -half], [x1, y1, -half], [x1, y1, half]])
+        out.append([[x0, y0, -half], [x1, y1, half], [x0, y0, half]])
+        out.append([[0, 0, half], [x0, y0, half], [x1, y1, half]])
+        out.append([[0, 0, -half], [x1, y1, -half], [x0, y0, -half]])
+    return np.array(out, dtype=float)
+
+
+def _sphere(np: Any, radius: float) -> Any:
+    rows = _SEGMENTS // 2
+    theta = np.linspace(0.0, math.pi, rows + 1)
+    phi = np.linspace(0.0, 2 * math.pi, _SEGMENTS + 1)
+    grid = (
+        np.stack(
+            [
+                np.outer(np.sin(theta), np.cos(phi)),
+                np.outer(np.sin(theta), np.sin(phi)),
+                np.outer(np.cos(theta), np.ones_like(phi)),
+            ],
+            axis=-1,
+        )
+        * radius
+    )
+    out = []
+    for i in range(rows):
+        for j in range(_SEGMENTS):
+            a, b = grid[i, j], grid[i, j + 1]
+            c, d = grid[i + 1, j], grid[i + 1, j + 1]
+            out.append([a, c, d])
+            out.append([a, d, b])
+    return np.array(out, dtype=float)

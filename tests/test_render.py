@@ -1,0 +1,130 @@
+"""`fishbot render` and the scene: a PNG a person would see, checked by its pixels."""
+
+from __future__ import annotations
+
+import io
+from pathlib import Path
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+from conftest import FISHBOT, box_stl
+from PIL import Image
+
+import fishbot_urdf
+from fishbot_urdf.cli import cli
+from fishbot_urdf.picture import render_png
+from fishbot_urdf.scene import build_scene
+
+XACRO = FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"
+
+
+def _pixels(data: bytes) -> np.ndarray:
+    image = Image.open(io.BytesIO(data))
+    assert image.mode == "RGB"
+    return np.asarray(image).astype(int)
+
+
+def _share(pixels: np.ndarray, rgb: tuple[int, int, int], tolerance: int = 90) -> float:
+    """The share of pixels whose colour is that of ``rgb``, shaded (same hue, any brightness
+    down to a third)."""
+    target = np.array(rgb, dtype=float)
+    norm = pixels / np.maximum(pixels.max(axis=2, keepdims=True), 1)
+    want = target / max(target.max(), 1)
+    close = np.abs(norm - want).max(axis=2) * 255 < tolerance
+    lit = pixels.max(axis=2) > 40
+    return float((close & lit).mean())
+
+
+@pytest.mark.parametrize("view", ["iso", "front", "side", "top"])
+def test_the_fishbot_is_in_the_picture_in_its_colours(tmp_path: Path, view: str) -> None:
+    out = tmp_path / "fishbot.png"
+    result = CliRunner().invoke(
+        cli, ["render", str(XACRO), "-o", str(out), "--view", view, "--size", "400x300"]
+    )
+    assert (result.exit_code, result.output) == (0, "")
+    pixels = _pixels(out.read_bytes())
+    assert pixels.shape == (300, 400, 3)
+    background = (pixels == 255).all(axis=2).mean()
+    assert 0.2 < background < 0.95  # the robot is there, framed with room around it
+    # The body is blue, the wheels yellow (fishbot.urdf.xacro's materials).
+    assert _share(pixels, (0, 0, 255)) > 0.05
+    if view != "top":
+        assert _share(pixels, (255, 255, 0)) > 0.002
+    # Framed: the robot touches no edge.
+    edges = np.concatenate([pixels[0], pixels[-1], pixels[:, 0], pixels[:, -1]])
+    assert (edges == 255).all()
+
+
+def test_a_joint_position_moves_the_picture_and_collision_shapes_are_drawn(
+    tmp_path: Path,
+) -> None:
+    arm = tmp_path / "arm.urdf"
+    arm.write_text(
+        '<robot name="arm"><material name="red"><color rgba="1 0 0 1"/></material>'
+        '<link name="a"><visual><geometry><box size="0.1 0.1 0.1"/></geometry>'
+        '<material name="red"/></visual></link>'
+        '<link name="b"><visual><origin xyz="0.5 0 0"/><geometry><box size="1 0.1 0.1"/>'
+        '</geometry><material name="red"/></visual>'
+        '<collision><geometry><sphere radius="0.2"/></geometry></collision></link>'
+        '<joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 1 0"/>'
+        '<limit lower="-2" upper="2" effort="1" velocity="1"/></joint></robot>'
+    )
+    flat = _pixels(render_png(build_scene(fishbot_urdf.load(arm)), "front", 200, 200))
+    up = _pixels(render_png(build_scene(fishbot_urdf.load(arm), {"j": -1.5708}), "front", 200, 200))
+
+    # Seen from the front the flat arm is end-on, a square; raised, it is a tall bar.
+    def aspect(p: np.ndarray) -> float:
+        drawn = (p != 255).any(axis=2)
+        return np.nonzero(drawn.any(axis=1))[0].size / np.nonzero(drawn.any(axis=0))[0].size
+
+    assert aspect(flat) == pytest.approx(1.0, abs=0.1)
+    assert aspect(up) > 5
+    assert _share(up, (255, 0, 0)) > 0.01
+    runner = CliRunner()
+    out = tmp_path / "collision.png"
+    result = runner.invoke(cli, ["render", str(arm), "-o", str(out), "--collision"])
+    assert result.exit_code == 0
+    assert _share(_pixels(out.read_bytes()), (255, 0, 0)) == 0.0  # no visuals: no red
+
+
+def test_a_mesh_is_read_and_one_that_cannot_be_is_its_bounding_box(tmp_path: Path) -> None:
+    (tmp_path / "part.stl").write_bytes(box_stl(0.2, 0.1, 0.1))
+    (tmp_path / "part.dae").write_text(
+        '<COLLADA><library_geometries><geometry><mesh><source id="positions">'
+        '<float_array id="positions-array" count="6">0 0 0 0.3 0.2 0.1</float_array>'
+        "</source></mesh></geometry></library_geometries></COLLADA>"
+    )
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="a">'
+        '<visual><geometry><mesh filename="part.stl"/></geometry></visual>'
+        '<visual><geometry><mesh filename="part.dae"/></geometry></visual>'
+        '<visual><geometry><mesh filename="missing.stl"/></geometry></visual></link></robot>'
+    )
+    scene = build_scene(fishbot_urdf.load(robot))
+    assert len(scene.parts) == 2
+    low, high = scene.bounds()
+    # the STL's box, and the COLLADA file's positions' box
+    np.testing.assert_allclose(low, [0, 0, 0], atol=1e-6)
+    np.testing.assert_allclose(high, [0.3, 0.2, 0.1], atol=1e-6)
+    assert "link 'a': mesh 'missing.stl' cannot be read" in scene.warnings[1]
+    assert scene.warnings[1].endswith("nor its size: not drawn")
+    result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(tmp_path / "r.png")])
+    assert result.exit_code == 0
+    assert "mesh 'part.dae' cannot be read" in result.stderr
+    assert "drawn as its bounding box" in result.stderr
+
+
+@pytest.mark.parametrize(
+    ("args", "said", "code"),
+    [
+        (["--size", "10x10"], "is not WIDTHxHEIGHT", 2),
+        (["-j", "nothing=1"], "no joint 'nothing'", 2),
+    ],
+)
+def test_wrong_options(tmp_path: Path, args: list[str], said: str, code: int) -> None:
+    result = CliRunner().invoke(cli, ["render", str(XACRO), "-o", str(tmp_path / "x.png"), *args])
+    assert result.exit_code == code
+    assert said in result.stderr
+    assert not (tmp_path / "x.png").exists()
