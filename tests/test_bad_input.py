@@ -4,6 +4,7 @@ and nothing read from outside the file."""
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
 
 import pytest
@@ -258,7 +259,8 @@ def test_a_total_past_the_floats_is_said_not_printed_as_nan(tmp_path: Path) -> N
     [
         ("box.foo", b"solid x\nendsolid x\n", "is not a file fishbot reads"),
         ("box", b"solid x\nendsolid x\n", "is not a file fishbot reads"),
-        ("noise.stl", bytes(range(256)) * 12, "cannot read the mesh"),
+        # trimesh 4 refuses these bytes; trimesh 5 reads them as an empty ASCII STL
+        ("noise.stl", bytes(range(256)) * 12, "cannot read the mesh|holds no triangles"),
     ],
 )
 def test_fill_on_a_mesh_that_is_no_mesh_is_one_finding(
@@ -273,7 +275,7 @@ def test_fill_on_a_mesh_that_is_no_mesh_is_one_finding(
     )
     assert result.exit_code == 1
     assert result.exception is None or isinstance(result.exception, SystemExit)
-    assert why in result.stderr and "[fill-skipped]" in result.stderr
+    assert re.search(why, result.stderr) and "[fill-skipped]" in result.stderr
 
 
 def test_joints_that_mimic_each_other_round_a_loop_are_each_reported(tmp_path: Path) -> None:

@@ -22,6 +22,7 @@ from .inertia import inertia
 from .render import render
 from .rules import rules
 from .tf import tf
+from .view import view
 
 __all__ = ["cli", "main"]
 
@@ -46,10 +47,11 @@ def cli() -> None:
       fishbot inertia robot.urdf.xacro
       fishbot tf robot.urdf.xacro base_link laser_link -j left_wheel_joint=90deg
       fishbot render robot.urdf.xacro -o robot.png --view side
+      fishbot view robot.urdf.xacro
     """
 
 
-for _command in (check, rules, expand, graph, inertia, tf, render):
+for _command in (check, rules, expand, graph, inertia, tf, render, view):
     cli.add_command(_command)
 
 

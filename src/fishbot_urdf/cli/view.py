@@ -1,0 +1,105 @@
+"""`fishbot view`: the robot in a web browser, with a slider per joint (RViz and
+joint_state_publisher_gui without ROS)."""
+
+from __future__ import annotations
+
+import sys
+import time
+from collections.abc import Sequence
+from typing import Any
+
+import click
+
+from ..errors import FishbotUrdfError
+from ._common import (
+    EXIT_INVALID,
+    check_input,
+    emit_findings,
+    joint_option,
+    joint_positions,
+    nearest_config,
+    package_option,
+    packages_option,
+    posing_errors,
+    stop_on,
+    xacro_args,
+)
+
+
+@click.command()
+@click.argument("file", type=click.Path())
+@click.argument("args", nargs=-1, metavar="[name:=value]...")
+@click.option("--host", default="127.0.0.1", show_default=True, help="Where to serve the page.")
+@click.option(
+    "--port",
+    default=8080,
+    show_default=True,
+    type=click.IntRange(0, 65535),
+    help="The port (0: any free one).",
+)
+@joint_option()
+@package_option()
+def view(
+    file: str,
+    args: Sequence[str],
+    host: str,
+    port: int,
+    joint_items: Sequence[str],
+    package_items: Sequence[str],
+) -> None:
+    """Show FILE (URDF or xacro) in a web browser: visuals in their colours, collision
+    shapes on a toggle, link frames as axes, and a slider per moving joint within its
+    limits (mimic joints follow). The robot reloads when FILE or a file it includes
+    changes, keeping the sliders. Prints the URL to open; Ctrl-C stops. Needs `pip install
+    'fishbot-urdf[view]'`.
+
+    \b
+    Examples:
+      fishbot view robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
+      fishbot view robot.urdf.xacro use_sim:=true --port 8081 -j shoulder=45deg
+    """
+    from ..errors import ArgumentError, UnknownNameError
+    from ..viewer import Viewer
+
+    values = xacro_args(args)
+    packages = packages_option(package_items)
+    positions = joint_positions(joint_items)
+    config = nearest_config(file)
+
+    def load() -> tuple[Any, Sequence[str]]:
+        result = check_input(file, values, packages, config)
+        blocking = posing_errors(result.diagnostics)
+        if result.analysis is None or blocking:
+            raise _Unreadable(blocking)
+        return result.analysis, result.files
+
+    try:
+        viewer = Viewer(load, host=host, port=port, packages=packages)
+    except _Unreadable as exc:
+        emit_findings(exc.findings)
+        sys.exit(EXIT_INVALID)
+    except FishbotUrdfError as exc:
+        stop_on(exc)
+    except OSError as exc:
+        raise click.UsageError(f"cannot serve on {host}:{port}: {exc.strerror or exc}") from None
+    try:
+        for name, value in positions.items():
+            if name not in viewer.values:
+                raise UnknownNameError("joint", name, viewer.values)
+            viewer.set(name, value)
+    except (UnknownNameError, ArgumentError) as exc:
+        viewer.close()
+        raise click.BadParameter(exc.message, param_hint="--joint") from None
+    for warning in viewer.warnings:
+        click.echo(f"{file}: warning: {warning}", err=True)
+    click.echo(f"fishbot view: {viewer.url} (Ctrl-C stops)")
+    try:
+        while True:
+            time.sleep(3600)
+    finally:
+        viewer.close()
+
+
+class _Unreadable(Exception):
+    def __init__(self, findings: list[Any]) -> None:
+        self.findings = findings
