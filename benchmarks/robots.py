@@ -6,16 +6,20 @@ from __future__ import annotations
 import os
 import shutil
 import sys
-import sysconfig
 from pathlib import Path
 
 
 def ros_tool(name: str) -> str | None:
-    """The system's check_urdf or urdf_to_graphviz (liburdfdom-tools): this environment's
-    scripts folder is not searched, where pin's cmeel-urdfdom puts another build of them."""
-    ours = {os.path.realpath(sysconfig.get_path("scripts")), os.path.realpath(sys.prefix + "/bin")}
+    """The system's check_urdf or urdf_to_graphviz (liburdfdom-tools, or a ROS install): no
+    Python environment's bin folder is searched, where pin's cmeel-urdfdom puts another
+    build of them."""
     folders = [f for f in os.environ.get("PATH", "").split(os.pathsep) if f]
-    kept = [f for f in folders if os.path.realpath(f) not in ours]
+    kept = [
+        f
+        for f in folders
+        if not (Path(f).resolve().parent / "pyvenv.cfg").exists()
+        and not (Path(f).resolve().parent / "conda-meta").is_dir()
+    ]
     return shutil.which(name, path=os.pathsep.join(kept))
 
 

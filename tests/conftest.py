@@ -32,22 +32,25 @@ STUB = Path(__file__).resolve().parent / "ament_stub"
 REQUIRE_TOOLS = os.environ.get("FISHBOT_REQUIRE_TOOLS") == "1"
 
 
-# The ROS tools come from the system (liburdfdom-tools). pin, a test dependency, brings
-# cmeel-urdfdom, whose own check_urdf and urdf_to_graphviz (another urdfdom, built on
-# TinyXML2) land in this environment's scripts folder: they are not what the golden files
-# record, so that folder is not searched for them.
+# The ROS tools come from the system (liburdfdom-tools) or a ROS install. pin, a test
+# dependency, brings cmeel-urdfdom, whose own check_urdf and urdf_to_graphviz (another
+# urdfdom, built on TinyXML2) land in a Python environment's bin folder: they are not what
+# the golden files record, so no Python environment's folder (this one or another on PATH)
+# is searched for them.
 SYSTEM_TOOLS = ("check_urdf", "urdf_to_graphviz")
 
 
+def _python_environment(folder: str) -> bool:
+    parent = Path(folder).resolve().parent
+    return (parent / "pyvenv.cfg").exists() or (parent / "conda-meta").is_dir()
+
+
 def find_tool(name: str) -> str | None:
-    """The path of tool ``name`` on PATH (for the ROS tools, outside this environment)."""
+    """The path of tool ``name`` on PATH (for the ROS tools, outside Python environments)."""
     if name not in SYSTEM_TOOLS:
         return shutil.which(name)
-    import sysconfig
-
-    ours = {os.path.realpath(sysconfig.get_path("scripts")), os.path.realpath(sys.prefix + "/bin")}
     folders = os.environ.get("PATH", "").split(os.pathsep)
-    kept = [f for f in folders if f and os.path.realpath(f) not in ours]
+    kept = [f for f in folders if f and not _python_environment(f)]
     return shutil.which(name, path=os.pathsep.join(kept))
 
 
