@@ -246,6 +246,24 @@ def posing_errors(diagnostics: Iterable[Diagnostic]) -> list[Diagnostic]:
     return [d for d in diagnostics if d.is_error and d.rule in ids]
 
 
+def posable_input(
+    name: str, args: dict[str, str], packages: dict[str, str], refusal: str | None = None
+) -> CheckResult:
+    """FILE read and checked, for a command that poses the robot (tf, render): a robot whose
+    shape or tree is in doubt stops it with its errors (and ``refusal``), exit 1."""
+    try:
+        result = check_input(name, args, packages, nearest_config(name))
+    except FishbotUrdfError as exc:
+        stop_on(exc)
+    blocking = posing_errors(result.diagnostics)
+    if result.analysis is None or blocking:
+        emit_findings(blocking)
+        if refusal:
+            click.echo(refusal, err=True)
+        sys.exit(EXIT_INVALID)
+    return result
+
+
 def joint_option() -> Callable[[Wrapped], Wrapped]:
     """``-j/--joint NAME=VALUE`` (repeatable), stored as ``joint_items``: a joint position,
     written with ``=`` so that it is never taken for a xacro ``name:=value``."""

@@ -9,17 +9,13 @@ import click
 
 from ..errors import FishbotUrdfError
 from ._common import (
-    EXIT_INVALID,
     EXIT_OK,
-    check_input,
-    emit_findings,
     joint_option,
     joint_positions,
     limit_options,
-    nearest_config,
     package_option,
     packages_option,
-    posing_errors,
+    posable_input,
     stop_on,
     to_stdout,
     xacro_args,
@@ -103,15 +99,8 @@ def render(
     values = xacro_args(args)
     positions = joint_positions(joint_items)
     packages = packages_option(package_items)
-    try:
-        result = check_input(file, values, packages, nearest_config(file))
-    except FishbotUrdfError as exc:
-        stop_on(exc)
-    blocking = posing_errors(result.diagnostics)
-    if result.analysis is None or blocking:
-        emit_findings(blocking)
-        click.echo("nothing written: fix the errors above first", err=True)
-        sys.exit(EXIT_INVALID)
+    result = posable_input(file, values, packages, "nothing written: fix the errors above first")
+    assert result.analysis is not None
     try:
         kinematics = Kinematics(result.analysis)
         q = kinematics.configuration(positions)

@@ -10,19 +10,14 @@ from typing import Any
 
 import click
 
-from ..errors import FishbotUrdfError
 from ._common import (
-    EXIT_INVALID,
     EXIT_OK,
-    check_input,
-    emit_findings,
     format_option,
     joint_option,
     limit_options,
-    nearest_config,
     package_option,
     packages_option,
-    posing_errors,
+    posable_input,
     stop_on,
     to_stdout,
     xacro_args,
@@ -72,14 +67,8 @@ def tf(
         raise click.UsageError("name:=value arguments are for a .xacro file, not standard input")
     values = xacro_args(args)
     positions = joint_positions(joint_items)
-    try:
-        result = check_input(file, values, packages_option(package_items), nearest_config(file))
-    except FishbotUrdfError as exc:
-        stop_on(exc)
-    blocking = posing_errors(result.diagnostics)
-    if result.analysis is None or blocking:
-        emit_findings(blocking)
-        sys.exit(EXIT_INVALID)
+    result = posable_input(file, values, packages_option(package_items))
+    assert result.analysis is not None
     try:
         kinematics = Kinematics(result.analysis)
         for name in (frame_from, frame_to):
