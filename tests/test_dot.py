@@ -626,3 +626,10 @@ def test_a_dot_that_fails_says_its_first_line(
     result = CliRunner().invoke(cli, ["graph", str(robot), "-o", str(tmp_path / "r.png")])
     assert result.exit_code == 2
     assert 'dot could not render PNG: Format: "png" not recognized.' in result.stderr
+
+
+def test_the_graph_command_offers_every_format_the_drawing_writes() -> None:
+    from fishbot_urdf.cli.graph import _GRAPH_FORMATS
+    from fishbot_urdf.dot import FORMATS
+
+    assert tuple(FORMATS) == _GRAPH_FORMATS

@@ -6,82 +6,92 @@
 ['base_link', 'imu_link']
 """
 
-from .analysis import Analysis, Body, analyse
-from .check import CheckResult, check, check_file
-from .config import Config, find_config, load_config
-from .diagnostics import Diagnostic, Kind, Severity, Subject
-from .dot import draw, render, to_dot
-from .errors import (
-    ArgumentError,
-    ConfigError,
-    FishbotUrdfError,
-    InputError,
-    RobotError,
-    ShapeError,
-    StructureError,
-    ToolError,
-    ToolNotFoundError,
-    UnknownNameError,
-    XmlSyntaxError,
-)
-from .expand import Expansion, XacroError, expand
-from .graph import Topology, chain, leaves, root, subtree, to_networkx, topology, tree_text
-from .inertia import (
-    Filling,
-    LinkMass,
-    MassProperties,
-    MassTable,
-    box_inertia,
-    combine,
-    cylinder_inertia,
-    fill_inertials,
-    geometry_inertia,
-    link_inertial,
-    mass_properties,
-    mass_table,
-    mesh_inertia,
-    principal_moments,
-    sphere_inertia,
-    volume,
-)
-from .kinematics import (
-    Kinematics,
-    forward_kinematics,
-    jacobian,
-    joint_positions,
-    link_poses,
-    transform,
-)
-from .mermaid import to_mermaid
-from .model import (
-    Box,
-    Calibration,
-    Collision,
-    Cylinder,
-    Dynamics,
-    Geometry,
-    Inertia,
-    Inertial,
-    Joint,
-    JointType,
-    Limit,
-    Link,
-    Location,
-    Material,
-    Mesh,
-    Mimic,
-    Origin,
-    Robot,
-    SafetyController,
-    Sphere,
-    Visual,
-)
-from .packages import PackageNotFoundError, find_package, resolve_package_uri
-from .parse import Parsed, load, parse, read
-from .report import FileReport, github_annotations, json_report, sarif_report
-from .rules import Rule
-from .spatial import Pose
-from .write import add_inertials, inertial_xml, to_urdf
+# Every public name is imported when first used (PEP 562), so that `import fishbot_urdf`
+# (and every `fishbot` command) loads only what it uses.
+from __future__ import annotations
+
+import sys
+from importlib import import_module
+from types import ModuleType
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from .analysis import Analysis, Body, analyse
+    from .check import CheckResult, check, check_file
+    from .config import Config, find_config, load_config
+    from .diagnostics import Diagnostic, Kind, Severity, Subject
+    from .dot import draw, render, to_dot
+    from .errors import (
+        ArgumentError,
+        ConfigError,
+        FishbotUrdfError,
+        InputError,
+        RobotError,
+        ShapeError,
+        StructureError,
+        ToolError,
+        ToolNotFoundError,
+        UnknownNameError,
+        XmlSyntaxError,
+    )
+    from .expand import Expansion, XacroError, expand
+    from .graph import Topology, chain, leaves, root, subtree, to_networkx, topology, tree_text
+    from .inertia import (
+        Filling,
+        LinkMass,
+        MassProperties,
+        MassTable,
+        box_inertia,
+        combine,
+        cylinder_inertia,
+        fill_inertials,
+        geometry_inertia,
+        link_inertial,
+        mass_properties,
+        mass_table,
+        mesh_inertia,
+        principal_moments,
+        sphere_inertia,
+        volume,
+    )
+    from .kinematics import (
+        Kinematics,
+        forward_kinematics,
+        jacobian,
+        joint_positions,
+        link_poses,
+        transform,
+    )
+    from .mermaid import to_mermaid
+    from .model import (
+        Box,
+        Calibration,
+        Collision,
+        Cylinder,
+        Dynamics,
+        Geometry,
+        Inertia,
+        Inertial,
+        Joint,
+        JointType,
+        Limit,
+        Link,
+        Location,
+        Material,
+        Mesh,
+        Mimic,
+        Origin,
+        Robot,
+        SafetyController,
+        Sphere,
+        Visual,
+    )
+    from .packages import PackageNotFoundError, find_package, resolve_package_uri
+    from .parse import Parsed, load, parse, read
+    from .report import FileReport, github_annotations, json_report, sarif_report
+    from .rules import Rule
+    from .spatial import Pose
+    from .write import add_inertials, inertial_xml, to_urdf
 
 __all__ = [
     "Analysis",
@@ -185,11 +195,135 @@ __all__ = [
     "volume",
 ]
 
+_WHERE = {
+    "Analysis": "analysis",
+    "ArgumentError": "errors",
+    "Body": "analysis",
+    "Box": "model",
+    "Calibration": "model",
+    "CheckResult": "check",
+    "Collision": "model",
+    "Config": "config",
+    "ConfigError": "errors",
+    "Cylinder": "model",
+    "Diagnostic": "diagnostics",
+    "Dynamics": "model",
+    "Expansion": "expand",
+    "FileReport": "report",
+    "Filling": "inertia",
+    "FishbotUrdfError": "errors",
+    "Geometry": "model",
+    "Inertia": "model",
+    "Inertial": "model",
+    "InputError": "errors",
+    "Joint": "model",
+    "JointType": "model",
+    "Kind": "diagnostics",
+    "Kinematics": "kinematics",
+    "Limit": "model",
+    "Link": "model",
+    "LinkMass": "inertia",
+    "Location": "model",
+    "MassProperties": "inertia",
+    "MassTable": "inertia",
+    "Material": "model",
+    "Mesh": "model",
+    "Mimic": "model",
+    "Origin": "model",
+    "PackageNotFoundError": "packages",
+    "Parsed": "parse",
+    "Pose": "spatial",
+    "Robot": "model",
+    "RobotError": "errors",
+    "Rule": "rules",
+    "SafetyController": "model",
+    "Severity": "diagnostics",
+    "ShapeError": "errors",
+    "Sphere": "model",
+    "StructureError": "errors",
+    "Subject": "diagnostics",
+    "ToolError": "errors",
+    "ToolNotFoundError": "errors",
+    "Topology": "graph",
+    "UnknownNameError": "errors",
+    "Visual": "model",
+    "XacroError": "expand",
+    "XmlSyntaxError": "errors",
+    "add_inertials": "write",
+    "analyse": "analysis",
+    "box_inertia": "inertia",
+    "chain": "graph",
+    "check": "check",
+    "check_file": "check",
+    "combine": "inertia",
+    "cylinder_inertia": "inertia",
+    "draw": "dot",
+    "expand": "expand",
+    "fill_inertials": "inertia",
+    "find_config": "config",
+    "find_package": "packages",
+    "forward_kinematics": "kinematics",
+    "geometry_inertia": "inertia",
+    "github_annotations": "report",
+    "inertial_xml": "write",
+    "jacobian": "kinematics",
+    "joint_positions": "kinematics",
+    "json_report": "report",
+    "leaves": "graph",
+    "link_inertial": "inertia",
+    "link_poses": "kinematics",
+    "load": "parse",
+    "load_config": "config",
+    "mass_properties": "inertia",
+    "mass_table": "inertia",
+    "mesh_inertia": "inertia",
+    "parse": "parse",
+    "principal_moments": "inertia",
+    "read": "parse",
+    "render": "dot",
+    "resolve_package_uri": "packages",
+    "root": "graph",
+    "sarif_report": "report",
+    "sphere_inertia": "inertia",
+    "subtree": "graph",
+    "to_dot": "dot",
+    "to_mermaid": "mermaid",
+    "to_networkx": "graph",
+    "to_urdf": "write",
+    "topology": "graph",
+    "transform": "kinematics",
+    "tree_text": "graph",
+    "volume": "inertia",
+}
 
-def __getattr__(name: str) -> str:
+
+class _Package(ModuleType):
+    """This package, whose functions ``check`` and ``expand`` share their names with its
+    modules: importing such a module keeps the function under the name (as an eager
+    ``from .check import check`` did)."""
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        if isinstance(value, ModuleType) and _WHERE.get(name) == name:
+            return
+        super().__setattr__(name, value)
+
+
+sys.modules[__name__].__class__ = _Package
+
+
+def __getattr__(name: str) -> Any:
+    module = _WHERE.get(name)
+    if module is not None:
+        value = getattr(import_module(f".{module}", __name__), name)
+        globals()[name] = value  # the next use is a plain attribute
+        return value
     # importlib.metadata costs several milliseconds: only pay for it when asked.
     if name == "__version__":
         from importlib.metadata import version
 
         return version("fishbot-urdf")
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

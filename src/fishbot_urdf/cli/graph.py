@@ -10,7 +10,6 @@ from typing import TYPE_CHECKING
 import click
 
 from ..diagnostics import has_errors
-from ..dot import FORMATS
 from ..errors import FishbotUrdfError
 from ._common import (
     EXIT_INVALID,
@@ -30,7 +29,9 @@ from ._common import (
 if TYPE_CHECKING:
     from ..analysis import Analysis
 
-_GRAPH_FORMATS = tuple(FORMATS)
+# fishbot_urdf.dot.FORMATS, written out so that `fishbot --help` does not load the drawing
+# code (tests/test_dot.py keeps the two equal).
+_GRAPH_FORMATS = ("gv", "dot", "pdf", "svg", "png", "mmd")
 
 
 @click.command()
