@@ -4,6 +4,8 @@ shapes."""
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any
+
 from ._robot import Filling, fill_inertials, link_inertial, mass_properties
 from ._solids import (
     MassProperties,
@@ -16,7 +18,9 @@ from ._solids import (
     sphere_inertia,
     volume,
 )
-from ._table import LinkMass, MassTable, inertial_dict, mass_table
+
+if TYPE_CHECKING:
+    from ._table import LinkMass, MassTable, inertial_dict, mass_table
 
 __all__ = [
     "Filling",
@@ -37,3 +41,12 @@ __all__ = [
     "sphere_inertia",
     "volume",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    # The mass table loads when first used: `check` needs only the formulas.
+    if name in ("LinkMass", "MassTable", "inertial_dict", "mass_table"):
+        from . import _table
+
+        return getattr(_table, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

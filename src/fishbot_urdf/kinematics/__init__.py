@@ -8,12 +8,15 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
 
 from ..analysis import Analysis, of
 from ..errors import ArgumentError, UnknownNameError
 from ..model import Joint, JointType, Robot
 from ..spatial import Pose, axis_angle, scale
-from ._batched import Kinematics, forward_kinematics, jacobian, transform
+
+if TYPE_CHECKING:
+    from ._batched import Kinematics, forward_kinematics, jacobian, transform
 
 __all__ = [
     "Kinematics",
@@ -131,3 +134,12 @@ def link_poses(
             poses[joint.child] = pose
             stack.append(joint.child)
     return poses
+
+
+def __getattr__(name: str) -> Any:
+    # The numpy side loads when first used: `check` poses links with the plain code above.
+    if name in ("Kinematics", "forward_kinematics", "jacobian", "transform"):
+        from . import _batched
+
+        return getattr(_batched, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

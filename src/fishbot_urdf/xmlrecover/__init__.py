@@ -52,12 +52,31 @@ from __future__ import annotations
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
-from ._messages import Recovery, summary
-from ._nodes import Refused, TooDeep
-from ._rewrite import UNDECLARED, rewrite
-from ._strict import root
-from ._tinyxml import read
+if TYPE_CHECKING:
+    from ._messages import Recovery
+    from ._nodes import Refused, TooDeep
+    from ._rewrite import UNDECLARED
+
+# The reader and its tables (name patterns over all of Unicode take milliseconds to
+# compile) load when a file first needs them: most files never do.
+_LAZY = {
+    "Recovery": "._messages",
+    "Refused": "._nodes",
+    "TooDeep": "._nodes",
+    "UNDECLARED": "._rewrite",
+}
+
+
+def __getattr__(name: str) -> Any:
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    from importlib import import_module
+
+    return getattr(import_module(module, __name__), name)
+
 
 __all__ = [
     "UNDECLARED",
@@ -94,6 +113,11 @@ def recover(data: bytes) -> Recovered:
     Raises:
         Refused: urdfdom refuses the file (TooDeep: nested deeper than lxml reads).
     """
+    from ._messages import summary
+    from ._rewrite import rewrite
+    from ._strict import root
+    from ._tinyxml import read
+
     document = read(data)
     robot = root(document)
     rewritten = rewrite(document, robot)
