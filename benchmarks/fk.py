@@ -16,23 +16,14 @@ import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 import pinocchio as pin
+from run import best
 
 import fishbot_urdf
 from robots import write_all
-
-
-def _best(run: Callable[[], object], repeat: int = 5) -> float:
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        run()
-        times.append(time.perf_counter() - start)
-    return min(times)
 
 
 def _ur5() -> Path:
@@ -57,7 +48,7 @@ def _pair(path: Path, batch: int) -> tuple[float, float]:
             pin.forwardKinematics(model, data, q)
             pin.updateFramePlacements(model, data)
 
-    return _best(lambda: kin.forward(qs)) / batch, _best(theirs) / batch
+    return best(lambda: kin.forward(qs), 5) / batch, best(theirs, 5) / batch
 
 
 _MEMORY = """

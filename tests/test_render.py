@@ -128,3 +128,19 @@ def test_wrong_options(tmp_path: Path, args: list[str], said: str, code: int) ->
     assert result.exit_code == code
     assert said in result.stderr
     assert not (tmp_path / "x.png").exists()
+
+
+def test_a_package_not_found_is_one_warning_for_all_its_meshes(tmp_path: Path) -> None:
+    mesh = '<visual><geometry><mesh filename="package://elsewhere/{}.stl"/></geometry></visual>'
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(
+        f'<robot name="r"><link name="a">{mesh.format("a")}{mesh.format("b")}'
+        '<visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual></link></robot>'
+    )
+    scene = build_scene(fishbot_urdf.load(robot))
+    assert len(scene.parts) == 1  # the box
+    [warning] = scene.warnings
+    assert warning.startswith(
+        "link 'a': mesh 'package://elsewhere/a.stl' is not drawn, nor any other mesh of "
+        "package 'elsewhere': package 'elsewhere' not found (searched: "
+    )

@@ -158,6 +158,7 @@ class _Loader:
         self.packages = packages
         self.read: dict[tuple[str, tuple[float, ...]], Any] = {}
         self.warnings: list[str] = []
+        self.missing: set[str] = set()  # packages not found
 
     def triangles(self, link: Link, geometry: Geometry) -> Any:
         import numpy as np
@@ -178,12 +179,20 @@ class _Loader:
 
     def _mesh(self, np: Any, link: Link, mesh: Mesh, scale: tuple[float, ...]) -> Any:
         from .errors import FishbotUrdfError
-        from .packages import resolve_package_uri
+        from .packages import PackageNotFoundError, resolve_package_uri
 
         shown = f"link {link.name!r}: mesh {mesh.filename!r}"
         near = self.robot if not self.robot.startswith("<") else None
         try:
             file = resolve_package_uri(mesh.filename, near=near, packages=self.packages)
+        except PackageNotFoundError as exc:  # one line for the package, not one per mesh
+            if exc.package not in self.missing:
+                self.missing.add(exc.package)
+                self.warnings.append(
+                    f"{shown} is not drawn, nor any other mesh of package {exc.package!r}: "
+                    f"{exc.message}"
+                )
+            return None
         except FishbotUrdfError as exc:
             self.warnings.append(f"{shown} is not drawn: {exc.message}")
             return None

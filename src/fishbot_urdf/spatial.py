@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 from .model import ZERO3, Origin, Vector3
 
@@ -131,6 +132,25 @@ class Pose:
         """The 4x4 homogeneous matrix, rows (``numpy.array(pose.matrix())`` for numpy)."""
         r, t = self.rotation, self.translation
         return [[*r[0], t[0]], [*r[1], t[1]], [*r[2], t[2]], [0.0, 0.0, 0.0, 1.0]]
+
+
+def quaternion(m: Any) -> tuple[float, float, float, float]:
+    """x, y, z, w of a rotation matrix (nested sequences or a numpy array), from the largest
+    of w, x, y, z as tf2's Matrix3x3::getRotation picks it."""
+    trace = m[0][0] + m[1][1] + m[2][2]
+    if trace > 0.0:
+        s = math.sqrt(trace + 1.0)
+        w, s = s * 0.5, 0.5 / s
+        return ((m[2][1] - m[1][2]) * s, (m[0][2] - m[2][0]) * s, (m[1][0] - m[0][1]) * s, w)
+    i = max(range(3), key=lambda d: m[d][d])  # the first of the largest, as tf2's order
+    j, k = (i + 1) % 3, (i + 2) % 3
+    s = math.sqrt(m[i][i] - m[j][j] - m[k][k] + 1.0)
+    out = [0.0, 0.0, 0.0, 0.0]
+    out[i], s = s * 0.5, 0.5 / s
+    out[3] = (m[k][j] - m[j][k]) * s
+    out[j] = (m[j][i] + m[i][j]) * s
+    out[k] = (m[k][i] + m[i][k]) * s
+    return (float(out[0]), float(out[1]), float(out[2]), float(out[3]))
 
 
 def eigh(m: Matrix3) -> tuple[Vector3, Matrix3]:

@@ -238,17 +238,8 @@ def _frame_size(np: Any, scene: Any) -> float:
 
 
 def _wxyz(m: Any) -> tuple[float, float, float, float]:
-    """A rotation matrix as a unit quaternion (w, x, y, z)."""
-    trace = m[0, 0] + m[1, 1] + m[2, 2]
-    if trace > 0:
-        s = math.sqrt(trace + 1.0) * 2
-        return (0.25 * s, (m[2, 1] - m[1, 2]) / s, (m[0, 2] - m[2, 0]) / s, (m[1, 0] - m[0, 1]) / s)
-    i = max(range(3), key=lambda d: m[d, d])
-    j, k = (i + 1) % 3, (i + 2) % 3
-    s = math.sqrt(1.0 + m[i, i] - m[j, j] - m[k, k]) * 2
-    out = [0.0, 0.0, 0.0, 0.0]
-    out[0] = (m[k, j] - m[j, k]) / s
-    out[1 + i] = 0.25 * s
-    out[1 + j] = (m[j, i] + m[i, j]) / s
-    out[1 + k] = (m[k, i] + m[i, k]) / s
-    return (out[0], out[1], out[2], out[3])
+    """A rotation matrix as viser's unit quaternion (w, x, y, z)."""
+    from .spatial import quaternion
+
+    x, y, z, w = quaternion(m)
+    return (w, x, y, z)

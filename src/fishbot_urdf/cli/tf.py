@@ -91,34 +91,17 @@ def tf(
 
 
 def _report(matrix: list[list[float]]) -> dict[str, Any]:
+    from ..spatial import quaternion
+
     rotation = [row[:3] for row in matrix[:3]]
     roll, pitch, yaw = _euler_ypr(rotation)
     return {
         "translation": [matrix[0][3], matrix[1][3], matrix[2][3]],
-        "quaternion_xyzw": _quaternion(rotation),
+        "quaternion_xyzw": list(quaternion(rotation)),
         "rpy": [roll, pitch, yaw],
         "rpy_degrees": [math.degrees(roll), math.degrees(pitch), math.degrees(yaw)],
         "matrix": matrix,
     }
-
-
-def _quaternion(m: list[list[float]]) -> list[float]:
-    """x, y, z, w of a rotation matrix, by the largest of w, x, y, z (as tf2's
-    Matrix3x3::getRotation picks)."""
-    trace = m[0][0] + m[1][1] + m[2][2]
-    if trace > 0.0:
-        s = math.sqrt(trace + 1.0)
-        w, s = s * 0.5, 0.5 / s
-        return [(m[2][1] - m[1][2]) * s, (m[0][2] - m[2][0]) * s, (m[1][0] - m[0][1]) * s, w]
-    i = max(range(3), key=lambda d: m[d][d])  # the first of the largest, as tf2's order
-    j, k = (i + 1) % 3, (i + 2) % 3
-    s = math.sqrt(m[i][i] - m[j][j] - m[k][k] + 1.0)
-    out = [0.0, 0.0, 0.0, 0.0]
-    out[i], s = s * 0.5, 0.5 / s
-    out[3] = (m[k][j] - m[j][k]) * s
-    out[j] = (m[j][i] + m[i][j]) * s
-    out[k] = (m[k][i] + m[i][k]) * s
-    return out
 
 
 def _euler_ypr(m: list[list[float]]) -> tuple[float, float, float]:

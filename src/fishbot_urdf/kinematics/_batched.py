@@ -94,9 +94,7 @@ class Kinematics:
         for joint in owners:
             first[joint.name] = len(variables)
             parts = _PARTS.get(joint.type)
-            variables.extend(f"{joint.name}.{p}" for p in parts) if parts else variables.append(
-                joint.name
-            )
+            variables.extend([f"{joint.name}.{p}" for p in parts] if parts else [joint.name])
         self.joints: tuple[str, ...] = tuple(j.name for j in owners)
         self.variables: tuple[str, ...] = tuple(variables)
         self._first = first
