@@ -1,37 +1,43 @@
-"""Benchmarks: fishbot vs check_urdf, whole process and in process. Run by hand:
+"""Benchmarks: every speed goal of fishbot-urdf, each a ratio measured side by side in one
+run. Run by hand, in the venv fishbot-urdf is installed in (`pip install -e ".[test]"`), with
+check_urdf on PATH (liburdfdom-tools):
 
-    python benchmarks/run.py            # prints a Markdown table for the README
+    python benchmarks/run.py [--runs N] [--only WORD]
 
-Times are the best of several runs (seconds) on generated chain and tree robots of 100,
-1 000 and 10 000 links (see robots.py), the fishbot's first_robot.urdf, and the
-example-robot-data corpus.
+It prints one Markdown table for the README: each measure, fishbot's figure, the floor it is
+measured against, their ratio and the goal. Whole processes are timed alternately, ours then
+the floor, and the medians compared, so that the machine's drift hits both sides; in-process
+figures are the best of several passes. Robots: robots/fishbot's first_robot.urdf and xacro,
+every URDF the test dependencies ship (example-robot-data, hpp-environments,
+cookie-description), and generated chains and trees (robots.py). Peak memory is the
+process's maximum resident set, as the kernel counts it.
 """
 
 from __future__ import annotations
 
+import argparse
 import os
 import shutil
+import statistics
 import subprocess
 import sys
 import sysconfig
 import tempfile
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
-from lxml import etree
+from robots import ros_tool
 
-import fishbot_urdf
-from robots import ros_tool, write_all
-
-HERE = Path(__file__).resolve().parent
-FIRST = HERE.parent / "robots" / "fishbot" / "urdf" / "first_robot.urdf"
-FISHBOT = [sys.executable, "-m", "fishbot_urdf"]
-if shutil.which("fishbot"):
-    FISHBOT = [str(shutil.which("fishbot"))]
+ROOT = Path(__file__).resolve().parent.parent
+FISHBOT_PACKAGE = ROOT / "robots" / "fishbot"
+FIRST = FISHBOT_PACKAGE / "urdf" / "first_robot.urdf"
+XACRO_FILE = FISHBOT_PACKAGE / "urdf" / "fishbot" / "fishbot.urdf.xacro"
 
 
 def best(run: Callable[[], object], repeat: int) -> float:
+    """The shortest of ``repeat`` timings of ``run()``, seconds."""
     times = []
     for _ in range(repeat):
         start = time.perf_counter()
@@ -40,66 +46,218 @@ def best(run: Callable[[], object], repeat: int) -> float:
     return min(times)
 
 
-def process(args: Sequence[str], repeat: int) -> float:
-    def run() -> None:
-        subprocess.run(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=False)
+def process(args: Sequence[str], env: dict[str, str] | None = None) -> float:
+    """Run ``args`` once, output thrown away; its wall time, seconds."""
+    start = time.perf_counter()
+    subprocess.run(
+        args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env, cwd=ROOT, check=False
+    )
+    return time.perf_counter() - start
 
-    return best(run, repeat)
+
+# A process's peak resident memory, as the kernel counts it, includes that of the process it
+# was forked from; so a small Python forks it, waits for it and prints the count.
+_PEAK = """
+import os, sys
+pid = os.fork()
+if pid == 0:
+    null = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(null, 1)
+    os.dup2(null, 2)
+    os.execvp(sys.argv[1], sys.argv[1:])
+print(os.wait4(pid, 0)[2].ru_maxrss * 1024)
+"""
+
+
+def peak(args: Sequence[str]) -> int:
+    """Peak resident memory of one run of ``args``, bytes."""
+    out = subprocess.run(
+        [sys.executable, "-S", "-c", _PEAK, *args], capture_output=True, check=True, cwd=ROOT
+    )
+    return int(out.stdout)
+
+
+def pair(
+    ours: Sequence[str], floor: Sequence[str], runs: int, env: dict[str, str] | None = None
+) -> tuple[float, float]:
+    """Median seconds of each command, run alternately after one warm-up of each."""
+    process(ours, env)
+    process(floor, env)
+    times: tuple[list[float], list[float]] = ([], [])
+    for _ in range(runs):
+        times[0].append(process(ours, env))
+        times[1].append(process(floor, env))
+    return statistics.median(times[0]), statistics.median(times[1])
+
+
+def per_file(tool: str, files: Sequence[Path]) -> list[str]:
+    """A command line that runs ``tool`` once per file (as a shell loop, one process)."""
+    quoted = " ".join(f"'{f}'" for f in files)
+    return ["sh", "-c", f'for f in {quoted}; do "{tool}" "$f"; done']
 
 
 def corpus() -> list[Path]:
-    share = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix" / "share"
-    return sorted((share / "example-robot-data" / "robots").rglob("*.urdf"))
+    """Every URDF file the test dependencies ship."""
+    share = Path(sysconfig.get_paths()["purelib"])
+    found = sorted((share / "cmeel.prefix" / "share").rglob("*.urdf"))
+    found += sorted((share / "cookie_description").rglob("*.urdf"))
+    return found
 
 
-def main() -> None:
+def _tool(name: str) -> str:
+    found = shutil.which(name, path=str(Path(sys.executable).parent))
+    if found is None:
+        sys.exit(f"{name} is not installed in this environment: pip install -e '.[test]'")
+    return found
+
+
+@dataclass(frozen=True)
+class Row:
+    measure: str
+    ours: str
+    floor: str
+    ratio: str
+    goal: str
+
+
+def _ms(seconds: float) -> str:
+    return f"{seconds * 1000:.0f} ms"
+
+
+def _s(seconds: float) -> str:
+    return f"{seconds:.2f} s"
+
+
+def _mib(size: float) -> str:
+    return f"{size / 2**20:.0f} MiB"
+
+
+def rows(runs: int, folder: Path, only: str | None) -> Iterator[Row]:
+    """Measure every goal (those whose label holds ``only``, if given)."""
+    from robots import robot
+
+    def wanted(label: str) -> bool:
+        return only is None or only.lower() in label.lower()
+
+    fishbot, xacro, python = [_tool("fishbot")], [_tool("xacro")], sys.executable
     check_urdf = ros_tool("check_urdf")
+    if check_urdf is None:
+        sys.exit("check_urdf is not on PATH: apt-get install liburdfdom-tools")
+    env = dict(os.environ)
+    env["PYTHONPATH"] = str(ROOT / "tests" / "ament_stub")  # $(find) for the xacro command
+    env["FISHBOT_TEST_PACKAGES"] = f"fishbot_description={FISHBOT_PACKAGE}"
+
+    label = '`fishbot check first_robot.urdf` vs `python -c "import click, lxml.etree"`'
+    if wanted(label):
+        mine, floor = pair(
+            [*fishbot, "check", str(FIRST)], [python, "-c", "import click, lxml.etree"], runs
+        )
+        yield Row(label, _ms(mine), _ms(floor), f"{mine / floor:.2f}x", "<= 1.3x")
+    label = '`fishbot --help` vs `python -c "import click"`'
+    if wanted(label):
+        mine, floor = pair([*fishbot, "--help"], [python, "-c", "import click"], runs)
+        yield Row(label, _ms(mine), _ms(floor), f"{mine / floor:.2f}x", "<= 1.2x")
+    label = "`fishbot expand` on the fishbot xacro vs the `xacro` command"
+    if wanted(label):
+        mine, floor = pair(
+            [*fishbot, "expand", str(XACRO_FILE)], [*xacro, str(XACRO_FILE)], runs, env
+        )
+        yield Row(label, _ms(mine), _ms(floor), f"{mine / floor:.2f}x", "<= 1.25x")
+
+    files = corpus()
+    label = f"in process, reading the {len(files)} corpus robots vs lxml's parse"
+    label_check = f"in process, checking the {len(files)} corpus robots vs lxml's parse"
+    if wanted(label) or wanted(label_check):
+        parse, read, check = _in_process(files)
+        if wanted(label):
+            yield Row(label, _ms(read), _ms(parse), f"{read / parse:.1f}x", "<= 4x")
+        if wanted(label_check):
+            yield Row(label_check, _ms(check), _ms(parse), f"{check / parse:.1f}x", "<= 5x")
+    label = f"one `fishbot check` over the {len(files)} corpus robots vs one check_urdf per file"
+    if wanted(label):
+        mine, floor = pair(
+            [*fishbot, "check", *map(str, files)], per_file(check_urdf, files), max(3, runs // 4)
+        )
+        yield Row(label, _s(mine), _s(floor), f"{mine / floor:.2f}x", "< 1x (faster)")
+
+    generated: dict[str, Path] = {}
+
+    def write(kind: str, size: int) -> Path:
+        key = f"{kind}_{size}"
+        if key not in generated:
+            generated[key] = folder / f"{key}.urdf"
+            generated[key].write_text(robot(kind, size), encoding="utf-8")
+        return generated[key]
+
+    big_runs = max(3, runs // 4)
+    for kind, goal in (("tree", "<= 2x"), ("chain", "<= 0.67x (1.5x faster)")):
+        label = f"10 000-link {kind}, `fishbot check` vs check_urdf"
+        if wanted(label):
+            path = str(write(kind, 10_000))
+            mine, floor = pair([*fishbot, "check", path], [check_urdf, path], big_runs)
+            yield Row(label, _s(mine), _s(floor), f"{mine / floor:.2f}x", goal)
+    label = "100 000-link tree vs 10 000-link tree, `fishbot check`"
+    if wanted(label):
+        large, small = str(write("tree", 100_000)), str(write("tree", 10_000))
+        mine, floor = pair([*fishbot, "check", large], [*fishbot, "check", small], big_runs)
+        yield Row(label, _s(mine), _s(floor), f"{mine / floor:.1f}x", "<= 11x (linear)")
+    for kind, size, goal in (("chain", 10_000, 256), ("tree", 100_000, 1024)):
+        label = f"peak memory, {size:_}-link {kind} (`fishbot check`, tree to /dev/null)"
+        label = label.replace("_", " ")
+        if wanted(label):
+            path = str(write(kind, size))
+            mine_peak = max(peak([*fishbot, "check", path]) for _ in range(2))
+            yield Row(
+                label,
+                _mib(mine_peak),
+                f"check_urdf {_mib(peak([check_urdf, path]))}",
+                "",
+                f"<= {goal} MiB",
+            )
+
+
+def _in_process(files: Sequence[Path]) -> tuple[float, float, float]:
+    """Best seconds of three passes over ``files``: lxml's parse, fishbot_urdf.read and
+    fishbot_urdf.check_file (each file's bytes read from the page cache every time)."""
+    from lxml import etree
+
+    import fishbot_urdf
+
+    def parse() -> None:
+        for path in files:
+            parser = etree.XMLParser(resolve_entities=False, load_dtd=False, no_network=True)
+            etree.fromstring(path.read_bytes(), parser)
+
+    def read() -> None:
+        for path in files:
+            fishbot_urdf.read(path)
+
+    def check() -> None:
+        for path in files:
+            fishbot_urdf.check_file(path)
+
+    check()  # every module loaded, every cache warm
+    times: tuple[list[float], list[float], list[float]] = ([], [], [])
+    for _ in range(5):
+        for index, run in enumerate((parse, read, check)):
+            start = time.perf_counter()
+            run()
+            times[index].append(time.perf_counter() - start)
+    return min(times[0]), min(times[1]), min(times[2])
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--runs", type=int, default=21, help="runs per start-up measure")
+    parser.add_argument("--only", metavar="WORD", help="only the measures whose label has WORD")
+    options = parser.parse_args(argv)
+    print("| measure | fishbot | floor | ratio | goal |")
+    print("| --- | ---: | ---: | ---: | ---: |")
     with tempfile.TemporaryDirectory() as folder:
-        print(
-            "| robot | links | check_urdf (s) | fishbot check (s) | ratio | lxml parse (s) | "
-            "fishbot_urdf.load (s) | load / lxml |"
-        )
-        print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
-        for path in write_all(Path(folder)):
-            kind, size = path.stem.split("_")
-            repeat = 3 if int(size) >= 10000 else 7
-            ours = process([*FISHBOT, "check", str(path)], repeat)
-            theirs = process([check_urdf, str(path)], repeat) if check_urdf else float("nan")
-            data = path.read_bytes()
-            parser = etree.XMLParser(resolve_entities=False, no_network=True)
-            bare = best(lambda d=data, x=parser: etree.fromstring(d, x), repeat)
-            load = best(lambda p=path: fishbot_urdf.load(p), repeat)
-            print(
-                f"| {kind} | {int(size):,} | {theirs:.3f} | {ours:.3f} | {theirs / ours:.2f}x | "
-                f"{bare:.3f} | {load:.3f} | {load / bare:.1f}x |"
-            )
-    print()
-    pass_time = process([sys.executable, "-c", "pass"], 15)
-    small = process([*FISHBOT, "check", str(FIRST)], 15)
-    small_real = process([check_urdf, str(FIRST)], 15) if check_urdf else float("nan")
-    print(
-        f"- first_robot.urdf: `fishbot check` {small * 1000:.0f} ms, check_urdf "
-        f"{small_real * 1000:.0f} ms, `python3 -c pass` {pass_time * 1000:.0f} ms "
-        f"({small / pass_time:.1f}x)"
-    )
-    files = [str(p) for p in corpus()]
-    if files:
-        many = process([*FISHBOT, "check", *files], 3)
-        each = (
-            best(
-                lambda: [
-                    subprocess.run([check_urdf, f], capture_output=True, check=False) for f in files
-                ],
-                3,
-            )
-            if check_urdf
-            else float("nan")
-        )
-        print(
-            f"- {len(files)} corpus files: one `fishbot check` {many:.2f} s, one check_urdf "
-            f"per file {each:.2f} s"
-        )
-    print(f"- machine: {os.cpu_count()} cores, Python {sys.version.split()[0]}")
+        for row in rows(options.runs, Path(folder), options.only):
+            print(f"| {row.measure} | {row.ours} | {row.floor} | {row.ratio} | {row.goal} |")
+            sys.stdout.flush()
+    print(f"\nMachine: {os.cpu_count()} cores, Python {sys.version.split()[0]}.")
 
 
 if __name__ == "__main__":
