@@ -324,3 +324,42 @@ def test_no_output_is_written_over_a_mesh_the_robot_names(tmp_path: Path) -> Non
         assert result.exit_code == 2, command
         assert f"refusing to write over the input {mesh}" in result.stderr, command
         assert mesh.read_bytes() == before, command
+
+
+def test_the_listed_summaries_are_the_commands_own() -> None:
+    # `fishbot --help` lists the subcommands without importing them: what it shows must be
+    # what click shows from each command's own help, at every width.
+    import importlib
+
+    import fishbot_urdf.cli
+    from fishbot_urdf.cli import COMMANDS, summary
+
+    modules = {p.stem for p in Path(fishbot_urdf.cli.__file__).parent.glob("*.py")}
+    assert set(COMMANDS) == {m for m in modules if not m.startswith("_")}
+    for name in COMMANDS:
+        command = getattr(importlib.import_module(f"fishbot_urdf.cli.{name}"), name)
+        assert command.name == name
+        for limit in range(20, 200, 7):
+            shown = summary(name).get_short_help_str(limit)
+            assert shown == command.get_short_help_str(limit), (name, limit)
+
+
+def _modules_after(*args: str) -> set[str]:
+    code = (
+        "import sys\nfrom fishbot_urdf.cli import main\ntry:\n    main(sys.argv[1:])\n"
+        "except SystemExit:\n    pass\n"
+        "sys.stderr.write(' '.join(m for m in sys.modules if m.startswith('fishbot_urdf')))"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code, *args], capture_output=True, text=True, check=True
+    )
+    return set(out.stderr.split("\n")[-1].split())
+
+
+def test_help_and_check_import_only_what_they_use() -> None:
+    assert not {m for m in _modules_after("--help") if m.startswith("fishbot_urdf.cli.")}
+    loaded = _modules_after("check", str(FIRST), "-q")
+    drawn = {"fishbot_urdf.cli.graph", "fishbot_urdf.dot", "fishbot_urdf.cli.render"}
+    assert "fishbot_urdf.cli.check" in loaded
+    assert not loaded & drawn
+    assert "fishbot_urdf.expand" not in loaded  # a URDF file needs no xacro

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import os
-import secrets
 import stat
 import subprocess
 import sys
@@ -11,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from fishbot_urdf import InputError
+from fishbot_urdf import InputError, output
 from fishbot_urdf.output import write_atomic
 
 _WRITE = "import sys; from fishbot_urdf.output import write_atomic; write_atomic(sys.argv[1], 'x')"
@@ -142,7 +141,7 @@ def test_what_is_refused(tmp_path: Path) -> None:
 
 
 def test_no_free_temporary_name(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(secrets, "token_hex", lambda size: "taken")
+    monkeypatch.setattr(output, "_token", lambda: "taken")
     (tmp_path / ".robot.urdf.taken").write_text("someone else's")
     with pytest.raises(InputError, match="File exists"):
         write_atomic(tmp_path / "robot.urdf", "new")

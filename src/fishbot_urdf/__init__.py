@@ -223,7 +223,7 @@ _WHERE = {
     "Limit": "model",
     "Link": "model",
     "LinkMass": "inertia",
-    "Location": "model",
+    "Location": "location",
     "MassProperties": "inertia",
     "MassTable": "inertia",
     "Material": "model",

@@ -5,9 +5,10 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field, fields
 from enum import Enum
-from typing import NamedTuple, ParamSpec, TypeVar
+from typing import ParamSpec, TypeVar
 
 from .errors import UnknownNameError
+from .location import Location as Location
 
 _T = TypeVar("_T")
 _P = ParamSpec("_P")
@@ -16,18 +17,6 @@ Rgba = tuple[float, float, float, float]
 
 ZERO3: Vector3 = (0.0, 0.0, 0.0)
 DEFAULT_AXIS: Vector3 = (1.0, 0.0, 0.0)
-
-
-class Location(NamedTuple):
-    """Where an element starts in its source file (1-based line and column).
-
-    A small immutable value like a vector, so a NamedTuple rather than a dataclass: a big
-    file has hundreds of thousands of them, and tuples are made three times faster.
-    """
-
-    path: str
-    line: int
-    column: int
 
 
 def _source() -> Location | None:

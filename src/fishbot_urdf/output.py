@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import contextlib
 import os
-import secrets
 from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
@@ -143,7 +142,7 @@ def _create_temporary(target: Path, mode: int) -> tuple[int, Path]:
     flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0)
     tries = 100
     while True:
-        temporary = target.parent / f"{prefix}{secrets.token_hex(4)}"
+        temporary = target.parent / f"{prefix}{_token()}"
         try:
             return os.open(temporary, flags, mode), temporary
         except FileExistsError:
@@ -161,3 +160,8 @@ def _same_file(a: Path, b: Path) -> bool:
         return a.exists() and b.exists() and a.samefile(b)
     except OSError:
         return False
+
+
+def _token() -> str:
+    """Eight random hex digits for a temporary file's name."""
+    return os.urandom(4).hex()

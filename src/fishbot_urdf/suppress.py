@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 from .diagnostics import Diagnostic, Kind, Subject, did_you_mean
 from .errors import InputError
 from .inputs import read_input
-from .model import Location
+from .location import Location
 
 if TYPE_CHECKING:
     from .config import Config

@@ -13,7 +13,7 @@ from . import xmlrecover
 from .diagnostics import Diagnostic, Kind, Subject
 from .errors import XmlSyntaxError
 from .inputs import read_input
-from .model import Location
+from .location import Location
 
 STRING_PATH = "<string>"
 

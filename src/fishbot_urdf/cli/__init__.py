@@ -1,4 +1,5 @@
-"""The `fishbot` command line: one click group, one short module per subcommand.
+"""The `fishbot` command line: one click group, one short module per subcommand, imported
+only when that subcommand runs.
 
 Exit status: 0 the robot is valid, 1 the robot has errors, 2 usage, configuration or I/O
 problem, 130 interrupted (Ctrl-C), 143 terminated (SIGTERM).
@@ -6,6 +7,7 @@ problem, 130 interrupted (Ctrl-C), 143 terminated (SIGTERM).
 
 from __future__ import annotations
 
+import importlib
 import os
 import sys
 import threading
@@ -14,20 +16,59 @@ from typing import NoReturn
 
 import click
 
-from ._common import EXIT_OK, stop_quietly
-from .check import check
-from .expand import expand
-from .graph import graph
-from .inertia import inertia
-from .render import render
-from .rules import rules
-from .tf import tf
-from .view import view
-
 __all__ = ["cli", "main"]
 
+# Each subcommand (defined by the function of its name in the module of its name) and the
+# first sentence of its help, which `fishbot --help` shortens as click would, without
+# importing the module (tests/test_cli.py keeps the two in step).
+COMMANDS = {
+    "check": "Check URDF or xacro files, like check_urdf, and more strictly.",
+    "rules": "List the rules of `fishbot check`, or explain one (as `ruff rule` does).",
+    "expand": "Expand a xacro file to URDF, as ROS's xacro command does, without ROS.",
+    "graph": "Draw the link/joint tree of a URDF or xacro file, like urdf_to_graphviz.",
+    "inertia": "Inertia: an <inertial> block for a solid shape, or a robot's mass table.",
+    "tf": "Where frame TO is in frame FROM (both links of FILE, a URDF or xacro file), as "
+    "`ros2 run tf2_ros tf2_echo FROM TO` prints it with robot_state_publisher running.",
+    "render": "A shaded PNG of FILE (URDF or xacro) at a joint configuration: no display, GPU "
+    "or ROS needed.",
+    "view": "Show FILE (URDF or xacro) in a web browser: visuals in their colours, collision "
+    "shapes on a toggle, link frames as axes, and a slider per moving joint within its limits "
+    "(mimic joints follow).",
+}
 
-@click.group(name="fishbot", context_settings={"help_option_names": ["-h", "--help"]})
+
+def summary(name: str) -> click.Command:
+    """A stand-in for subcommand ``name`` that knows only its help's first sentence."""
+    return click.Command(name, help=COMMANDS[name])
+
+
+class _Commands(click.Group):
+    """A group whose subcommands load on first use: `fishbot check` imports no drawing code
+    and `fishbot --help` no subcommand at all."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return sorted(COMMANDS)
+
+    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        if cmd_name not in COMMANDS:
+            return None
+        module = importlib.import_module(f"{__name__}.{cmd_name}")
+        command: click.Command = getattr(module, cmd_name)
+        return command
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        names = self.list_commands(ctx)
+        limit = formatter.width - 6 - max(len(name) for name in names)
+        rows = [(name, summary(name).get_short_help_str(limit)) for name in names]
+        with formatter.section("Commands"):
+            formatter.write_dl(rows)
+
+
+@click.group(
+    name="fishbot",
+    cls=_Commands,
+    context_settings={"help_option_names": ["-h", "--help"]},
+)
 @click.version_option(package_name="fishbot-urdf", prog_name="fishbot")
 def cli() -> None:
     """fishbot: check and explore URDF robot descriptions, with or without ROS.
@@ -49,10 +90,6 @@ def cli() -> None:
       fishbot render robot.urdf.xacro -o robot.png --view side
       fishbot view robot.urdf.xacro
     """
-
-
-for _command in (check, rules, expand, graph, inertia, tf, render, view):
-    cli.add_command(_command)
 
 
 EXIT_INTERRUPTED, EXIT_TERMINATED = 130, 143  # as a shell reports SIGINT and SIGTERM
@@ -86,12 +123,18 @@ def main(argv: Sequence[str] | None = None) -> NoReturn:
             standalone_mode=False,
         )
     except click.exceptions.Abort:  # Ctrl-C; click has ended the ^C line
-        stop_quietly(EXIT_INTERRUPTED)
+        _quiet_exit(EXIT_INTERRUPTED)
     except _Terminated:
-        stop_quietly(EXIT_TERMINATED)
+        _quiet_exit(EXIT_TERMINATED)
     except click.ClickException as exc:
         exc.show()
         sys.exit(exc.exit_code)
     except BrokenPipeError:
-        stop_quietly()
-    sys.exit(EXIT_OK)
+        _quiet_exit(0)
+    sys.exit(0)
+
+
+def _quiet_exit(status: int) -> NoReturn:
+    from ._common import stop_quietly
+
+    stop_quietly(status)

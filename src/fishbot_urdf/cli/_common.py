@@ -107,6 +107,8 @@ def packages_option(items: Sequence[str]) -> dict[str, str]:
 
 def xacro_args(items: Sequence[str]) -> dict[str, str]:
     """``name:=value`` arguments as a mapping."""
+    if not items:
+        return {}
     from ..expand import parse_args
 
     try:

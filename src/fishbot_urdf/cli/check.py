@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import contextlib
-import json
 import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -300,20 +299,23 @@ def check(
             try:
                 result = check_input(name, args, packages, config)
             except FishbotUrdfError as exc:
-                reports.append(_failure(exc, config))
                 if fmt == "text":
                     emit_findings([fail(exc)])
+                else:
+                    reports.append(_failure(exc, config))
                 status = max(status, status_of(exc))
                 continue
             inputs.extend(result.files)
             if output not in (None, "-"):
                 inputs.extend(mesh_files(result.robot, result.path, packages))
             if skip_includes and _is_include(result):
-                reports.append(_skipped(result, config))
+                if fmt != "text":
+                    reports.append(_skipped(result, config))
                 continue
-            report = _report(result, config)
-            reports.append(report)
-            if not report.ok:
+            failed = _failed(result, config)
+            if fmt != "text":  # (a report for programs; text needs none)
+                reports.append(_report(result, config, failed))
+            if failed:
                 status = max(status, EXIT_INVALID)
             if fmt == "text":
                 emit_findings(result.diagnostics)
@@ -368,12 +370,17 @@ def _tree(result: CheckResult, sink: AtomicFile | None) -> None:
         stop_on(exc)
 
 
-def _report(result: CheckResult, config: Config) -> FileReport:
+def _failed(result: CheckResult, config: Config) -> bool:
+    """Whether the file fails the check: no robot, or errors (warnings too, when strict)."""
     from ..diagnostics import has_errors
+
+    return result.robot is None or has_errors(result.diagnostics, strict=config.strict)
+
+
+def _report(result: CheckResult, config: Config, failed: bool) -> FileReport:
     from ..report import FileReport
 
     robot, topo = result.robot, result.topology
-    failed = robot is None or has_errors(result.diagnostics, strict=config.strict)
     return FileReport(
         path=result.path,
         ok=not failed,
@@ -414,6 +421,15 @@ def _finish(
     inputs: Sequence[str],
 ) -> None:
     """Write the report (or, for text, the trees) to stdout or ``output``."""
+    if fmt == "text":  # the trees: on stdout already, or in the file, put in place now
+        if sink is not None:
+            try:
+                sink.commit(inputs)
+            except FishbotUrdfError as exc:
+                stop_on(exc)
+        return
+    import json
+
     from ..report import github_annotations, json_report, sarif_report
     from ._hints import phrased
 
@@ -425,16 +441,9 @@ def _finish(
     elif fmt == "sarif":
         log = sarif_report(phrased_reports, version=_version())
         data = (json.dumps(log, indent=2) + "\n").encode("utf-8", "surrogateescape")
-    elif fmt == "github":
+    else:
         findings = (d for r in phrased_reports for d in r.diagnostics)
         data = github_annotations(findings).encode("utf-8", "surrogateescape")
-    else:  # the trees: on stdout already, or in the file, put in place now
-        if sink is not None:
-            try:
-                sink.commit(inputs)
-            except FishbotUrdfError as exc:
-                stop_on(exc)
-        return
     if output is None or output == "-":
         to_stdout(data)
         return

@@ -76,8 +76,7 @@ def expand(
     from ..expand import declared_args
     from ..expand import expand as run
     from ..output import write_atomic
-    from ..parse import xacro_warning
-    from ..rules.xacro import unknown_args
+    from ..rules.xacro import unknown_args, xacro_warning
 
     values = xacro_args(args)
     packages = packages_option(package_items)

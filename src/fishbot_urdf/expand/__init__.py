@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import ArgumentError, FishbotUrdfError, InputError
-from ..model import Location
+from ..location import Location
 
 __all__ = [
     "Expansion",

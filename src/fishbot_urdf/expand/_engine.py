@@ -17,7 +17,7 @@ from xml.parsers.expat import ExpatError
 from ..diagnostics import shown_path
 from ..errors import FishbotUrdfError, InputError
 from ..inputs import max_bytes, max_seconds, read_input
-from ..model import Location
+from ..location import Location
 from ..packages import PackageNotFoundError, find_package
 from . import Expansion, ExpansionLimitError, XacroError
 from ._errors import SOURCE_KEY, Explaining, source

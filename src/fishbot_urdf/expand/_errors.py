@@ -10,7 +10,7 @@ from xml.parsers.expat import ExpatError
 
 from ..diagnostics import closest, listing, shown_path
 from ..errors import FishbotUrdfError
-from ..model import Location
+from ..location import Location
 from ..packages import PackageNotFoundError
 from . import XacroError
 from ._guard import UnsafeExpression

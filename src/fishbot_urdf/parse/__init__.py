@@ -11,11 +11,11 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..diagnostics import Diagnostic, Kind, Subject
+from ..diagnostics import Diagnostic
 from ..errors import RobotError
 from ..extensions import Reference
 from ..model import Robot
-from ..rules.xacro import XACRO_WARNING, unknown_args
+from ..rules.xacro import unknown_args, xacro_warning
 from ..xmlsource import STRING_PATH, read_bytes, read_xml
 from ._reader import Reader
 from .values import to_double
@@ -104,13 +104,6 @@ def read(
     robot = reader.robot(root)
     found = notes + tuple(reader.diagnostics)
     return Parsed(name, robot, found, files, data, tuple(reader.references))
-
-
-def xacro_warning(message: str, path: str) -> Diagnostic:
-    """A warning xacro gave while expanding ``path``, as a finding about the file."""
-    return XACRO_WARNING.report(
-        message.removeprefix("warning: ").strip(), None, path=path, subject=Subject(Kind.FILE, path)
-    )
 
 
 def parse(text: str | bytes, *, path: str | None = None) -> Robot:

@@ -7,12 +7,15 @@ import math
 import os
 from collections.abc import Iterator, Mapping
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..analysis import Analysis
 from ..diagnostics import Diagnostic, Kind, Severity, Subject, closest
-from ..meshfile import MeshFacts, mesh_facts
 from ..model import Box, Cylinder, Link, Mesh, Sphere
 from . import Consumer, Family, Rule
+
+if TYPE_CHECKING:
+    from ..meshfile import MeshFacts
 
 __all__ = ["meshes"]
 
@@ -388,6 +391,8 @@ class _Finder:
 
     def facts(self, file: Path) -> MeshFacts | None:
         if file not in self.read:
+            from ..meshfile import mesh_facts  # (read only for a robot with mesh files)
+
             self.read[file] = mesh_facts(file)
         return self.read[file]
 

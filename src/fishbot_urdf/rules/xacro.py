@@ -326,3 +326,10 @@ def unknown_args(
             subject=Subject(Kind.FILE, path),
             hint=hint,
         )
+
+
+def xacro_warning(message: str, path: str) -> Diagnostic:
+    """A warning xacro gave while expanding ``path``, as a finding about the file."""
+    return XACRO_WARNING.report(
+        message.removeprefix("warning: ").strip(), None, path=path, subject=Subject(Kind.FILE, path)
+    )
