@@ -201,32 +201,55 @@ _RAW_WHITESPACE = re.compile(
 )
 
 
-_new_tuple = tuple.__new__  # builds a Location without the NamedTuple's Python-level __new__
+def _width(data: bytes, start: int, end: int, ascii_only: bool) -> int:
+    """How many characters the bytes from ``start`` to ``end`` hold."""
+    if ascii_only:
+        return end - start
+    return len(data[start:end].decode("utf-8", "replace"))
 
 
-def _make_location(path: str, line: int, column: int) -> Location:
-    return _new_tuple(Location, (path, line, column))
+def _locations(data: bytes, path: str, starts: Sequence[int]) -> list[Location]:
+    """1-based line and column (in characters) of every offset of ``starts`` (increasing),
+    in one pass: each stretch of ``data`` between two offsets is looked at once, so a long
+    one-line file stays linear."""
+    new = tuple.__new__  # a Location without the NamedTuple's Python-level __new__
+    count, rfind = data.count, data.rfind
+    ascii_only = data.isascii()  # (one pass over the whole file, as the rest is)
+    found: list[Location] = []
+    line, line_start, previous, chars = 1, 0, 0, 0
+    for offset in starts:
+        newlines = count(b"\n", previous, offset)
+        if newlines:
+            line += newlines
+            line_start = rfind(b"\n", previous, offset) + 1
+            previous, chars = line_start, 0
+        if ascii_only:
+            column = offset - line_start + 1
+        else:  # characters, carried along the line
+            chars += len(data[previous:offset].decode("utf-8", "replace"))
+            column = chars + 1
+        previous = offset
+        found.append(new(Location, (path, line, column)))
+    return found
 
 
 class Locator:
     """Exact line and column of every element's start tag, in linear time.
 
     lxml reports the line where a start tag *ends*, and no column, so one regular-expression
-    pass over the bytes lists where every start tag begins, in document order. Callers
-    visit elements in document order and ``skip`` the subtrees they do not read; each
-    ``locate`` checks the tag name, so a missed subtree only costs a short scan.
+    pass over the bytes lists where every start tag begins, in document order, and one more
+    turns those offsets into lines and columns. Callers visit elements in document order and
+    ``skip`` the subtrees they do not read; each ``locate`` checks the tag name, so a missed
+    subtree only costs a short scan.
     """
 
     __slots__ = (
         "_ascii",
-        "_chars_at",
         "_data",
         "_index",
         "_last",
-        "_line",
-        "_line_start",
+        "_locations",
         "_origins",
-        "_pos",
         "_starts",
         "_tags",
         "path",
@@ -246,6 +269,7 @@ class Locator:
         lxml read after a rewrite); ``tags`` the start-tag bytes of elements whose name, as
         ``prefix:local``, is written otherwise in ``data``."""
         self._data = data
+        self._ascii = data.isascii()
         self.path = path
         if starts is not None:
             self._starts = list(starts)
@@ -253,12 +277,12 @@ class Locator:
             self._starts = [m.start() for m in _MARKUP.finditer(data) if m.lastindex]
         else:
             self._starts = [m.start() for m in _START_TAG.finditer(data)]
-        self._ascii = data.isascii()
         # Where each element was written when ``data`` was generated (an expanded xacro file):
         # reported instead of the element's place in ``data``.
         self._origins = (
             origins if origins is not None and len(origins) == len(self._starts) else None
         )
+        self._locations: Sequence[Location] | None = self._origins
         self._tags: dict[str, bytes] = dict(tags or {})
         self.raw_whitespace = _RAW_WHITESPACE.search(data) is not None
         self.rewind()
@@ -266,31 +290,13 @@ class Locator:
     def rewind(self) -> None:
         """Start again from the top of the document."""
         self._index = 0  # next entry of _starts to hand out
-        self._pos = 0  # byte offset of the last element located
-        self._line = 1  # its line
-        self._line_start = 0  # byte offset where that line starts
-        self._chars_at = (0, 0)  # (byte offset, characters since line start), non-ASCII only
         self._last: tuple[Location, int] | None = None  # the last element found, and its offset
 
-    def _position(self, offset: int) -> tuple[int, int]:
-        data = self._data
-        if offset > self._pos:
-            newlines = data.count(b"\n", self._pos, offset)
-            if newlines:
-                self._line += newlines
-                self._line_start = data.rfind(b"\n", self._pos, offset) + 1
-                self._chars_at = (self._line_start, 0)
-            self._pos = offset
-        if self._ascii:
-            return self._line, offset - self._line_start + 1
-        # Count characters, not bytes, carrying the count along the line (a long one-line
-        # file stays linear).
-        base, chars = self._chars_at
-        if offset < base:
-            base, chars = self._line_start, 0
-        chars += len(data[base:offset].decode("utf-8", "replace"))
-        self._chars_at = (offset, chars)
-        return self._line, chars + 1
+    def _all(self) -> Sequence[Location]:
+        """The location of every start tag, in one pass (made on first use)."""
+        if self._locations is None:
+            self._locations = _locations(self._data, self.path, self._starts)
+        return self._locations
 
     def locate(self, element: etree._Element) -> Location:
         """The location of ``element``'s start tag (the next one of its name)."""
@@ -304,15 +310,12 @@ class Locator:
         if name is None:
             name = self._tags[tag] = b"<" + tag.encode("utf-8")
         data, starts, size = self._data, self._starts, len(name)
+        locations = self._locations or self._all()
         for index in range(self._index, len(starts)):
             offset = starts[index]
             if data.startswith(name, offset) and data[offset + size] in _AFTER_TAG:
                 self._index = index + 1
-                if self._origins is not None:
-                    location = self._origins[index]
-                else:
-                    line, column = self._position(offset)
-                    location = _make_location(self.path, line, column)
+                location = locations[index]
                 self._last = (location, offset)
                 return location
         return self._fallback(element)
@@ -358,7 +361,15 @@ class Locator:
         otherwise the element's own location.
         """
         match = self._attribute_match(location, name)
-        if match is None or self._origins is not None:
+        if match is None or self._origins is not None or self._last is None:
             return location
-        line, column = self._position(match.start() + 1)
-        return Location(self.path, line, column)
+        data, tag, offset = self._data, self._last[1], match.start() + 1
+        newlines = data.count(b"\n", tag, offset)
+        if not newlines:  # on the tag's line: count on from the tag's column
+            return Location(
+                self.path, location.line, location.column + _width(data, tag, offset, self._ascii)
+            )
+        line_start = data.rfind(b"\n", tag, offset) + 1
+        return Location(
+            self.path, location.line + newlines, _width(data, line_start, offset, self._ascii) + 1
+        )
