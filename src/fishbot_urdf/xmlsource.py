@@ -208,13 +208,12 @@ def _width(data: bytes, start: int, end: int, ascii_only: bool) -> int:
     return len(data[start:end].decode("utf-8", "replace"))
 
 
-def _locations(data: bytes, path: str, starts: Sequence[int]) -> list[Location]:
+def _locations(data: bytes, path: str, starts: Sequence[int], ascii_only: bool) -> list[Location]:
     """1-based line and column (in characters) of every offset of ``starts`` (increasing),
     in one pass: each stretch of ``data`` between two offsets is looked at once, so a long
     one-line file stays linear."""
     new = tuple.__new__  # a Location without the NamedTuple's Python-level __new__
     count, rfind = data.count, data.rfind
-    ascii_only = data.isascii()  # (one pass over the whole file, as the rest is)
     found: list[Location] = []
     line, line_start, previous, chars = 1, 0, 0, 0
     for offset in starts:
@@ -226,7 +225,7 @@ def _locations(data: bytes, path: str, starts: Sequence[int]) -> list[Location]:
         if ascii_only:
             column = offset - line_start + 1
         else:  # characters, carried along the line
-            chars += len(data[previous:offset].decode("utf-8", "replace"))
+            chars += _width(data, previous, offset, ascii_only)
             column = chars + 1
         previous = offset
         found.append(new(Location, (path, line, column)))
@@ -295,7 +294,7 @@ class Locator:
     def _all(self) -> Sequence[Location]:
         """The location of every start tag, in one pass (made on first use)."""
         if self._locations is None:
-            self._locations = _locations(self._data, self.path, self._starts)
+            self._locations = _locations(self._data, self.path, self._starts, self._ascii)
         return self._locations
 
     def locate(self, element: etree._Element) -> Location:
