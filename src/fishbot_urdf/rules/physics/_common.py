@@ -13,7 +13,7 @@ TINY = 1e-15
 def tolerance(moments: tuple[float, float, float]) -> float:
     # Inertias are printed with a handful of digits: allow their rounding, and nothing near
     # a real violation.
-    return max(1e-6 * max(abs(m) for m in moments), TINY)
+    return max(1e-6 * max(abs(moments[0]), abs(moments[1]), abs(moments[2])), TINY)
 
 
 def physical(moments: tuple[float, float, float]) -> bool:

@@ -26,13 +26,10 @@ from ._common import (
     tolerance,
 )
 
-_FIELDS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
-
 
 def finite(inertial: Inertial) -> bool:
-    return all(
-        math.isfinite(v) for v in (inertial.mass, *(getattr(inertial.inertia, f) for f in _FIELDS))
-    )
+    i = inertial.inertia
+    return all(map(math.isfinite, (inertial.mass, i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz)))
 
 
 def _inertials(body: Body) -> list[tuple[Link, Inertial, Pose]]:
@@ -78,6 +75,9 @@ def _inertial(
             subject=owner,
             hint="mass is >= 0 kg",
         )
+    negative = moments[0] < -tolerance(moments)
+    if not negative and physical(moments):
+        return
     where = place(link, inertial.inertia.source or inertial.source)
     also = (
         "; merged with the links fixed to it the body is physical, so simulators that merge "
@@ -86,7 +86,7 @@ def _inertial(
         else ""
     )
     facts = {"principal_moments": list(moments), "merged_body_physical": merged}
-    if moments[0] < -tolerance(moments):
+    if negative:
         # A negative moment written in the file is a sign slip, merged or not.
         slip = any(getattr(inertial.inertia, f) < 0 for f in ("ixx", "iyy", "izz"))
         yield INERTIA_NOT_POSITIVE.report(
@@ -99,7 +99,7 @@ def _inertial(
             severity=None if slip or not merged else W,
             data=facts,
         )
-    elif not physical(moments):
+    else:
         yield INERTIA_TRIANGLE.report(
             f"{owner}: principal moments {moments_text(moments)} kg*m^2 break the triangle "
             f"inequality ({moment_text(moments[0], moments)} + {moment_text(moments[1], moments)} "

@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator
+from itertools import chain
+from operator import sub
 from typing import Any
 
 from ...diagnostics import Diagnostic
 from ...inertia import geometry_inertia
 from ...model import Box, Cylinder, Link, Origin, Sphere, Vector3
-from ...spatial import Matrix3, eigh, rotate_tensor, rpy_matrix, transpose
+from ...spatial import IDENTITY, Matrix3, eigh, rotate_tensor, rpy_matrix, transpose
 from ._common import INERTIA_MISMATCH, TINY, link_subject, place, short, tolerance
 
 MISMATCH = 0.10
@@ -33,7 +35,7 @@ def mismatch(link: Link, path: str, moments: Vector3) -> Iterator[Diagnostic]:
     if moments[0] < -tolerance(moments) or moments[2] <= TINY:
         return  # reported as not positive definite, or a point mass
     declared = rotate_tensor(rpy_matrix(inertial.origin.rpy), inertial.inertia.matrix())
-    if not all(math.isfinite(x) for row in declared for x in row):
+    if not all(map(math.isfinite, declared[0] + declared[1] + declared[2])):
         return  # numbers past the floats' range: nothing to compare
     turn = rpy_matrix(collision.origin.rpy)
     closed = geometry_inertia(shape, inertial.mass).inertia
@@ -41,12 +43,12 @@ def mismatch(link: Link, path: str, moments: Vector3) -> Iterator[Diagnostic]:
     largest = max(closed.ixx, closed.iyy, closed.izz)  # diagonal: these are its moments
     if largest <= 0.0:
         return
-    gap = max(abs(declared[i][j] - wanted[i][j]) for i in range(3) for j in range(3))
+    gap = max(map(abs, map(sub, declared[0] + declared[1] + declared[2], chain(*wanted))))
     if gap <= MISMATCH * largest:
         return
     # What the numbers are, seen in the collision's own frame. Numbers that fit no such
     # shape were measured (CAD), not computed: a collision shape only approximates those.
-    seen = rotate_tensor(transpose(turn), declared)
+    seen = declared if turn is IDENTITY else rotate_tensor(transpose(turn), declared)
     found = _describe(shape, seen, inertial.mass, turn)
     if found is None:
         return
