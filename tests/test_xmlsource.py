@@ -3,10 +3,15 @@ directly in the bytes."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from lxml import etree
 
+import fishbot_urdf
+from fishbot_urdf import xmlsource
 from fishbot_urdf.xmlsource import Locator
 
 
@@ -42,3 +47,60 @@ def test_every_element_and_attribute_is_where_the_bytes_say(
         assert (location.path, *location[1:]) == ("r.urdf", *_place(data, offset))
         attribute = data.index(b"a=", offset)
         assert locator.attribute(location, "a")[1:] == _place(data, attribute)
+
+
+# -- reading a big file as a stream ---------------------------------------------------------
+
+_DATA = Path(__file__).parent / "data"
+_FILES = sorted(p for p in _DATA.rglob("*") if p.suffix in (".urdf", ".xml"))
+
+
+def _outcome(path: Path) -> object:
+    """All that reading ``path`` gives: the robot with every place, the findings, or the
+    error."""
+    try:
+        parsed = fishbot_urdf.read(path)
+    except fishbot_urdf.FishbotUrdfError as error:
+        return type(error).__name__, str(error)
+    robot = parsed.robot
+    places = [] if robot is None else [part.source for part in (*robot.links, *robot.joints)]
+    return robot, places, parsed.diagnostics, parsed.references
+
+
+@pytest.mark.parametrize("path", _FILES, ids=lambda p: str(p.relative_to(_DATA)))
+def test_a_streamed_file_reads_as_the_whole_file(
+    path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    whole = _outcome(path)
+    monkeypatch.setattr(xmlsource, "STREAM_FROM", 0)  # every file streamed
+    assert _outcome(path) == whole
+
+
+def test_a_stream_drops_what_it_handed_out_and_never_holds_the_whole_tree() -> None:
+    count = 10_000  # about 0.4 MB of XML
+    links = "".join(f'<link name="l{i}"><visual/></link><!-- {i} -->' for i in range(count))
+    document = xmlsource.read_xml(f'<robot name="r">{links}</robot>'.encode(), stream=True)
+    seen, held = [], 0
+    for child in document.children():
+        assert document.root[0] is child  # all handed out before it is gone, comments too
+        held = max(held, len(document.root))
+        seen.append(child.get("name"))
+    document.finish()
+    assert seen == [f"l{i}" for i in range(count)]
+    assert held < count / 4  # what lxml read ahead, not the 20 000 nodes of the tree
+
+
+@pytest.mark.parametrize(
+    "tail",
+    [
+        "<link name='b'></joint></robot>",  # a mismatched end tag after the first element
+        "<link name='b'><x:y/></link></robot>",  # an undeclared prefix: a whole read refuses it
+        "<link name='b'/></robot><link/>",  # an element after the root
+    ],
+)
+def test_a_stream_that_breaks_later_is_read_whole(tail: str) -> None:
+    data = f"<robot name='r'><link name='a'/>{tail}".encode()
+    document = xmlsource.read_xml(data, stream=True)
+    with pytest.raises(xmlsource.Unstreamable):
+        list(document.children())
+        document.finish()

@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import io
+import itertools
 import re
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from lxml import etree
 
@@ -35,6 +38,66 @@ def parse_xml(data: bytes, path: str = STRING_PATH) -> etree._Element:
     return _parse(data, path)
 
 
+STREAM_FROM = 16 * 2**20
+"""Files at least this big (bytes) are read as a stream (see `read_xml`): the tree lxml
+builds takes about 13 times the file's size."""
+
+
+class Unstreamable(Exception):
+    """A file read as a stream turned out not to be clean XML past its start: read it whole
+    (`read_xml` with ``stream=False``) to learn what urdfdom makes of it."""
+
+
+class _Stream:
+    """The elements directly inside the root, each handed out once lxml has read it whole,
+    and dropped from the tree (with the comments before it) when the next one is asked for."""
+
+    __slots__ = ("_events", "_parser", "root")
+
+    def __init__(self, data: bytes) -> None:
+        """Raises Unstreamable when lxml refuses the start of ``data``."""
+        self._parser = etree.iterparse(io.BytesIO(data), events=("end",), **_SAFE)
+        try:
+            event = next(self._parser)
+        except (etree.XMLSyntaxError, StopIteration) as exc:
+            raise Unstreamable from exc
+        root = event[1]  # the first element read whole: the root itself, or inside it
+        while (parent := root.getparent()) is not None:
+            root = parent
+        self.root: etree._Element = root
+        self._events = itertools.chain([event], self._parser)
+
+    def __iter__(self) -> Iterator[etree._Element]:
+        """Raises Unstreamable when lxml refuses the file further on."""
+        root = self.root
+        try:
+            for _, element in self._events:
+                if element.getparent() is not root:
+                    continue
+                before = root.index(element)  # those handed out, and comments between them
+                if before:
+                    del root[:before]
+                self._check()
+                yield element
+        except etree.XMLSyntaxError as exc:
+            raise Unstreamable from exc
+
+    def finish(self) -> None:
+        """Read the rest of the file (what was not asked for), to learn whether it is XML.
+
+        Raises:
+            Unstreamable: It is not clean XML.
+        """
+        for _ in self:
+            pass
+        self._check()
+
+    def _check(self) -> None:
+        # What a whole read refuses and a stream only logs (an undeclared namespace prefix).
+        if self._parser.error_log.filter_from_errors():
+            raise Unstreamable
+
+
 @dataclass(frozen=True, slots=True)
 class XmlDocument:
     """A file read as XML the way urdfdom reads it.
@@ -49,10 +112,33 @@ class XmlDocument:
     root: etree._Element
     locator: Locator
     recoveries: tuple[Diagnostic, ...]
+    _stream: _Stream | None = None
+
+    def children(self) -> Iterator[etree._Element]:
+        """What the root holds (comments and processing instructions too, unless streamed),
+        in order; a streamed file's elements are dropped from ``root`` once passed.
+
+        Raises:
+            Unstreamable: A streamed file is not clean XML further on.
+        """
+        return iter(self.root) if self._stream is None else iter(self._stream)
+
+    def finish(self) -> None:
+        """Make sure the whole file was read (a streamed file may not have been).
+
+        Raises:
+            Unstreamable: A streamed file is not clean XML further on.
+        """
+        if self._stream is not None:
+            self._stream.finish()
 
 
 def read_xml(
-    data: bytes, path: str = STRING_PATH, origins: Sequence[Location] | None = None
+    data: bytes,
+    path: str = STRING_PATH,
+    origins: Sequence[Location] | None = None,
+    *,
+    stream: bool | None = None,
 ) -> XmlDocument:
     """Read bytes as urdfdom (check_urdf, robot_state_publisher) reads them.
 
@@ -61,11 +147,23 @@ def read_xml(
     read as urdfdom's TinyXML reads it, and each rule applied gives one warning saying what a
     strict tool does with the file; nothing is ever read from outside the file.
 
+    ``stream`` (default: for files of `STREAM_FROM` bytes and more) reads clean XML as the
+    document's `XmlDocument.children` are asked for, so that the whole tree is never held; a
+    caller that gets `Unstreamable` from them reads the file again with ``stream=False``.
+
     Raises:
         XmlSyntaxError: urdfdom refuses the file too (the strict parser's message when it
             has one), or the file declares entities.
     """
     _check_start(data, path)
+    if len(data) >= STREAM_FROM if stream is None else stream:
+        try:
+            streamed = _Stream(data)
+        except Unstreamable:
+            pass  # read whole, below: for urdfdom's reading, or the strict parser's message
+        else:
+            if not xmlrecover.needed(data, _line_end(data, streamed.root.sourceline)):
+                return XmlDocument(streamed.root, Locator(data, path, origins), (), streamed)
     strict: XmlSyntaxError | None = None
     try:
         root = _parse(data, path)
@@ -155,16 +253,19 @@ def _line_column(data: bytes, offset: int) -> tuple[int, int]:
     return data.count(b"\n", 0, offset) + 1, len(data[start:offset].decode("utf-8", "replace")) + 1
 
 
+# No entity expansion, no DTD loading, no network, libxml2's size and depth guards on.
+_SAFE: dict[str, Any] = {
+    "resolve_entities": False,
+    "load_dtd": False,
+    "no_network": True,
+    "dtd_validation": False,
+    "huge_tree": False,
+    "recover": False,
+}
+
+
 def _parse(data: bytes, path: str) -> etree._Element:
-    # No entity expansion, no DTD loading, no network, libxml2's size and depth guards on.
-    parser = etree.XMLParser(
-        resolve_entities=False,
-        load_dtd=False,
-        no_network=True,
-        dtd_validation=False,
-        huge_tree=False,
-        recover=False,
-    )
+    parser = etree.XMLParser(**_SAFE)
     try:
         root = etree.fromstring(data, parser)
     except etree.XMLSyntaxError as exc:

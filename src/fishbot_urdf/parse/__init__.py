@@ -7,16 +7,16 @@ RobotError listing every finding).
 from __future__ import annotations
 
 import re
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..diagnostics import Diagnostic
 from ..errors import RobotError
 from ..extensions import Reference
-from ..model import Robot
+from ..model import Location, Robot
 from ..rules.xacro import unknown_args, xacro_warning
-from ..xmlsource import STRING_PATH, read_bytes, read_xml
+from ..xmlsource import STRING_PATH, Unstreamable, XmlDocument, read_bytes, read_xml
 from ._reader import Reader
 from .values import to_double
 
@@ -97,13 +97,23 @@ def read(
         name = path or str(source)
         data = read_bytes(source)
         files = (str(source),)
-    # As urdfdom reads it: a file it reads though strict XML does not gives xml-* warnings.
-    document = read_xml(data, name, origins)
-    root, locator, notes = document.root, document.locator, notes + document.recoveries
-    reader = Reader(locator)
-    robot = reader.robot(root)
-    found = notes + tuple(reader.diagnostics)
+    try:
+        document, reader, robot = _robot(data, name, origins, None)
+    except Unstreamable:  # a big file, not clean XML after all: read whole, as urdfdom does
+        document, reader, robot = _robot(data, name, origins, False)
+    found = notes + document.recoveries + tuple(reader.diagnostics)
     return Parsed(name, robot, found, files, data, tuple(reader.references))
+
+
+def _robot(
+    data: bytes, name: str, origins: Sequence[Location] | None, stream: bool | None
+) -> tuple[XmlDocument, Reader, Robot | None]:
+    # As urdfdom reads it: a file it reads though strict XML does not gives xml-* warnings.
+    document = read_xml(data, name, origins, stream=stream)
+    reader = Reader(document.locator)
+    robot = reader.robot(document.root, document.children())
+    document.finish()
+    return document, reader, robot
 
 
 def parse(text: str | bytes, *, path: str | None = None) -> Robot:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable
 
 from lxml import etree
 
@@ -20,7 +21,8 @@ _VERSION = re.compile(r"\s*\+?([0-9]+)\.\+?([0-9]+)")
 class Reader(JointReader):
     """Builds a Robot from the lxml tree, collecting findings as it goes."""
 
-    def robot(self, el: etree._Element) -> Robot | None:
+    def robot(self, el: etree._Element, children: Iterable[etree._Element]) -> Robot | None:
+        """The robot of root element ``el``, whose ``children`` are handed out in order."""
         at = self.locator.locate(el)
         if el.tag != "robot":
             self.error(
@@ -48,7 +50,7 @@ class Reader(JointReader):
         materials: list[Material] = []
         extras: list[str] = []
         locate = self.locator.locate
-        for child in el:
+        for child in children:
             self.subject = whole
             tag = child.tag
             if tag == "link":
