@@ -169,3 +169,54 @@ def test_a_package_xml_of_unclosed_comments_has_no_name(tmp_path: Path) -> None:
         '<package format="3"><!-- <name>no</name> --><name> pkg </name></package>'
     )
     assert package_name(tmp_path / "package.xml") == "pkg"
+
+
+def _lxml_name(data: bytes) -> str | None:
+    """The name as lxml reads it: the text of the root <package>'s first <name> child."""
+    from lxml import etree
+
+    parser = etree.XMLParser(resolve_entities=False, load_dtd=False, no_network=True)
+    try:
+        root = etree.fromstring(data, parser)
+    except etree.XMLSyntaxError:
+        return None
+    if etree.QName(root).localname != "package":
+        return None
+    name = root.find("{*}name")
+    return None if name is None or name.text is None else name.text.strip() or None
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "<package><name>a</name></package>",
+        "<package><name> a b </name><name>c</name></package>",
+        "<package><description><name>x</name></description><name>y</name></package>",
+        "<p:package xmlns:p='u'><p:name>n</p:name></p:package>",
+        "<package xmlns='u'><name>n</name></package>",
+        "<robot><name>n</name></robot>",
+        "<package><name>a<!--c-->b</name></package>",
+        "<package><name>a<b/>c</name></package>",
+        "<package><name>a<?pi x?>b</name></package>",
+        "<package><name><![CDATA[q]]>r</name></package>",
+        "<package><name>a&amp;b&#65;</name></package>",
+        "<package><name/></package>",
+        "<package><name>   </name></package>",
+        "<package><nam>x</nam></package>",
+        "<package><name>grün</name></package>",
+        "<?xml version='1.0'?>\n<!-- c --><package format='3'>\n <name>\n pkg\n </name></package>",
+        "<package><name>a</name>",  # not well-formed
+        "<package><name>a</name></package><x/>",
+        "",
+    ],
+)
+def test_package_name_reads_as_lxml_reads(tmp_path: Path, text: str) -> None:
+    path = tmp_path / "package.xml"
+    path.write_text(text, encoding="utf-8")
+    assert package_name(path) == _lxml_name(text.encode("utf-8"))
+
+
+def test_package_name_refuses_a_file_that_declares_entities(tmp_path: Path) -> None:
+    path = tmp_path / "package.xml"
+    path.write_text("<!DOCTYPE package [<!ENTITY e 'x'>]><package><name>&e;</name></package>")
+    assert package_name(path) is None
