@@ -23,7 +23,9 @@ This is defence in depth, not a proof: a xacro file is a program, as it is in RO
 from __future__ import annotations
 
 import ast
+import functools
 import string
+from types import CodeType
 from typing import Any
 
 from ..errors import FishbotUrdfError
@@ -68,14 +70,26 @@ def guarded(
     As few frames deep as can be (no helper but the scan): xacro evaluates at the bottom
     of its recursion, and the frames here count against how deep macros may nest.
     """
+    code = _checked(expression)
+    globals["__builtins__"] = {**(builtins or {}), _ARITH: _arithmetic}
+    try:
+        return eval(code, globals, locals)  # checked in _checked
+    except UnsafeExpression as exc:  # a bound, met while it ran: name the whole expression
+        raise UnsafeExpression(expression, exc.what, too_big=exc.too_big) from None
+
+
+@functools.lru_cache(maxsize=4096)
+def _checked(expression: str) -> CodeType:
+    """The expression checked and compiled (a macro's expressions come again at each call).
+
+    Raises:
+        SyntaxError: The text is not a Python expression.
+        UnsafeExpression: The expression names something refused.
+    """
     tree = _parsed(expression)
     if _scan(tree, expression):  # arithmetic that can grow without bound: counted
         tree = ast.fix_missing_locations(_Bounded().visit(tree))
-    globals["__builtins__"] = {**(builtins or {}), _ARITH: _arithmetic}
-    try:
-        return eval(compile(tree, "<expression>", "eval"), globals, locals)  # checked above
-    except UnsafeExpression as exc:  # a bound, met while it ran: name the whole expression
-        raise UnsafeExpression(expression, exc.what, too_big=exc.too_big) from None
+    return compile(tree, "<expression>", "eval")
 
 
 def _parsed(expression: str) -> ast.Expression:
