@@ -16,6 +16,7 @@ process's maximum resident set, as the kernel counts it.
 from __future__ import annotations
 
 import argparse
+import compileall
 import os
 import shutil
 import statistics
@@ -251,6 +252,9 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--runs", type=int, default=21, help="runs per start-up measure")
     parser.add_argument("--only", metavar="WORD", help="only the measures whose label has WORD")
     options = parser.parse_args(argv)
+    # Bytecode written for every module first, as a first run writes it (unless
+    # PYTHONDONTWRITEBYTECODE is set: then each process would compile what changed anew).
+    compileall.compile_dir(ROOT / "src", quiet=1)
     print("| measure | fishbot | floor | ratio | goal |")
     print("| --- | ---: | ---: | ---: | ---: |")
     with tempfile.TemporaryDirectory() as folder:
