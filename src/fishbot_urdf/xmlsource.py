@@ -350,6 +350,7 @@ class Locator:
         "_last",
         "_locations",
         "_origins",
+        "_plain",
         "_starts",
         "_tags",
         "path",
@@ -384,6 +385,7 @@ class Locator:
         )
         self._locations: Sequence[Location] | None = self._origins
         self._tags: dict[str, bytes] = dict(tags or {})
+        self._plain: dict[object, bytes] = {}  # "<name" of each tag in no namespace
         self.raw_whitespace = _RAW_WHITESPACE.search(data) is not None
         self.rewind()
 
@@ -400,15 +402,32 @@ class Locator:
 
     def locate(self, element: etree._Element) -> Location:
         """The location of ``element``'s start tag (the next one of its name)."""
+        # Most often the next start tag is the element's: one look, no loop.
+        name = self._plain.get(element.tag)
+        index = self._index
+        if name is not None and index < len(self._starts):
+            offset = self._starts[index]
+            data = self._data
+            if data.startswith(name, offset) and data[offset + len(name)] in _AFTER_TAG:
+                self._index = index + 1
+                location = (self._locations or self._all())[index]
+                self._last = (location, offset)
+                return location
+        return self._search(element)
+
+    def _search(self, element: etree._Element) -> Location:
         tag = element.tag
         if not isinstance(tag, str):
             return self._fallback(element)
-        if tag[0] == "{":  # in a namespace: written prefix:local (or local) in the file
+        plain = tag[0] != "{"
+        if not plain:  # in a namespace: written prefix:local (or local) in the file
             local = tag[tag.index("}") + 1 :]
             tag = f"{element.prefix}:{local}" if element.prefix else local
         name = self._tags.get(tag)
         if name is None:
             name = self._tags[tag] = b"<" + tag.encode("utf-8")
+        if plain:  # the written name is the tag
+            self._plain[tag] = name
         data, starts, size = self._data, self._starts, len(name)
         locations = self._locations or self._all()
         for index in range(self._index, len(starts)):
