@@ -3,10 +3,15 @@ plugins and visuals' materials give to the robot's parts."""
 
 from __future__ import annotations
 
+import difflib
 from pathlib import Path
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import fishbot_urdf
 from fishbot_urdf import check_file
+from fishbot_urdf.diagnostics import closest
 from fishbot_urdf.extensions import Target, from_robot
 
 ARM = """\
@@ -191,3 +196,14 @@ def test_a_material_first_defined_in_a_visual_is_shared_by_later_ones(tmp_path: 
         encoding="utf-8",
     )
     assert check_file(path).diagnostics == ()
+
+
+_NAMES = st.text(alphabet="abcde_", max_size=8)
+
+
+@settings(max_examples=500, deadline=None)
+@given(_NAMES, st.lists(_NAMES, max_size=12))
+def test_the_closest_name_is_difflibs(name: str, candidates: list[str]) -> None:
+    # The suggestion skips comparisons that cannot win; it must still be difflib's own.
+    close = difflib.get_close_matches(name, sorted(set(candidates)), n=1)
+    assert closest(name, candidates) == (close[0] if close else None)
