@@ -222,9 +222,36 @@ def rows(runs: int, folder: Path, only: str | None) -> Iterator[Row]:
 
 # The attributes URDF gives numbers in.
 _NUMERIC = frozenset(
-    "xyz rpy value ixx ixy ixz iyy iyz izz size radius length scale rgba lower upper effort "
-    "velocity damping friction rising falling multiplier offset k_velocity k_position "
-    "soft_lower_limit soft_upper_limit".split()
+    [
+        "xyz",
+        "rpy",
+        "value",
+        "ixx",
+        "ixy",
+        "ixz",
+        "iyy",
+        "iyz",
+        "izz",
+        "size",
+        "radius",
+        "length",
+        "scale",
+        "rgba",
+        "lower",
+        "upper",
+        "effort",
+        "velocity",
+        "damping",
+        "friction",
+        "rising",
+        "falling",
+        "multiplier",
+        "offset",
+        "k_velocity",
+        "k_position",
+        "soft_lower_limit",
+        "soft_upper_limit",
+    ]
 )
 
 
