@@ -268,7 +268,7 @@ def _in_process(files: Sequence[Path]) -> tuple[float, float, float, float]:
     from fishbot_urdf.parse.values import to_doubles
 
     new_origin = builder(Origin)
-    no_location = Location("", 1, 1)
+    zero = (0.0, 0.0, 0.0)
 
     def floor() -> None:
         for path in files:
@@ -279,7 +279,7 @@ def _in_process(files: Sequence[Path]) -> tuple[float, float, float, float]:
                 for key, value in element.items():
                     if key in _NUMERIC:
                         to_doubles(value.split())
-                new_origin(no_location[1:], no_location[1:], Location(name, 1, 1))
+                new_origin(zero, zero, Location(name, 1, 1))
 
     def parse() -> None:
         for path in files:

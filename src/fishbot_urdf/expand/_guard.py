@@ -67,8 +67,9 @@ def guarded(
     """Check an expression, then evaluate it (xacro's ``safe_eval``), with no builtins but
     ``builtins``.
 
-    As few frames deep as can be (no helper but the scan): xacro evaluates at the bottom
-    of its recursion, and the frames here count against how deep macros may nest.
+    As few frames deep as can be (no helper but the check, and none while the expression
+    runs): xacro evaluates at the bottom of its recursion, and the frames here count against
+    how deep macros may nest.
     """
     code = _checked(expression)
     globals["__builtins__"] = {**(builtins or {}), _ARITH: _arithmetic}

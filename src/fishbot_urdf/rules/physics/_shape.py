@@ -35,7 +35,7 @@ def mismatch(link: Link, path: str, moments: Vector3) -> Iterator[Diagnostic]:
     if moments[0] < -tolerance(moments) or moments[2] <= TINY:
         return  # reported as not positive definite, or a point mass
     declared = rotate_tensor(rpy_matrix(inertial.origin.rpy), inertial.inertia.matrix())
-    if not all(map(math.isfinite, declared[0] + declared[1] + declared[2])):
+    if not all(map(math.isfinite, chain(*declared))):
         return  # numbers past the floats' range: nothing to compare
     turn = rpy_matrix(collision.origin.rpy)
     closed = geometry_inertia(shape, inertial.mass).inertia
@@ -43,7 +43,7 @@ def mismatch(link: Link, path: str, moments: Vector3) -> Iterator[Diagnostic]:
     largest = max(closed.ixx, closed.iyy, closed.izz)  # diagonal: these are its moments
     if largest <= 0.0:
         return
-    gap = max(map(abs, map(sub, declared[0] + declared[1] + declared[2], chain(*wanted))))
+    gap = max(map(abs, map(sub, chain(*declared), chain(*wanted))))
     if gap <= MISMATCH * largest:
         return
     # What the numbers are, seen in the collision's own frame. Numbers that fit no such
