@@ -101,6 +101,31 @@ def test_model_of_every_element() -> None:
     ]
 
 
+def test_extension_elements_are_kept_without_layout_white_space() -> None:
+    parsed = fishbot_urdf.read(
+        b'<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        b'  <link name="a"/>\n'
+        b'  <gazebo reference="a">\n'
+        b"    <material>Gazebo/Grey</material>\n"
+        b"    <note> two  words </note>\n"
+        b"    <empty>  </empty>\n"
+        b"  </gazebo>\n"
+        b'  <gazebo><plugin name="p"><frameName>\n  a\n</frameName></plugin></gazebo>\n'
+        b"</robot>\n"
+    )
+    assert parsed.robot is not None
+    ns = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+    assert parsed.robot.extras == (
+        f'<gazebo {ns} reference="a"><material>Gazebo/Grey</material>'
+        "<note> two  words </note><empty/></gazebo>",
+        f'<gazebo {ns}><plugin name="p"><frameName>\n  a\n</frameName></plugin></gazebo>',
+    )
+    assert [(r.name, r.context) for r in parsed.references] == [
+        ("a", "<gazebo reference>"),
+        ("a", "plugin <frameName>"),
+    ]
+
+
 def test_every_element_knows_its_line_and_column() -> None:
     robot = load(ALL)
     lines = ALL.read_text().splitlines()

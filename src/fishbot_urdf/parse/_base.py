@@ -17,15 +17,18 @@ Owner = Subject | str  # what a message names: a link, a joint, ... (or just "li
 
 def xml_text(element: etree._Element) -> str:
     """An element URDF does not define, as compact XML text (layout white space dropped, so
-    that a robot written out with another indentation reads back equal)."""
-    # As text, not bytes: ASCII bytes would write a name like <grün> as a character reference.
-    copy = etree.fromstring(etree.tostring(element, encoding="unicode", with_tail=False))
-    for node in copy.iter():
+    that a robot written out with another indentation reads back equal).
+
+    The white space is dropped from ``element`` itself: the reader's tree is read once, and
+    nothing reads layout white space (serialising a copy took four times as long).
+    """
+    for node in element.iter():
         if node.text is not None and not node.text.strip():
             node.text = None
-        if node.tail is not None and not node.tail.strip():
+        if node.tail is not None and node is not element and not node.tail.strip():
             node.tail = None
-    return etree.tostring(copy, encoding="unicode")
+    # As text, not bytes: ASCII bytes would write a name like <grün> as a character reference.
+    return etree.tostring(element, encoding="unicode", with_tail=False)
 
 
 class ReaderBase:
