@@ -95,6 +95,11 @@ class Diagnostic:
                 where += f":{self.column}"
         return where
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        # Pickled with its facts as a dict (a read-only mapping does not pickle), so that
+        # findings can come back from other processes.
+        return (_unpickled, (*(getattr(self, name) for name in _FIELDS), dict(self.data)))
+
     def format(self) -> str:
         """Render as one GCC-style line: ``path:line:col: error: message (hint) [rule]``."""
         text = f"{self.where}: {self.severity.value}: {self.message}"
@@ -118,6 +123,15 @@ class Diagnostic:
             else {"kind": subject.kind.value, "name": subject.name},
             "data": dict(self.data),
         }
+
+
+_FIELDS = ("rule", "severity", "message", "path", "line", "column", "hint", "subject")
+
+
+def _unpickled(*values: Any) -> Diagnostic:
+    rule, severity, message, path, line, column, hint, subject, data = values
+    facts = MappingProxyType(data) if data else _NO_DATA
+    return Diagnostic(rule, severity, message, path, line, column, hint, subject, facts)
 
 
 def diagnostic(

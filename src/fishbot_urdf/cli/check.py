@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import contextlib
+import os
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -12,19 +13,16 @@ from typing import TYPE_CHECKING
 import click
 
 from ..errors import FishbotUrdfError
+from ._batch import Run, outcomes, tree_chunks
 from ._common import (
-    EXIT_INVALID,
     EXIT_OK,
     EXIT_USAGE,
     Number,
-    check_input,
     emit_findings,
     fail,
     limit_options,
-    mesh_files,
     package_option,
     packages_option,
-    status_of,
     stop_on,
     to_stdout,
     write_chunks,
@@ -32,7 +30,6 @@ from ._common import (
 )
 
 if TYPE_CHECKING:
-    from ..check import CheckResult
     from ..config import Config
     from ..diagnostics import Diagnostic
     from ..output import AtomicFile
@@ -209,6 +206,13 @@ class _Options:
     help="How far (millimetres) the lowest collision point may be below or above the ground "
     "(z = 0 of a footprint root link) before a warning. [default: 2]",
 )
+@click.option(
+    "--jobs",
+    type=click.IntRange(min=1),
+    metavar="N",
+    help="Check the files in N processes at once (Linux; from 8 files on). "
+    "[default: one per usable processor]",
+)
 @package_option()
 @limit_options()
 def check(
@@ -225,6 +229,7 @@ def check(
     isolated: bool,
     skip_includes: bool,
     ground_mm: float | None,
+    jobs: int | None,
     package_items: Sequence[str],
 ) -> None:
     """Check URDF or xacro files, like check_urdf, and more strictly.
@@ -262,6 +267,7 @@ def check(
       fishbot check --format sarif -o fishbot.sarif urdf/*.urdf
       fishbot check --format github robot.urdf.xacro
       fishbot check -q --skip-includes $(git ls-files '*.urdf' '*.xacro')
+      fishbot check --jobs 1 urdf/*.urdf
       xacro robot.urdf.xacro | fishbot check -
     """
     args = xacro_args([f for f in files if ":=" in f])
@@ -294,33 +300,25 @@ def check(
     # Never written over: the files checked, what they read, the configuration files.
     inputs = [name for name in (*names, *found) if name and name != "-"]
     sink = _tree_file(output, inputs) if fmt == "text" else None
+    run = Run(
+        args=args,
+        packages=packages,
+        fmt=fmt,
+        skip_includes=skip_includes,
+        meshes=output not in (None, "-"),
+        tree=fmt == "text" and not quiet,
+    )
     with sink if sink is not None else contextlib.nullcontext():
-        for name, config in zip(names, configs, strict=True):
-            try:
-                result = check_input(name, args, packages, config)
-            except FishbotUrdfError as exc:
-                if fmt == "text":
-                    emit_findings([fail(exc)])
-                else:
-                    reports.append(_failure(exc, config))
-                status = max(status, status_of(exc))
-                continue
-            inputs.extend(result.files)
-            if output not in (None, "-"):
-                inputs.extend(mesh_files(result.robot, result.path, packages))
-            if skip_includes and _is_include(result):
-                if fmt != "text":
-                    reports.append(_skipped(result, config))
-                continue
-            failed = _failed(result, config)
-            if fmt != "text":  # (a report for programs; text needs none)
-                reports.append(_report(result, config, failed))
-            if failed:
-                status = max(status, EXIT_INVALID)
-            if fmt == "text":
-                emit_findings(result.diagnostics)
-                if not quiet:
-                    _tree(result, sink)
+        for done in outcomes(names, configs, run, _usable_processors() if jobs is None else jobs):
+            status = max(status, done.status)
+            inputs.extend(done.inputs)
+            if done.report is not None:
+                reports.append(done.report)
+            emit_findings(done.findings)
+            if done.tree is not None:
+                _tree([done.tree], sink)
+            elif done.result is not None:
+                _tree(tree_chunks(done.result), sink)
         _finish(fmt, reports, output, sink, inputs)
     sys.exit(status)
 
@@ -337,80 +335,24 @@ def _tree_file(output: str | None, inputs: list[str]) -> AtomicFile | None:
         stop_on(exc)
 
 
-def _is_include(result: CheckResult) -> bool:
-    """A xacro file that defines no robot: macros, properties, materials for others."""
-    from ..parse import is_xacro_path
-
-    robot = result.robot
-    return (
-        robot is not None
-        and is_xacro_path(result.path)
-        and not robot.name
-        and not robot.links
-        and not robot.joints
-    )
-
-
-def _tree(result: CheckResult, sink: AtomicFile | None) -> None:
-    """check_urdf's output whenever the tree can be printed, errors or not: a script
-    reading it keeps working, and the exit status tells the rest. It is streamed: a deep
-    chain's tree is hundreds of megabytes."""
-    from ..graph import tree_text
-
-    topo = result.topology
-    if result.analysis is None or topo is None or topo.root is None or topo.loop_from_root:
-        return
+def _tree(chunks: Iterable[str], sink: AtomicFile | None) -> None:
+    """A tree on stdout, streamed (a deep chain's tree is hundreds of megabytes), or into
+    the -o file."""
     if sink is None:
-        write_chunks(tree_text(result.analysis))
+        write_chunks(chunks)
         return
     try:
-        for chunk in tree_text(result.analysis):
+        for chunk in chunks:
             sink.write(chunk)
     except FishbotUrdfError as exc:  # a full disk
         stop_on(exc)
 
 
-def _failed(result: CheckResult, config: Config) -> bool:
-    """Whether the file fails the check: no robot, or errors (warnings too, when strict)."""
-    from ..diagnostics import has_errors
-
-    return result.robot is None or has_errors(result.diagnostics, strict=config.strict)
-
-
-def _report(result: CheckResult, config: Config, failed: bool) -> FileReport:
-    from ..report import FileReport
-
-    robot, topo = result.robot, result.topology
-    return FileReport(
-        path=result.path,
-        ok=not failed,
-        diagnostics=result.diagnostics,
-        suppressed=result.suppressed,
-        robot=None if robot is None else robot.name,
-        root=None if topo is None else topo.root,
-        links=None if robot is None else len(robot.links),
-        joints=None if robot is None else len(robot.joints),
-        config=config.path,
-    )
-
-
-def _failure(exc: FishbotUrdfError, config: Config) -> FileReport:
-    from ..report import FileReport
-
-    finding = fail(exc)
-    return FileReport(path=finding.path, ok=False, diagnostics=(finding,), config=config.path)
-
-
-def _skipped(result: CheckResult, config: Config) -> FileReport:
-    from ..report import FileReport
-
-    return FileReport(
-        path=result.path,
-        ok=True,
-        diagnostics=(),
-        config=config.path,
-        skipped="defines no robot (macros for other files to include)",
-    )
+def _usable_processors() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # (not on macOS or Windows)
+        return os.cpu_count() or 1
 
 
 def _finish(

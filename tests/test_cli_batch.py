@@ -1,0 +1,86 @@
+"""`fishbot check` over many files: the same output and exit status in one process or in
+several, in the order the files were given."""
+
+from __future__ import annotations
+
+import pickle
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from conftest import DATA, FISHBOT
+
+from fishbot_urdf.check import check_file
+from fishbot_urdf.cli import _batch
+from fishbot_urdf.config import Config
+
+# Valid and faulty robots, a xacro file, one that is no XML and one that is not there.
+FILES = [
+    *sorted(str(p) for p in (DATA / "invalid").glob("*.urdf")),
+    str(FISHBOT / "urdf" / "first_robot.urdf"),
+    str(FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"),
+    str(DATA / "no_such_robot.urdf"),
+]
+
+linux_only = pytest.mark.skipif(sys.platform != "linux", reason="forked processes: Linux only")
+
+
+def _check(*args: str) -> tuple[int, bytes, bytes]:
+    done = subprocess.run(
+        [sys.executable, "-m", "fishbot_urdf", "check", *args], capture_output=True, check=False
+    )
+    return done.returncode, done.stdout, done.stderr
+
+
+@linux_only
+@pytest.mark.parametrize("fmt", ["text", "json", "sarif", "github"])
+def test_several_processes_print_what_one_prints(fmt: str) -> None:
+    one = _check("--format", fmt, "--jobs", "1", *FILES)
+    assert one[0] == 2  # the missing file
+    assert _check("--format", fmt, "--jobs", "3", *FILES) == one
+
+
+@linux_only
+def test_files_are_checked_elsewhere_and_come_back_in_order(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # A file bigger than this is checked here, its tree streamed from the check itself.
+    monkeypatch.setattr(_batch, "_LARGEST", 1000)
+    run = _batch.Run({}, {}, "text", skip_includes=False, meshes=False, tree=True)
+    configs = [Config()] * len(FILES)
+    assert _batch._can_fork()
+    shared = list(_batch.outcomes(FILES, configs, run, 2))
+    alone = [_batch.outcome(name, Config(), run) for name in FILES]
+    assert any(o.tree is not None for o in shared)  # checked elsewhere
+    assert any(o.result is not None for o in shared)  # checked here, in its turn
+    assert [o.findings for o in shared] == [o.findings for o in alone]
+    assert [o.status for o in shared] == [o.status for o in alone]
+    for name, there, here in zip(FILES, shared, alone, strict=True):
+        small = Path(name).is_file() and Path(name).stat().st_size <= 1000
+        if small and here.result is not None:  # checked by another process: its tree as text
+            assert there.result is None
+            assert there.tree == "".join(_batch.tree_chunks(here.result))
+        else:
+            assert there.tree is None
+            assert (there.result is None) == (here.result is None)
+
+
+def test_few_files_are_checked_here() -> None:
+    run = _batch.Run({}, {}, "text", skip_includes=False, meshes=False, tree=True)
+    names = FILES[: _batch.SHARED_FROM - 1]
+    found = list(_batch.outcomes(names, [Config()] * len(names), run, 4))
+    assert all(o.tree is None for o in found)
+    assert [o.result is not None for o in found] == [
+        _batch.outcome(name, Config(), run).result is not None for name in names
+    ]
+
+
+def test_findings_pickle_with_their_facts() -> None:
+    readable = [name for name in FILES[:-3] if not name.endswith("xml_syntax.urdf")]
+    findings = [d for name in readable for d in check_file(name).diagnostics]
+    assert any(d.data for d in findings)
+    copies = pickle.loads(pickle.dumps(findings))
+    assert copies == findings
+    assert [dict(d.data) for d in copies] == [dict(d.data) for d in findings]
+    assert all(type(c.data) is type(d.data) for c, d in zip(copies, findings, strict=True))
