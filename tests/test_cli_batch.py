@@ -3,6 +3,7 @@ several, in the order the files were given."""
 
 from __future__ import annotations
 
+import os
 import pickle
 import subprocess
 import sys
@@ -14,6 +15,7 @@ from conftest import DATA, FISHBOT
 from fishbot_urdf.check import check_file
 from fishbot_urdf.cli import _batch
 from fishbot_urdf.config import Config
+from fishbot_urdf.packages import PackageFinder
 
 # Valid and faulty robots, a xacro file, one that is no XML and one that is not there.
 FILES = [
@@ -34,11 +36,21 @@ def _check(*args: str) -> tuple[int, bytes, bytes]:
 
 
 @linux_only
-@pytest.mark.parametrize("fmt", ["text", "json", "sarif", "github"])
-def test_several_processes_print_what_one_prints(fmt: str) -> None:
-    one = _check("--format", fmt, "--jobs", "1", *FILES)
+@pytest.mark.parametrize(
+    "options",
+    [
+        ("--format", "text"),
+        ("--format", "json"),
+        ("--format", "sarif"),
+        ("--format", "github"),
+        ("--quiet", "--strict"),
+        ("--max-size", "0.001"),  # the limit holds in every process
+    ],
+)
+def test_several_processes_print_what_one_prints(options: tuple[str, ...]) -> None:
+    one = _check(*options, "--jobs", "1", *FILES)
     assert one[0] == 2  # the missing file
-    assert _check("--format", fmt, "--jobs", "3", *FILES) == one
+    assert _check(*options, "--jobs", "3", *FILES) == one
 
 
 @linux_only
@@ -47,7 +59,7 @@ def test_files_are_checked_elsewhere_and_come_back_in_order(
 ) -> None:
     # A file bigger than this is checked here, its tree streamed from the check itself.
     monkeypatch.setattr(_batch, "_LARGEST", 1000)
-    run = _batch.Run({}, {}, "text", skip_includes=False, meshes=False, tree=True)
+    run = _batch.Run({}, {}, PackageFinder(), "text", skip_includes=False, meshes=False, tree=True)
     configs = [Config()] * len(FILES)
     assert _batch._can_fork()
     shared = list(_batch.outcomes(FILES, configs, run, 2))
@@ -67,12 +79,27 @@ def test_files_are_checked_elsewhere_and_come_back_in_order(
 
 
 def test_few_files_are_checked_here() -> None:
-    run = _batch.Run({}, {}, "text", skip_includes=False, meshes=False, tree=True)
+    run = _batch.Run({}, {}, PackageFinder(), "text", skip_includes=False, meshes=False, tree=True)
     names = FILES[: _batch.SHARED_FROM - 1]
     found = list(_batch.outcomes(names, [Config()] * len(names), run, 4))
     assert all(o.tree is None for o in found)
     assert [o.result is not None for o in found] == [
         _batch.outcome(name, Config(), run).result is not None for name in names
+    ]
+
+
+@linux_only
+def test_a_process_that_dies_leaves_its_files_to_the_main_one(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    def die(name: str, config: Config, run: _batch.Run) -> _batch.Outcome | None:
+        os._exit(1)
+
+    monkeypatch.setattr(_batch, "_here", die)
+    run = _batch.Run({}, {}, PackageFinder(), "json", skip_includes=False, meshes=False, tree=False)
+    configs = [Config()] * len(FILES)
+    assert list(_batch.outcomes(FILES, configs, run, 2)) == [
+        _batch.outcome(name, Config(), run) for name in FILES
     ]
 
 

@@ -8,7 +8,9 @@ from pathlib import Path
 
 import pytest
 
+from fishbot_urdf import packages
 from fishbot_urdf.packages import (
+    PackageFinder,
     PackageNotFoundError,
     find_package,
     package_name,
@@ -220,3 +222,46 @@ def test_package_name_refuses_a_file_that_declares_entities(tmp_path: Path) -> N
     path = tmp_path / "package.xml"
     path.write_text("<!DOCTYPE package [<!ENTITY e 'x'>]><package><name>&e;</name></package>")
     assert package_name(path) is None
+
+
+def test_a_finder_answers_as_find_package_once_per_package_and_folder(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    own = _package(tmp_path / "robot_description", "robot_description")
+    (own / "urdf").mkdir()
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    (elsewhere / "linked.urdf").write_text("<robot/>")
+    # A file linked into the package's folder starts its search from where it really is.
+    (own / "urdf" / "linked.urdf").symlink_to(elsewhere / "linked.urdf")
+    looked: list[tuple[str, str]] = []
+    real = packages.find_package
+
+    def counted(name: str, **options: object) -> Path:
+        looked.append((name, os.path.basename(os.path.dirname(str(options["near"])))))
+        return real(name, **options)
+
+    monkeypatch.setattr(packages, "find_package", counted)
+    finder = PackageFinder({"given": tmp_path})
+    for file in ("a.urdf", "b.urdf", "a.urdf"):
+        near = own / "urdf" / file
+        assert finder.find("robot_description", near=near) == real("robot_description", near=near)
+        with pytest.raises(PackageNotFoundError) as error:
+            finder.find("nowhere", near=near)
+        with pytest.raises(PackageNotFoundError) as expected:
+            real("nowhere", near=near, packages={"given": tmp_path})
+        assert (error.value.package, error.value.searched, error.value.given) == (
+            expected.value.package,
+            expected.value.searched,
+            expected.value.given,
+        )
+        assert str(error.value) == str(expected.value)
+    assert finder.find("given", near=own / "urdf" / "a.urdf") == tmp_path.resolve()
+    with pytest.raises(PackageNotFoundError):
+        finder.find("robot_description", near=own / "urdf" / "linked.urdf")
+    assert looked == [
+        ("robot_description", "urdf"),
+        ("nowhere", "urdf"),
+        ("given", "urdf"),
+        ("robot_description", "urdf"),  # the linked file, which really is elsewhere
+    ]

@@ -86,7 +86,7 @@ if TYPE_CHECKING:
         Sphere,
         Visual,
     )
-    from .packages import PackageNotFoundError, find_package, resolve_package_uri
+    from .packages import PackageFinder, PackageNotFoundError, find_package, resolve_package_uri
     from .parse import Parsed, load, parse, read
     from .report import FileReport, github_annotations, json_report, sarif_report
     from .rules import Rule
@@ -128,6 +128,7 @@ __all__ = [
     "Mesh",
     "Mimic",
     "Origin",
+    "PackageFinder",
     "PackageNotFoundError",
     "Parsed",
     "Pose",
@@ -230,6 +231,7 @@ _WHERE = {
     "Mesh": "model",
     "Mimic": "model",
     "Origin": "model",
+    "PackageFinder": "packages",
     "PackageNotFoundError": "packages",
     "Parsed": "parse",
     "Pose": "spatial",

@@ -20,6 +20,7 @@ from .diagnostics import (
 )
 from .graph import Topology
 from .model import Robot
+from .packages import PackageFinder
 from .parse import is_xacro_path, read
 from .rules.joints import joints
 from .rules.meshes import meshes
@@ -70,15 +71,17 @@ def check_file(
     *,
     path: str | None = None,
     args: Mapping[str, str] | None = None,
-    packages: Mapping[str, str | Path] | None = None,
+    packages: Mapping[str, str | Path] | PackageFinder | None = None,
     config: Config | None = None,
 ) -> CheckResult:
     """Read and check one URDF or xacro file, collecting every finding.
 
     A xacro file is expanded with ``args`` and ``packages`` first; findings then point at the
-    xacro source. ``config`` selects the rules, sets their severities and the ground
-    tolerance (default: every rule, at its default severity). ``fishbot: ignore[RULE]``
-    comments in the file (and in a xacro file's includes) silence findings.
+    xacro source. ``packages`` may be a `fishbot_urdf.packages.PackageFinder`, which keeps
+    where each mesh package was found for the next files. ``config`` selects the rules, sets
+    their severities and the ground tolerance (default: every rule, at its default
+    severity). ``fishbot: ignore[RULE]`` comments in the file (and in a xacro file's
+    includes) silence findings.
 
     Raises:
         InputError: The file cannot be read.
@@ -87,7 +90,8 @@ def check_file(
         PackageNotFoundError: The xacro file names a package that is not found.
     """
     config = config or Config()
-    parsed = read(source, path=path, args=args, packages=packages)
+    folders = packages.packages if isinstance(packages, PackageFinder) else packages
+    parsed = read(source, path=path, args=args, packages=folders)
     found = list(parsed.diagnostics)
     analysis = None
     if parsed.robot is not None:
@@ -116,7 +120,7 @@ def check(
     robot: Robot | Analysis,
     *,
     config: Config | None = None,
-    packages: Mapping[str, str | Path] | None = None,
+    packages: Mapping[str, str | Path] | PackageFinder | None = None,
 ) -> tuple[Diagnostic, ...]:
     """Check a robot's structure and values; returns every finding of the selected rules,
     sorted by position. ``packages`` are folders for the ``package://`` names of meshes
@@ -131,7 +135,7 @@ def _rule_findings(
     analysis: Analysis,
     read_findings: list[Diagnostic] | tuple[()],
     config: Config,
-    packages: Mapping[str, str | Path] | None,
+    packages: Mapping[str, str | Path] | PackageFinder | None,
 ) -> Iterator[Diagnostic]:
     yield from structure(analysis)
     # A link or joint whose values could not be read has no trustworthy numbers: findings

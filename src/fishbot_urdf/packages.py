@@ -22,7 +22,13 @@ from pathlib import Path
 from .errors import FishbotUrdfError, InputError
 from .inputs import read_input
 
-__all__ = ["PackageNotFoundError", "find_package", "package_name", "resolve_package_uri"]
+__all__ = [
+    "PackageFinder",
+    "PackageNotFoundError",
+    "find_package",
+    "package_name",
+    "resolve_package_uri",
+]
 
 _IGNORE_MARKERS = ("COLCON_IGNORE", "AMENT_IGNORE", "CATKIN_IGNORE")
 _SKIP_DIRS = frozenset(("build", "install", "log", "node_modules", "__pycache__"))
@@ -154,6 +160,47 @@ def find_package(
     for found in _candidates(name, near, packages or {}, env, searched):
         return found
     raise PackageNotFoundError(name, tuple(searched), given=tuple(sorted(packages or {})))
+
+
+class PackageFinder:
+    """Finds packages as `find_package` does, and keeps each answer (a folder, or that the
+    package is not found) by package name and the folder of the file that names it: for
+    one run over many files, which name the same packages from the same folders.
+
+    A package added or moved after it was looked up is not seen: make a new finder for a
+    new run. Safe to share between threads (two may look the same package up at once).
+    """
+
+    __slots__ = ("_found", "environ", "packages")
+
+    def __init__(
+        self,
+        packages: Mapping[str, str | Path] | None = None,
+        environ: Mapping[str, str] | None = None,
+    ) -> None:
+        """``packages`` and ``environ`` are those of `find_package`."""
+        self.packages: Mapping[str, str | Path] = dict(packages or {})
+        self.environ = environ
+        self._found: dict[tuple[str, str | None], Path | PackageNotFoundError] = {}
+
+    def find(self, name: str, *, near: str | Path | None = None) -> Path:
+        """`find_package` of ``name`` from the file ``near``, looked up once.
+
+        Raises:
+            PackageNotFoundError: No place knows the package.
+        """
+        # The folder find_package starts from: the file's own, links resolved.
+        key = (name, None if near is None else os.path.dirname(os.path.realpath(near)))
+        found = self._found.get(key)
+        if found is None:
+            try:
+                found = find_package(name, near=near, packages=self.packages, environ=self.environ)
+            except PackageNotFoundError as exc:
+                found = exc
+            self._found[key] = found
+        if isinstance(found, PackageNotFoundError):
+            raise PackageNotFoundError(found.package, found.searched, given=found.given)
+        return found
 
 
 def resolve_package_uri(

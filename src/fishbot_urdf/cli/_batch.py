@@ -3,12 +3,15 @@ several processes when there are many files."""
 
 from __future__ import annotations
 
+import contextlib
 import os
+import signal
+import struct
 import sys
 import threading
 from collections.abc import Iterable, Iterator, Sequence
-from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING, NoReturn
 
 from ..errors import FishbotUrdfError
 from ._common import EXIT_INVALID, EXIT_OK, check_input, fail, mesh_files, status_of
@@ -17,6 +20,7 @@ if TYPE_CHECKING:
     from ..check import CheckResult
     from ..config import Config
     from ..diagnostics import Diagnostic
+    from ..packages import PackageFinder
     from ..report import FileReport
 
 SHARED_FROM = 8
@@ -34,6 +38,7 @@ class Run:
     Attributes:
         args: xacro arguments.
         packages: ``--package`` folders.
+        finder: Where mesh packages were found, for the next files.
         fmt: The output format.
         skip_includes: Pass over xacro files that define no robot.
         meshes: The mesh files a robot names are inputs too (``-o FILE``: never written).
@@ -42,6 +47,7 @@ class Run:
 
     args: dict[str, str]
     packages: dict[str, str]
+    finder: PackageFinder
     fmt: str
     skip_includes: bool
     meshes: bool
@@ -80,23 +86,160 @@ def outcomes(
         for name, config in zip(names, configs, strict=True):
             yield outcome(name, config, run)
         return
-    import multiprocessing
+    from .. import check  # noqa: F401  (imported once, here, rather than in every process)
 
-    from ..inputs import max_bytes, max_seconds
-
-    work = (names, configs, run, max_bytes(), max_seconds())
-    sys.stdout.flush()
+    sys.stdout.flush()  # (nothing buffered is copied into the processes)
     sys.stderr.flush()
-    chunk = max(1, len(names) // (jobs * 8))
-    with multiprocessing.get_context("fork").Pool(jobs, _start, work) as pool:
-        for index, done in enumerate(pool.imap(_elsewhere, range(len(names)), chunk)):
-            yield outcome(names[index], configs[index], run) if done is None else done
+    with _Workers(names, configs, run, jobs) as workers:
+        for index, (name, config) in enumerate(zip(names, configs, strict=True)):
+            done = workers.outcome(index)
+            yield outcome(name, config, run) if done is None else done
+
+
+_INDEX = struct.Struct("<i")  # a file's index (-1: no more files)
+_HEAD = struct.Struct("<iQ")  # a file's index, and the size of its pickled outcome
+_AHEAD = 2  # files given to each process before it reports on one
+
+
+class _Workers:
+    """Processes forked to check files, each given the next file as it reports one done,
+    over a pair of pipes. Forked by hand: a multiprocessing pool takes longer to start and
+    stop (about 25 ms) than a few small files take to check."""
+
+    def __init__(
+        self, names: Sequence[str], configs: Sequence[Config], run: Run, jobs: int
+    ) -> None:
+        import selectors
+
+        self._count = len(names)
+        self._next = 0  # the next file to give out
+        self._done: dict[int, Outcome | None] = {}
+        self._selector = selectors.DefaultSelector()
+        self._children: dict[int, _Child] = {}  # by the pipe their outcomes come through
+        for _ in range(jobs):
+            tasks_read, tasks = os.pipe()
+            results, results_write = os.pipe()
+            pid = os.fork()
+            if pid == 0:  # pragma: no cover - the checking process (coverage sees the parent)
+                os.close(tasks)
+                os.close(results)
+                _serve(names, configs, run, tasks_read, results_write)
+            os.close(tasks_read)
+            os.close(results_write)
+            child = self._children[results] = _Child(pid, tasks)
+            self._selector.register(results, 1)
+            for _ in range(_AHEAD):
+                self._give(child)
+
+    def __enter__(self) -> _Workers:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        """Stop every process (also on Ctrl-C, or when the output's reader has gone)."""
+        self._selector.close()
+        for results, child in self._children.items():
+            for fd in (results, child.tasks):
+                with contextlib.suppress(OSError):
+                    os.close(fd)
+            with contextlib.suppress(OSError):
+                os.kill(child.pid, signal.SIGKILL)
+            os.waitpid(child.pid, 0)
+        self._children.clear()
+
+    def outcome(self, index: int) -> Outcome | None:
+        """File ``index``'s outcome, once a process has sent it; None for a file to check
+        here."""
+        while index not in self._done:
+            if not self._selector.get_map():  # every process has died
+                return None
+            for key, _ in self._selector.select():
+                self._receive(key.fd)
+        return self._done.pop(index)
+
+    def _give(self, child: _Child) -> None:
+        index = -1 if self._next >= self._count else self._next
+        self._next += index >= 0
+        if index >= 0:
+            child.given.append(index)
+        with contextlib.suppress(OSError):  # it has died: its files are checked here
+            os.write(child.tasks, _INDEX.pack(index))
+
+    def _receive(self, results: int) -> None:
+        import pickle
+
+        child = self._children[results]
+        data = os.read(results, 1 << 16)
+        if not data:  # it has ended or died: what it was given and did not send, here
+            self._selector.unregister(results)
+            for index in child.given:
+                self._done[index] = None
+            child.given.clear()
+            return
+        child.buffer += data
+        while len(child.buffer) >= _HEAD.size:
+            index, size = _HEAD.unpack_from(child.buffer)
+            if len(child.buffer) < _HEAD.size + size:
+                break
+            body = bytes(child.buffer[_HEAD.size : _HEAD.size + size])
+            del child.buffer[: _HEAD.size + size]
+            self._done[index] = pickle.loads(body)
+            child.given.remove(index)
+            self._give(child)
+
+
+@dataclass(slots=True)
+class _Child:
+    """A checking process: its id, the pipe its files go to, the files it has been given and
+    not reported, and what it has sent of the next outcome."""
+
+    pid: int
+    tasks: int
+    given: list[int] = field(default_factory=list)
+    buffer: bytearray = field(default_factory=bytearray)
+
+
+def _serve(
+    names: Sequence[str], configs: Sequence[Config], run: Run, tasks: int, results: int
+) -> NoReturn:
+    """Check the files whose indexes come through ``tasks`` and send each outcome through
+    ``results``, with its tree as text; None for a file the main process checks (standard
+    input, a big file, or one that raised)."""
+    import pickle
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the main process's to handle
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    status = 0
+    try:
+        with os.fdopen(tasks, "rb") as given, os.fdopen(results, "wb") as out:
+            while (head := given.read(_INDEX.size)) and len(head) == _INDEX.size:
+                (index,) = _INDEX.unpack(head)
+                if index < 0:
+                    break
+                done: Outcome | None = None
+                with contextlib.suppress(Exception):  # checked again there, to report it
+                    done = _here(names[index], configs[index], run)
+                body = pickle.dumps(done, pickle.HIGHEST_PROTOCOL)
+                out.write(_HEAD.pack(index, len(body)))
+                out.write(body)
+                out.flush()
+    except BaseException:  # the main process has gone: nothing to tell it
+        status = 1
+    os._exit(status)  # no clean-up of the main process's objects, no flush of its output
+
+
+def _here(name: str, config: Config, run: Run) -> Outcome | None:
+    if name == "-" or os.path.getsize(name) > _LARGEST:
+        return None
+    done = outcome(name, config, run)
+    if done.result is None:
+        return done
+    return replace(done, result=None, tree="".join(tree_chunks(done.result)))
 
 
 def outcome(name: str, config: Config, run: Run) -> Outcome:
     """Check one file (``-``: standard input)."""
     try:
-        result = check_input(name, run.args, run.packages, config)
+        result = check_input(name, run.args, run.finder, config)
     except FishbotUrdfError as exc:
         if run.fmt == "text":
             return Outcome(status_of(exc), findings=(fail(exc),))
@@ -129,41 +272,6 @@ def tree_chunks(result: CheckResult) -> Iterable[str]:
 def _can_fork() -> bool:
     # Forking copies one thread only: never with others running (a program embedding us).
     return sys.platform == "linux" and threading.active_count() == 1
-
-
-_work: tuple[Sequence[str], Sequence[Config], Run, int, float] | None = None
-
-
-def _start(
-    names: Sequence[str], configs: Sequence[Config], run: Run, size: int, seconds: float
-) -> None:
-    """Set up a checking process: Ctrl-C and SIGTERM are the main process's to handle."""
-    import signal
-
-    global _work
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    _work = (names, configs, run, size, seconds)
-
-
-def _elsewhere(index: int) -> Outcome | None:
-    """File ``index``'s outcome, with its tree as text; None for one the main process
-    checks."""
-    from ..inputs import size_limit, time_limit
-
-    assert _work is not None
-    names, configs, run, size, seconds = _work
-    name = names[index]
-    try:
-        if name == "-" or os.path.getsize(name) > _LARGEST:
-            return None
-    except OSError:
-        return None  # (the main process reports it)
-    with size_limit(size), time_limit(seconds):
-        done = outcome(name, configs[index], run)
-        if done.result is None:
-            return done
-        return replace(done, result=None, tree="".join(tree_chunks(done.result)))
 
 
 def _report(result: CheckResult, config: Config, failed: bool) -> FileReport:

@@ -21,6 +21,7 @@ if TYPE_CHECKING:
     from ..check import CheckResult
     from ..config import Config
     from ..model import Robot
+    from ..packages import PackageFinder
 
 EXIT_OK, EXIT_INVALID, EXIT_USAGE = 0, 1, 2
 
@@ -120,7 +121,7 @@ def xacro_args(items: Sequence[str]) -> dict[str, str]:
 def check_input(
     name: str,
     args: dict[str, str],
-    packages: dict[str, str],
+    packages: dict[str, str] | PackageFinder,
     config: Config | None = None,
 ) -> CheckResult:
     """Read and check FILE (- is standard input, read as URDF)."""

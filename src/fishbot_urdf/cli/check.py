@@ -295,6 +295,8 @@ def check(
         configs = [options.config_for(name, found, folders) for name in names]
     except FishbotUrdfError as exc:
         stop_on(exc)
+    from ..packages import PackageFinder
+
     status = EXIT_OK
     reports: list[FileReport] = []
     # Never written over: the files checked, what they read, the configuration files.
@@ -303,6 +305,7 @@ def check(
     run = Run(
         args=args,
         packages=packages,
+        finder=PackageFinder(packages),
         fmt=fmt,
         skip_includes=skip_includes,
         meshes=output not in (None, "-"),

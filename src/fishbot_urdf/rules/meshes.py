@@ -16,6 +16,7 @@ from . import Consumer, Family, Rule
 
 if TYPE_CHECKING:
     from ..meshfile import MeshFacts
+    from ..packages import PackageFinder
 
 __all__ = ["meshes"]
 
@@ -139,12 +140,18 @@ _LARGEST_PART = 5.0  # metres: a robot part larger than this is implausible
 
 def meshes(
     analysis: Analysis,
-    packages: Mapping[str, str | Path] | None = None,
+    packages: Mapping[str, str | Path] | PackageFinder | None = None,
     environ: Mapping[str, str] | None = None,
 ) -> Iterator[Diagnostic]:
     """Every finding about the robot's mesh files. ``packages`` and ``environ`` are where
-    ``package://`` names are looked up (as for xacro's ``$(find)``)."""
-    finder = _Finder(analysis.path, packages or {}, os.environ if environ is None else environ)
+    ``package://`` names are looked up (as for xacro's ``$(find)``); or ``packages`` is a
+    `fishbot_urdf.packages.PackageFinder` that keeps its answers for other robots (its own
+    environment is read then)."""
+    from ..packages import PackageFinder
+
+    if not isinstance(packages, PackageFinder):
+        packages = PackageFinder(packages, os.environ if environ is None else environ)
+    finder = _Finder(analysis.path, packages)
     for link in analysis.robot.links:
         shapes = [(part.geometry, False) for part in link.visuals]
         shapes += [(part.geometry, True) for part in link.collisions]
@@ -323,10 +330,10 @@ class _Unknown(Exception):
 class _Finder:
     """Mesh names to files, with each package and folder looked up once."""
 
-    def __init__(self, robot: str, packages: Mapping[str, str | Path], env: Mapping[str, str]):
+    def __init__(self, robot: str, packages: PackageFinder):
         # A robot read from a string or stdin has no folder for relative names.
         self.robot = None if robot.startswith("<") or robot == "-" else robot
-        self.packages, self.env = packages, env
+        self.packages = packages
         self.found: dict[str, Path | _Unknown] = {}
         self.listings: dict[Path, list[str] | None] = {}
         self.read: dict[Path, MeshFacts | None] = {}
@@ -350,10 +357,10 @@ class _Finder:
         return None if self.robot is None else Path(self.robot).parent / path
 
     def _package(self, package: str) -> Path | _Unknown:
-        from ..packages import PackageNotFoundError, find_package
+        from ..packages import PackageNotFoundError
 
         try:
-            return find_package(package, near=self.robot, packages=self.packages, environ=self.env)
+            return self.packages.find(package, near=self.robot)
         except PackageNotFoundError as exc:
             return _Unknown(package, exc.searched)
 
