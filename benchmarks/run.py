@@ -183,6 +183,14 @@ def rows(runs: int, folder: Path, only: str | None) -> Iterator[Row]:
             [*fishbot, "check", *map(str, files)], per_file(check_urdf, files), max(3, runs // 4)
         )
         yield Row(label, _s(mine), _s(floor), f"{mine / floor:.2f}x", "< 1x (faster)")
+    label = f"the same in one process (`--jobs 1`; {os.cpu_count()} cores above)"
+    if wanted(label):
+        mine, floor = pair(
+            [*fishbot, "check", "--jobs", "1", *map(str, files)],
+            per_file(check_urdf, files),
+            max(3, runs // 4),
+        )
+        yield Row(label, _s(mine), _s(floor), f"{mine / floor:.2f}x", "")
 
     generated: dict[str, Path] = {}
 
