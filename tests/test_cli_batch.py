@@ -103,6 +103,27 @@ def test_a_process_that_dies_leaves_its_files_to_the_main_one(
     ]
 
 
+@linux_only
+def test_no_process_to_be_had_checks_the_files_here(monkeypatch: pytest.MonkeyPatch) -> None:
+    real_fork, forked = os.fork, []
+
+    def fork_once() -> int:
+        if forked:
+            raise BlockingIOError(11, "Resource temporarily unavailable")
+        forked.append(real_fork())
+        return forked[-1]
+
+    monkeypatch.setattr(os, "fork", fork_once)
+    run = _batch.Run({}, {}, PackageFinder(), "json", False, False, False)
+    configs = [Config()] * len(FILES)
+    assert list(_batch.outcomes(FILES, configs, run, 2)) == [
+        _batch.outcome(name, Config(), run) for name in FILES
+    ]
+    assert forked and forked[0] > 0
+    with pytest.raises(ChildProcessError):  # the one made was stopped and reaped
+        os.waitpid(forked[0], 0)
+
+
 def test_findings_pickle_with_their_facts() -> None:
     readable = [name for name in FILES[:-3] if not name.endswith("xml_syntax.urdf")]
     findings = [d for name in readable for d in check_file(name).diagnostics]

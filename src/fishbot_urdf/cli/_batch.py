@@ -90,7 +90,13 @@ def outcomes(
 
     sys.stdout.flush()  # (nothing buffered is copied into the processes)
     sys.stderr.flush()
-    with _Workers(names, configs, run, jobs) as workers:
+    try:
+        workers = _Workers(names, configs, run, jobs)
+    except OSError:  # no more processes or pipes to be had: one after another, here
+        for name, config in zip(names, configs, strict=True):
+            yield outcome(name, config, run)
+        return
+    with workers:
         for index, (name, config) in enumerate(zip(names, configs, strict=True)):
             done = workers.outcome(index)
             yield outcome(name, config, run) if done is None else done
@@ -116,20 +122,37 @@ class _Workers:
         self._done: dict[int, Outcome | None] = {}
         self._selector = selectors.DefaultSelector()
         self._children: dict[int, _Child] = {}  # by the pipe their outcomes come through
-        for _ in range(jobs):
-            tasks_read, tasks = os.pipe()
+        try:
+            for _ in range(jobs):
+                self._fork(names, configs, run)
+        except BaseException:
+            self.__exit__()
+            raise
+
+    def _fork(self, names: Sequence[str], configs: Sequence[Config], run: Run) -> None:
+        tasks_read, tasks = os.pipe()
+        try:
             results, results_write = os.pipe()
-            pid = os.fork()
-            if pid == 0:  # pragma: no cover - the checking process (coverage sees the parent)
-                os.close(tasks)
-                os.close(results)
-                _serve(names, configs, run, tasks_read, results_write)
+        except OSError:
             os.close(tasks_read)
-            os.close(results_write)
-            child = self._children[results] = _Child(pid, tasks)
-            self._selector.register(results, 1)
-            for _ in range(_AHEAD):
-                self._give(child)
+            os.close(tasks)
+            raise
+        try:
+            pid = os.fork()
+        except OSError:
+            for fd in (tasks_read, tasks, results, results_write):
+                os.close(fd)
+            raise
+        if pid == 0:  # pragma: no cover - the checking process (coverage sees the parent)
+            os.close(tasks)
+            os.close(results)
+            _serve(names, configs, run, tasks_read, results_write)
+        os.close(tasks_read)
+        os.close(results_write)
+        child = self._children[results] = _Child(pid, tasks)
+        self._selector.register(results, 1)
+        for _ in range(_AHEAD):
+            self._give(child)
 
     def __enter__(self) -> _Workers:
         return self
