@@ -59,7 +59,7 @@ def test_files_are_checked_elsewhere_and_come_back_in_order(
 ) -> None:
     # A file bigger than this is checked here, its tree streamed from the check itself.
     monkeypatch.setattr(_batch, "_LARGEST", 1000)
-    run = _batch.Run({}, {}, PackageFinder(), "text", skip_includes=False, meshes=False, tree=True)
+    run = _batch.Run({}, PackageFinder(), "text", skip_includes=False, meshes=False, tree=True)
     configs = [Config()] * len(FILES)
     assert _batch._can_fork()
     shared = list(_batch.outcomes(FILES, configs, run, 2))
@@ -79,7 +79,7 @@ def test_files_are_checked_elsewhere_and_come_back_in_order(
 
 
 def test_few_files_are_checked_here() -> None:
-    run = _batch.Run({}, {}, PackageFinder(), "text", skip_includes=False, meshes=False, tree=True)
+    run = _batch.Run({}, PackageFinder(), "text", skip_includes=False, meshes=False, tree=True)
     names = FILES[: _batch.SHARED_FROM - 1]
     found = list(_batch.outcomes(names, [Config()] * len(names), run, 4))
     assert all(o.tree is None for o in found)
@@ -95,8 +95,8 @@ def test_a_process_that_dies_leaves_its_files_to_the_main_one(
     def die(name: str, config: Config, run: _batch.Run) -> _batch.Outcome | None:
         os._exit(1)
 
-    monkeypatch.setattr(_batch, "_here", die)
-    run = _batch.Run({}, {}, PackageFinder(), "json", skip_includes=False, meshes=False, tree=False)
+    monkeypatch.setattr(_batch, "_away", die)
+    run = _batch.Run({}, PackageFinder(), "json", skip_includes=False, meshes=False, tree=False)
     configs = [Config()] * len(FILES)
     assert list(_batch.outcomes(FILES, configs, run, 2)) == [
         _batch.outcome(name, Config(), run) for name in FILES
@@ -114,7 +114,7 @@ def test_no_process_to_be_had_checks_the_files_here(monkeypatch: pytest.MonkeyPa
         return forked[-1]
 
     monkeypatch.setattr(os, "fork", fork_once)
-    run = _batch.Run({}, {}, PackageFinder(), "json", False, False, False)
+    run = _batch.Run({}, PackageFinder(), "json", False, False, False)
     configs = [Config()] * len(FILES)
     assert list(_batch.outcomes(FILES, configs, run, 2)) == [
         _batch.outcome(name, Config(), run) for name in FILES

@@ -6,6 +6,7 @@ from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field, replace
 from itertools import chain
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from .analysis import Analysis, analyse
 from .config import Config
@@ -20,7 +21,6 @@ from .diagnostics import (
 )
 from .graph import Topology
 from .model import Robot
-from .packages import PackageFinder
 from .parse import is_xacro_path, read
 from .rules.joints import joints
 from .rules.meshes import meshes
@@ -28,6 +28,9 @@ from .rules.physics import GROUND_TOLERANCE, physics
 from .rules.references import references
 from .rules.structure import structure
 from .suppress import apply_suppressions, suppressions
+
+if TYPE_CHECKING:
+    from .packages import PackageFinder
 
 __all__ = ["CheckResult", "check", "check_file"]
 
@@ -89,6 +92,8 @@ def check_file(
         XacroError: The xacro file cannot be expanded.
         PackageNotFoundError: The xacro file names a package that is not found.
     """
+    from .packages import PackageFinder
+
     config = config or Config()
     folders = packages.packages if isinstance(packages, PackageFinder) else packages
     parsed = read(source, path=path, args=args, packages=folders)

@@ -10,7 +10,7 @@ import struct
 import sys
 import threading
 from collections.abc import Iterable, Iterator, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, NoReturn
 
 from ..errors import FishbotUrdfError
@@ -37,8 +37,8 @@ class Run:
 
     Attributes:
         args: xacro arguments.
-        packages: ``--package`` folders.
-        finder: Where mesh packages were found, for the next files.
+        finder: The ``--package`` folders, and where mesh packages were found, for the next
+            files.
         fmt: The output format.
         skip_includes: Pass over xacro files that define no robot.
         meshes: The mesh files a robot names are inputs too (``-o FILE``: never written).
@@ -46,7 +46,6 @@ class Run:
     """
 
     args: dict[str, str]
-    packages: dict[str, str]
     finder: PackageFinder
     fmt: str
     skip_includes: bool
@@ -210,15 +209,18 @@ class _Workers:
             self._give(child)
 
 
-@dataclass(slots=True)
 class _Child:
     """A checking process: its id, the pipe its files go to, the files it has been given and
-    not reported, and what it has sent of the next outcome."""
+    not reported, and what it has sent of the next outcome. (A plain class: a dataclass
+    would cost every `fishbot check` its definition at start-up.)"""
 
-    pid: int
-    tasks: int
-    given: list[int] = field(default_factory=list)
-    buffer: bytearray = field(default_factory=bytearray)
+    __slots__ = ("buffer", "given", "pid", "tasks")
+
+    def __init__(self, pid: int, tasks: int) -> None:
+        self.pid = pid
+        self.tasks = tasks
+        self.given: list[int] = []
+        self.buffer = bytearray()
 
 
 def _serve(
@@ -240,7 +242,7 @@ def _serve(
                     break
                 done: Outcome | None = None
                 with contextlib.suppress(Exception):  # checked again there, to report it
-                    done = _here(names[index], configs[index], run)
+                    done = _away(names[index], configs[index], run)
                 body = pickle.dumps(done, pickle.HIGHEST_PROTOCOL)
                 out.write(_HEAD.pack(index, len(body)))
                 out.write(body)
@@ -250,7 +252,9 @@ def _serve(
     os._exit(status)  # no clean-up of the main process's objects, no flush of its output
 
 
-def _here(name: str, config: Config, run: Run) -> Outcome | None:
+def _away(name: str, config: Config, run: Run) -> Outcome | None:
+    """A file's outcome as a checking process sends it: its tree as text; None for a file
+    the main process checks."""
     if name == "-" or os.path.getsize(name) > _LARGEST:
         return None
     done = outcome(name, config, run)
@@ -269,7 +273,7 @@ def outcome(name: str, config: Config, run: Run) -> Outcome:
         return Outcome(status_of(exc), report=_failure(exc, config))
     inputs = list(result.files)
     if run.meshes:
-        inputs.extend(mesh_files(result.robot, result.path, run.packages))
+        inputs.extend(mesh_files(result.robot, result.path, run.finder.packages))
     if run.skip_includes and _is_include(result):
         skipped = None if run.fmt == "text" else _skipped(result, config)
         return Outcome(EXIT_OK, report=skipped, inputs=tuple(inputs))

@@ -7,7 +7,7 @@ import functools
 import math
 import os
 import sys
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import replace
 from typing import IO, TYPE_CHECKING, Any, NoReturn, TypeVar
 
@@ -18,6 +18,8 @@ from ..errors import FishbotUrdfError, InputError, ToolError
 from ._hints import error_hint, phrased
 
 if TYPE_CHECKING:
+    from pathlib import Path
+
     from ..check import CheckResult
     from ..config import Config
     from ..model import Robot
@@ -132,7 +134,7 @@ def check_input(
     return check_file(name, args=args, packages=packages, config=config)
 
 
-def mesh_files(robot: Robot | None, path: str, packages: dict[str, str]) -> list[str]:
+def mesh_files(robot: Robot | None, path: str, packages: Mapping[str, str | Path]) -> list[str]:
     """The mesh files ``robot`` names that can be found: inputs too, never to be written
     over (`-o meshes/box.stl` after a mistyped name)."""
     from ..model import Mesh

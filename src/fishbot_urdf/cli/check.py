@@ -304,7 +304,6 @@ def check(
     sink = _tree_file(output, inputs) if fmt == "text" else None
     run = Run(
         args=args,
-        packages=packages,
         finder=PackageFinder(packages),
         fmt=fmt,
         skip_includes=skip_includes,
