@@ -3,6 +3,8 @@ directly in the bytes."""
 
 from __future__ import annotations
 
+import dataclasses
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 import pytest
@@ -12,6 +14,7 @@ from lxml import etree
 
 import fishbot_urdf
 from fishbot_urdf import xmlsource
+from fishbot_urdf.model import Location
 from fishbot_urdf.xmlsource import Locator
 
 
@@ -104,3 +107,51 @@ def test_a_stream_that_breaks_later_is_read_whole(tail: str) -> None:
     with pytest.raises(xmlsource.Unstreamable):
         list(document.children())
         document.finish()
+
+
+class _Comparing(Locator):
+    """A Locator that compares every element's name with its start tag, as it does where the
+    scan may be wrong."""
+
+    __slots__ = ()
+
+    def __init__(
+        self,
+        data: bytes,
+        path: str,
+        origins: Sequence[Location] | None = None,
+        *,
+        starts: Sequence[int] | None = None,
+        tags: Mapping[str, bytes] | None = None,
+    ) -> None:
+        if starts is None:
+            starts = [m.start() for m in xmlsource._MARKUP.finditer(data) if m.lastindex]
+        super().__init__(data, path, origins, starts=starts, tags=tags)
+
+
+_XACRO = sorted(_DATA.rglob("*.xacro"))
+
+
+def _every_place(value: object) -> list[object]:
+    """Every location in a model object and all it holds (they take no part in ==)."""
+    if isinstance(value, tuple | list):
+        return [place for item in value for place in _every_place(item)]
+    if not dataclasses.is_dataclass(value):
+        return []
+    found: list[object] = []
+    for spec in dataclasses.fields(value):
+        item = getattr(value, spec.name)
+        found.extend([item] if spec.name.endswith("source") else _every_place(item))
+    return found
+
+
+@pytest.mark.parametrize("path", _FILES + _XACRO, ids=lambda p: str(p.relative_to(_DATA)))
+def test_the_scan_trusted_places_every_element_where_comparing_names_does(
+    path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    trusted = _outcome(path)
+    trusted_places = _every_place(trusted[0])
+    monkeypatch.setattr(xmlsource, "Locator", _Comparing)
+    compared = _outcome(path)
+    assert compared == trusted
+    assert _every_place(compared[0]) == trusted_places

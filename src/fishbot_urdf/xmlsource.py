@@ -292,7 +292,6 @@ _MARKUP = re.compile(
     rb"<(?:!--.*?-->|!\[CDATA\[.*?\]\]>|\?.*?\?>|!DOCTYPE(?:[^\[>]|\[.*?\])*>|([^/!?]))",
     re.DOTALL,
 )
-_START_TAG = re.compile(rb"<[^/!?]")  # enough when there are no comments, CDATA or DOCTYPE
 _AFTER_TAG = frozenset(b" \t\r\n/>")
 # An attribute value holding a raw tab or line break. XML turns them into spaces, but
 # urdfdom's XML parser keeps them, and then refuses a vector like "0 0<TAB>1".
@@ -339,13 +338,16 @@ class Locator:
     lxml reports the line where a start tag *ends*, and no column, so one regular-expression
     pass over the bytes lists where every start tag begins, in document order, and one more
     turns those offsets into lines and columns. Callers visit elements in document order and
-    ``skip`` the subtrees they do not read; each ``locate`` checks the tag name, so a missed
-    subtree only costs a short scan.
+    ``skip`` the subtrees they do not read. Where the scan is exact (everywhere but in a
+    document with a DOCTYPE, or one rewritten for urdfdom's reading) the next start tag is
+    the element's; elsewhere each ``locate`` compares the tag name, so an element the scan
+    took wrongly only costs a short scan.
     """
 
     __slots__ = (
         "_ascii",
         "_data",
+        "_exact",
         "_index",
         "_last",
         "_locations",
@@ -374,10 +376,14 @@ class Locator:
         self.path = path
         if starts is not None:
             self._starts = list(starts)
-        elif b"<!" in data:
-            self._starts = [m.start() for m in _MARKUP.finditer(data) if m.lastindex]
         else:
-            self._starts = [m.start() for m in _START_TAG.finditer(data)]
+            self._starts = [m.start() for m in _MARKUP.finditer(data) if m.lastindex]
+        # Outside a DOCTYPE's declarations the scan finds exactly the start tags lxml reads
+        # (comments, CDATA sections and processing instructions are matched whole), so the
+        # next start tag is the element's: no name needs to be compared.
+        self._exact = starts is None and (
+            not self._starts or data.find(b"<!DOCTYPE", 0, self._starts[0]) < 0
+        )
         # Where each element was written when ``data`` was generated (an expanded xacro file):
         # reported instead of the element's place in ``data``.
         self._origins = (
@@ -392,7 +398,7 @@ class Locator:
     def rewind(self) -> None:
         """Start again from the top of the document."""
         self._index = 0  # next entry of _starts to hand out
-        self._last: tuple[Location, int] | None = None  # the last element found, and its offset
+        self._last = -1  # the entry of the last element found (-1: none)
 
     def _all(self) -> Sequence[Location]:
         """The location of every start tag, in one pass (made on first use)."""
@@ -401,18 +407,22 @@ class Locator:
         return self._locations
 
     def locate(self, element: etree._Element) -> Location:
-        """The location of ``element``'s start tag (the next one of its name)."""
+        """The location of ``element``'s start tag: the next start tag where the scan is
+        exact, else the next one of its name."""
+        index = self._index
+        if self._exact:
+            if index < len(self._starts):
+                self._index, self._last = index + 1, index
+                return (self._locations or self._all())[index]
+            return self._fallback(element)
         # Most often the next start tag is the element's: one look, no loop.
         name = self._plain.get(element.tag)
-        index = self._index
         if name is not None and index < len(self._starts):
             offset = self._starts[index]
             data = self._data
             if data.startswith(name, offset) and data[offset + len(name)] in _AFTER_TAG:
-                self._index = index + 1
-                location = (self._locations or self._all())[index]
-                self._last = (location, offset)
-                return location
+                self._index, self._last = index + 1, index
+                return (self._locations or self._all())[index]
         return self._search(element)
 
     def _search(self, element: etree._Element) -> Location:
@@ -433,10 +443,8 @@ class Locator:
         for index in range(self._index, len(starts)):
             offset = starts[index]
             if data.startswith(name, offset) and data[offset + size] in _AFTER_TAG:
-                self._index = index + 1
-                location = locations[index]
-                self._last = (location, offset)
-                return location
+                self._index, self._last = index + 1, index
+                return locations[index]
         return self._fallback(element)
 
     def _fallback(self, element: etree._Element) -> Location:
@@ -454,10 +462,11 @@ class Locator:
         self._index += sum(1 for node in element.iterdescendants() if isinstance(node.tag, str))
 
     def _attribute_match(self, location: Location, name: str) -> re.Match[bytes] | None:
-        if self._last is None or self._last[0] is not location:
+        last = self._last
+        if last < 0 or (self._locations or self._all())[last] is not location:
             return None
         data = self._data
-        tag_start = self._last[1]
+        tag_start = self._starts[last]
         tag_end = data.find(b">", tag_start)
         pattern = re.compile(
             rb"\s" + re.escape(name.encode("utf-8")) + rb"\s*=\s*(?:\"([^\"]*)\"|'([^']*)')"
@@ -480,9 +489,9 @@ class Locator:
         otherwise the element's own location.
         """
         match = self._attribute_match(location, name)
-        if match is None or self._origins is not None or self._last is None:
+        if match is None or self._origins is not None:
             return location
-        data, tag, offset = self._data, self._last[1], match.start() + 1
+        data, tag, offset = self._data, self._starts[self._last], match.start() + 1
         newlines = data.count(b"\n", tag, offset)
         if not newlines:  # on the tag's line: count on from the tag's column
             return Location(
