@@ -10,7 +10,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from fishbot_urdf.model import Origin
-from fishbot_urdf.spatial import Pose, axis_angle, eigh, rpy_matrix
+from fishbot_urdf.spatial import Pose, axis_angle, eigenvalues, eigh, rpy_matrix
 
 angles = st.floats(min_value=-math.pi, max_value=math.pi)
 entries = st.floats(min_value=-10.0, max_value=10.0)
@@ -54,6 +54,19 @@ def test_eigh_agrees_with_numpy(values: list[float]) -> None:
     v = np.array(vectors)
     assert np.allclose(v.T @ v, np.eye(3), atol=1e-9)  # orthonormal
     assert np.allclose(np.array(m) @ v, v * np.array(found), atol=1e-8 * scale)
+
+
+@given(st.lists(entries, min_size=6, max_size=6), st.booleans())
+def test_eigenvalues_are_eighs(values: list[float], diagonal: bool) -> None:
+    a, b, c, d, e, f = values
+    if diagonal:
+        b = c = e = 0.0
+    m = ((a, b, c), (b, d, e), (c, e, f))
+    assert eigenvalues(m) == eigh(m)[0]
+    expected = np.linalg.eigvalsh(np.array(m))
+    assert np.allclose(
+        eigenvalues(m), expected, atol=1e-9 * max(1.0, float(np.max(np.abs(expected))))
+    )
 
 
 def test_eigh_of_equal_moments() -> None:

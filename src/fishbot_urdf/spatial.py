@@ -8,7 +8,7 @@ from typing import Any
 
 from .model import ZERO3, Origin, Vector3
 
-__all__ = ["IDENTITY", "Matrix3", "Pose", "eigh", "rpy_matrix"]
+__all__ = ["IDENTITY", "Matrix3", "Pose", "eigenvalues", "eigh", "rpy_matrix"]
 
 Matrix3 = tuple[Vector3, Vector3, Vector3]
 
@@ -151,6 +151,15 @@ def quaternion(m: Any) -> tuple[float, float, float, float]:
     out[j] = (m[j][i] + m[i][j]) * s
     out[k] = (m[k][i] + m[i][k]) * s
     return (float(out[0]), float(out[1]), float(out[2]), float(out[3]))
+
+
+def eigenvalues(m: Matrix3) -> Vector3:
+    """The eigenvalues of a symmetric 3x3 matrix, smallest first (`eigh` without its
+    vectors)."""
+    if m[0][1] == 0.0 and m[0][2] == 0.0 and m[1][2] == 0.0:  # most URDF inertias
+        a, b, c = sorted((m[0][0], m[1][1], m[2][2]))
+        return a, b, c
+    return eigh(m)[0]
 
 
 def eigh(m: Matrix3) -> tuple[Vector3, Matrix3]:

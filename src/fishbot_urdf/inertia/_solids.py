@@ -33,7 +33,7 @@ from ..spatial import (
     Matrix3,
     Pose,
     add,
-    eigh,
+    eigenvalues,
     mat_add,
     point_mass_tensor,
     rotate_tensor,
@@ -129,7 +129,7 @@ def _mesh_file(mesh: Mesh) -> Path:
 
 def principal_moments(inertia: Inertia) -> Vector3:
     """The eigenvalues of the inertia matrix, smallest first (kg*m^2)."""
-    return eigh(inertia.matrix())[0]
+    return eigenvalues(inertia.matrix())
 
 
 def _inertia(m: Matrix3) -> Inertia:

@@ -11,7 +11,7 @@ from collections.abc import Iterator
 
 from ...analysis import Analysis
 from ...diagnostics import Diagnostic
-from ...spatial import eigh
+from ...spatial import eigenvalues
 from ._common import (
     ABOVE_GROUND,
     BELOW_GROUND,
@@ -52,7 +52,7 @@ def physics(
     robot, path = analysis.robot, analysis.path
     # Principal moments, once per link (they do not change when the inertia is turned).
     moments = {
-        link.name: eigh(link.inertial.inertia.matrix())[0]
+        link.name: eigenvalues(link.inertial.inertia.matrix())
         for link in robot.links
         if link.inertial is not None and finite(link.inertial)
     }

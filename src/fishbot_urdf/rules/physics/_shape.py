@@ -11,7 +11,7 @@ from typing import Any
 from ...diagnostics import Diagnostic
 from ...inertia import geometry_inertia
 from ...model import Box, Cylinder, Link, Origin, Sphere, Vector3
-from ...spatial import IDENTITY, Matrix3, eigh, rotate_tensor, rpy_matrix, transpose
+from ...spatial import IDENTITY, Matrix3, eigenvalues, rotate_tensor, rpy_matrix, transpose
 from ._common import INERTIA_MISMATCH, TINY, link_subject, place, short, tolerance
 
 MISMATCH = 0.10
@@ -99,7 +99,7 @@ def _describe(
     """Which shape of the collision's kind the declared inertia (in the collision's frame)
     matches, against the collision itself; None when it matches none."""
     if isinstance(shape, Sphere):
-        moments = eigh(seen)[0]
+        moments = eigenvalues(seen)
         radius = math.sqrt(max(0.0, 5.0 * sum(moments) / 3.0 / (2.0 * mass)))
         if moments[2] - moments[0] <= MISMATCH * moments[2] and _differs(radius, shape.radius):
             return (
