@@ -45,6 +45,7 @@ def emit_findings(diagnostics: Iterable[Diagnostic]) -> None:
     """Each finding as one line on stderr, its hint phrased for the command line."""
     err = sys.stderr
     color = use_color(err)
+    lines = []
     for d in diagnostics:
         line = phrased(d).format()
         if color:
@@ -52,7 +53,9 @@ def emit_findings(diagnostics: Iterable[Diagnostic]) -> None:
             line = line.replace(
                 f" {label} ", " " + click.style(label, fg=_COLORS[d.severity], bold=True) + " ", 1
             )
-        _echo_raw(line, err)
+        lines.append(line)
+    if lines:  # written at once: one write, not one per line
+        _echo_raw("\n".join(lines), err)
 
 
 def _echo_raw(line: str, stream: IO[str]) -> None:
