@@ -16,9 +16,11 @@ def tolerance(moments: tuple[float, float, float]) -> float:
     return max(1e-6 * max(abs(moments[0]), abs(moments[1]), abs(moments[2])), TINY)
 
 
-def physical(moments: tuple[float, float, float]) -> bool:
-    """Moments no lower than zero that obey the triangle inequality (within rounding)."""
-    tol = tolerance(moments)
+def physical(moments: tuple[float, float, float], tol: float | None = None) -> bool:
+    """Moments no lower than zero that obey the triangle inequality (within rounding;
+    ``tol``: their `tolerance`, when known)."""
+    if tol is None:
+        tol = tolerance(moments)
     return moments[0] >= -tol and moments[0] + moments[1] >= moments[2] - tol
 
 

@@ -8,7 +8,7 @@ from collections.abc import Iterator, Mapping
 from ...analysis import Body
 from ...diagnostics import Diagnostic
 from ...inertia import combine
-from ...model import Inertial, Link, Vector3
+from ...model import Inertial, Joint, Link, Vector3
 from ...spatial import Pose
 from ..reading import BAD_NUMBER, NEGATIVE_MASS
 from ._common import (
@@ -57,8 +57,8 @@ def body_findings(
 def _inertial(
     link: Link, inertial: Inertial, path: str, merged: bool, moments: Vector3 | None
 ) -> Iterator[Diagnostic]:
-    owner = link_subject(link)
     if moments is None:  # not finite
+        owner = link_subject(link)
         yield BAD_NUMBER.report(
             f"{owner}: the mass or inertia is not finite",
             inertial.source,
@@ -69,15 +69,17 @@ def _inertial(
         return
     if inertial.mass < 0:
         yield NEGATIVE_MASS.report(
-            f"{owner}: mass {inertial.mass:g} kg is negative",
+            f"{link_subject(link)}: mass {inertial.mass:g} kg is negative",
             inertial.source,
             path=path,
-            subject=owner,
+            subject=link_subject(link),
             hint="mass is >= 0 kg",
         )
-    negative = moments[0] < -tolerance(moments)
-    if not negative and physical(moments):
+    tol = tolerance(moments)
+    negative = moments[0] < -tol
+    if not negative and physical(moments, tol):
         return
+    owner = link_subject(link)
     where = place(link, inertial.inertia.source or inertial.source)
     also = (
         "; merged with the links fixed to it the body is physical, so simulators that merge "
@@ -122,6 +124,10 @@ def _negative_hint(inertial: Inertial) -> str:
     return "the products ixy, ixz, iyz are too large for the moments ixx, iyy, izz"
 
 
+def _moves(joint: Joint) -> str:
+    return f"moves (joint {joint.name!r} is {joint.type.value})"
+
+
 def _moving(
     body: Body,
     having: list[tuple[Link, Inertial, Pose]],
@@ -145,13 +151,11 @@ def _moving(
                 "collision shapes",
             )
         return
-    moves = f"moves (joint {joint.name!r} is {joint.type.value})"
-    owner = link_subject(body.base)
     if not having:
         if with_shape:
             link = with_shape[0]
             yield MISSING_INERTIAL.report(
-                f"link {link.name!r} has collision geometry and {moves} but no <inertial>",
+                f"link {link.name!r} has collision geometry and {_moves(joint)} but no <inertial>",
                 link.source,
                 path=path,
                 subject=link_subject(link),
@@ -167,6 +171,9 @@ def _moving(
     else:
         together = combine((inertial, pose) for _, inertial, pose in having)
         mass, principal = together.mass, together.principal_moments
+    if mass > TINY and not -tolerance(principal) <= principal[0] <= TINY:
+        return  # (the most common case, so the words below are made only when needed)
+    moves, owner = _moves(joint), link_subject(body.base)
     if mass <= TINY:
         yield MASSLESS_LINK.report(
             f"{owner} {moves} but its mass is {mass:g} kg",

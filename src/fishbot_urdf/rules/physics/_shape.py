@@ -34,9 +34,10 @@ def mismatch(link: Link, path: str, moments: Vector3) -> Iterator[Diagnostic]:
         return
     if moments[0] < -tolerance(moments) or moments[2] <= TINY:
         return  # reported as not positive definite, or a point mass
-    declared = rotate_tensor(rpy_matrix(inertial.origin.rpy), inertial.inertia.matrix())
-    if not all(map(math.isfinite, chain(*declared))):
-        return  # numbers past the floats' range: nothing to compare
+    own = rpy_matrix(inertial.origin.rpy)
+    declared = rotate_tensor(own, inertial.inertia.matrix())
+    if own is not IDENTITY and not all(map(math.isfinite, chain(*declared))):
+        return  # turned, numbers past the floats' range: nothing to compare
     turn = rpy_matrix(collision.origin.rpy)
     closed = geometry_inertia(shape, inertial.mass).inertia
     wanted = rotate_tensor(turn, closed.matrix())
@@ -114,12 +115,11 @@ def _describe(
         squares = [6.0 * (sum(diagonal) - 2.0 * diagonal[k]) / mass for k in range(3)]
         if min(squares) < 0:
             return None
-        sides = [math.sqrt(max(0.0, s)) for s in squares]
+        x, y, z = (math.sqrt(max(0.0, s)) for s in squares)
+        w, h, d = shape.size
         return (
-            "inertial matches a box "
-            + " x ".join(short(s) for s in sides)
-            + ", but the collision box is "
-            + " x ".join(short(s) for s in shape.size)
+            f"inertial matches a box {short(x)} x {short(y)} x {short(z)}, "
+            f"but the collision box is {short(w)} x {short(h)} x {short(d)}"
         )
     # A cylinder: its axis is where the odd moment out is; with three equal moments
     # (1, 1, 1, a placeholder) any axis fits, and only the size can be wrong.
