@@ -16,6 +16,7 @@ W = Severity.WARNING
 _ALL = (Consumer.URDFDOM, Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE, Consumer.PYBULLET)
 _TURN = 2 * math.pi
 _SLACK = 1e-3  # rounding in written angles (6.2832 for 2 pi)
+_TURNED = _TURN + _SLACK  # an angle beyond this is more than a whole turn
 
 _WHEEL = """\
 <robot name="fishbot">
@@ -180,18 +181,21 @@ def joints(analysis: Analysis) -> Iterator[Diagnostic]:
     for joint in analysis.robot.joints:
         yield from _joint(analysis, joint)
     for link in analysis.robot.links:
-        subject = Subject(Kind.LINK, link.name)
         for part, origin in _origins(link):
-            yield from _rpy(analysis, f"link {link.name!r}: {part}", origin, subject)
+            if _beyond_a_turn(origin.rpy):
+                yield _rpy(
+                    analysis, f"link {link.name!r}: {part}", origin, Subject(Kind.LINK, link.name)
+                )
 
 
 def _joint(analysis: Analysis, joint: Joint) -> Iterator[Diagnostic]:
     path = analysis.path
-    subject = Subject(Kind.JOINT, joint.name)
     named = f"joint {joint.name!r}"
-    yield from _rpy(analysis, named, joint.origin, subject)
+    if _beyond_a_turn(joint.origin.rpy):
+        yield _rpy(analysis, named, joint.origin, Subject(Kind.JOINT, joint.name))
     if joint.type not in _MOVING and joint.type is not JointType.PLANAR:
         return
+    subject = Subject(Kind.JOINT, joint.name)
     length = math.sqrt(sum(v * v for v in joint.axis))
     if length > 0 and abs(length - 1.0) > _SLACK:
         unit = " ".join(f"{v / length:.4g}" for v in joint.axis)
@@ -322,12 +326,17 @@ def _origins(link: Link) -> Iterator[tuple[str, Origin]]:
         yield "<collision>", collision.origin
 
 
-def _rpy(analysis: Analysis, named: str, origin: Origin, subject: Subject) -> Iterator[Diagnostic]:
-    big = [v for v in origin.rpy if abs(v) > _TURN + _SLACK and math.isfinite(v)]
-    if not big:
-        return
+def _beyond_a_turn(rpy: Vector3) -> bool:
+    """Whether an angle of ``rpy`` is more than a whole turn (and finite)."""
+    roll, pitch, yaw = rpy
+    if -_TURNED < roll < _TURNED and -_TURNED < pitch < _TURNED and -_TURNED < yaw < _TURNED:
+        return False  # (nearly always: one test of each angle)
+    return any(abs(v) > _TURNED and math.isfinite(v) for v in rpy)
+
+
+def _rpy(analysis: Analysis, named: str, origin: Origin, subject: Subject) -> Diagnostic:
     radians = " ".join(f"{math.radians(v):.4g}" for v in origin.rpy)
-    yield RPY_DEGREES.report(
+    return RPY_DEGREES.report(
         f"{named}: rpy {_vector(origin.rpy)} holds an angle beyond a whole turn",
         origin.source,
         path=analysis.path,
