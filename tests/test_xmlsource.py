@@ -155,3 +155,21 @@ def test_the_scan_trusted_places_every_element_where_comparing_names_does(
     compared = _outcome(path)
     assert compared == trusted
     assert _every_place(compared[0]) == trusted_places
+
+
+@settings(max_examples=500, deadline=None)
+@given(st.text(alphabet="=\"' <>\t\n\rax/", max_size=40))
+def test_the_quick_look_for_raw_white_space_agrees_with_the_pattern(text: str) -> None:
+    data = text.encode()
+    assert xmlsource._has_raw_whitespace(data) == (
+        xmlsource._RAW_WHITESPACE.search(data) is not None
+    )
+
+
+@pytest.mark.parametrize(
+    ("value", "raw"),
+    [("0 0 1", False), ("0 0\t1", True), ("0\n0 1", True), ("0 0 1\r", True)],
+)
+def test_raw_white_space_in_a_value_is_found_and_none_elsewhere(value: str, raw: bool) -> None:
+    data = f'<robot name="r">\n\t<link name="a">\n<origin xyz="{value}"/>\n'
+    assert xmlsource._has_raw_whitespace(data.encode()) is raw

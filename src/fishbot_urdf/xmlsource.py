@@ -299,6 +299,19 @@ _AFTER_TAG = frozenset(b" \t\r\n/>")
 _RAW_WHITESPACE = re.compile(
     rb"=[ \t\r\n]*(?:\"[^\"<\t\n\r]*[\t\n\r][^\"<]*\"|'[^'<\t\n\r]*[\t\n\r][^'<]*')"
 )
+# Every byte but those the pattern tells apart from the rest: with them dropped, what is left
+# is a fifth of a URDF, and the pattern still matches it wherever it matches the file.
+_NOT_IN_PATTERN = bytes(b for b in range(256) if b not in b"=\"'<\t\n\r")
+
+
+def _has_raw_whitespace(data: bytes) -> bool:
+    """Whether an attribute value in ``data`` holds a raw tab or line break."""
+    # First on the bytes the pattern looks at (the dropped ones are spaces, which it lets
+    # stand between '=' and the quote, and bytes it takes anywhere inside a value), then,
+    # only if that matches, on the file itself.
+    if _RAW_WHITESPACE.search(data.translate(None, _NOT_IN_PATTERN)) is None:
+        return False
+    return _RAW_WHITESPACE.search(data) is not None
 
 
 def _width(data: bytes, start: int, end: int, ascii_only: bool) -> int:
@@ -392,7 +405,7 @@ class Locator:
         self._locations: Sequence[Location] | None = self._origins
         self._tags: dict[str, bytes] = dict(tags or {})
         self._plain: dict[object, bytes] = {}  # "<name" of each tag in no namespace
-        self.raw_whitespace = _RAW_WHITESPACE.search(data) is not None
+        self.raw_whitespace = _has_raw_whitespace(data)
         self.rewind()
 
     def rewind(self) -> None:
