@@ -12,6 +12,7 @@ import pytest
 from click.testing import CliRunner
 from conftest import DATA, FISHBOT, GoldenInput, check_urdf
 
+import fishbot_urdf
 from fishbot_urdf.cli import cli
 
 FIRST = FISHBOT / "urdf" / "first_robot.urdf"
@@ -45,6 +46,18 @@ def test_findings_go_to_stderr_and_exit_1() -> None:
         f"{path}:6:5: error: joint 'left_wheel_joint': parent link 'base' is not defined "
         "(did you mean 'base_link'? links: base_link, left_wheel_link) [undefined-link]\n"
     )
+
+
+def test_a_thousand_findings_are_written_whole_and_in_order(tmp_path: Path) -> None:
+    # More findings than are written at once: every line, once, in the library's order.
+    links = "".join(f'<link name="l{i}"><visual/></link>' for i in range(1201))
+    robot = tmp_path / "many.urdf"
+    robot.write_text(f'<robot name="r">{links}</robot>')
+    status, _, err = run("check", str(robot))
+    expected = fishbot_urdf.check_file(robot).diagnostics
+    assert len(expected) > 1201
+    assert status == (1 if any(d.is_error for d in expected) else 0)
+    assert err == "".join(f"{d.format()}\n" for d in expected)
 
 
 def test_warnings_pass_unless_strict() -> None:

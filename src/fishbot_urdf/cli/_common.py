@@ -41,11 +41,14 @@ def use_color(stream: IO[str]) -> bool:
     return stream.isatty()
 
 
+_LINES_A_WRITE = 500  # findings written at once: few writes, and no robot's worth held twice
+
+
 def emit_findings(diagnostics: Iterable[Diagnostic]) -> None:
     """Each finding as one line on stderr, its hint phrased for the command line."""
     err = sys.stderr
     color = use_color(err)
-    lines = []
+    lines: list[str] = []
     for d in diagnostics:
         line = phrased(d).format()
         if color:
@@ -54,7 +57,10 @@ def emit_findings(diagnostics: Iterable[Diagnostic]) -> None:
                 f" {label} ", " " + click.style(label, fg=_COLORS[d.severity], bold=True) + " ", 1
             )
         lines.append(line)
-    if lines:  # written at once: one write, not one per line
+        if len(lines) == _LINES_A_WRITE:
+            _echo_raw("\n".join(lines), err)
+            lines.clear()
+    if lines:
         _echo_raw("\n".join(lines), err)
 
 
