@@ -4,8 +4,8 @@ directly in the bytes."""
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Mapping, Sequence
 from pathlib import Path
+from typing import Any
 
 import pytest
 from hypothesis import given, settings
@@ -14,7 +14,6 @@ from lxml import etree
 
 import fishbot_urdf
 from fishbot_urdf import xmlsource
-from fishbot_urdf.model import Location
 from fishbot_urdf.xmlsource import Locator
 
 
@@ -115,18 +114,10 @@ class _Comparing(Locator):
 
     __slots__ = ()
 
-    def __init__(
-        self,
-        data: bytes,
-        path: str,
-        origins: Sequence[Location] | None = None,
-        *,
-        starts: Sequence[int] | None = None,
-        tags: Mapping[str, bytes] | None = None,
-    ) -> None:
-        if starts is None:
-            starts = [m.start() for m in xmlsource._MARKUP.finditer(data) if m.lastindex]
-        super().__init__(data, path, origins, starts=starts, tags=tags)
+    def __init__(self, data: bytes, path: str, *rest: Any, **named: Any) -> None:
+        if named.get("starts") is None:  # the scan's, given: as for a rewritten document
+            named["starts"] = [m.start() for m in xmlsource._MARKUP.finditer(data) if m.lastindex]
+        super().__init__(data, path, *rest, **named)
 
 
 _XACRO = sorted(_DATA.rglob("*.xacro"))
