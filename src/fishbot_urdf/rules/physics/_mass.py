@@ -68,11 +68,12 @@ def _inertial(
         )
         return
     if inertial.mass < 0:
+        owner = link_subject(link)
         yield NEGATIVE_MASS.report(
-            f"{link_subject(link)}: mass {inertial.mass:g} kg is negative",
+            f"{owner}: mass {inertial.mass:g} kg is negative",
             inertial.source,
             path=path,
-            subject=link_subject(link),
+            subject=owner,
             hint="mass is >= 0 kg",
         )
     tol = tolerance(moments)
@@ -171,7 +172,8 @@ def _moving(
     else:
         together = combine((inertial, pose) for _, inertial, pose in having)
         mass, principal = together.mass, together.principal_moments
-    if mass > TINY and not -tolerance(principal) <= principal[0] <= TINY:
+    flat = -tolerance(principal) <= principal[0] <= TINY
+    if mass > TINY and not flat:
         return  # (the most common case, so the words below are made only when needed)
     moves, owner = _moves(joint), link_subject(body.base)
     if mass <= TINY:
@@ -183,7 +185,7 @@ def _moving(
             hint="a moving body needs a mass (MuJoCo: above 1e-15); give its real mass",
             data={"mass": mass},
         )
-    elif -tolerance(principal) <= principal[0] <= TINY:
+    else:  # flat
         # (below that the link's own inertia is reported as not positive definite)
         yield MASSLESS_LINK.report(
             f"{owner} {moves} but has no inertia about some axis: principal moments "
