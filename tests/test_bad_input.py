@@ -3,6 +3,7 @@ and nothing read from outside the file."""
 
 from __future__ import annotations
 
+import errno
 import os
 import re
 from pathlib import Path
@@ -138,6 +139,20 @@ def test_unreadable_file_is_exit_2(tmp_path: Path, monkeypatch: pytest.MonkeyPat
     result = CliRunner().invoke(cli, ["check", str(path)])
     assert result.exit_code == 2
     assert result.stderr == f"{path}: error: permission denied [io]\n"
+
+
+@pytest.mark.parametrize("suffix", [".urdf", ".urdf.xacro"])
+@pytest.mark.parametrize("command", [["check"], ["expand"], ["graph"], ["inertia"]])
+def test_a_file_name_too_long_to_look_at_is_exit_2(
+    tmp_path: Path, command: list[str], suffix: str
+) -> None:
+    # The folder and configuration lookups that come before the read must not stop on it.
+    path = tmp_path / ("x" * 300 + suffix)
+    result = CliRunner().invoke(cli, [*command, str(path)])
+    assert result.exit_code == 2
+    assert result.exception is None or isinstance(result.exception, SystemExit)
+    why = os.strerror(errno.ENAMETOOLONG)
+    assert result.stderr == f"{path}: error: cannot read: {why} [io]\n"
 
 
 def _utf16_with_an_entity(xacro: bool) -> bytes:

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import re
 import sys
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from types import MappingProxyType
@@ -192,7 +192,7 @@ def find_config(start: str | Path, known: dict[Path, Path | None] | None = None)
     pass the same dict for the many files of one run.
     """
     here = Path(start).absolute()
-    if not here.is_dir():
+    if not _stat_says(here, Path.is_dir):
         here = here.parent
     known = {} if known is None else known
     passed: list[Path] = []
@@ -206,7 +206,7 @@ def find_config(start: str | Path, known: dict[Path, Path | None] | None = None)
             (
                 candidate
                 for candidate in (folder / name for name in CONFIG_FILES)
-                if candidate.is_file()
+                if _stat_says(candidate, Path.is_file)
                 and (candidate.name != "pyproject.toml" or _has_table(candidate))
             ),
             None,
@@ -216,6 +216,15 @@ def find_config(start: str | Path, known: dict[Path, Path | None] | None = None)
     for folder in passed:
         known[folder] = found
     return found
+
+
+def _stat_says(path: Path, test: Callable[[Path], bool]) -> bool:
+    """``test(path)``, False when the path cannot even be looked at (a name too long, a
+    folder without permission): the file's own read reports that, as one finding."""
+    try:
+        return test(path)
+    except OSError:
+        return False
 
 
 def load_config(path: str | Path) -> Config:

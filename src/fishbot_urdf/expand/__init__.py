@@ -16,7 +16,9 @@ captured instead of printed. The hooks:
 
 from __future__ import annotations
 
+import os
 import re
+import stat
 import threading
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -137,9 +139,14 @@ def expand(
         XacroError: xacro refuses the input (the message says where and why).
     """
     name = str(path)
-    if Path(name).is_dir() or not Path(name).exists():
-        reason = "is a folder" if Path(name).is_dir() else "does not exist"
-        raise InputError(f"{name} {reason}", path=name)
+    try:
+        folder = stat.S_ISDIR(os.stat(name).st_mode)
+    except (FileNotFoundError, NotADirectoryError) as exc:
+        raise InputError(f"{name} does not exist", path=name) from exc
+    except OSError as exc:  # a name too long, a loop of links, ...
+        raise InputError(f"cannot read: {exc.strerror or exc}", path=name) from exc
+    if folder:
+        raise InputError(f"{name} is a folder", path=name)
     from ._engine import Run  # xacro and minidom load here, not with the package
 
     with _LOCK, Run(name, dict(args or {}), dict(packages or {})) as run:
