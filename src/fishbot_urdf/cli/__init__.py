@@ -94,7 +94,6 @@ def cli() -> None:
 
 
 EXIT_INTERRUPTED, EXIT_TERMINATED = 130, 143  # as a shell reports SIGINT and SIGTERM
-_COLLECT_EVERY = 100_000  # new container objects between two young collections (Python: 700)
 
 
 class _Terminated(BaseException):
@@ -119,10 +118,12 @@ def main(argv: Sequence[str] | None = None) -> NoReturn:
     if threading.current_thread() is threading.main_thread():
         signal.signal(signal.SIGTERM, _terminate)
     # A command builds one robot's objects and ends: the cycle collector's passes over them
-    # (a fifth of a big robot's check) find nothing, as the model holds no cycles. It still
-    # runs, a hundred times less often, for what runs long (`fishbot view`).
+    # find nothing, as the model holds no cycles, and cost a big robot's check 4% of its time
+    # even when run a hundred times less often than Python's default. So it is off (a xacro
+    # expansion leaves some 600 objects in cycles to the end); `fishbot view`, which runs
+    # until stopped, turns it on again.
     thresholds = gc.get_threshold()
-    gc.set_threshold(_COLLECT_EVERY, *thresholds[1:])
+    gc.set_threshold(0, *thresholds[1:])
     try:
         cli.main(
             args=list(argv) if argv is not None else None,

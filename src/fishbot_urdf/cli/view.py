@@ -3,6 +3,7 @@ joint_state_publisher_gui without ROS)."""
 
 from __future__ import annotations
 
+import gc
 import sys
 import time
 from collections.abc import Sequence
@@ -24,6 +25,8 @@ from ._common import (
     stop_on,
     xacro_args,
 )
+
+_COLLECT_EVERY = 100_000  # new container objects between two young collections (Python: 700)
 
 
 @click.command()
@@ -93,6 +96,8 @@ def view(
     for warning in viewer.warnings:
         click.echo(f"{file}: warning: {warning}", err=True)
     click.echo(f"fishbot view: {viewer.url} (Ctrl-C stops)")
+    # Off for the commands that end (see main); on, rarely, for the reloads to come.
+    gc.set_threshold(_COLLECT_EVERY, *gc.get_threshold()[1:])
     try:
         while True:
             time.sleep(3600)
