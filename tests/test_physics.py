@@ -6,18 +6,34 @@ comment beside it.
 
 from __future__ import annotations
 
+from operator import mul
 from pathlib import Path
 
 import numpy as np
 import pytest
 from click.testing import CliRunner
 from conftest import CORPUS, DATA, FISHBOT
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import fishbot_urdf
 from fishbot_urdf import check_file
 from fishbot_urdf.cli import cli
-from fishbot_urdf.inertia import cylinder_inertia
-from fishbot_urdf.model import Collision, Cylinder, Inertia, Inertial, Joint, JointType, Link, Robot
+from fishbot_urdf.inertia import cylinder_inertia, solid_moments
+from fishbot_urdf.model import (
+    Box,
+    Collision,
+    Cylinder,
+    Inertia,
+    Inertial,
+    Joint,
+    JointType,
+    Link,
+    Robot,
+    Sphere,
+)
+from fishbot_urdf.rules.physics import _shape
+from fishbot_urdf.spatial import eigenvalues
 
 PHYSICS = DATA / "physics"
 XACRO = FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"
@@ -333,3 +349,42 @@ def test_an_isotropic_inertia_on_a_cylinder_is_a_size_not_an_axis(tmp_path: Path
         "link 'wheel': inertial matches a cylinder r=3.16 h=5.48 (its three moments are equal, "
         "so along any axis), but the collision cylinder has r=0.032 h=0.04"
     )
+
+
+_factor = st.floats(0.9, 1.1)  # about the shape's own moments: at the rule's 10%
+_product = st.floats(-0.05, 0.05)
+_size = st.floats(1e-3, 2.0)
+_solid = st.one_of(
+    st.builds(Box, st.tuples(_size, _size, _size)),
+    st.builds(Cylinder, _size, _size),
+    st.builds(Sphere, _size),
+)
+
+
+@settings(max_examples=200)
+@given(
+    _solid,
+    st.floats(1e-3, 100.0),
+    st.tuples(_factor, _factor, _factor),
+    st.tuples(_product, _product, _product),
+)
+def test_an_unturned_inertia_is_compared_as_a_turned_one_would_be(
+    shape: Box | Cylinder | Sphere,
+    mass: float,
+    factors: tuple[float, float, float],
+    products: tuple[float, float, float],
+) -> None:
+    # With no rpy the rule compares six numbers; through the general path (rotations by an
+    # identity that is not the shared one) it compares the whole turned matrices.
+    ixx, iyy, izz = map(mul, solid_moments(shape, mass), factors)
+    ixy, ixz, iyz = (p * min(ixx, iyy, izz) for p in products)
+    inertia = Inertia(ixx=ixx, ixy=ixy, ixz=ixz, iyy=iyy, iyz=iyz, izz=izz)
+    link = Link("l", Inertial(mass, inertia), collisions=(Collision(shape),))
+    principal = eigenvalues(inertia.matrix())
+    quick = list(_shape.mismatch(link, "p", principal))
+    real = _shape.rpy_matrix
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(_shape, "rpy_matrix", lambda rpy: tuple(map(tuple, real(rpy))))
+        general = list(_shape.mismatch(link, "p", principal))
+    assert quick == general
+    assert [d.data for d in quick] == [d.data for d in general]

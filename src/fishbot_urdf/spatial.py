@@ -70,6 +70,11 @@ def transpose(m: Matrix3) -> Matrix3:
     )
 
 
+def diagonal(v: Vector3) -> Matrix3:
+    """The matrix with ``v`` on its diagonal."""
+    return ((v[0], 0.0, 0.0), (0.0, v[1], 0.0), (0.0, 0.0, v[2]))
+
+
 def mat_mul(a: Matrix3, b: Matrix3) -> Matrix3:
     bt = transpose(b)
     return (

@@ -15,6 +15,7 @@ from ._solids import (
     geometry_inertia,
     mesh_inertia,
     principal_moments,
+    solid_moments,
     sphere_inertia,
     volume,
 )
@@ -38,6 +39,7 @@ __all__ = [
     "mass_table",
     "mesh_inertia",
     "principal_moments",
+    "solid_moments",
     "sphere_inertia",
     "volume",
 ]

@@ -48,6 +48,7 @@ __all__ = [
     "geometry_inertia",
     "mesh_inertia",
     "principal_moments",
+    "solid_moments",
     "sphere_inertia",
     "volume",
 ]
@@ -59,31 +60,48 @@ def box_inertia(m: float, w: float, h: float, d: float, origin: Origin = _AT_LIN
     """A solid box of mass ``m`` (kg) with sides ``w`` along x, ``h`` along y and ``d``
     along z (m), as ``<box size="w h d"/>``: ixx = m/12 (h^2 + d^2), iyy = m/12 (w^2 + d^2),
     izz = m/12 (w^2 + h^2) (kg*m^2)."""
-    return Inertial(
-        mass=m,
-        inertia=Inertia(
-            ixx=m / 12.0 * (h * h + d * d),
-            iyy=m / 12.0 * (w * w + d * d),
-            izz=m / 12.0 * (w * w + h * h),
-        ),
-        origin=origin,
-    )
+    return _diagonal(m, _box(m, w, h, d), origin)
 
 
 def cylinder_inertia(m: float, r: float, h: float, origin: Origin = _AT_LINK) -> Inertial:
     """A solid cylinder of mass ``m`` (kg), radius ``r`` and height ``h`` (m) along its z
     axis, as ``<cylinder radius="r" length="h"/>``: ixx = iyy = m/12 (3 r^2 + h^2),
     izz = m/2 r^2 (kg*m^2)."""
-    across = m / 12.0 * (3 * r * r + h * h)
-    return Inertial(
-        mass=m, inertia=Inertia(ixx=across, iyy=across, izz=m / 2.0 * r * r), origin=origin
-    )
+    return _diagonal(m, _cylinder(m, r, h), origin)
 
 
 def sphere_inertia(m: float, r: float, origin: Origin = _AT_LINK) -> Inertial:
     """A solid sphere of mass ``m`` (kg) and radius ``r`` (m): 2/5 m r^2 about every axis."""
+    return _diagonal(m, _sphere(m, r), origin)
+
+
+def solid_moments(shape: Box | Cylinder | Sphere, mass: float) -> Vector3:
+    """ixx, iyy and izz of a box, cylinder or sphere filled uniformly with ``mass`` (kg), in
+    its own frame (where its products are 0): the numbers `geometry_inertia` gives."""
+    if isinstance(shape, Box):
+        return _box(mass, *shape.size)
+    if isinstance(shape, Cylinder):
+        return _cylinder(mass, shape.radius, shape.length)
+    return _sphere(mass, shape.radius)
+
+
+def _box(m: float, w: float, h: float, d: float) -> Vector3:
+    return (m / 12.0 * (h * h + d * d), m / 12.0 * (w * w + d * d), m / 12.0 * (w * w + h * h))
+
+
+def _cylinder(m: float, r: float, h: float) -> Vector3:
+    across = m / 12.0 * (3 * r * r + h * h)
+    return (across, across, m / 2.0 * r * r)
+
+
+def _sphere(m: float, r: float) -> Vector3:
     moment = 2.0 / 5.0 * m * r * r
-    return Inertial(mass=m, inertia=Inertia(ixx=moment, iyy=moment, izz=moment), origin=origin)
+    return (moment, moment, moment)
+
+
+def _diagonal(m: float, moments: Vector3, origin: Origin) -> Inertial:
+    ixx, iyy, izz = moments
+    return Inertial(mass=m, inertia=Inertia(ixx=ixx, iyy=iyy, izz=izz), origin=origin)
 
 
 def geometry_inertia(

@@ -9,9 +9,17 @@ from operator import sub
 from typing import Any
 
 from ...diagnostics import Diagnostic
-from ...inertia import geometry_inertia
+from ...inertia import solid_moments
 from ...model import Box, Cylinder, Link, Origin, Sphere, Vector3
-from ...spatial import IDENTITY, Matrix3, eigenvalues, rotate_tensor, rpy_matrix, transpose
+from ...spatial import (
+    IDENTITY,
+    Matrix3,
+    diagonal,
+    eigenvalues,
+    rotate_tensor,
+    rpy_matrix,
+    transpose,
+)
 from ._common import INERTIA_MISMATCH, TINY, link_subject, place, short, tolerance
 
 MISMATCH = 0.10
@@ -34,23 +42,36 @@ def mismatch(link: Link, path: str, moments: Vector3) -> Iterator[Diagnostic]:
         return
     if moments[0] < -tolerance(moments) or moments[2] <= TINY:
         return  # reported as not positive definite, or a point mass
-    own = rpy_matrix(inertial.origin.rpy)
-    declared = rotate_tensor(own, inertial.inertia.matrix())
-    if own is not IDENTITY and not all(map(math.isfinite, chain(*declared))):
-        return  # turned, numbers past the floats' range: nothing to compare
-    turn = rpy_matrix(collision.origin.rpy)
-    closed = geometry_inertia(shape, inertial.mass).inertia
-    wanted = rotate_tensor(turn, closed.matrix())
-    largest = max(closed.ixx, closed.iyy, closed.izz)  # diagonal: these are its moments
+    closed = solid_moments(shape, inertial.mass)  # in the collision's frame, where it is diagonal
+    largest = max(closed)
     if largest <= 0.0:
         return
-    gap = max(map(abs, map(sub, chain(*declared), chain(*wanted))))
+    i = inertial.inertia
+    own = rpy_matrix(inertial.origin.rpy)
+    turn = rpy_matrix(collision.origin.rpy)
+    if own is IDENTITY and turn is IDENTITY:  # the common case: both in the link's frame
+        seen = None
+        gap = max(
+            abs(i.ixx - closed[0]),
+            abs(i.iyy - closed[1]),
+            abs(i.izz - closed[2]),
+            abs(i.ixy),
+            abs(i.ixz),
+            abs(i.iyz),
+        )
+    else:
+        declared = rotate_tensor(own, i.matrix())
+        if own is not IDENTITY and not all(map(math.isfinite, chain(*declared))):
+            return  # turned, numbers past the floats' range: nothing to compare
+        wanted = rotate_tensor(turn, diagonal(closed))
+        gap = max(map(abs, map(sub, chain(*declared), chain(*wanted))))
+        # What the numbers are, seen in the collision's own frame.
+        seen = declared if turn is IDENTITY else rotate_tensor(transpose(turn), declared)
     if gap <= MISMATCH * largest:
         return
-    # What the numbers are, seen in the collision's own frame. Numbers that fit no such
-    # shape were measured (CAD), not computed: a collision shape only approximates those.
-    seen = declared if turn is IDENTITY else rotate_tensor(transpose(turn), declared)
-    found = _describe(shape, seen, inertial.mass, turn)
+    # Numbers that fit no shape of the collision's kind were measured (CAD), not computed: a
+    # collision shape only approximates those.
+    found = _describe(shape, seen or i.matrix(), inertial.mass, turn)
     if found is None:
         return
     owner = link_subject(link)
@@ -112,10 +133,11 @@ def _describe(
         return None
     diagonal = (seen[0][0], seen[1][1], seen[2][2])
     if isinstance(shape, Box):
-        squares = [6.0 * (sum(diagonal) - 2.0 * diagonal[k]) / mass for k in range(3)]
-        if min(squares) < 0:
+        total = diagonal[0] + diagonal[1] + diagonal[2]
+        xx, yy, zz = (6.0 * (total - 2.0 * moment) / mass for moment in diagonal)
+        if xx < 0 or yy < 0 or zz < 0:
             return None
-        x, y, z = (math.sqrt(max(0.0, s)) for s in squares)
+        x, y, z = math.sqrt(xx), math.sqrt(yy), math.sqrt(zz)
         w, h, d = shape.size
         return (
             f"inertial matches a box {short(x)} x {short(y)} x {short(z)}, "
