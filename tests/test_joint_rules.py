@@ -8,7 +8,19 @@ import math
 import pytest
 
 import fishbot_urdf
-from fishbot_urdf import Collision, Cylinder, Joint, JointType, Limit, Link, Mimic, Origin, Robot
+from fishbot_urdf import (
+    Collision,
+    Cylinder,
+    Inertial,
+    Joint,
+    JointType,
+    Limit,
+    Link,
+    Mimic,
+    Origin,
+    Robot,
+    Visual,
+)
 from fishbot_urdf.rules import Family, get
 
 
@@ -116,11 +128,20 @@ def test_an_axis_must_be_of_unit_length() -> None:
     assert _rules(rounded) == []
 
 
-def test_rpy_in_degrees_on_any_origin() -> None:
+@pytest.mark.parametrize("part", ["inertial", "visual", "collision"])
+def test_rpy_in_degrees_on_any_origin(part: str) -> None:
     turned = Origin(rpy=(0.0, 0.0, 90.0))
-    link = Link("arm", collisions=(Collision(Cylinder(0.01, 0.5), turned),))
+    shape = Cylinder(0.01, 0.5)
+    parts = {
+        "inertial": {"inertial": Inertial(1.0, origin=turned)},
+        "visual": {"visuals": (Visual(shape, turned),)},
+        "collision": {"collisions": (Collision(shape, turned),)},
+    }
+    link = Link("arm", **parts[part])  # type: ignore[arg-type]
     joint = Joint("j", JointType.FIXED, "base", "arm", origin=Origin(rpy=(180.0, 0.0, 0.0)))
-    assert [r for r, _ in _rules(joint, links=(link,))] == ["rpy-degrees", "rpy-degrees"]
+    found = _rules(joint, links=(link,))
+    assert [r for r, _ in found] == ["rpy-degrees", "rpy-degrees"]
+    assert f"link 'arm': <{part}>: rpy 0 0 90" in found[1][1]
 
 
 def test_mimic_chains_and_a_zero_multiplier() -> None:

@@ -181,6 +181,13 @@ def joints(analysis: Analysis) -> Iterator[Diagnostic]:
     for joint in analysis.robot.joints:
         yield from _joint(analysis, joint)
     for link in analysis.robot.links:
+        inertial = link.inertial
+        if (
+            (inertial is None or not _beyond_a_turn(inertial.origin.rpy))
+            and not any(_beyond_a_turn(visual.origin.rpy) for visual in link.visuals)
+            and not any(_beyond_a_turn(collision.origin.rpy) for collision in link.collisions)
+        ):
+            continue  # (nearly always)
         for part, origin in _origins(link):
             if _beyond_a_turn(origin.rpy):
                 yield _rpy(
@@ -190,32 +197,35 @@ def joints(analysis: Analysis) -> Iterator[Diagnostic]:
 
 def _joint(analysis: Analysis, joint: Joint) -> Iterator[Diagnostic]:
     path = analysis.path
-    named = f"joint {joint.name!r}"
     if _beyond_a_turn(joint.origin.rpy):
-        yield _rpy(analysis, named, joint.origin, Subject(Kind.JOINT, joint.name))
+        yield _rpy(analysis, _named(joint), joint.origin, _subject(joint))
     if joint.type not in _MOVING and joint.type is not JointType.PLANAR:
         return
-    subject = Subject(Kind.JOINT, joint.name)
-    length = math.sqrt(sum(v * v for v in joint.axis))
+    x, y, z = joint.axis
+    length = math.sqrt(x * x + y * y + z * z)
     if length > 0 and abs(length - 1.0) > _SLACK:
         unit = " ".join(f"{v / length:.4g}" for v in joint.axis)
         yield AXIS_LENGTH.report(
-            f"{named}: axis {_vector(joint.axis)} has length {length:.4g}",
+            f"{_named(joint)}: axis {_vector(joint.axis)} has length {length:.4g}",
             joint.source,
             path=path,
-            subject=subject,
+            subject=_subject(joint),
             hint=f'write the unit vector: <axis xyz="{unit}"/>',
         )
     if joint.type is JointType.CONTINUOUS and length > 0:
         yield from _wheel(analysis, joint, length)
-    yield from _mimic(analysis, joint)
+    if joint.mimic is not None:
+        yield from _mimic(analysis, joint)
     limit = joint.limit
     if limit is None or joint.type not in _MOVING:
         return
     where = limit.source or joint.source
     if joint.type is JointType.REVOLUTE:
-        wide = [(n, v) for n, v in (("lower", limit.lower), ("upper", limit.upper))]
-        wide = [(n, v) for n, v in wide if abs(v) > 2 * _TURN + _SLACK]
+        wide = [
+            (n, v)
+            for n, v in (("lower", limit.lower), ("upper", limit.upper))
+            if abs(v) > 2 * _TURN + _SLACK
+        ]
         if wide:
             said = " and ".join(f"{n} limit {v:g}" for n, v in wide)
             first = wide[0][1]
@@ -225,46 +235,53 @@ def _joint(analysis: Analysis, joint: Joint) -> Iterator[Diagnostic]:
                 else ""
             )
             yield WIDE_LIMIT.report(
-                f"{named}: {said} {'are' if len(wide) > 1 else 'is'} more than two whole turns",
+                f"{_named(joint)}: {said} {'are' if len(wide) > 1 else 'is'} more than two "
+                "whole turns",
                 where,
                 path=path,
-                subject=subject,
+                subject=_subject(joint),
                 hint=f"limits are in radians: {degrees}a joint that turns without end is "
                 "continuous",
             )
         velocity = limit.velocity
         if velocity >= 45 and velocity % 15 == 0:
             yield VELOCITY_DEGREES.report(
-                f"{named}: velocity limit {velocity:g} reads as degrees per second",
+                f"{_named(joint)}: velocity limit {velocity:g} reads as degrees per second",
                 where,
                 path=path,
-                subject=subject,
+                subject=_subject(joint),
                 hint=f"velocity limits are in rad/s ({velocity:g} deg/s is "
                 f"{math.radians(velocity):.4g} rad/s)",
             )
-    if joint.mimic is None:
+    if joint.mimic is None and (limit.effort == 0 or limit.velocity == 0):
         zero = [n for n, v in (("effort", limit.effort), ("velocity", limit.velocity)) if v == 0]
-        if zero:
-            what = {
-                "effort": "no motor may drive it",
-                "velocity": "it may not move",
-            }
-            said = " and ".join(zero) + (" limits are" if len(zero) > 1 else " limit is")
-            yield ZERO_LIMIT.report(
-                f"{named}: {said} 0: {' and '.join(what[z] for z in zero)}",
-                where,
-                path=path,
-                subject=subject,
-                hint="give the motor's real limits, or make the joint fixed",
-            )
+        what = {
+            "effort": "no motor may drive it",
+            "velocity": "it may not move",
+        }
+        said = " and ".join(zero) + (" limits are" if len(zero) > 1 else " limit is")
+        yield ZERO_LIMIT.report(
+            f"{_named(joint)}: {said} 0: {' and '.join(what[z] for z in zero)}",
+            where,
+            path=path,
+            subject=_subject(joint),
+            hint="give the motor's real limits, or make the joint fixed",
+        )
+
+
+def _named(joint: Joint) -> str:
+    return f"joint {joint.name!r}"
+
+
+def _subject(joint: Joint) -> Subject:
+    return Subject(Kind.JOINT, joint.name)
 
 
 def _mimic(analysis: Analysis, joint: Joint) -> Iterator[Diagnostic]:
     mimic = joint.mimic
     if mimic is None:
         return
-    path, named = analysis.path, f"joint {joint.name!r}"
-    subject = Subject(Kind.JOINT, joint.name)
+    path, named, subject = analysis.path, _named(joint), _subject(joint)
     target = analysis.joints.get(mimic.joint)
     if mimic.multiplier == 0:
         yield MIMIC_CHAIN.report(
@@ -304,7 +321,7 @@ def _wheel(analysis: Analysis, joint: Joint, length: float) -> Iterator[Diagnost
         f"{child.name!r} is a cylinder along {fit}",
         joint.source,
         path=analysis.path,
-        subject=Subject(Kind.JOINT, joint.name),
+        subject=_subject(joint),
         hint=f'a wheel turns about its cylinder\'s axis: <axis xyz="{fit}"/>',
     )
 
