@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from xml.sax.saxutils import escape
 
 import pytest
 from conftest import (
@@ -14,7 +15,7 @@ from conftest import (
     golden_check_urdf,
     repo_id,
 )
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import fishbot_urdf
@@ -59,6 +60,38 @@ _PIECES = ["0", "1", "-2.5", "1e308", "1e400", "nan", "inf", "1_0", "\u0663", "\
 def test_numbers_checked_at_once_as_one_by_one(texts: list[str]) -> None:
     one_by_one = [to_double(text) for text in texts]
     assert to_doubles(texts) == (None if None in one_by_one else one_by_one)
+
+
+_INERTIA = '<mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>'
+
+
+_VECTOR_PIECE = st.sampled_from([*_PIECES, "+3", ".5", "1e-3", "1e308"])
+
+
+@settings(max_examples=300)
+@given(
+    st.one_of(  # mostly three pieces, each a number or not
+        st.lists(_VECTOR_PIECE, min_size=3, max_size=3),
+        st.lists(_VECTOR_PIECE, min_size=1, max_size=4),
+    ),
+    st.sampled_from([" ", " ", "  ", "\t"]),
+)
+def test_a_vector_is_read_as_its_pieces_one_by_one(pieces: list[str], gap: str) -> None:
+    text = gap.join(pieces)
+    written = escape(text, {'"': "&quot;", "\t": "&#9;", "\n": "&#10;"})
+    data = (
+        f'<robot name="r"><link name="a"><inertial><origin xyz="{written}"/>{_INERTIA}'
+        "</inertial></link></robot>"
+    )
+    parsed = fishbot_urdf.read(data.encode())
+    kept = [piece for piece in text.split(" ") if piece]  # as urdfdom splits
+    numbers = to_doubles(kept) if len(kept) == 3 else None
+    assert parsed.robot is not None and parsed.robot.links[0].inertial is not None
+    xyz = parsed.robot.links[0].inertial.origin.xyz
+    assert xyz == ((0.0, 0.0, 0.0) if numbers is None else tuple(numbers))
+    assert [d.rule for d in parsed.diagnostics] == (
+        [] if numbers is not None else ["bad-vector" if len(kept) != 3 else "bad-number"]
+    )
 
 
 def test_model_of_every_element() -> None:

@@ -182,10 +182,29 @@ class ReaderBase:
         *,
         required: bool = False,
     ) -> Vector3:
-        if el.get(attr) is None:
+        value = el.get(attr)
+        if value is None:
             if required:
                 self.missing(el, at, attr, owner, "x y z")
             return default
+        # Nearly always three numbers one space apart, which need none of `numbers`' care:
+        # printable ASCII holds no tab or line break, and a finite sum, no inf or nan.
+        pieces = value.split(" ")
+        if (
+            len(pieces) == 3
+            and value.isascii()
+            and value.isprintable()
+            and "_" not in value
+            and not self.locator.raw_whitespace
+        ):
+            try:
+                x, y, z = float(pieces[0]), float(pieces[1]), float(pieces[2])
+            except ValueError:
+                pass
+            else:
+                total = x + y + z
+                if total - total == 0.0:
+                    return (x, y, z)
         found = self.numbers(el, at, attr, owner, 3, "x y z")
         return default if found is None else (found[0], found[1], found[2])
 
