@@ -4,6 +4,7 @@ directly in the bytes."""
 from __future__ import annotations
 
 import dataclasses
+import threading
 from pathlib import Path
 from typing import Any
 
@@ -164,3 +165,36 @@ def test_the_quick_look_for_raw_white_space_agrees_with_the_pattern(text: str) -
 def test_raw_white_space_in_a_value_is_found_and_none_elsewhere(value: str, raw: bool) -> None:
     data = f'<robot name="r">\n\t<link name="a">\n<origin xyz="{value}"/>\n'
     assert xmlsource._has_raw_whitespace(data.encode()) is raw
+
+
+@pytest.mark.parametrize("path", _FILES + _XACRO, ids=lambda p: str(p.relative_to(_DATA)))
+def test_places_found_while_lxml_parses_are_the_places_found_after(
+    path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setattr(xmlsource, "LOCATE_ALONGSIDE_FROM", 1 << 40)  # never alongside
+    after = _outcome(path)
+    monkeypatch.setattr(xmlsource, "LOCATE_ALONGSIDE_FROM", 0)  # always
+    alongside = _outcome(path)
+    assert alongside == after
+    assert _every_place(alongside[0]) == _every_place(after[0])
+
+
+def test_a_locator_that_fails_alongside_is_made_again_in_the_caller(
+    monkeypatch: pytest.MonkeyPatch, capfd: pytest.CaptureFixture[str]
+) -> None:
+    path = _DATA / "valid" / "all_elements.urdf"
+    expected = _outcome(path)
+    real = Locator.locations
+    failed: list[str] = []
+
+    def only_in_the_caller(self: Locator) -> object:
+        if threading.current_thread() is not threading.main_thread():
+            failed.append(threading.current_thread().name)
+            raise MemoryError
+        return real(self)
+
+    monkeypatch.setattr(Locator, "locations", only_in_the_caller)
+    monkeypatch.setattr(xmlsource, "LOCATE_ALONGSIDE_FROM", 0)
+    assert _outcome(path) == expected
+    assert failed == ["fishbot-locate"]
+    assert capfd.readouterr() == ("", "")  # nothing said about it

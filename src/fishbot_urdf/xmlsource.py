@@ -165,13 +165,16 @@ def read_xml(
             if not xmlrecover.needed(data, _line_end(data, streamed.root.sourceline)):
                 return XmlDocument(streamed.root, Locator(data, path, origins), (), streamed)
     strict: XmlSyntaxError | None = None
+    located = _Locating(data, path, origins)
     try:
         root = _parse(data, path)
     except XmlSyntaxError as error:
         strict = error
+    finally:
+        locator = located.result()
     # (where the root's start tag ends: a DOCTYPE comes before)
     if strict is None and not xmlrecover.needed(data, _line_end(data, root.sourceline)):
-        return XmlDocument(root, Locator(data, path, origins), ())
+        return XmlDocument(root, locator, ())
     try:
         recovered = xmlrecover.recover(data)
         root = _parse(recovered.data, path)
@@ -203,6 +206,41 @@ def read_xml(
             )
         )
     return XmlDocument(root, locator, tuple(findings))
+
+
+LOCATE_ALONGSIDE_FROM = 64 * 2**10
+"""Files at least this big (bytes) are scanned for their elements' places while lxml parses
+them, in a thread of their own: lxml lets go of the interpreter while it parses."""
+
+
+class _Locating:
+    """A `Locator` with every location made, for a document being parsed meanwhile."""
+
+    __slots__ = ("_args", "_done", "_thread")
+
+    def __init__(self, data: bytes, path: str, origins: Sequence[Location] | None) -> None:
+        self._args = (data, path, origins)
+        self._done: list[Locator] = []
+        self._thread = None
+        if len(data) >= LOCATE_ALONGSIDE_FROM:
+            import threading
+
+            self._thread = threading.Thread(target=self._locate, name="fishbot-locate", daemon=True)
+            self._thread.start()
+
+    def _locate(self) -> None:
+        try:
+            locator = Locator(*self._args)
+            locator.locations()
+        except Exception:  # made again in the caller, which then raises
+            return
+        self._done.append(locator)
+
+    def result(self) -> Locator:
+        """The locator (made here if there is no thread, or the thread failed)."""
+        if self._thread is not None:
+            self._thread.join()
+        return self._done[0] if self._done else Locator(*self._args)
 
 
 def _check_start(data: bytes, path: str) -> None:
@@ -413,7 +451,7 @@ class Locator:
         self._index = 0  # next entry of _starts to hand out
         self._last = -1  # the entry of the last element found (-1: none)
 
-    def _all(self) -> Sequence[Location]:
+    def locations(self) -> Sequence[Location]:
         """The location of every start tag, in one pass (made on first use)."""
         if self._locations is None:
             self._locations = _locations(self._data, self.path, self._starts, self._ascii)
@@ -426,7 +464,7 @@ class Locator:
         if self._exact:
             if index < len(self._starts):
                 self._index, self._last = index + 1, index
-                return (self._locations or self._all())[index]
+                return (self._locations or self.locations())[index]
             return self._fallback(element)
         # Most often the next start tag is the element's: one look, no loop.
         name = self._plain.get(element.tag)
@@ -435,7 +473,7 @@ class Locator:
             data = self._data
             if data.startswith(name, offset) and data[offset + len(name)] in _AFTER_TAG:
                 self._index, self._last = index + 1, index
-                return (self._locations or self._all())[index]
+                return (self._locations or self.locations())[index]
         return self._search(element)
 
     def _search(self, element: etree._Element) -> Location:
@@ -452,7 +490,7 @@ class Locator:
         if plain:  # the written name is the tag
             self._plain[tag] = name
         data, starts, size = self._data, self._starts, len(name)
-        locations = self._locations or self._all()
+        locations = self._locations or self.locations()
         for index in range(self._index, len(starts)):
             offset = starts[index]
             if data.startswith(name, offset) and data[offset + size] in _AFTER_TAG:
@@ -476,7 +514,7 @@ class Locator:
 
     def _attribute_match(self, location: Location, name: str) -> re.Match[bytes] | None:
         last = self._last
-        if last < 0 or (self._locations or self._all())[last] is not location:
+        if last < 0 or (self._locations or self.locations())[last] is not location:
             return None
         data = self._data
         tag_start = self._starts[last]
