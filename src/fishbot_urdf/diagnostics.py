@@ -102,9 +102,13 @@ class Diagnostic:
 
     def format(self) -> str:
         """Render as one GCC-style line: ``path:line:col: error: message (hint) [rule]``."""
+        return self.format_with(self.hint)
+
+    def format_with(self, hint: str | None) -> str:
+        """`format`'s line, with ``hint`` in the place of the finding's own."""
         text = f"{self.where}: {self.severity.value}: {self.message}"
-        if self.hint:
-            text += f" ({self.hint})"
+        if hint:
+            text += f" ({hint})"
         return f"{text} [{self.rule}]"
 
     def to_dict(self) -> dict[str, Any]:

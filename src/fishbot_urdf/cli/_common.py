@@ -15,7 +15,7 @@ import click
 
 from ..diagnostics import Diagnostic, Severity, from_error
 from ..errors import FishbotUrdfError, InputError, ToolError
-from ._hints import error_hint, phrased
+from ._hints import command_hint, error_hint
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -50,7 +50,7 @@ def emit_findings(diagnostics: Iterable[Diagnostic]) -> None:
     color = use_color(err)
     lines: list[str] = []
     for d in diagnostics:
-        line = phrased(d).format()
+        line = d.format_with(command_hint(d))
         if color:
             label = f"{d.severity.value}:"
             line = line.replace(

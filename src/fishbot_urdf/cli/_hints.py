@@ -12,16 +12,23 @@ from ..errors import FishbotUrdfError
 
 def phrased(finding: Diagnostic) -> Diagnostic:
     """``finding`` with the command line's way to act on it added to its hint."""
-    extra = _EXTRA.get(finding.rule)
-    words = extra(finding.data) if extra is not None else None
-    if not words:
+    hint = command_hint(finding)
+    if hint is finding.hint:
         return finding
     d = finding
-    hint = f"{d.hint}; {words}" if d.hint else words
     # (as dataclasses.replace would make it, in half the time: a check may phrase thousands)
     return Diagnostic(
         d.rule, d.severity, d.message, d.path, d.line, d.column, hint, d.subject, d.data
     )
+
+
+def command_hint(finding: Diagnostic) -> str | None:
+    """``finding``'s hint, with the command line's way to act on it added."""
+    extra = _EXTRA.get(finding.rule)
+    words = extra(finding.data) if extra is not None else None
+    if not words:
+        return finding.hint
+    return f"{finding.hint}; {words}" if finding.hint else words
 
 
 def _numbers(values: Any) -> str:
@@ -32,13 +39,14 @@ def _shape_command(data: Any) -> str | None:
     shape = data.get("shape")
     if shape is None:
         return None
-    words = f"{shape} --mass {data['mass']:g}"
     if shape == "box":
-        words += f" --size {_numbers(data['size'])}"
+        x, y, z = data["size"]
+        size = f"--size {x:g} {y:g} {z:g}"
     elif shape == "cylinder":
-        words += f" --radius {data['radius']:g} --length {data['length']:g}"
+        size = f"--radius {data['radius']:g} --length {data['length']:g}"
     else:
-        words += f" --radius {data['radius']:g}"
+        size = f"--radius {data['radius']:g}"
+    words = f"{shape} --mass {data['mass']:g} {size}"
     for name in ("xyz", "rpy"):
         if any(data.get(name, ())):
             words += f" --{name} {_numbers(data[name])}"
