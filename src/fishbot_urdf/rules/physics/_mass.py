@@ -41,15 +41,18 @@ def body_findings(
     body: Body, path: str, moments: Mapping[str, Vector3], jointed: bool
 ) -> Iterator[Diagnostic]:
     having = _inertials(body)
-    parts = [(inertial, pose) for _, inertial, pose in having]
     all_finite = all(link.name in moments for link, _, _ in having)
     # Fused with its fixed neighbours a body may be physical although one link's own numbers
     # are not: simulators that merge fixed links load it, so that is only a warning.
-    merged = all_finite and len(parts) > 1 and physical(combine(parts).principal_moments)
-    for link, _ in body.members:
-        inertial = link.inertial
-        if inertial is not None:
-            yield from _inertial(link, inertial, path, merged, moments.get(link.name))
+    merged = (
+        all_finite
+        and len(having) > 1
+        and physical(combine((inertial, pose) for _, inertial, pose in having).principal_moments)
+    )
+    for link, inertial, _ in having:
+        own = moments.get(link.name)
+        if own is None or inertial.mass < 0 or not physical(own):  # (seldom)
+            yield from _inertial(link, inertial, path, merged, own)
     if all_finite:
         yield from _moving(body, having, path, moments, jointed)
 
@@ -136,8 +139,9 @@ def _moving(
     moments: Mapping[str, Vector3],
     jointed: bool,
 ) -> Iterator[Diagnostic]:
-    with_shape = [link for link, _ in body.members if link.collisions]
     joint = body.moved_by
+    if joint is None or not having:
+        with_shape = [link for link, _ in body.members if link.collisions]
     if joint is None:
         # The root's body: a mobile robot's base, unless the robot is bolted to the world.
         if not having and with_shape and body.base.name != "world" and jointed:
