@@ -208,9 +208,11 @@ def read_xml(
     return XmlDocument(root, locator, tuple(findings))
 
 
-LOCATE_ALONGSIDE_FROM = 64 * 2**10
+LOCATE_ALONGSIDE_FROM = 512 * 2**10
 """Files at least this big (bytes) are scanned for their elements' places while lxml parses
-them, in a thread of their own: lxml lets go of the interpreter while it parses."""
+them, in a thread of their own: lxml lets go of the interpreter while it parses. (Below, the
+thread's start and the interpreter's hand-over cost about what it saves: a 600 KB robot reads
+in 0.92 of the time, real robots of 60 to 200 KB in 1.05.)"""
 
 
 class _Locating:
