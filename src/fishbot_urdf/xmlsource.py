@@ -171,10 +171,10 @@ def read_xml(
     except XmlSyntaxError as error:
         strict = error
     finally:
-        locator = located.result()
+        located.join()  # (no thread is left running, whatever happens)
     # (where the root's start tag ends: a DOCTYPE comes before)
     if strict is None and not xmlrecover.needed(data, _line_end(data, root.sourceline)):
-        return XmlDocument(root, locator, ())
+        return XmlDocument(root, located.result(), ())
     try:
         recovered = xmlrecover.recover(data)
         root = _parse(recovered.data, path)
@@ -238,10 +238,13 @@ class _Locating:
             return
         self._done.append(locator)
 
-    def result(self) -> Locator:
-        """The locator (made here if there is no thread, or the thread failed)."""
+    def join(self) -> None:
+        """Wait for the thread, if there is one."""
         if self._thread is not None:
             self._thread.join()
+
+    def result(self) -> Locator:
+        """The locator, once joined (made here if there was no thread, or it failed)."""
         return self._done[0] if self._done else Locator(*self._args)
 
 

@@ -140,12 +140,11 @@ def _moving(
     jointed: bool,
 ) -> Iterator[Diagnostic]:
     joint = body.moved_by
-    if joint is None or not having:
-        with_shape = [link for link, _ in body.members if link.collisions]
+    # A body without inertial: its first link with collision shapes, if any.
+    link = None if having else next((link for link, _ in body.members if link.collisions), None)
     if joint is None:
         # The root's body: a mobile robot's base, unless the robot is bolted to the world.
-        if not having and with_shape and body.base.name != "world" and jointed:
-            link = with_shape[0]
+        if link is not None and body.base.name != "world" and jointed:
             yield MISSING_INERTIAL.report(
                 f"link {link.name!r} has collision geometry but no <inertial>, and nothing "
                 "it is fixed to has one: the robot's base weighs nothing",
@@ -157,8 +156,7 @@ def _moving(
             )
         return
     if not having:
-        if with_shape:
-            link = with_shape[0]
+        if link is not None:
             yield MISSING_INERTIAL.report(
                 f"link {link.name!r} has collision geometry and {_moves(joint)} but no <inertial>",
                 link.source,

@@ -131,10 +131,10 @@ def _describe(
         return None
     if _off_diagonal(seen):
         return None
-    diagonal = (seen[0][0], seen[1][1], seen[2][2])
+    on_diagonal = (seen[0][0], seen[1][1], seen[2][2])
     if isinstance(shape, Box):
-        total = diagonal[0] + diagonal[1] + diagonal[2]
-        xx, yy, zz = (6.0 * (total - 2.0 * moment) / mass for moment in diagonal)
+        total = on_diagonal[0] + on_diagonal[1] + on_diagonal[2]
+        xx, yy, zz = (6.0 * (total - 2.0 * moment) / mass for moment in on_diagonal)
         if xx < 0 or yy < 0 or zz < 0:
             return None
         x, y, z = math.sqrt(xx), math.sqrt(yy), math.sqrt(zz)
@@ -145,16 +145,16 @@ def _describe(
         )
     # A cylinder: its axis is where the odd moment out is; with three equal moments
     # (1, 1, 1, a placeholder) any axis fits, and only the size can be wrong.
-    equal = max(diagonal) - min(diagonal) <= MISMATCH * max(diagonal)
+    equal = max(on_diagonal) - min(on_diagonal) <= MISMATCH * max(on_diagonal)
     k = (
         2
         if equal
-        else min(range(3), key=lambda i: abs(diagonal[(i + 1) % 3] - diagonal[(i + 2) % 3]))
+        else min(range(3), key=lambda i: abs(on_diagonal[(i + 1) % 3] - on_diagonal[(i + 2) % 3]))
     )
-    across = (diagonal[(k + 1) % 3] + diagonal[(k + 2) % 3]) / 2.0
-    if abs(diagonal[(k + 1) % 3] - diagonal[(k + 2) % 3]) > MISMATCH * across:
+    across = (on_diagonal[(k + 1) % 3] + on_diagonal[(k + 2) % 3]) / 2.0
+    if abs(on_diagonal[(k + 1) % 3] - on_diagonal[(k + 2) % 3]) > MISMATCH * across:
         return None
-    radius = math.sqrt(max(0.0, 2.0 * diagonal[k] / mass))  # rounding may leave -1e-17
+    radius = math.sqrt(max(0.0, 2.0 * on_diagonal[k] / mass))  # rounding may leave -1e-17
     square = 12.0 * across / mass - 3.0 * radius * radius
     if square < 0:
         return None
