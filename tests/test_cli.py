@@ -7,6 +7,7 @@ import os
 import subprocess
 import sys
 from pathlib import Path
+from typing import IO
 
 import pytest
 from click.testing import CliRunner
@@ -376,3 +377,51 @@ def test_help_and_check_import_only_what_they_use() -> None:
     assert "fishbot_urdf.cli.check" in loaded
     assert not loaded & drawn
     assert "fishbot_urdf.expand" not in loaded  # a URDF file needs no xacro
+
+
+def _python(
+    code: str, stdout: int | IO[bytes] = subprocess.PIPE
+) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-c", code], stdout=stdout, stderr=subprocess.PIPE, text=True, check=False
+    )
+
+
+@pytest.mark.parametrize(("argv", "status"), [(FIRST, 0), (DATA / "invalid" / "cycle.urdf", 1)])
+def test_the_command_ends_its_process_with_its_output_and_status_and_nothing_taken_apart(
+    argv: Path, status: int
+) -> None:
+    ending = "import atexit\natexit.register(lambda: print('taken apart'))\n"
+    own = f"import sys\nsys.argv = ['fishbot', 'check', {str(argv)!r}]\n"
+    ended = _python(f"{ending}{own}from fishbot_urdf.cli import main\nmain()\n")
+    assert ended.returncode == status
+    assert ended.stdout == run("check", str(argv))[1]  # the tree, all of it
+    assert "taken apart" not in ended.stdout
+    given = _python(f"{ending}from fishbot_urdf.cli import main\nmain(['check', {str(argv)!r}])\n")
+    assert given.returncode == status
+    assert given.stdout.endswith("taken apart\n")  # an argv given: SystemExit as usual
+
+
+@pytest.mark.parametrize(
+    ("code", "status", "said"),
+    [("None", 0, ""), ("1", 1, ""), ("'stopped'", 1, "stopped\n")],
+)
+def test_the_process_ends_as_python_would_on_system_exit(code: str, status: int, said: str) -> None:
+    ended = _python(
+        f"from fishbot_urdf.cli import _end_process\nprint('out')\n_end_process({code})\n"
+    )
+    assert (ended.returncode, ended.stdout, ended.stderr) == (status, "out\n", said)
+
+
+def test_output_that_cannot_be_written_at_the_end_is_one_line_and_status_2() -> None:
+    if not Path("/dev/full").exists():
+        pytest.skip("this system has no /dev/full to fill")
+    code = (  # stdout buffered, as for a file (Python writes through to a device)
+        "import io, sys\nfrom fishbot_urdf.cli import _end_process\n"
+        "sys.stdout = io.TextIOWrapper(io.BufferedWriter(io.FileIO(1, 'w'), 1 << 16))\n"
+        "sys.stdout.write('x')\n"
+    )
+    with open("/dev/full", "wb") as full:
+        ended = _python(f"{code}_end_process(0)\n", stdout=full)
+    assert ended.returncode == 2
+    assert ended.stderr == "<stdout>: error: cannot write: No space left on device [io]\n"

@@ -7,6 +7,7 @@ problem, 130 interrupted (Ctrl-C), 143 terminated (SIGTERM).
 
 from __future__ import annotations
 
+import contextlib
 import gc
 import importlib
 import os
@@ -108,15 +109,10 @@ def main(argv: Sequence[str] | None = None) -> NoReturn:
     """Entry point of the `fishbot` console script and of `python -m fishbot_urdf`.
 
     Exit status: 0 ok, 1 the robot has errors, 2 usage, configuration or I/O problem, 130
-    interrupted (Ctrl-C), 143 terminated (SIGTERM).
+    interrupted (Ctrl-C), 143 terminated (SIGTERM). With no ``argv`` (the command line is the
+    process's own), the process ends once its output is flushed, without taking apart the
+    objects the command built; given ``argv``, it raises SystemExit as usual.
     """
-    import signal
-
-    for name in ("stdout", "stderr"):  # closed by the caller (`>&-`): output goes nowhere
-        if getattr(sys, name) is None:
-            setattr(sys, name, open(os.devnull, "w", encoding="utf-8"))  # noqa: SIM115
-    if threading.current_thread() is threading.main_thread():
-        signal.signal(signal.SIGTERM, _terminate)
     # A command builds one robot's objects and ends: the cycle collector's passes over them
     # find nothing, as the model holds no cycles, and cost a big robot's check 4% of its time
     # even when run a hundred times less often than Python's default. So it is off (a xacro
@@ -124,6 +120,27 @@ def main(argv: Sequence[str] | None = None) -> NoReturn:
     # until stopped, turns it on again.
     thresholds = gc.get_threshold()
     gc.set_threshold(0, *thresholds[1:])
+    try:
+        _run(argv)
+    except SystemExit as done:
+        if argv is None:
+            # Freeing a robot object by object takes time its size makes long (0.2 s for
+            # 100,000 links, and more for the collector's first pass over them once it is
+            # on again): the process's end frees it all at once.
+            _end_process(done.code)
+        raise
+    finally:
+        gc.set_threshold(*thresholds)
+
+
+def _run(argv: Sequence[str] | None) -> NoReturn:
+    import signal
+
+    for name in ("stdout", "stderr"):  # closed by the caller (`>&-`): output goes nowhere
+        if getattr(sys, name) is None:
+            setattr(sys, name, open(os.devnull, "w", encoding="utf-8"))  # noqa: SIM115
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGTERM, _terminate)
     try:
         cli.main(
             args=list(argv) if argv is not None else None,
@@ -139,9 +156,32 @@ def main(argv: Sequence[str] | None = None) -> NoReturn:
         sys.exit(exc.exit_code)
     except BrokenPipeError:
         _quiet_exit(0)
-    finally:
-        gc.set_threshold(*thresholds)
     sys.exit(0)
+
+
+def _end_process(code: object) -> NoReturn:
+    """End the process as Python would on SystemExit(code), without its clean-up."""
+    if code is None:
+        status = 0
+    elif isinstance(code, int):
+        status = code
+    else:
+        print(code, file=sys.stderr)
+        status = 1
+    try:
+        sys.stdout.flush()
+    except BrokenPipeError:
+        pass  # the reader has gone: nothing more to say
+    except OSError as exc:  # a full disk
+        from ._common import EXIT_USAGE, report_unwritten
+
+        report_unwritten(exc)
+        status = max(status, EXIT_USAGE)
+    except ValueError:
+        pass  # closed by the command itself
+    with contextlib.suppress(OSError, ValueError):
+        sys.stderr.flush()
+    os._exit(status)
 
 
 def _quiet_exit(status: int) -> NoReturn:

@@ -217,8 +217,13 @@ def to_stdout(data: bytes, *, flush: bool = True) -> None:
     except BrokenPipeError:
         stop_quietly()
     except OSError as exc:  # a full disk, a closed terminal: one line, no traceback
-        emit_findings([fail(InputError(f"cannot write: {exc.strerror}", path="<stdout>"))])
+        report_unwritten(exc)
         stop_quietly(EXIT_USAGE)
+
+
+def report_unwritten(exc: OSError) -> None:
+    """The one line for output that could not be written to stdout."""
+    emit_findings([fail(InputError(f"cannot write: {exc.strerror}", path="<stdout>"))])
 
 
 def stop_quietly(status: int = EXIT_OK) -> NoReturn:
