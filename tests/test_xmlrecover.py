@@ -12,9 +12,11 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 from conftest import CORPUS, VALID, run_check_urdf, xacro_command
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from xml_survey import CASES
 
-from fishbot_urdf import XmlSyntaxError, check_file
+from fishbot_urdf import XmlSyntaxError, check_file, xmlrecover
 from fishbot_urdf.cli import cli
 from fishbot_urdf.diagnostics import Severity
 from fishbot_urdf.parse import read
@@ -396,3 +398,11 @@ def test_what_xacro_makes_of_the_fixtures() -> None:
     }
     assert '<robot name="xml">' in outputs["escape_doctype_entity"]
     assert '<link name="tool_\u00e4"/>' in outputs["encoding_mislabelled"]
+
+
+@settings(max_examples=500, deadline=None)
+@given(st.text(alphabet="<?>x ", max_size=30))
+def test_instructions_holding_gt_are_found_as_the_pattern_finds_them(text: str) -> None:
+    data = text.encode()
+    found = any(b">" in m[0][2:-2] for m in xmlrecover._PI.finditer(data))
+    assert xmlrecover._instruction_holding_gt(data) is found
