@@ -70,43 +70,100 @@ def _outcome(path: Path) -> object:
     return robot, places, parsed.diagnostics, parsed.references
 
 
+def _by_element(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Big files read by lxml's stream an element at a time, not cut in pieces."""
+    monkeypatch.setattr(xmlsource._Pieces, "cut", classmethod(lambda cls, data: None))
+
+
+# How a big file may be streamed: in pieces (of a few bytes: every link and joint a piece of
+# its own; or of an eighth of the file, their places found in a thread), or by element.
+_STREAMS = ["small pieces", "pieces alongside", "elements"]
+
+
+def _stream_by(how: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(xmlsource, "STREAM_FROM", 0)  # every file streamed
+    if how == "small pieces":
+        monkeypatch.setattr(xmlsource, "PIECE", 1)
+    elif how == "pieces alongside":
+        monkeypatch.setattr(xmlsource, "LOCATE_ALONGSIDE_FROM", 0)
+    else:
+        _by_element(monkeypatch)
+
+
+@pytest.mark.parametrize("how", _STREAMS)
 @pytest.mark.parametrize("path", _FILES, ids=lambda p: str(p.relative_to(_DATA)))
 def test_a_streamed_file_reads_as_the_whole_file(
-    path: Path, monkeypatch: pytest.MonkeyPatch
+    path: Path, how: str, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     whole = _outcome(path)
-    monkeypatch.setattr(xmlsource, "STREAM_FROM", 0)  # every file streamed
-    assert _outcome(path) == whole
+    places = _every_place(whole[0])
+    _stream_by(how, monkeypatch)
+    streamed = _outcome(path)
+    assert streamed == whole
+    assert _every_place(streamed[0]) == places
 
 
-def test_a_stream_drops_what_it_handed_out_and_never_holds_the_whole_tree() -> None:
+@pytest.mark.parametrize("how", _STREAMS)
+def test_a_stream_drops_what_it_handed_out_and_never_holds_the_whole_tree(
+    how: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    if how == "elements":
+        _by_element(monkeypatch)
     count = 10_000  # about 0.4 MB of XML
     links = "".join(f'<link name="l{i}"><visual/></link><!-- {i} -->' for i in range(count))
     document = xmlsource.read_xml(f'<robot name="r">{links}</robot>'.encode(), stream=True)
     seen, held = [], 0
     for child in document.children():
-        assert document.root[0] is child  # all handed out before it is gone, comments too
-        held = max(held, len(document.root))
-        seen.append(child.get("name"))
+        if isinstance(child.tag, str):
+            assert child[0].tag == "visual"  # whole
+            seen.append(child.get("name"))
+        held = max(held, sum(isinstance(node.tag, str) for node in child.getparent()))
     document.finish()
     assert seen == [f"l{i}" for i in range(count)]
-    assert held < count / 4  # what lxml read ahead, not the 20 000 nodes of the tree
+    assert held < count / 4  # what lxml read ahead, or a piece: not the whole tree
 
 
-@pytest.mark.parametrize(
-    "tail",
-    [
-        "<link name='b'></joint></robot>",  # a mismatched end tag after the first element
-        "<link name='b'><x:y/></link></robot>",  # an undeclared prefix: a whole read refuses it
-        "<link name='b'/></robot><link/>",  # an element after the root
-    ],
-)
-def test_a_stream_that_breaks_later_is_read_whole(tail: str) -> None:
+def test_a_stream_by_element_drops_each_element_once_the_next_is_asked_for(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    _by_element(monkeypatch)
+    links = "".join(f'<link name="l{i}"/><!-- {i} -->' for i in range(100))
+    document = xmlsource.read_xml(f'<robot name="r">{links}</robot>'.encode(), stream=True)
+    for child in document.children():
+        assert document.root[0] is child  # the comments before it gone too
+
+
+_BROKEN_LATER = [
+    "<link name='b'></joint></robot>",  # a mismatched end tag after the first element
+    "<link name='b'><x:y/></link></robot>",  # an undeclared prefix: a whole read refuses it
+    "<link name='b'/></robot><link/>",  # an element after the root
+    # an undeclared prefix after more elements than are handed out between two looks
+    "<link name='b'/>" * 3000 + "<x:y/></robot>",
+]
+
+
+@pytest.mark.parametrize("tail", _BROKEN_LATER)
+def test_a_stream_by_element_that_breaks_later_is_unstreamable(
+    tail: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    _by_element(monkeypatch)
     data = f"<robot name='r'><link name='a'/>{tail}".encode()
     document = xmlsource.read_xml(data, stream=True)
     with pytest.raises(xmlsource.Unstreamable):
         list(document.children())
         document.finish()
+
+
+@pytest.mark.parametrize("how", _STREAMS)
+@pytest.mark.parametrize("tail", [*_BROKEN_LATER, "<link name='b'/></robot><!-- end -->"])
+def test_a_stream_that_breaks_later_reads_as_the_whole_file(
+    tail: str, how: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    path = tmp_path / "robot.urdf"
+    path.write_text(f"<robot name='r'><link name='a'/><joint name='j'/>{tail}")
+    whole = _outcome(path)
+    _stream_by(how, monkeypatch)
+    assert _outcome(path) == whole
 
 
 class _Comparing(Locator):
@@ -198,3 +255,25 @@ def test_a_locator_that_fails_alongside_is_made_again_in_the_caller(
     assert _outcome(path) == expected
     assert failed == ["fishbot-locate"]
     assert capfd.readouterr() == ("", "")  # nothing said about it
+
+
+def test_a_piece_cut_inside_an_element_is_joined_to_the_next(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    monkeypatch.setattr(xmlsource, "PIECE", 1)  # a cut after every </link> and </joint>
+    control = "".join(
+        f'<joint name="j{i}"><state_interface name="position"/></joint>' for i in range(3)
+    )
+    data = (
+        '<robot name="r"><link name="a"/><link name="b"></link>'
+        '<joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>'
+        '<transmission name="t"><joint name="j"><hardwareInterface>x</hardwareInterface></joint>'
+        f"</transmission><ros2_control name='c' type='system'>{control}</ros2_control></robot>"
+    ).encode()
+    pieces = xmlsource._Pieces.cut(data)
+    assert pieces is not None
+    assert len(pieces._bounds) == 8  # the root's start tag, 6 cuts (4 inside elements), the end
+    document = xmlsource.read_xml(data, stream=True)
+    handed = [(child.tag, child.get("name")) for child in document.children()]
+    document.finish()  # no Unstreamable: each piece cut inside an element was joined on
+    assert handed == [(child.tag, child.get("name")) for child in etree.fromstring(data)]

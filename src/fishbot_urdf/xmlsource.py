@@ -5,10 +5,11 @@ from __future__ import annotations
 import io
 import itertools
 import re
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
-from typing import Any
+from typing import Any, Generic, NamedTuple, TypeVar
 
 from lxml import etree
 
@@ -19,6 +20,7 @@ from .inputs import read_input
 from .location import Location
 
 STRING_PATH = "<string>"
+_T = TypeVar("_T")
 
 
 def read_bytes(path: str | Path) -> bytes:
@@ -48,6 +50,9 @@ class Unstreamable(Exception):
     (`read_xml` with ``stream=False``) to learn what urdfdom makes of it."""
 
 
+_CHECK_EVERY = 1024  # elements handed out between two looks at a stream's error log
+
+
 class _Stream:
     """The elements directly inside the root, each handed out once lxml has read it whole,
     and dropped from the tree (with the comments before it) when the next one is asked for."""
@@ -71,13 +76,17 @@ class _Stream:
         """Raises Unstreamable when lxml refuses the file further on."""
         root = self.root
         try:
+            unchecked = 0
             for _, element in self._events:
                 if element.getparent() is not root:
                     continue
                 before = root.index(element)  # those handed out, and comments between them
                 if before:
                     del root[:before]
-                self._check()
+                unchecked += 1
+                if unchecked == _CHECK_EVERY:
+                    self._check()
+                    unchecked = 0
                 yield element
         except etree.XMLSyntaxError as exc:
             raise Unstreamable from exc
@@ -93,7 +102,10 @@ class _Stream:
         self._check()
 
     def _check(self) -> None:
-        # What a whole read refuses and a stream only logs (an undeclared namespace prefix).
+        # What a whole read refuses and a stream only logs (an undeclared namespace prefix),
+        # looked for every _CHECK_EVERY elements so that a faulty stream stops early (lxml
+        # raises at the end too). Not at each: every look copies the log (0.14 s in all for
+        # the 200,000 elements of the 100,000-link tree's robot).
         if self._parser.error_log.filter_from_errors():
             raise Unstreamable
 
@@ -112,7 +124,7 @@ class XmlDocument:
     root: etree._Element
     locator: Locator
     recoveries: tuple[Diagnostic, ...]
-    _stream: _Stream | None = None
+    _stream: _Stream | _Pieces | None = None
 
     def children(self) -> Iterator[etree._Element]:
         """What the root holds (comments and processing instructions too, unless streamed),
@@ -157,15 +169,11 @@ def read_xml(
     """
     _check_start(data, path)
     if len(data) >= STREAM_FROM if stream is None else stream:
-        try:
-            streamed = _Stream(data)
-        except Unstreamable:
-            pass  # read whole, below: for urdfdom's reading, or the strict parser's message
-        else:
-            if not xmlrecover.needed(data, _line_end(data, streamed.root.sourceline)):
-                return XmlDocument(streamed.root, Locator(data, path, origins), (), streamed)
+        streamed = _streamed(data, path, origins)
+        if streamed is not None:
+            return streamed
     strict: XmlSyntaxError | None = None
-    located = _Locating(data, path, origins)
+    located = _Alongside(partial(_located, data, path, origins), len(data))
     try:
         root = _parse(data, path)
     except XmlSyntaxError as error:
@@ -208,6 +216,159 @@ def read_xml(
     return XmlDocument(root, locator, tuple(findings))
 
 
+def _streamed(data: bytes, path: str, origins: Sequence[Location] | None) -> XmlDocument | None:
+    """``data`` read a piece or an element at a time; None if it is to be read whole (it is
+    not clean XML, or urdfdom reads it otherwise)."""
+    pieces = _Pieces.cut(data) if origins is None else None
+    if pieces is not None:
+        if xmlrecover.needed(data, pieces.head_end):
+            return None
+        try:
+            return XmlDocument(pieces.start(path), pieces.locator, (), pieces)
+        except Unstreamable:
+            return None
+    try:
+        stream = _Stream(data)
+    except Unstreamable:
+        return None  # for urdfdom's reading, or the strict parser's message
+    if xmlrecover.needed(data, _line_end(data, stream.root.sourceline)):
+        return None
+    return XmlDocument(stream.root, Locator(data, path, origins), (), stream)
+
+
+PIECE = 4 * 2**20
+"""The most bytes of a big file's robot parsed at once (see `_Pieces`)."""
+
+# The root's start tag (a self-closing root holds nothing to cut).
+_ROOT_TAG = re.compile(rb"<([^\s/>]+)(?:\s+[^\s=/>]+\s*=\s*(?:\"[^\"]*\"|'[^']*'))*\s*>")
+# Where a piece may end: after the end tag of an element <robot> holds.
+_CUT = re.compile(rb"</(?:link|joint)>")
+_JOINS = 8  # pieces joined on to one that lxml refused before the file is read otherwise
+
+
+class _Pieces:
+    """A big file's robot read a piece at a time. The root is read first, holding nothing;
+    then each piece of what it holds, cut just after the end tag of a link or joint, is
+    parsed whole inside a copy of the root's start tag (lxml lets go of the interpreter while
+    it parses), while a thread finds the piece's start tags and their places. Only one
+    piece's tree is held at once.
+
+    A piece that lxml refuses (the file is not clean XML, or was cut where it should not
+    have been) raises Unstreamable: the file is then read whole.
+    """
+
+    __slots__ = ("_bounds", "_close", "_data", "_next", "locator")
+
+    def __init__(self, data: bytes, bounds: list[int], close: bytes) -> None:
+        self._data = data
+        self._bounds = bounds  # where the root's start tag ends, each piece ends, the file ends
+        self._close = close  # the root's end tag
+        self._next = 0  # the next piece to parse
+        self.locator: Locator
+
+    @property
+    def head_end(self) -> int:
+        """Where the root's start tag ends."""
+        return self._bounds[0]
+
+    @classmethod
+    def cut(cls, data: bytes) -> _Pieces | None:
+        """Where to cut ``data`` (None: it cannot be cut, and is to be read otherwise)."""
+        first = _MARKUP.search(data)
+        while first is not None and not first.lastindex:  # the prolog's comments, ...
+            first = _MARKUP.search(data, first.end())
+        head = None if first is None else _ROOT_TAG.match(data, first.start())
+        if head is None or data.find(b"<!DOCTYPE", 0, head.start()) >= 0:
+            return None
+        close = b"</" + head[1]
+        last = data.rfind(close)
+        if last < head.end():
+            return None
+        size = min(PIECE, max(len(data) // 8, 1))
+        bounds = [head.end()]
+        near = max(size, 2**16)
+        while last - bounds[-1] > size:
+            end = _cut(data, bounds[-1] + size, near, last)
+            if end is None:
+                if last - bounds[-1] > size + near:
+                    return None  # nowhere to cut near: read it an element at a time
+                break  # the rest is the last piece
+            bounds.append(end)
+        bounds.append(len(data))
+        return cls(data, bounds, close + b">")
+
+    def start(self, path: str) -> etree._Element:
+        """Read the root, holding nothing yet.
+
+        Raises:
+            Unstreamable: lxml refuses it.
+        """
+        self.locator = locator = Locator.growing(self._data, path)
+        head_end = self.head_end
+        locator.add(locator.stretch(0, head_end))
+        return _parse_piece(self._data[:head_end] + self._close, path)
+
+    def __iter__(self) -> Iterator[etree._Element]:
+        """What <robot> holds, piece after piece (each parsed once the last is handed out).
+
+        Raises:
+            Unstreamable: lxml refuses a piece.
+        """
+        while self._next < len(self._bounds) - 1:
+            yield from self._parse_next()
+
+    def finish(self) -> None:
+        """Parse what was not asked for, to learn whether it is XML.
+
+        Raises:
+            Unstreamable: It is not clean XML.
+        """
+        for _ in self:
+            pass
+
+    def _parse_next(self) -> etree._Element:
+        data, bounds, index, locator = self._data, self._bounds, self._next, self.locator
+        head = data[: bounds[0]]
+        joined = 0
+        while True:
+            start, end = bounds[index], bounds[index + 1]
+            piece = (
+                head + data[start:] if end == len(data) else head + data[start:end] + self._close
+            )
+            located = _Alongside(partial(locator.stretch, start, end), end - start)
+            try:
+                root = _parse(piece, locator.path)
+            except XmlSyntaxError as exc:
+                # Cut inside an element (after a <joint> of <ros2_control>, say), or a fault:
+                # try again with the next piece joined on, a few times; then read the file
+                # otherwise.
+                if end == len(data) or joined == _JOINS:
+                    raise Unstreamable from exc
+                del bounds[index + 1]
+                joined += 1
+                continue
+            finally:
+                located.join()  # (no thread is left running, whatever happens)
+            locator.add(located.result())
+            self._next = index + 1
+            return root
+
+
+def _parse_piece(piece: bytes, path: str) -> etree._Element:
+    try:
+        return _parse(piece, path)
+    except XmlSyntaxError as exc:
+        raise Unstreamable from exc
+
+
+def _cut(data: bytes, target: int, near: int, last: int) -> int | None:
+    """Where a piece may end: just after the first end tag of a link or joint from ``target``
+    on, at most ``near`` bytes further and before ``last`` (None if there is none). It may be
+    inside another element: lxml then refuses the piece (see `_Pieces`)."""
+    found = _CUT.search(data, target, min(last, target + near))
+    return None if found is None else found.end()
+
+
 LOCATE_ALONGSIDE_FROM = 512 * 2**10
 """Files at least this big (bytes) are scanned for their elements' places while lxml parses
 them, in a thread of their own: lxml lets go of the interpreter while it parses. (Below, the
@@ -215,43 +376,54 @@ thread's start and the interpreter's hand-over cost about what it saves: a 600 K
 in 0.92 of the time, real robots of 60 to 200 KB in 1.05.)"""
 
 
-class _Locating:
-    """A `Locator` with every location made, for a document being parsed meanwhile."""
+class _Alongside(Generic[_T]):
+    """Work on a file's places done in a thread of its own while lxml parses the file (lxml
+    lets go of the interpreter while it parses), when the file is big enough for the thread
+    to pay; done in the caller when it is not, or when it failed in the thread."""
 
-    __slots__ = ("_args", "_done", "_thread")
+    __slots__ = ("_done", "_thread", "_work")
 
-    def __init__(self, data: bytes, path: str, origins: Sequence[Location] | None) -> None:
-        self._args = (data, path, origins)
-        self._done: list[Locator] = []
+    def __init__(self, work: Callable[[], _T], size: int) -> None:
+        self._work = work
+        self._done: list[_T] = []
         self._thread = None
-        if len(data) >= LOCATE_ALONGSIDE_FROM:
+        if size >= LOCATE_ALONGSIDE_FROM:
             import threading
 
-            self._thread = threading.Thread(target=self._locate, name="fishbot-locate", daemon=True)
+            self._thread = threading.Thread(target=self._run, name="fishbot-locate", daemon=True)
             self._thread.start()
 
-    def _locate(self) -> None:
+    def _run(self) -> None:
         try:
-            locator = Locator(*self._args)
-            locator.locations()
-        except Exception:  # made again in the caller, which then raises
+            done = self._work()
+        except Exception:  # done again in the caller, which then raises
             return
-        self._done.append(locator)
+        self._done.append(done)
 
     def join(self) -> None:
         """Wait for the thread, if there is one."""
         if self._thread is not None:
             self._thread.join()
 
-    def result(self) -> Locator:
-        """The locator, once joined (made here if there was no thread, or it failed)."""
-        return self._done[0] if self._done else Locator(*self._args)
+    def result(self) -> _T:
+        """What the work gave, once joined (done here if there was no thread, or it failed)."""
+        return self._done[0] if self._done else self._work()
+
+
+def _located(data: bytes, path: str, origins: Sequence[Location] | None) -> Locator:
+    """A `Locator` with every location made."""
+    locator = Locator(data, path, origins)
+    locator.locations()
+    return locator
+
+
+_OPENS = re.compile(rb"[\xef\xbb\xbf \t\r\n\v\f]*<")  # what may come before the first '<'
 
 
 def _check_start(data: bytes, path: str) -> None:
-    if not data.strip():
+    if not data or data.isspace():  # (neither copies the file, as strip() would)
         raise XmlSyntaxError('the file is empty (a URDF starts with <robot name="...">)', path=path)
-    if not data.lstrip(b"\xef\xbb\xbf \t\r\n\v\f").startswith(b"<") and not data.startswith(
+    if not _OPENS.match(data) and not data.startswith(
         (b"\xff\xfe", b"\xfe\xff")  # UTF-16 byte order marks
     ):
         raise XmlSyntaxError(
@@ -347,6 +519,12 @@ _RAW_WHITESPACE = re.compile(
 _NOT_IN_PATTERN = bytes(b for b in range(256) if b not in b"=\"'<\t\n\r")
 
 
+def _start_tags(data: bytes, start: int = 0, end: int | None = None) -> list[int]:
+    """The offset of every start tag in ``data[start:end]`` (which cuts no markup)."""
+    scan = _MARKUP.finditer(data, start) if end is None else _MARKUP.finditer(data, start, end)
+    return [m.start() for m in scan if m.lastindex]
+
+
 def _has_raw_whitespace(data: bytes) -> bool:
     """Whether an attribute value in ``data`` holds a raw tab or line break."""
     # First on the bytes the pattern looks at (the dropped ones are spaces, which it lets
@@ -364,14 +542,25 @@ def _width(data: bytes, start: int, end: int, ascii_only: bool) -> int:
     return len(data[start:end].decode("utf-8", "replace"))
 
 
-def _locations(data: bytes, path: str, starts: Sequence[int], ascii_only: bool) -> list[Location]:
+_TOP = (1, 0, 0, 0)  # where counting starts: line 1 from offset 0, no character counted
+
+
+def _locations(
+    data: bytes,
+    path: str,
+    starts: Sequence[int],
+    ascii_only: bool,
+    counted: tuple[int, int, int, int] = _TOP,
+) -> tuple[list[Location], tuple[int, int, int, int]]:
     """1-based line and column (in characters) of every offset of ``starts`` (increasing),
     in one pass: each stretch of ``data`` between two offsets is looked at once, so a long
-    one-line file stays linear."""
+    one-line file stays linear. ``counted`` carries the count on from where an earlier call
+    ended (its line, where that starts, its last offset, the characters counted on the
+    line), for a file located a stretch at a time; the count at the end is returned too."""
     new = tuple.__new__  # a Location without the NamedTuple's Python-level __new__
     count, rfind = data.count, data.rfind
     found: list[Location] = []
-    line, line_start, previous, chars = 1, 0, 0, 0
+    line, line_start, previous, chars = counted
     for offset in starts:
         newlines = count(b"\n", previous, offset)
         if newlines:
@@ -385,7 +574,15 @@ def _locations(data: bytes, path: str, starts: Sequence[int], ascii_only: bool) 
             column = chars + 1
         previous = offset
         found.append(new(Location, (path, line, column)))
-    return found
+    return found, (line, line_start, previous, chars)
+
+
+class Stretch(NamedTuple):
+    """A stretch of a file as a growing `Locator` scanned it."""
+
+    starts: list[int]  # the offset of each start tag
+    places: list[Location]  # the place of each
+    counted: tuple[int, int, int, int]  # the line count where the stretch ends (_locations)
 
 
 class Locator:
@@ -402,6 +599,7 @@ class Locator:
 
     __slots__ = (
         "_ascii",
+        "_counted",
         "_data",
         "_exact",
         "_index",
@@ -430,10 +628,11 @@ class Locator:
         self._data = data
         self._ascii = data.isascii()
         self.path = path
+        self._counted = _TOP  # where the places found so far end (see `growing`)
         if starts is not None:
             self._starts = list(starts)
         else:
-            self._starts = [m.start() for m in _MARKUP.finditer(data) if m.lastindex]
+            self._starts = _start_tags(data)
         # Outside a DOCTYPE's declarations the scan finds exactly the start tags lxml reads
         # (comments, CDATA sections and processing instructions are matched whole), so the
         # next start tag is the element's: no name needs to be compared.
@@ -451,6 +650,30 @@ class Locator:
         self.raw_whitespace = _has_raw_whitespace(data)
         self.rewind()
 
+    @classmethod
+    def growing(cls, data: bytes, path: str) -> Locator:
+        """A locator of ``data`` (with no DOCTYPE) that knows no start tag yet: each stretch of
+        the file is scanned (`stretch`) and its places added (`add`), in order, before its
+        elements are located."""
+        locator = cls(data, path, starts=())
+        locator._exact = data.find(b"<!DOCTYPE") < 0
+        locator._locations = []
+        return locator
+
+    def stretch(self, start: int, end: int) -> Stretch:
+        """The start tags of ``data[start:end]``, the stretch after those added, and their
+        places. Nothing is added: this may run in a thread while the stretch is parsed."""
+        found = _start_tags(self._data, start, end)
+        return Stretch(found, *_locations(self._data, self.path, found, self._ascii, self._counted))
+
+    def add(self, stretch: Stretch) -> None:
+        """Add the places of a stretch found by `stretch` (a locator made by `growing`)."""
+        places = self._locations
+        assert isinstance(places, list), "not a growing locator"
+        self._starts.extend(stretch.starts)
+        places.extend(stretch.places)
+        self._counted = stretch.counted
+
     def rewind(self) -> None:
         """Start again from the top of the document."""
         self._index = 0  # next entry of _starts to hand out
@@ -459,7 +682,7 @@ class Locator:
     def locations(self) -> Sequence[Location]:
         """The location of every start tag, in one pass (made on first use)."""
         if self._locations is None:
-            self._locations = _locations(self._data, self.path, self._starts, self._ascii)
+            self._locations = _locations(self._data, self.path, self._starts, self._ascii)[0]
         return self._locations
 
     def locate(self, element: etree._Element) -> Location:
