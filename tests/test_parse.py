@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from unittest import mock
 from xml.sax.saxutils import escape
 
 import pytest
@@ -30,7 +31,7 @@ from fishbot_urdf import (
     parse,
     to_urdf,
 )
-from fishbot_urdf.parse.values import to_double, to_doubles
+from fishbot_urdf.parse.values import plain_numbers, to_double, to_doubles
 
 ALL = DATA / "valid" / "all_elements.urdf"
 
@@ -261,3 +262,49 @@ def test_a_xacro_substitution_left_in_a_urdf_is_named(attribute: str, rule: str)
         "this is a xacro substitution left unexpanded: check the .xacro file it came from, "
         "or expand that with xacro first"
     )
+
+
+_PLAIN = ["0", "1", "-2.5", "+3", ".5", "1e-3", "-0"]  # numbers as nearly every file writes them
+
+
+@given(st.lists(st.one_of(st.none(), st.sampled_from([*_PIECES, *_PLAIN, " 1", "1 "])), max_size=6))
+def test_plain_numbers_are_the_numbers_read_one_by_one(texts: list[str | None]) -> None:
+    one_by_one = [None if text is None else to_double(text) for text in texts]
+    plain = plain_numbers(texts)
+    assert plain is None or plain == one_by_one
+    if all(text in _PLAIN for text in texts):
+        assert plain is not None
+
+
+@settings(max_examples=200)
+@given(
+    st.lists(
+        st.one_of(st.none(), st.sampled_from([*_PIECES, *_PLAIN, " 1", "1 "])),
+        min_size=10,
+        max_size=10,
+    )
+)
+def test_inertia_and_limits_read_at_once_as_one_by_one(texts: list[str | None]) -> None:
+    names = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz", "effort", "velocity", "lower", "upper")
+    written = dict(zip(names, texts, strict=True))
+
+    def attributes(keys: tuple[str, ...]) -> str:
+        return " ".join(
+            f'{k}="{escape(written[k] or "", {chr(9): "&#9;"})}"'
+            for k in keys
+            if written[k] is not None
+        )
+
+    data = (
+        f'<robot name="r"><link name="a"><inertial><mass value="1"/>'
+        f"<inertia {attributes(names[:6])}/></inertial></link><link name='b'/>"
+        f'<joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+        f"<limit {attributes(names[6:])}/></joint></robot>"
+    ).encode()
+    at_once = fishbot_urdf.read(data)
+    with (
+        mock.patch("fishbot_urdf.parse._links.plain_numbers", return_value=None),
+        mock.patch("fishbot_urdf.parse._joints.plain_numbers", return_value=None),
+    ):
+        one_by_one = fishbot_urdf.read(data)
+    assert at_once == one_by_one

@@ -24,6 +24,7 @@ from ..model import (
 from ..rules.reading import DUPLICATE_ELEMENT, JOINT_TYPE, MISSING_ATTRIBUTE, MISSING_ELEMENT
 from ._base import Owner
 from ._links import LinkReader
+from .values import plain_numbers
 
 _TYPES = {t.value: t for t in JointType}
 _NO_ORIGIN = Origin()
@@ -60,39 +61,39 @@ class JointReader(LinkReader):
         name = self.text(el, at, "name", "joint") or ""
         owner = self.subject = Subject(Kind.JOINT, name)
         joint_type = self.joint_type(el, at, owner)
-        parts: dict[str, object] = {}
-        ends: dict[str, tuple[str, Location]] = {}
+        parts: dict[str, object] = {}  # what each child URDF defines gave, by tag
         extras: list[str] = []
+        locate = self.locator.locate
         for child in el:
             tag = child.tag
-            if not isinstance(tag, str):
-                continue
-            if tag not in _PARTS and tag not in _ENDS:
+            read = _PARTS.get(tag)  # (a comment's tag is a function: no part)
+            if read is not None:
+                c_at = locate(child)
+                if tag in parts:
+                    self.locator.skip_children(child)
+                    self.error(
+                        DUPLICATE_ELEMENT,
+                        f"{owner}: a second <{tag}> is ignored",
+                        c_at,
+                        f"a joint has at most one <{tag}>",
+                    )
+                else:
+                    parts[tag] = read(self, child, c_at, owner)
+            elif isinstance(tag, str):
                 extras.append(self.extra(child))
-                continue
-            c_at = self.locator.locate(child)
-            if tag in parts or tag in ends:
-                self.locator.skip_children(child)
-                self.error(
-                    DUPLICATE_ELEMENT,
-                    f"{owner}: a second <{tag}> is ignored",
-                    c_at,
-                    f"a joint has at most one <{tag}>",
-                )
-            elif tag in _ENDS:
-                ends[tag] = (self.text(child, c_at, "link", owner) or "", c_at)
-            else:
-                parts[tag] = _PARTS[tag](self, child, c_at, owner)
+        ends: list[tuple[str, Location | None]] = []
         for end in ("parent", "child"):
-            if end not in ends:
+            found = parts.get(end)
+            if found is None:
                 self.error(
                     MISSING_ELEMENT,
                     f"{owner}: has no <{end}>",
                     at,
                     f'write <{end} link="LINK_NAME"/>',
                 )
-        parent, parent_at = ends.get("parent", ("", None))
-        child_name, child_at = ends.get("child", ("", None))
+                found = ("", None)
+            ends.append(found)  # type: ignore[arg-type]
+        (parent, parent_at), (child_name, child_at) = ends
         return _new_joint(
             name,
             joint_type,
@@ -111,6 +112,10 @@ class JointReader(LinkReader):
             child_at,
         )
 
+    def end(self, el: etree._Element, at: Location, owner: Owner) -> tuple[str, Location]:
+        """A <parent> or <child>: the link it names, and where it is."""
+        return self.text(el, at, "link", owner) or "", at
+
     def axis(self, el: etree._Element, at: Location, owner: Owner) -> tuple[float, ...]:
         if el.get("xyz") is None:
             # urdfdom keeps the 1 0 0 default only when there is no <axis> at all; an <axis>
@@ -126,6 +131,13 @@ class JointReader(LinkReader):
         return self.vector3(el, at, "xyz", owner, DEFAULT_AXIS)
 
     def limit(self, el: etree._Element, at: Location, owner: Owner) -> Limit:
+        get = el.get
+        plain = plain_numbers(
+            [get("effort"), get("velocity"), get("lower", "0"), get("upper", "0")]
+        )
+        if plain is not None:
+            effort, velocity, lower, upper = plain
+            return _new_limit(effort, velocity, lower, upper, at)
         return _new_limit(
             self.number(el, at, "effort", owner, required=True),
             self.number(el, at, "velocity", owner, required=True),
@@ -164,8 +176,9 @@ class JointReader(LinkReader):
         )
 
 
-_ENDS = ("parent", "child")
-_PARTS: dict[str, Callable[[JointReader, etree._Element, Location, Owner], object]] = {
+_PARTS: dict[object, Callable[[JointReader, etree._Element, Location, Owner], object]] = {
+    "parent": JointReader.end,
+    "child": JointReader.end,
     "origin": JointReader.origin,
     "axis": JointReader.axis,
     "limit": JointReader.limit,

@@ -30,9 +30,11 @@ from ..rules.reading import (
     UNKNOWN_GEOMETRY,
 )
 from ._base import Owner, ReaderBase, xml_text
+from .values import plain_numbers
 
 _SHAPES = "<box>, <cylinder>, <sphere> or <mesh>"
 _NO_ORIGIN = Origin()  # frozen: one for every element that has no <origin>
+_MOMENTS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
 # The constructors of the model's classes, every field given in order: twice as fast as the
 # classes' own (a big robot is hundreds of thousands of these).
@@ -127,6 +129,12 @@ class LinkReader(ReaderBase):
                 mass = self.number(child, self.locator.locate(child), "value", owner, required=True)
             elif tag == "inertia":
                 c_at = self.locator.locate(child)
+                get = child.get
+                plain = plain_numbers([get(name) for name in _MOMENTS])
+                if plain is not None:
+                    ixx, ixy, ixz, iyy, iyz, izz = plain
+                    inertia = _new_inertia(ixx, ixy, ixz, iyy, iyz, izz, c_at)
+                    continue
                 number = self.number
                 inertia = _new_inertia(
                     number(child, c_at, "ixx", owner, required=True),

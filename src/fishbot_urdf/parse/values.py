@@ -49,3 +49,20 @@ def to_doubles(texts: Sequence[str]) -> list[float] | None:
             return None
         checked.append(number)
     return checked
+
+
+def plain_numbers(texts: Sequence[str | None]) -> list[float] | None:
+    """The numbers of ``texts`` when every one is a number written plainly, with no white
+    space at all (nearly always); else None, and each is to be read by ``to_double``, which
+    then gives these same numbers or refuses one."""
+    if None in texts:
+        return None
+    joined = "".join(texts)  # type: ignore[arg-type]
+    if not joined.isascii() or not joined.isprintable() or " " in joined or "_" in joined:
+        return None
+    try:
+        numbers = list(map(float, texts))  # type: ignore[arg-type]
+    except ValueError:
+        return None
+    total = sum(numbers)  # inf or nan if a number is (or, rarely, if the sum overflows)
+    return numbers if total - total == 0.0 else None
