@@ -238,11 +238,13 @@ def _candidates(
     given = ", ".join(sorted(packages))
     searched.append(f"the packages given ({given or 'none'})")
 
-    start = Path(near).resolve().parent if near is not None else None
+    # (os.path rather than pathlib: this runs for every package a robot names)
+    start = os.path.dirname(os.path.realpath(near)) if near is not None else None
     if start is not None:
-        for folder in (start, *start.parents):
-            if (folder / "package.xml").is_file() and package_name(folder / "package.xml") == name:
-                yield folder
+        for folder in _upwards(start):
+            manifest = os.path.join(folder, "package.xml")
+            if os.path.isfile(manifest) and package_name(manifest) == name:
+                yield Path(folder)
         searched.append(f"the folders above {start}")
 
     for entry in _path_list(env.get("ROS_PACKAGE_PATH", "")):
@@ -280,6 +282,16 @@ def _candidates(
             searched.append("ament_index_python")
 
 
+def _upwards(folder: str) -> Iterator[str]:
+    """``folder`` and each folder above it, up to the root."""
+    while True:
+        yield folder
+        parent = os.path.dirname(folder)
+        if parent == folder:
+            return
+        folder = parent
+
+
 def _path_list(value: str) -> list[str]:
     return [entry for entry in value.split(os.pathsep) if entry]
 
@@ -288,15 +300,16 @@ def _shown(value: str) -> str:
     return f" ({value})" if value else " (not set)"
 
 
-def _workspace_src(start: Path) -> Path | None:
+def _workspace_src(start: str) -> Path | None:
     """The ``src`` folder of the nearest colcon workspace holding ``start``."""
-    for folder in (start, *start.parents):
-        if folder.name == "src" and folder.parent != folder:
-            return folder
-        if (folder / "src").is_dir() and any(
-            (folder / marker).is_dir() for marker in ("build", "install", "log")
+    for folder in _upwards(start):
+        if os.path.basename(folder) == "src" and os.path.dirname(folder) != folder:
+            return Path(folder)
+        src = os.path.join(folder, "src")
+        if os.path.isdir(src) and any(
+            os.path.isdir(os.path.join(folder, marker)) for marker in ("build", "install", "log")
         ):
-            return folder / "src"
+            return Path(src)
     return None
 
 
