@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import builtins
 import os
 import sys
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -265,3 +267,27 @@ def test_a_finder_answers_as_find_package_once_per_package_and_folder(
         ("given", "urdf"),
         ("robot_description", "urdf"),  # the linked file, which really is elsewhere
     ]
+
+
+def test_ament_index_python_not_found_is_remembered_until_the_import_path_changes(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    monkeypatch.delitem(sys.modules, "ament_index_python")
+    monkeypatch.delitem(sys.modules, "ament_index_python.packages")
+    monkeypatch.setattr(sys, "path", [p for p in sys.path if not p.endswith("ament_stub")])
+    monkeypatch.setattr(packages, "_ament_missing_from", [])
+    tried: list[str] = []
+    real_import = builtins.__import__
+
+    def counting(name: str, *args: Any, **kwargs: Any) -> Any:
+        if name.startswith("ament_index_python"):
+            tried.append(name)
+        return real_import(name, *args, **kwargs)
+
+    monkeypatch.setattr(builtins, "__import__", counting)
+    assert packages._ament_lookup() is None
+    assert packages._ament_lookup() is None
+    assert tried == ["ament_index_python.packages"]  # looked for once
+    monkeypatch.syspath_prepend(str(Path(__file__).resolve().parent / "ament_stub"))
+    assert packages._ament_lookup() is not None  # a new import path: looked for again
+    assert len(tried) == 2

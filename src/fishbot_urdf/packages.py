@@ -15,8 +15,9 @@ Places are searched in this order, and the first that knows the package wins:
 from __future__ import annotations
 
 import os
+import sys
 from collections import deque
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from pathlib import Path
 
 from .errors import FishbotUrdfError, InputError
@@ -269,17 +270,36 @@ def _candidates(
                 yield found
             searched.append(f"the workspace {workspace}")
 
+    share_directory = _ament_lookup()
+    if share_directory is None:
+        searched.append("ament_index_python (not installed)")
+    else:
+        try:
+            yield Path(os.path.abspath(share_directory(name)))
+        except Exception:  # its PackageNotFoundError, or a broken install
+            searched.append("ament_index_python")
+
+
+_AMENT = "ament_index_python.packages"
+_ament_missing_from: list[tuple[str, ...]] = []  # the import path it was last not found on
+
+
+def _ament_lookup() -> Callable[[str], str] | None:
+    """ament_index_python's package lookup, if it can be imported. Python remembers no import
+    that failed: each is a search of every import folder (34 us, for each package a robot
+    names), so the failure is remembered here until the import path changes."""
+    unloaded = _AMENT not in sys.modules
+    if unloaded and _ament_missing_from and _ament_missing_from[0] == tuple(sys.path):
+        return None
     try:
         from ament_index_python.packages import (  # type: ignore[import-not-found]
             get_package_share_directory,
         )
     except ImportError:
-        searched.append("ament_index_python (not installed)")
-    else:
-        try:
-            yield Path(os.path.abspath(get_package_share_directory(name)))
-        except Exception:  # its PackageNotFoundError, or a broken install
-            searched.append("ament_index_python")
+        if unloaded:
+            _ament_missing_from[:] = [tuple(sys.path)]
+        return None
+    return get_package_share_directory  # type: ignore[no-any-return]
 
 
 def _upwards(folder: str) -> Iterator[str]:
