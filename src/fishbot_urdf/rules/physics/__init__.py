@@ -11,6 +11,7 @@ from collections.abc import Iterator
 
 from ...analysis import Analysis
 from ...diagnostics import Diagnostic
+from ...model import Inertia, Vector3
 from ...spatial import eigenvalues
 from ._common import (
     ABOVE_GROUND,
@@ -39,6 +40,14 @@ __all__ = [
 ]
 
 
+def principal(inertia: Inertia) -> Vector3:
+    """The principal moments of ``inertia``, smallest first."""
+    if inertia.ixy == 0.0 and inertia.ixz == 0.0 and inertia.iyz == 0.0:  # most URDF inertias
+        a, b, c = sorted((inertia.ixx, inertia.iyy, inertia.izz))
+        return a, b, c
+    return eigenvalues(inertia.matrix())
+
+
 def physics(
     analysis: Analysis, *, ground_tolerance: float = GROUND_TOLERANCE
 ) -> Iterator[Diagnostic]:
@@ -52,13 +61,16 @@ def physics(
     robot, path = analysis.robot, analysis.path
     # Principal moments, once per link (they do not change when the inertia is turned).
     moments = {
-        link.name: eigenvalues(link.inertial.inertia.matrix())
+        link.name: principal(link.inertial.inertia)
         for link in robot.links
         if link.inertial is not None and finite(link.inertial)
     }
     for body in analysis.bodies:
         yield from body_findings(body, path, moments, bool(robot.joints))
     for link in robot.links:
-        if link.name in moments:
-            yield from mismatch(link, path, moments[link.name])
+        own = moments.get(link.name)
+        if own is not None:
+            found = mismatch(link, path, own)
+            if found is not None:
+                yield found
     yield from ground(analysis, ground_tolerance)

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
 from itertools import chain
 from operator import sub
 from typing import Any
@@ -26,8 +25,9 @@ MISMATCH = 0.10
 """How far (relative to the largest moment) an inertia may be from its collision shape's."""
 
 
-def mismatch(link: Link, path: str, moments: Vector3) -> Iterator[Diagnostic]:
-    """The inertia against the link's one collision box, cylinder or sphere.
+def mismatch(link: Link, path: str, moments: Vector3) -> Diagnostic | None:
+    """The inertia against the link's one collision box, cylinder or sphere (None: it fits,
+    or there is nothing to compare).
 
     The finding's data names the collision's shape (``shape``: box, cylinder or sphere,
     with ``size`` or ``radius`` and ``length``), the ``mass``, and the collision origin's
@@ -35,17 +35,17 @@ def mismatch(link: Link, path: str, moments: Vector3) -> Iterator[Diagnostic]:
     """
     inertial = link.inertial
     if inertial is None or len(link.collisions) != 1 or not inertial.mass > 0:
-        return
+        return None
     collision = link.collisions[0]
     shape = collision.geometry
     if not isinstance(shape, Box | Cylinder | Sphere):
-        return
+        return None
     if moments[0] < -tolerance(moments) or moments[2] <= TINY:
-        return  # reported as not positive definite, or a point mass
+        return None  # reported as not positive definite, or a point mass
     closed = solid_moments(shape, inertial.mass)  # in the collision's frame, where it is diagonal
     largest = max(closed)
     if largest <= 0.0:
-        return
+        return None
     i = inertial.inertia
     own = rpy_matrix(inertial.origin.rpy)
     turn = rpy_matrix(collision.origin.rpy)
@@ -62,20 +62,20 @@ def mismatch(link: Link, path: str, moments: Vector3) -> Iterator[Diagnostic]:
     else:
         declared = rotate_tensor(own, i.matrix())
         if own is not IDENTITY and not all(map(math.isfinite, chain(*declared))):
-            return  # turned, numbers past the floats' range: nothing to compare
+            return None  # turned, numbers past the floats' range: nothing to compare
         wanted = rotate_tensor(turn, diagonal(closed))
         gap = max(map(abs, map(sub, chain(*declared), chain(*wanted))))
         # What the numbers are, seen in the collision's own frame.
         seen = declared if turn is IDENTITY else rotate_tensor(transpose(turn), declared)
     if gap <= MISMATCH * largest:
-        return
+        return None
     # Numbers that fit no shape of the collision's kind were measured (CAD), not computed: a
     # collision shape only approximates those.
     found = _describe(shape, seen or i.matrix(), inertial.mass, turn)
     if found is None:
-        return
+        return None
     owner = link_subject(link)
-    yield INERTIA_MISMATCH.report(
+    return INERTIA_MISMATCH.report(
         f"{owner}: {found}",
         place(link, inertial.source),
         path=path,
