@@ -6,9 +6,12 @@ import sys
 
 import pytest
 from conftest import DATA
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import fishbot_urdf
-from fishbot_urdf import FishbotUrdfError, Joint, JointType, Link, Robot
+from fishbot_urdf import FishbotUrdfError, Joint, JointType, Link, Robot, analysis
+from fishbot_urdf.analysis import analyse
 
 ORDERING = DATA / "valid" / "ordering.urdf"
 ALL = DATA / "valid" / "all_elements.urdf"
@@ -124,3 +127,18 @@ def test_tree_text_of_a_deep_chain_indents_four_spaces_per_level() -> None:
     robot = parse(f'<robot name="c">{links}{joints}</robot>')
     lines = "".join(tree_text(robot)).splitlines()
     assert lines[3:] == [f"{'    ' * i}child(1):  l{i}" for i in range(1, depth + 1)]
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.tuples(st.integers(0, 5), st.integers(0, 5)), max_size=8))
+def test_every_joint_loop_is_found_the_tree_taken_only_when_there_is_none(
+    edges: list[tuple[int, int]],
+) -> None:
+    links = tuple(Link(f"l{i}") for i in range(6))
+    joints = tuple(
+        Joint(f"j{k}", JointType.FIXED, f"l{parent}", f"l{child}")
+        for k, (parent, child) in enumerate(edges)
+    )
+    robot = Robot("r", links, joints)
+    found = analyse(robot).loops
+    assert found == analysis._loops(robot, fishbot_urdf.topology(robot))  # the whole search

@@ -68,7 +68,10 @@ class Analysis:
     @cached_property
     def loops(self) -> tuple[tuple[Joint, ...], ...]:
         """Every joint loop, once each, whether or not the root reaches it."""
-        return _loops(self.robot, self.topology)
+        topo = self.topology
+        if not topo.loop_from_root and len(topo.reachable) == len(topo.children):
+            return ()  # the first root reaches every link, on no loop: a tree
+        return _loops(self.robot, topo)
 
     @cached_property
     def bodies(self) -> tuple[Body, ...]:

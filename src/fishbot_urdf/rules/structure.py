@@ -617,10 +617,11 @@ def _joints(analysis: Analysis) -> Iterator[Diagnostic]:
     joint_names = analysis.joints.keys()
     for joint in robot.joints:
         owner = Subject(Kind.JOINT, joint.name)
-        for end, name, where in (
-            ("parent", joint.parent, joint.parent_source),
-            ("child", joint.child, joint.child_source),
-        ):
+        parent, child = joint.parent, joint.child
+        ends: tuple[tuple[str, str, Location | None], ...] = ()  # none undefined, nearly always
+        if (parent and parent not in link_names) or (child and child not in link_names):
+            ends = (("parent", parent, joint.parent_source), ("child", child, joint.child_source))
+        for end, name, where in ends:
             if name and name not in link_names:
                 yield UNDEFINED_LINK.report(
                     f"{owner}: {end} link {name!r} is not defined",
