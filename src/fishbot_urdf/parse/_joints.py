@@ -6,7 +6,7 @@ from collections.abc import Callable
 
 from lxml import etree
 
-from ..diagnostics import Kind, Severity, Subject
+from ..diagnostics import Kind, Severity, subject
 from ..model import (
     DEFAULT_AXIS,
     ZERO3,
@@ -59,7 +59,7 @@ class JointReader(LinkReader):
 
     def joint(self, el: etree._Element, at: Location) -> Joint:
         name = self.text(el, at, "name", "joint") or ""
-        owner = self.subject = Subject(Kind.JOINT, name)
+        owner = self.subject = subject(Kind.JOINT, name)
         joint_type = self.joint_type(el, at, owner)
         parts: dict[str, object] = {}  # what each child URDF defines gave, by tag
         extras: list[str] = []

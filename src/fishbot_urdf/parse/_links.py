@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from lxml import etree
 
-from ..diagnostics import Kind, Subject
+from ..diagnostics import Kind, Subject, subject
 from ..model import (
     ZERO3,
     Box,
@@ -90,7 +90,7 @@ class LinkReader(ReaderBase):
 
     def link(self, el: etree._Element, at: Location) -> Link:
         name = self.text(el, at, "name", "link") or ""
-        owner = self.subject = Subject(Kind.LINK, name)
+        owner = self.subject = subject(Kind.LINK, name)
         inertial: Inertial | None = None
         visuals: list[Visual] = []
         collisions: list[Collision] = []

@@ -5,7 +5,16 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator
 
 from ..analysis import Analysis
-from ..diagnostics import FOLLOWS, Diagnostic, Kind, Severity, Subject, did_you_mean, listing
+from ..diagnostics import (
+    FOLLOWS,
+    Diagnostic,
+    Kind,
+    Severity,
+    Subject,
+    did_you_mean,
+    listing,
+    subject,
+)
 from ..model import Joint, Location, Robot
 from . import Consumer, Family, Rule
 
@@ -616,7 +625,7 @@ def _joints(analysis: Analysis) -> Iterator[Diagnostic]:
     link_names = analysis.links.keys()
     joint_names = analysis.joints.keys()
     for joint in robot.joints:
-        owner = Subject(Kind.JOINT, joint.name)
+        owner = subject(Kind.JOINT, joint.name)
         parent, child = joint.parent, joint.child
         ends: tuple[tuple[str, str, Location | None], ...] = ()  # none undefined, nearly always
         if (parent and parent not in link_names) or (child and child not in link_names):
