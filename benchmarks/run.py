@@ -154,6 +154,16 @@ def rows(runs: int, folder: Path, only: str | None) -> Iterator[Row]:
             [*fishbot, "check", str(FIRST)], [python, "-c", "import click, lxml.etree"], runs
         )
         yield Row(label, _ms(mine), _ms(floor), f"{mine / floor:.2f}x", "<= 1.3x")
+    # The same floor with the model's frozen dataclasses defined, and nothing else of ours.
+    label = (
+        '`python -c "import click, lxml.etree, fishbot_urdf.model"` vs the same without the model'
+    )
+    if wanted(label):
+        floor_command = [python, "-c", "import click, lxml.etree"]
+        mine, floor = pair(
+            [python, "-c", "import click, lxml.etree, fishbot_urdf.model"], floor_command, runs
+        )
+        yield Row(label, _ms(mine), _ms(floor), f"{mine / floor:.2f}x", "")
     label = '`fishbot --help` vs `python -c "import click"`'
     if wanted(label):
         mine, floor = pair([*fishbot, "--help"], [python, "-c", "import click"], runs)
@@ -164,15 +174,30 @@ def rows(runs: int, folder: Path, only: str | None) -> Iterator[Row]:
             [*fishbot, "expand", str(XACRO_FILE)], [*xacro, str(XACRO_FILE)], runs, env
         )
         yield Row(label, _ms(mine), _ms(floor), f"{mine / floor:.2f}x", "<= 1.25x")
+    # xacro's own command line run after importing click: what any click command running
+    # xacro's engine costs, before a line of ours.
+    label = "xacro's `main()` after `import click` vs the `xacro` command, on the fishbot xacro"
+    if wanted(label):
+        mine, floor = pair(
+            [python, "-c", "import click, xacro; xacro.main()", str(XACRO_FILE)],
+            [*xacro, str(XACRO_FILE)],
+            runs,
+            env,
+        )
+        yield Row(label, _ms(mine), _ms(floor), f"{mine / floor:.2f}x", "")
 
     files = corpus()
     label = f"in process, reading the {len(files)} corpus robots vs lxml's parse"
     label_check = f"in process, checking the {len(files)} corpus robots vs lxml's parse"
     label_floor = "in process, the read's floor (see _in_process) vs lxml's parse"
-    if wanted(label) or wanted(label_check) or wanted(label_floor):
-        parse, read, check, floor = _in_process(files)
+    label_scan = "in process, the read's floor and the start-tag scan vs lxml's parse"
+    if any(map(wanted, (label, label_check, label_floor, label_scan))):
+        parse, read, check, floor, scan = _in_process(files)
         if wanted(label_floor):
             yield Row(label_floor, _ms(floor), _ms(parse), f"{floor / parse:.1f}x", "")
+        if wanted(label_scan):
+            total = floor + scan
+            yield Row(label_scan, _ms(total), _ms(parse), f"{total / parse:.1f}x", "")
         if wanted(label):
             yield Row(label, _ms(read), _ms(parse), f"{read / parse:.1f}x", "<= 4x")
         if wanted(label_check):
@@ -263,15 +288,17 @@ _NUMERIC = frozenset(
 )
 
 
-def _in_process(files: Sequence[Path]) -> tuple[float, float, float, float]:
+def _in_process(files: Sequence[Path]) -> tuple[float, float, float, float, float]:
     """Best seconds of passes over ``files``: lxml's parse, fishbot_urdf.read,
-    fishbot_urdf.check_file, and the floor under any reader that builds the model: lxml's
+    fishbot_urdf.check_file, the floor under any reader that builds the model (lxml's
     parse, then for every element its number attributes turned to numbers as the reader
-    does, and one model object and one location made (each file's bytes read from the
-    page cache every time)."""
+    does, and one model object and one location made), and the scan that finds where each
+    element starts, its line and its column (lxml gives neither: see locator.Locator), as
+    the reader makes it. Each file's bytes are read from the page cache every time."""
     from lxml import etree
 
     import fishbot_urdf
+    from fishbot_urdf.locator import Locator
     from fishbot_urdf.model import Location, Origin, builder
     from fishbot_urdf.parse.values import to_doubles
 
@@ -302,14 +329,19 @@ def _in_process(files: Sequence[Path]) -> tuple[float, float, float, float]:
         for path in files:
             fishbot_urdf.check_file(path)
 
+    def scan() -> None:
+        for path in files:
+            Locator(path.read_bytes(), str(path)).locations()
+
     check()  # every module loaded, every cache warm
-    times: tuple[list[float], ...] = ([], [], [], [])
+    times: tuple[list[float], ...] = ([], [], [], [], [])
     for _ in range(5):
-        for index, run in enumerate((parse, read, check, floor)):
+        for index, run in enumerate((parse, read, check, floor, scan)):
             start = time.perf_counter()
             run()
             times[index].append(time.perf_counter() - start)
-    return min(times[0]), min(times[1]), min(times[2]), min(times[3])
+    best = [min(each) for each in times]
+    return best[0], best[1], best[2], best[3], best[4]
 
 
 def main(argv: list[str] | None = None) -> None:

@@ -14,8 +14,8 @@ from hypothesis import strategies as st
 from lxml import etree
 
 import fishbot_urdf
-from fishbot_urdf import xmlsource
-from fishbot_urdf.xmlsource import Locator
+from fishbot_urdf import locator, xmlsource, xmlstream
+from fishbot_urdf.locator import Locator
 
 
 def _place(data: bytes, offset: int) -> tuple[int, int]:
@@ -72,7 +72,7 @@ def _outcome(path: Path) -> object:
 
 def _by_element(monkeypatch: pytest.MonkeyPatch) -> None:
     """Big files read by lxml's stream an element at a time, not cut in pieces."""
-    monkeypatch.setattr(xmlsource._Pieces, "cut", classmethod(lambda cls, data: None))
+    monkeypatch.setattr(xmlstream.Pieces, "cut", classmethod(lambda cls, data: None))
 
 
 # How a big file may be streamed: in pieces (of a few bytes: every link and joint a piece of
@@ -83,9 +83,9 @@ _STREAMS = ["small pieces", "pieces alongside", "elements"]
 def _stream_by(how: str, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(xmlsource, "STREAM_FROM", 0)  # every file streamed
     if how == "small pieces":
-        monkeypatch.setattr(xmlsource, "PIECE", 1)
+        monkeypatch.setattr(xmlstream, "PIECE", 1)
     elif how == "pieces alongside":
-        monkeypatch.setattr(xmlsource, "LOCATE_ALONGSIDE_FROM", 0)
+        monkeypatch.setattr(locator, "LOCATE_ALONGSIDE_FROM", 0)
     else:
         _by_element(monkeypatch)
 
@@ -149,7 +149,7 @@ def test_a_stream_by_element_that_breaks_later_is_unstreamable(
     _by_element(monkeypatch)
     data = f"<robot name='r'><link name='a'/>{tail}".encode()
     document = xmlsource.read_xml(data, stream=True)
-    with pytest.raises(xmlsource.Unstreamable):
+    with pytest.raises(xmlstream.Unstreamable):
         list(document.children())
         document.finish()
 
@@ -174,7 +174,7 @@ class _Comparing(Locator):
 
     def __init__(self, data: bytes, path: str, *rest: Any, **named: Any) -> None:
         if named.get("starts") is None:  # the scan's, given: as for a rewritten document
-            named["starts"] = [m.start() for m in xmlsource._MARKUP.finditer(data) if m.lastindex]
+            named["starts"] = [m.start() for m in locator.MARKUP.finditer(data) if m.lastindex]
         super().__init__(data, path, *rest, **named)
 
 
@@ -200,7 +200,7 @@ def test_the_scan_trusted_places_every_element_where_comparing_names_does(
 ) -> None:
     trusted = _outcome(path)
     trusted_places = _every_place(trusted[0])
-    monkeypatch.setattr(xmlsource, "Locator", _Comparing)
+    monkeypatch.setattr(locator, "Locator", _Comparing)
     compared = _outcome(path)
     assert compared == trusted
     assert _every_place(compared[0]) == trusted_places
@@ -210,9 +210,7 @@ def test_the_scan_trusted_places_every_element_where_comparing_names_does(
 @given(st.text(alphabet="=\"' <>\t\n\rax/", max_size=40))
 def test_the_quick_look_for_raw_white_space_agrees_with_the_pattern(text: str) -> None:
     data = text.encode()
-    assert xmlsource._has_raw_whitespace(data) == (
-        xmlsource._RAW_WHITESPACE.search(data) is not None
-    )
+    assert locator._has_raw_whitespace(data) == (locator._RAW_WHITESPACE.search(data) is not None)
 
 
 @pytest.mark.parametrize(
@@ -221,16 +219,16 @@ def test_the_quick_look_for_raw_white_space_agrees_with_the_pattern(text: str) -
 )
 def test_raw_white_space_in_a_value_is_found_and_none_elsewhere(value: str, raw: bool) -> None:
     data = f'<robot name="r">\n\t<link name="a">\n<origin xyz="{value}"/>\n'
-    assert xmlsource._has_raw_whitespace(data.encode()) is raw
+    assert locator._has_raw_whitespace(data.encode()) is raw
 
 
 @pytest.mark.parametrize("path", _FILES + _XACRO, ids=lambda p: str(p.relative_to(_DATA)))
 def test_places_found_while_lxml_parses_are_the_places_found_after(
     path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    monkeypatch.setattr(xmlsource, "LOCATE_ALONGSIDE_FROM", 1 << 40)  # never alongside
+    monkeypatch.setattr(locator, "LOCATE_ALONGSIDE_FROM", 1 << 40)  # never alongside
     after = _outcome(path)
-    monkeypatch.setattr(xmlsource, "LOCATE_ALONGSIDE_FROM", 0)  # always
+    monkeypatch.setattr(locator, "LOCATE_ALONGSIDE_FROM", 0)  # always
     alongside = _outcome(path)
     assert alongside == after
     assert _every_place(alongside[0]) == _every_place(after[0])
@@ -251,7 +249,7 @@ def test_a_locator_that_fails_alongside_is_made_again_in_the_caller(
         return real(self)
 
     monkeypatch.setattr(Locator, "locations", only_in_the_caller)
-    monkeypatch.setattr(xmlsource, "LOCATE_ALONGSIDE_FROM", 0)
+    monkeypatch.setattr(locator, "LOCATE_ALONGSIDE_FROM", 0)
     assert _outcome(path) == expected
     assert failed == ["fishbot-locate"]
     assert capfd.readouterr() == ("", "")  # nothing said about it
@@ -260,7 +258,7 @@ def test_a_locator_that_fails_alongside_is_made_again_in_the_caller(
 def test_a_piece_cut_inside_an_element_is_joined_to_the_next(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    monkeypatch.setattr(xmlsource, "PIECE", 1)  # a cut after every </link> and </joint>
+    monkeypatch.setattr(xmlstream, "PIECE", 1)  # a cut after every </link> and </joint>
     control = "".join(
         f'<joint name="j{i}"><state_interface name="position"/></joint>' for i in range(3)
     )
@@ -270,7 +268,7 @@ def test_a_piece_cut_inside_an_element_is_joined_to_the_next(
         '<transmission name="t"><joint name="j"><hardwareInterface>x</hardwareInterface></joint>'
         f"</transmission><ros2_control name='c' type='system'>{control}</ros2_control></robot>"
     ).encode()
-    pieces = xmlsource._Pieces.cut(data)
+    pieces = xmlstream.Pieces.cut(data)
     assert pieces is not None
     assert len(pieces._bounds) == 8  # the root's start tag, 6 cuts (4 inside elements), the end
     document = xmlsource.read_xml(data, stream=True)

@@ -87,7 +87,7 @@ def collect(
     """The references in one top-level extension element.
 
     ``locate`` is called on the element and on every element inside it, in document order
-    (a `fishbot_urdf.xmlsource.Locator` needs that); ``attribute`` gives an attribute's place
+    (a `fishbot_urdf.locator.Locator` needs that); ``attribute`` gives an attribute's place
     from its element's.
     """
     found: list[Reference] = []

@@ -16,7 +16,8 @@ from ..errors import RobotError
 from ..extensions import Reference
 from ..model import Location, Robot
 from ..rules.xacro import unknown_args, xacro_warning
-from ..xmlsource import STRING_PATH, Unstreamable, XmlDocument, read_bytes, read_xml
+from ..xmlsource import STRING_PATH, XmlDocument, read_bytes, read_xml
+from ..xmlstream import Unstreamable
 from ._reader import Reader
 from .values import to_double
 

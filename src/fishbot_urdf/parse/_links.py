@@ -34,7 +34,6 @@ from .values import plain_numbers
 
 _SHAPES = "<box>, <cylinder>, <sphere> or <mesh>"
 _NO_ORIGIN = Origin()  # frozen: one for every element that has no <origin>
-_MOMENTS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
 # The constructors of the model's classes, every field given in order: twice as fast as the
 # classes' own (a big robot is hundreds of thousands of these).
@@ -130,7 +129,9 @@ class LinkReader(ReaderBase):
             elif tag == "inertia":
                 c_at = self.locator.locate(child)
                 get = child.get
-                plain = plain_numbers([get(name) for name in _MOMENTS])
+                plain = plain_numbers(
+                    [get("ixx"), get("ixy"), get("ixz"), get("iyy"), get("iyz"), get("izz")]
+                )
                 if plain is not None:
                     ixx, ixy, ixz, iyy, iyz, izz = plain
                     inertia = _new_inertia(ixx, ixy, ixz, iyy, iyz, izz, c_at)
