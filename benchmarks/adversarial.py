@@ -69,6 +69,8 @@ CASES: dict[str, Case] = {
         ["check"],
     ),
     "unclosed comments": ("r.urdf", lambda n: _fill(ROBOT, b"<!--", n), ["check"]),
+    "unclosed CDATA sections": ("r.urdf", lambda n: _fill(ROBOT, b"<![CDATA[", n), ["check"]),
+    "unclosed doctype subsets": ("r.urdf", lambda n: _fill(b"", b"<!DOCTYPE [", n), ["check"]),
     "unclosed processing instructions": ("r.urdf", lambda n: _fill(ROBOT, b"<?a ", n), ["check"]),
     "unclosed xml declarations": ("r.urdf", lambda n: _fill(b"", b"<?xml ", n), ["check"]),
     "declaration with endless encoding": (

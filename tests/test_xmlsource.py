@@ -275,3 +275,37 @@ def test_a_piece_cut_inside_an_element_is_joined_to_the_next(
     handed = [(child.tag, child.get("name")) for child in document.children()]
     document.finish()  # no Unstreamable: each piece cut inside an element was joined on
     assert handed == [(child.tag, child.get("name")) for child in etree.fromstring(data)]
+
+
+def test_a_piece_broken_before_its_end_is_not_joined_to_the_next(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    monkeypatch.setattr(xmlstream, "PIECE", 1)  # a piece for every link
+    links = [f"\n<link name='l{i}'>\n<visual/>\n</link>" for i in range(8)]
+    links[4] = "\n<link name='l4'>\n<visual broken=yes/>\n</link>"  # an attribute unquoted
+    data = f"<robot name='r'>{''.join(links)}\n</robot>".encode()
+    parsed: list[bytes] = []
+    real = xmlstream.parse
+
+    def counting(piece: bytes, *args: Any) -> Any:
+        parsed.append(piece)
+        return real(piece, *args)
+
+    monkeypatch.setattr(xmlstream, "parse", counting)
+    document = xmlsource.read_xml(data, stream=True)
+    with pytest.raises(xmlstream.Unstreamable):
+        list(document.children())
+    assert len(parsed) == 6  # the root, four whole links, the broken one: none joined on
+    assert b"broken" in parsed[-1]
+
+
+@pytest.mark.parametrize("opening", [b"<!--", b"<![CDATA[", b"<?", b"<!DOCTYPE [", b"<!DOCTYPE r"])
+def test_markup_never_closed_runs_to_the_end_of_the_file(opening: bytes) -> None:
+    # Matched to the end, not left for the search to try again from each next one (which
+    # made a file of many unclosed comments take time growing with its size squared).
+    data = b"<robot>" + opening * 5 + b"<link/>"
+    found = list(locator.MARKUP.finditer(data))
+    assert [(m.start(), m.end(), m.lastindex) for m in found] == [
+        (0, 2, 1),  # <robot>
+        (7, len(data), None),  # the first unclosed one, and all after it
+    ]

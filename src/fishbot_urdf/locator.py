@@ -64,9 +64,13 @@ def located(data: bytes, path: str, origins: Sequence[Location] | None) -> Locat
 
 
 # Every start tag, in document order; comments, CDATA, processing instructions and the DOCTYPE
-# are matched too so that a "<tag" inside them is not taken for an element.
+# are matched too so that a "<tag" inside them is not taken for an element. One that is never
+# closed runs to the end of the file (which is then no XML): were it not matched at all, the
+# search for its end would be made again from each of the next ones, and a file of many
+# unclosed comments would take time growing with its size squared.
 MARKUP = re.compile(
-    rb"<(?:!--.*?-->|!\[CDATA\[.*?\]\]>|\?.*?\?>|!DOCTYPE(?:[^\[>]|\[.*?\])*>|([^/!?]))",
+    rb"<(?:!--(?:.*?-->|.*)|!\[CDATA\[(?:.*?\]\]>|.*)|\?(?:.*?\?>|.*)"
+    rb"|!DOCTYPE(?:(?:[^\[>]|\[.*?\])*>|.*)|([^/!?]))",
     re.DOTALL,
 )
 _AFTER_TAG = frozenset(b" \t\r\n/>")

@@ -233,10 +233,11 @@ class Pieces:
             try:
                 root = parse(piece, locator.path)
             except XmlSyntaxError as exc:
-                # Cut inside an element (after a <joint> of <ros2_control>, say), or a fault:
-                # try again with the next piece joined on, a few times; then read the file
-                # otherwise.
-                if end == len(data) or joined == _JOINS:
+                # Cut inside an element (after a <joint> of <ros2_control>, say), which lxml
+                # finds at the piece's end tag: try again with the next piece joined on, a
+                # few times. A fault before that end is the file's own: read it otherwise.
+                inside = exc.line is not None and exc.line <= piece.count(b"\n")
+                if inside or end == len(data) or joined == _JOINS:
                     raise Unstreamable from exc
                 del bounds[index + 1]
                 joined += 1
