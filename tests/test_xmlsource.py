@@ -309,3 +309,17 @@ def test_markup_never_closed_runs_to_the_end_of_the_file(opening: bytes) -> None
         (0, 2, 1),  # <robot>
         (7, len(data), None),  # the first unclosed one, and all after it
     ]
+
+
+_PIECES_OF_XML = st.sampled_from(
+    ['<?xml version="1.0"?>', "<a>", "</a>", "<b x='1'/>", "<!-- <c> -->", "<?pi <d>?>", "?", "!"]
+)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(_PIECES_OF_XML, max_size=12), st.sampled_from(["", "\n", " "]))
+def test_start_tags_are_found_as_the_markup_scan_finds_them(pieces: list[str], gap: str) -> None:
+    data = gap.join(pieces).encode()
+    assert locator._start_tags(data) == [
+        m.start() for m in locator.MARKUP.finditer(data) if m.lastindex
+    ]

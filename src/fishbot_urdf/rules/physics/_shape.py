@@ -134,7 +134,9 @@ def _describe(
     on_diagonal = (seen[0][0], seen[1][1], seen[2][2])
     if isinstance(shape, Box):
         total = on_diagonal[0] + on_diagonal[1] + on_diagonal[2]
-        xx, yy, zz = (6.0 * (total - 2.0 * moment) / mass for moment in on_diagonal)
+        xx = 6.0 * (total - 2.0 * on_diagonal[0]) / mass
+        yy = 6.0 * (total - 2.0 * on_diagonal[1]) / mass
+        zz = 6.0 * (total - 2.0 * on_diagonal[2]) / mass
         if xx < 0 or yy < 0 or zz < 0:
             return None
         x, y, z = math.sqrt(xx), math.sqrt(yy), math.sqrt(zz)
