@@ -112,7 +112,12 @@ def _has_raw_whitespace(data: bytes) -> bool:
     # First on the bytes the pattern looks at (the dropped ones are spaces, which it lets
     # stand between '=' and the quote, and bytes it takes anywhere inside a value), then,
     # only if that matches, on the file itself.
-    if _RAW_WHITESPACE.search(data.translate(None, _NOT_IN_PATTERN)) is None:
+    kept = data.translate(None, _NOT_IN_PATTERN)
+    # Nearly always every quote left there is one of an '=""' or "=''" (a value holding
+    # none of those bytes): then no value holds a tab or line break, and the pattern, a
+    # third of the time of the rest, need not run.
+    rest = kept.replace(b'=""', b"").replace(b"=''", b"")
+    if (b'"' not in rest and b"'" not in rest) or _RAW_WHITESPACE.search(kept) is None:
         return False
     return _RAW_WHITESPACE.search(data) is not None
 
