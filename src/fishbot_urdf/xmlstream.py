@@ -147,8 +147,9 @@ class Pieces:
     it parses), while a thread finds the piece's start tags and their places. Only one
     piece's tree is held at once.
 
-    A piece that lxml refuses (the file is not clean XML, or was cut where it should not
-    have been) raises Unstreamable: the file is then read whole.
+    A piece that lxml refuses at its end tag was cut inside an element, and the next piece
+    is joined on (a few times); one it refuses before that, or the last, raises
+    Unstreamable: the file is not clean XML, and is then read whole.
     """
 
     __slots__ = ("_bounds", "_close", "_data", "_next", "locator")
