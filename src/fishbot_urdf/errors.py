@@ -46,6 +46,13 @@ class InputError(FishbotUrdfError):
     rule = "io"
 
 
+class LimitError(FishbotUrdfError):
+    """A bound was reached: the work would take longer than the time limit, or need more
+    memory or items than a limit allows (see :mod:`fishbot_urdf.inputs`)."""
+
+    rule = "limit"
+
+
 class ToolError(FishbotUrdfError):
     """A program the job runs (Graphviz's `dot`) failed; ``tool`` names it."""
 

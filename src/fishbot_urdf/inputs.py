@@ -8,9 +8,11 @@ hanging or filling the memory.
 
 The limits belong to the caller's context (a :class:`contextvars.ContextVar`), not to the
 process: :func:`size_limit` and :func:`time_limit` change them for the code inside a
-``with``, in that thread only. The time limit bounds a xacro expansion (macros that call
-each other twice per level double the document at every level) and each run of
-Graphviz's `dot`.
+``with``, in that thread only. The time limit is one deadline for the whole ``with``:
+every long piece of work (expanding, globbing an include, loading YAML, reading,
+matching suppression comments, analysing, rendering, Graphviz's `dot`) asks
+:func:`deadline` and stops with a :class:`TimeLimitError` once it has passed. Outside a
+``with``, each piece of work gets :data:`DEFAULT_MAX_SECONDS` from when it starts.
 """
 
 from __future__ import annotations
@@ -18,18 +20,22 @@ from __future__ import annotations
 import errno
 import os
 import stat
+import time
 from collections.abc import Iterator
 from contextlib import AbstractContextManager, contextmanager
 from contextvars import ContextVar
 from pathlib import Path
 from typing import Any
 
-from .errors import ArgumentError, InputError
+from .errors import ArgumentError, InputError, LimitError
 
 __all__ = [
     "DEFAULT_MAX_BYTES",
     "DEFAULT_MAX_SECONDS",
+    "Deadline",
     "InputTooLargeError",
+    "TimeLimitError",
+    "deadline",
     "max_bytes",
     "max_seconds",
     "read_input",
@@ -41,10 +47,54 @@ DEFAULT_MAX_BYTES = 256 * 1024 * 1024
 """The largest file read by default: 256 MiB, about fifteen times a 100,000-link URDF."""
 
 DEFAULT_MAX_SECONDS = 60.0
-"""How long one xacro expansion, or one drawing by `dot`, may take by default."""
+"""How long the work on one robot may take by default, in seconds."""
 
 _LIMIT: ContextVar[int] = ContextVar("fishbot_urdf_max_bytes", default=DEFAULT_MAX_BYTES)
 _SECONDS: ContextVar[float] = ContextVar("fishbot_urdf_max_seconds", default=DEFAULT_MAX_SECONDS)
+_END: ContextVar[float | None] = ContextVar("fishbot_urdf_deadline", default=None)
+
+
+class TimeLimitError(LimitError):
+    """Work went on past the time limit; ``seconds`` is the limit, ``what`` the work."""
+
+    def __init__(self, what: str, seconds: float) -> None:
+        super().__init__(f"{what} takes longer than the time limit of {seconds:g} s")
+        self.what = what
+        self.seconds = seconds
+
+
+class Deadline:
+    """When the work in hand must stop: :meth:`check` raises once it has passed.
+
+    A check costs one clock read; loops call it every few hundred steps.
+    """
+
+    __slots__ = ("end", "seconds")
+
+    def __init__(self, end: float, seconds: float) -> None:
+        self.end = end
+        self.seconds = seconds
+
+    def passed(self) -> bool:
+        """Whether the deadline has passed."""
+        return time.monotonic() > self.end
+
+    def left(self) -> float:
+        """Seconds left before the deadline (0 once it has passed)."""
+        return max(0.0, self.end - time.monotonic())
+
+    def check(self, what: str) -> None:
+        """Raise :class:`TimeLimitError` naming ``what`` if the deadline has passed."""
+        if time.monotonic() > self.end:
+            raise TimeLimitError(what, self.seconds)
+
+
+def deadline() -> Deadline:
+    """The deadline in force: that of the enclosing :func:`time_limit`, or, outside one,
+    :func:`max_seconds` from now."""
+    seconds = _SECONDS.get()
+    end = _END.get()
+    return Deadline(time.monotonic() + seconds if end is None else end, seconds)
 
 
 class InputTooLargeError(InputError):
@@ -78,11 +128,17 @@ def max_seconds() -> float:
 
 
 def time_limit(seconds: float) -> AbstractContextManager[None]:
-    """Let an expansion or a drawing take up to ``seconds`` inside the ``with`` (this thread
-    or task only)."""
+    """Let the work inside the ``with`` take up to ``seconds`` in all, from now (this thread
+    or task only): one deadline for everything it does."""
     if not seconds > 0:
         raise ArgumentError("the time limit must be a positive number of seconds")
-    return _holding(_SECONDS, seconds)
+    return _timing(seconds)
+
+
+@contextmanager
+def _timing(seconds: float) -> Iterator[None]:
+    with _holding(_SECONDS, seconds), _holding(_END, time.monotonic() + seconds):
+        yield
 
 
 @contextmanager

@@ -90,11 +90,18 @@ def status_of(exc: FishbotUrdfError) -> int:
     """Exit status for an error that stopped a file: 2 when the input or the setup is at
     fault (a file cannot be read or written, a package or a program is not found, the
     configuration is wrong, a limit is reached), 1 when the robot is."""
-    from ..errors import ConfigError
+    from ..errors import ConfigError, LimitError
     from ..expand import ExpansionLimitError
     from ..packages import PackageNotFoundError
 
-    setup = (InputError, PackageNotFoundError, ToolError, ConfigError, ExpansionLimitError)
+    setup = (
+        InputError,
+        PackageNotFoundError,
+        ToolError,
+        ConfigError,
+        ExpansionLimitError,
+        LimitError,
+    )
     return EXIT_USAGE if isinstance(exc, setup) else EXIT_INVALID
 
 

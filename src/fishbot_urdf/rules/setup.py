@@ -30,6 +30,29 @@ fishbot check fishbot.urdf
     language="shell",
     fatal=True,
 )
+LIMIT = Rule(
+    "limit",
+    E,
+    Family.SETUP,
+    summary="The work on a robot went past the time limit or a size bound.",
+    explanation="Every command works within a deadline (`--timeout`, 60 s by default) and "
+    "within bounds on what it reads and builds (`--max-size`, 256 MiB by default, and the "
+    "pixels of a picture). Expanding, globbing includes, loading YAML, reading, matching "
+    "suppression comments, analysing and rendering all stop when the deadline passes, and a "
+    "picture whose memory would pass the bound is refused before it is drawn. The message "
+    "names the work that was stopped. A real robot takes well under a second; raise the limit "
+    "only for a file you trust, and expect the same input to keep growing otherwise. The "
+    "command stops with exit status 2.",
+    bad="""\
+fishbot render fishbot.urdf -o fishbot.png --size 30000x30000
+""",
+    good="""\
+fishbot render fishbot.urdf -o fishbot.png --size 1600x1200
+""",
+    consumers=(),
+    language="shell",
+    fatal=True,
+)
 PACKAGE_NOT_FOUND = Rule(
     "package-not-found",
     E,
