@@ -362,11 +362,19 @@ def limit_options() -> Callable[[Wrapped], Wrapped]:
 
     def decorate(function: Wrapped) -> Wrapped:
         @functools.wraps(function)
-        def run(*args: Any, max_size: float | None, timeout: float | None, **kwargs: Any) -> Any:
+        def run(
+            *args: Any,
+            max_size: float | None,
+            timeout: float | None,
+            trust_expressions: bool,
+            **kwargs: Any,
+        ) -> Any:
+            from ..expand import trusting_expressions
             from ..inputs import max_bytes, max_seconds, size_limit, time_limit
 
             limit = max_bytes() if max_size is None else max(1, int(max_size * 1024 * 1024))
-            with size_limit(limit), time_limit(max_seconds() if timeout is None else timeout):
+            seconds = max_seconds() if timeout is None else timeout
+            with size_limit(limit), time_limit(seconds), trusting_expressions(trust_expressions):
                 return function(*args, **kwargs)
 
         size = click.option(
@@ -379,9 +387,15 @@ def limit_options() -> Callable[[Wrapped], Wrapped]:
             "--timeout",
             type=Number(positive=True),
             metavar="SECONDS",
-            help="Stop a xacro expansion, or Graphviz's dot, that takes longer (default 60).",
+            help="Stop the work on a robot that takes longer (default 60).",
         )
-        return size(seconds(run))  # type: ignore[return-value]
+        trust = click.option(
+            "--trust-expressions",
+            is_flag=True,
+            help="Run xacro expressions as Python, as ROS's xacro does: the file's code runs "
+            "with your rights. Only for files you trust (default: an allowlist).",
+        )
+        return size(seconds(trust(run)))  # type: ignore[return-value]
 
     return decorate
 

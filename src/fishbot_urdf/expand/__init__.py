@@ -20,7 +20,9 @@ import os
 import re
 import stat
 import threading
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -34,9 +36,24 @@ __all__ = [
     "declared_args",
     "expand",
     "parse_args",
+    "trusting_expressions",
 ]
 
 _LOCK = threading.RLock()
+_TRUST: ContextVar[bool] = ContextVar("fishbot_urdf_trust_expressions", default=False)
+
+
+@contextmanager
+def trusting_expressions(trust: bool = True) -> Iterator[None]:
+    """Inside the ``with`` (this thread or task only), expansions evaluate ``${...}`` and
+    ``$(eval ...)`` with Python's ``eval``, as ROS's xacro does: the file's code runs with
+    the rights of the process. Outside, expressions are interpreted by an allowlist that
+    cannot reach past the symbol table (see :mod:`fishbot_urdf.expand`)."""
+    token = _TRUST.set(trust)
+    try:
+        yield
+    finally:
+        _TRUST.reset(token)
 
 
 class XacroError(FishbotUrdfError):
@@ -123,6 +140,8 @@ def expand(
     path: str | Path,
     args: Mapping[str, str] | None = None,
     packages: Mapping[str, str | Path] | None = None,
+    *,
+    trust_expressions: bool | None = None,
 ) -> Expansion:
     """Expand a xacro file to URDF.
 
@@ -131,6 +150,9 @@ def expand(
         args: Values for ``<xacro:arg>``, like ``name:=value`` on xacro's command line.
         packages: Package folders for ``$(find NAME)``, searched first (see
             :mod:`fishbot_urdf.packages` for the rest of the search).
+        trust_expressions: Evaluate expressions with Python's ``eval``, as ROS's xacro
+            does, running the file's code (default: as :func:`trusting_expressions` says,
+            else no).
 
     Raises:
         InputError: The file cannot be read, or is not a regular file (a FIFO, a device),
@@ -149,7 +171,8 @@ def expand(
         raise InputError(f"{name} is a folder", path=name)
     from ._engine import Run  # xacro and minidom load here, not with the package
 
-    with _LOCK, Run(name, dict(args or {}), dict(packages or {})) as run:
+    trust = _TRUST.get() if trust_expressions is None else trust_expressions
+    with _LOCK, Run(name, dict(args or {}), dict(packages or {}), trust=trust) as run:
         return run.expand()
 
 

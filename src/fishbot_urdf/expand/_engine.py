@@ -71,12 +71,20 @@ class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
 class Run(Explaining):
     """One expansion: xacro's state reset, its hooks in place, for the time of a ``with``."""
 
-    def __init__(self, path: str, args: dict[str, str], packages: dict[str, str | Path]) -> None:
+    def __init__(
+        self,
+        path: str,
+        args: dict[str, str],
+        packages: dict[str, str | Path],
+        *,
+        trust: bool = False,
+    ) -> None:
         import xacro  # type: ignore[import-untyped]
         import xacro.substitution_args as subst  # type: ignore[import-untyped]
 
         self.xacro, self.subst = xacro, subst
         self.path, self.args, self.packages = path, args, packages
+        self.trust = trust  # expressions run as Python, as xacro runs them
         self.node: Any = None  # the element being worked on
         self.calls: list[tuple[str, Location | None]] = []  # macro calls, outermost first
         self.symbols: Any = None  # the symbol table of a failed expression
