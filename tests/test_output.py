@@ -149,3 +149,65 @@ def test_no_free_temporary_name(tmp_path: Path, monkeypatch: pytest.MonkeyPatch)
     (tmp_path / ".robot.urdf.taken").unlink()
     write_atomic(tmp_path / "robot.urdf", "new")
     assert os.listdir(tmp_path) == ["robot.urdf"]
+
+
+def test_an_input_is_known_by_its_identity_not_its_name(tmp_path: Path) -> None:
+    source = tmp_path / "in.urdf"
+    source.write_text("in")
+    (tmp_path / "hard.urdf").hardlink_to(source)
+    (tmp_path / "soft.urdf").symlink_to(source)
+    (tmp_path / "sub").mkdir()
+    for other in ("hard.urdf", "soft.urdf", "sub/../in.urdf"):
+        with pytest.raises(InputError) as caught:
+            write_atomic(tmp_path / other, "out", inputs=[str(source)])
+        assert caught.value.message == f"refusing to write over the input {source}"
+        with pytest.raises(InputError):  # and the other way round
+            write_atomic(source, "out", inputs=[tmp_path / other])
+    assert source.read_text() == "in"
+    assert sorted(os.listdir(tmp_path)) == ["hard.urdf", "in.urdf", "soft.urdf", "sub"]
+    # A file of the same name elsewhere, or one not there yet, is no input.
+    write_atomic(tmp_path / "sub" / "in.urdf", "out", inputs=[source, tmp_path / "gone"])
+    assert (tmp_path / "sub" / "in.urdf").read_text() == "out"
+
+
+def test_an_input_open_as_a_file_descriptor(tmp_path: Path) -> None:
+    source = tmp_path / "in.urdf"
+    source.write_text("in")
+    with open(source, "rb") as stream:
+        with pytest.raises(InputError) as caught:
+            write_atomic(source, "out", inputs=[stream.fileno()])
+        assert caught.value.message == f"refusing to write over the input <fd {stream.fileno()}>"
+    assert source.read_text() == "in"
+
+
+def test_standard_input_is_named_as_such(tmp_path: Path) -> None:
+    source = tmp_path / "in.urdf"
+    source.write_text("in")
+    code = (
+        "import sys; from fishbot_urdf.output import write_atomic\n"
+        "try:\n    write_atomic(sys.argv[1], 'out', inputs=[0])\n"
+        "except Exception as exc:\n    print(exc)\n"
+    )
+    with open(source, "rb") as stream:
+        done = subprocess.run(
+            [sys.executable, "-c", code, str(source)], stdin=stream, capture_output=True, text=True
+        )
+    assert done.stdout == f"{source}: refusing to write over the input <stdin>\n"
+    assert source.read_text() == "in"
+
+
+def test_a_device_or_pipe_is_never_an_input(tmp_path: Path) -> None:
+    # Standard input from /dev/null, output to /dev/null: the same file, and no input.
+    with open(os.devnull, "rb") as stream:
+        write_atomic(os.devnull, "nothing", inputs=[stream.fileno(), os.devnull])
+
+
+def test_a_refusal_at_commit_leaves_nothing(tmp_path: Path) -> None:
+    source = tmp_path / "in.urdf"
+    source.write_text("in")
+    with output.AtomicFile(source) as out:
+        out.write("out")
+        with pytest.raises(InputError, match="refusing to write over the input"):
+            out.commit([source])
+        assert sorted(os.listdir(tmp_path)) == ["in.urdf"]
+    assert source.read_text() == "in"

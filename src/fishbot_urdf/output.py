@@ -4,16 +4,21 @@ from __future__ import annotations
 
 import contextlib
 import os
+import stat
 from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
 from .errors import InputError
 
-__all__ = ["AtomicFile", "write_atomic"]
+__all__ = ["AtomicFile", "Source", "refuse_inputs", "write_atomic"]
+
+Source = str | Path | int
+"""A file an output must never replace: its name, or a file descriptor open on it (``0``
+for standard input, when that is a file)."""
 
 
-def write_atomic(path: str | Path, data: bytes | str, *, inputs: Iterable[str | Path] = ()) -> Path:
+def write_atomic(path: str | Path, data: bytes | str, *, inputs: Iterable[Source] = ()) -> Path:
     """Write ``data`` to ``path`` through a temporary file and a rename, making parent folders.
 
     A reader never sees half a file, and an existing file is only replaced by a complete new
@@ -22,10 +27,14 @@ def write_atomic(path: str | Path, data: bytes | str, *, inputs: Iterable[str | 
     device or a pipe (``/dev/null``, a FIFO) is written to directly. Text is written as
     UTF-8 (a file name that is no UTF-8, as its own bytes).
 
+    ``inputs`` are the files the output was made from: ``path`` is refused when it is one
+    of them, compared as files (device and inode, links followed), not as names.
+
     Raises:
         InputError: ``path`` is one of ``inputs``, a folder, read-only, or cannot be
             written.
     """
+    inputs = tuple(inputs)
     with AtomicFile(path, inputs=inputs) as out:
         out.write(data)
         return out.commit(inputs)
@@ -40,7 +49,7 @@ class AtomicFile:
     again at :meth:`commit` (against all of them).
     """
 
-    def __init__(self, path: str | Path, *, inputs: Iterable[str | Path] = ()) -> None:
+    def __init__(self, path: str | Path, *, inputs: Iterable[Source] = ()) -> None:
         self.path = str(path)
         self.target = _target(path, inputs)
         self._temporary: Path | None = None
@@ -78,11 +87,13 @@ class AtomicFile:
         except OSError as exc:
             raise self._cannot(exc) from exc
 
-    def commit(self, inputs: Iterable[str | Path] = ()) -> Path:
+    def commit(self, inputs: Iterable[Source] = ()) -> Path:
         """Put the file in place, unless it is one of ``inputs``; the path written."""
-        for source in inputs:
-            if _same_file(self.target, Path(source)):
-                raise InputError(f"refusing to write over the input {source}", path=self.path)
+        try:
+            refuse_inputs(self.path, inputs)
+        except InputError:
+            self.discard()
+            raise
         try:
             self._stream.close()
             if self._temporary is not None:
@@ -108,17 +119,49 @@ class AtomicFile:
         return InputError(f"cannot write {self.path}: {exc.strerror}", path=self.path)
 
 
-def _target(path: str | Path, inputs: Iterable[str | Path]) -> Path:
+def refuse_inputs(path: str | Path, inputs: Iterable[Source]) -> None:
+    """Refuse ``path`` as an output when it is one of ``inputs``: the same regular file
+    (device and inode, links followed), whatever its name. A path that does not exist yet,
+    a device or a pipe is no input.
+
+    Raises:
+        InputError: ``path`` is one of ``inputs``.
+    """
+    mine = _identity(path)
+    if mine is None:
+        return
+    for source in inputs:
+        if _identity(source) == mine:
+            named = source if not isinstance(source, int) else _descriptor(source)
+            raise InputError(f"refusing to write over the input {named}", path=str(path))
+
+
+def _descriptor(fd: int) -> str:
+    return "<stdin>" if fd == 0 else f"<fd {fd}>"
+
+
+def _identity(source: Source) -> tuple[int, int] | None:
+    """The device and inode of the regular file ``source`` names (or is open on); None for
+    anything else, which no input is (a device, a pipe: every input is read as a regular
+    file) or a name with no file."""
+    try:
+        found = os.fstat(source) if isinstance(source, int) else os.stat(source)
+    except (OSError, ValueError):  # not there, a loop of links, a name with a NUL
+        return None
+    if not stat.S_ISREG(found.st_mode):
+        return None
+    return found.st_dev, found.st_ino
+
+
+def _target(path: str | Path, inputs: Iterable[Source]) -> Path:
     """The file ``path`` names, once it is known to be one that may be written."""
     if not str(path):
         raise InputError("the output file name is empty", path="<output>")
     if str(path).endswith(("/", os.sep)):
         raise InputError(f"{path} names a folder (name a file in it)", path=str(path))
+    refuse_inputs(path, inputs)
     try:
         target = Path(os.path.realpath(path))
-        for source in inputs:
-            if _same_file(target, Path(source)):
-                raise InputError(f"refusing to write over the input {source}", path=str(path))
         if target.is_dir():
             raise InputError(f"{path} is a folder (name a file in it)", path=str(path))
         if os.path.islink(path) and not target.parent.is_dir():
@@ -153,13 +196,6 @@ def _create_temporary(target: Path, mode: int) -> tuple[int, Path]:
 
 def _writable(path: Path) -> bool:
     return os.access(path, os.W_OK)
-
-
-def _same_file(a: Path, b: Path) -> bool:
-    try:
-        return a.exists() and b.exists() and a.samefile(b)
-    except OSError:
-        return False
 
 
 def _token() -> str:
