@@ -16,6 +16,7 @@ from fishbot_urdf.packages import (
     PackageNotFoundError,
     find_package,
     package_name,
+    recording_manifests,
     resolve_package_uri,
 )
 
@@ -291,3 +292,69 @@ def test_ament_index_python_not_found_is_remembered_until_the_import_path_change
     monkeypatch.syspath_prepend(str(Path(__file__).resolve().parent / "ament_stub"))
     assert packages._ament_lookup() is not None  # a new import path: looked for again
     assert len(tried) == 2
+
+
+def test_links_that_cannot_be_followed_in_a_workspace_are_passed_over(tmp_path: Path) -> None:
+    workspace = tmp_path / "ws"
+    own = _package(workspace / "src" / "robot_bringup", "robot_bringup")
+    other = _package(workspace / "src" / "zz" / "camera_description", "camera_description")
+    (workspace / "build").mkdir()
+    (workspace / "src" / "loop").symlink_to("loop")  # a link to itself
+    (workspace / "src" / "a").symlink_to("b")  # a loop of two
+    (workspace / "src" / "b").symlink_to("a")
+    (workspace / "src" / "dangling").symlink_to(tmp_path / "nowhere")
+    near = own / "urdf" / "robot.urdf.xacro"
+    assert find_package("camera_description", near=near) == other
+    with pytest.raises(PackageNotFoundError, match="the workspace"):
+        find_package("missing", near=near)
+
+
+def test_a_folder_that_cannot_be_listed_is_passed_over(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    workspace = tmp_path / "ws"
+    own = _package(workspace / "src" / "robot_bringup", "robot_bringup")
+    other = _package(workspace / "src" / "zz" / "camera_description", "camera_description")
+    (workspace / "build").mkdir()
+    (workspace / "src" / "locked").mkdir()
+    (workspace / "src" / "locked" / "link").symlink_to("x")
+
+    class Refused:
+        """A folder entry whose link cannot be looked at (no permission, as for a user)."""
+
+        name = "link"
+        path = str(workspace / "src" / "locked" / "link")
+
+        def is_dir(self) -> bool:
+            raise PermissionError(13, "Permission denied", self.path)
+
+    real = os.scandir
+
+    def scandir(folder: Any) -> Any:
+        if str(folder).endswith("locked"):
+            return iter([Refused()])
+        return real(folder)
+
+    monkeypatch.setattr(os, "scandir", scandir)
+    assert find_package("camera_description", near=own / "urdf" / "r.urdf") == other
+
+
+def test_the_manifests_read_are_recorded(tmp_path: Path) -> None:
+    workspace = tmp_path / "ws"
+    own = _package(workspace / "src" / "robot_bringup", "robot_bringup")
+    other = _package(workspace / "src" / "zz" / "camera_description", "camera_description")
+    (workspace / "build").mkdir()
+    near = own / "urdf" / "robot.urdf"
+    with recording_manifests() as read:
+        find_package("robot_bringup", near=near)
+    assert read == [os.path.join(own, "package.xml")]
+    finder = PackageFinder()
+    with recording_manifests() as outer:
+        with recording_manifests() as inner:
+            assert finder.find("camera_description", near=near) == other
+        assert str(other / "package.xml") in inner
+        assert outer == inner  # an inner recording's manifests are the outer one's too
+    with recording_manifests() as again:  # a remembered answer: the same manifests
+        finder.find("camera_description", near=near)
+    assert again == inner
+    find_package("robot_bringup", near=near)  # outside a recording: nothing to note

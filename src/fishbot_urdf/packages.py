@@ -10,6 +10,10 @@ Places are searched in this order, and the first that knows the package wins:
 4. ``share/NAME`` under each prefix of ``AMENT_PREFIX_PATH`` (an installed ROS 2 package).
 5. The ``src/`` folder of the colcon workspace around the file, searched like 3.
 6. ``ament_index_python``, when it can be imported (a sourced ROS 2 install).
+
+A folder or link that cannot be looked at (a loop of links, no permission) is passed over as
+if it were not there. Inside :func:`recording_manifests`, every ``package.xml`` read on the
+way is noted, so that a caller can tell which files a robot's reading depended on.
 """
 
 from __future__ import annotations
@@ -17,19 +21,48 @@ from __future__ import annotations
 import os
 import sys
 from collections import deque
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping
+from contextlib import contextmanager
+from contextvars import ContextVar
 from pathlib import Path
 
 from .errors import FishbotUrdfError, InputError
-from .inputs import read_input
+from .inputs import deadline, read_input
 
 __all__ = [
     "PackageFinder",
     "PackageNotFoundError",
     "find_package",
     "package_name",
+    "recording_manifests",
     "resolve_package_uri",
 ]
+
+_MANIFESTS: ContextVar[list[str] | None] = ContextVar("fishbot_urdf_manifests", default=None)
+
+
+@contextmanager
+def recording_manifests() -> Iterator[list[str]]:
+    """Note every ``package.xml`` read to find a package inside the ``with`` (this thread or
+    task only), in the list it gives, in the order read; a package a `PackageFinder` knew
+    already adds the manifests its answer came from. Recordings may nest: an inner one's
+    manifests are the outer one's too."""
+    outer = _MANIFESTS.get()
+    read: list[str] = []
+    token = _MANIFESTS.set(read)
+    try:
+        yield read
+    finally:
+        _MANIFESTS.reset(token)
+        if outer is not None:
+            outer.extend(read)
+
+
+def _note(manifests: Iterable[str]) -> None:
+    recording = _MANIFESTS.get()
+    if recording is not None:
+        recording.extend(manifests)
+
 
 _IGNORE_MARKERS = ("COLCON_IGNORE", "AMENT_IGNORE", "CATKIN_IGNORE")
 _SKIP_DIRS = frozenset(("build", "install", "log", "node_modules", "__pycache__"))
@@ -71,6 +104,7 @@ def package_name(package_xml: str | Path) -> str | None:
         data = read_input(package_xml)
     except InputError:
         return None
+    _note((str(package_xml),))
     return _name_in(data)
 
 
@@ -182,7 +216,10 @@ class PackageFinder:
         """``packages`` and ``environ`` are those of `find_package`."""
         self.packages: Mapping[str, str | Path] = dict(packages or {})
         self.environ = environ
-        self._found: dict[tuple[str, str | None], Path | PackageNotFoundError] = {}
+        # Each answer, with the manifests it was read from.
+        self._found: dict[
+            tuple[str, str | None], tuple[Path | PackageNotFoundError, tuple[str, ...]]
+        ] = {}
 
     def find(self, name: str, *, near: str | Path | None = None) -> Path:
         """`find_package` of ``name`` from the file ``near``, looked up once.
@@ -192,13 +229,20 @@ class PackageFinder:
         """
         # The folder find_package starts from: the file's own, links resolved.
         key = (name, None if near is None else os.path.dirname(os.path.realpath(near)))
-        found = self._found.get(key)
-        if found is None:
-            try:
-                found = find_package(name, near=near, packages=self.packages, environ=self.environ)
-            except PackageNotFoundError as exc:
-                found = exc
-            self._found[key] = found
+        known = self._found.get(key)
+        if known is None:
+            found: Path | PackageNotFoundError
+            with recording_manifests() as read:
+                try:
+                    found = find_package(
+                        name, near=near, packages=self.packages, environ=self.environ
+                    )
+                except PackageNotFoundError as exc:
+                    found = exc
+            self._found[key] = (found, tuple(read))
+        else:
+            found, manifests = known
+            _note(manifests)
         if isinstance(found, PackageNotFoundError):
             raise PackageNotFoundError(found.package, found.searched, given=found.given)
         return found
@@ -258,7 +302,7 @@ def _candidates(
         prefix = Path(os.path.abspath(entry))
         share = prefix / "share" / name
         marker = prefix / "share" / "ament_index" / "resource_index" / "packages" / name
-        if marker.is_file() or (share / "package.xml").is_file():
+        if os.path.isfile(marker) or os.path.isfile(share / "package.xml"):
             yield share
     searched.append("AMENT_PREFIX_PATH" + _shown(env.get("AMENT_PREFIX_PATH", "")))
 
@@ -341,7 +385,9 @@ def _crawl(top: Path, name: str) -> Path | None:
     """
     queue = deque([top])
     seen: set[str] = set()
+    limit = deadline()
     while queue:
+        limit.check(f"searching {top} for package {name!r}")
         folder = queue.popleft()
         real = os.path.realpath(folder)
         if real in seen:
@@ -359,6 +405,15 @@ def _crawl(top: Path, name: str) -> Path | None:
         if any(marker in names for marker in _IGNORE_MARKERS):
             continue
         for entry in entries:
-            if entry.is_dir() and not entry.name.startswith(".") and entry.name not in _SKIP_DIRS:
+            if not entry.name.startswith(".") and entry.name not in _SKIP_DIRS and _is_dir(entry):
                 queue.append(Path(entry.path))
     return None
+
+
+def _is_dir(entry: os.DirEntry[str]) -> bool:
+    """Whether ``entry`` is a folder (or links to one); a link that cannot be followed (a
+    loop, no permission) is none."""
+    try:
+        return entry.is_dir()
+    except OSError:
+        return False
