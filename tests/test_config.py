@@ -5,6 +5,7 @@ ruff resolves it, [tool.fishbot] / fishbot.toml found upward from each file, --c
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 
 import pytest
@@ -385,7 +386,7 @@ def test_a_configuration_that_cannot_be_read(arm: Path, monkeypatch: pytest.Monk
     assert run("--config", "missing.toml", "arm.urdf") == (
         2,
         "",
-        "missing.toml: error: cannot read the configuration: No such file or directory [config]\n",
+        "missing.toml: error: cannot read the configuration: no such file [config]\n",
     )
     (arm / "fishbot.toml").write_bytes(b'select = ["\xff"]\n')
     assert run("arm.urdf") == (
@@ -394,18 +395,18 @@ def test_a_configuration_that_cannot_be_read(arm: Path, monkeypatch: pytest.Monk
         "fishbot.toml: error: cannot read the configuration: not UTF-8 text [config]\n",
     )
     (arm / "fishbot.toml").write_text("")
-    real = Path.read_text
+    real = os.open
 
-    def refuse(self: Path, *args: object, **kwargs: object) -> str:
-        if self.name == "fishbot.toml":
-            raise PermissionError(13, "Permission denied", str(self))
-        return real(self, *args, **kwargs)  # type: ignore[arg-type]
+    def refuse(path: str, *args: int) -> int:
+        if os.path.basename(path) == "fishbot.toml":
+            raise PermissionError(13, "Permission denied", path)
+        return real(path, *args)
 
-    monkeypatch.setattr(Path, "read_text", refuse)
+    monkeypatch.setattr(os, "open", refuse)
     assert run("arm.urdf") == (
         2,
         "",
-        "fishbot.toml: error: cannot read the configuration: Permission denied [config]\n",
+        "fishbot.toml: error: cannot read the configuration: permission denied [config]\n",
     )
 
 
@@ -456,3 +457,43 @@ def test_find_config_remembers_the_folders_it_searched(tmp_path: Path) -> None:
     assert known[deep] == known[tmp_path / "a"] == known[tmp_path] == first
     # Answered from what was found: the same as a search without it.
     assert find_config(tmp_path / "a" / "robot.urdf", known) == find_config(tmp_path / "a")
+
+
+def test_a_toml_nested_too_deeply_is_one_configuration_error(arm: Path) -> None:
+    deep = "[" * 3000 + "]" * 3000
+    (arm / "pyproject.toml").write_text(f"[tool.fishbot]\nselect = {deep}\n")
+    message = "not valid TOML: arrays or tables nested too deeply to read (nest them less)"
+    assert run("arm.urdf") == (2, "", f"pyproject.toml: error: {message} [config]\n")
+    (arm / "pyproject.toml").unlink()
+    (arm / "fishbot.toml").write_text(f"select = {deep}\n")
+    assert run("arm.urdf") == (2, "", f"fishbot.toml: error: {message} [config]\n")
+    with pytest.raises(ConfigError, match="nested too deeply"):
+        load_config(arm / "fishbot.toml")
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="FIFOs: POSIX only")
+def test_a_configuration_that_is_no_regular_file_is_refused_at_once(arm: Path) -> None:
+    os.mkfifo(arm / "pipe.toml")  # read as a file, it would wait for a writer forever
+    assert run("--config", "pipe.toml", "arm.urdf") == (
+        2,
+        "",
+        "pipe.toml: error: cannot read the configuration: is a FIFO (named pipe), not a "
+        "regular file [config]\n",
+    )
+    if os.path.exists("/dev/zero"):  # read whole, it would fill the memory
+        assert run("--config", "/dev/zero", "arm.urdf") == (
+            2,
+            "",
+            "/dev/zero: error: cannot read the configuration: is a device, not a regular "
+            "file [config]\n",
+        )
+
+
+def test_a_configuration_over_the_size_limit_is_refused(arm: Path) -> None:
+    (arm / "fishbot.toml").write_text("# " + "x" * 2_000_000 + "\n")
+    status, out, err = run("--max-size", "1", "arm.urdf")
+    assert (status, out) == (2, "")
+    assert err == (
+        "fishbot.toml: error: cannot read the configuration: is 1.9 MiB, more than the limit "
+        "of 1.0 MiB [config]\n"
+    )

@@ -23,7 +23,8 @@ from types import MappingProxyType
 from typing import Any
 
 from .diagnostics import Diagnostic, Severity, did_you_mean, listing
-from .errors import ConfigError
+from .errors import ConfigError, InputError
+from .inputs import read_input
 
 __all__ = [
     "CONFIG_FILES",
@@ -232,18 +233,21 @@ def load_config(path: str | Path) -> Config:
     ``[tool.fishbot]``; one without that table is the default configuration). Any other
     file name is read as a fishbot.toml.
 
+    The file is read as every input is (:func:`fishbot_urdf.inputs.read_input`): a
+    regular file within the size limit.
+
     Raises:
-        ConfigError: The file cannot be read, is not TOML, or has an unknown key, rule or
-            severity, or a value of the wrong type.
+        ConfigError: The file cannot be read (or is no regular file, or is too big), is not
+            TOML (or nests too deeply), or has an unknown key, rule or severity, or a value
+            of the wrong type.
     """
     name = str(path)
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        text = read_input(name).decode("utf-8")
     except UnicodeDecodeError as exc:
         raise ConfigError("cannot read the configuration: not UTF-8 text", path=name) from exc
-    except OSError as exc:
-        reason = exc.strerror or str(exc)
-        raise ConfigError(f"cannot read the configuration: {reason}", path=name) from exc
+    except InputError as exc:  # not there, a folder, a FIFO, a device, too big
+        raise ConfigError(f"cannot read the configuration: {exc.message}", path=name) from exc
     document = _parse(text, name)
     table: Any = document
     if Path(path).name == "pyproject.toml":
@@ -259,6 +263,11 @@ def load_config(path: str | Path) -> Config:
 def _parse(text: str, path: str) -> dict[str, Any]:
     try:
         document: dict[str, Any] = _toml().loads(text)
+    except RecursionError as exc:  # tomllib reads nested arrays and tables recursively
+        raise ConfigError(
+            "not valid TOML: arrays or tables nested too deeply to read (nest them less)",
+            path=path,
+        ) from exc
     except ValueError as exc:  # tomllib.TOMLDecodeError
         where = re.search(r"\(at line (\d+), column (\d+)\)", str(exc))
         raise ConfigError(
@@ -389,10 +398,10 @@ def _line_of(path: str | None, word: str) -> int | None:
     """The first line of ``path`` that names ``word`` (for the error's location)."""
     if path is None:
         return None
-    try:
-        lines = Path(path).read_text(encoding="utf-8").splitlines()
-    except (OSError, UnicodeDecodeError):
+    text = _text_or_none(path)
+    if text is None:
         return None
+    lines = text.splitlines()
     pattern = re.compile(rf"(^|[\s\"'\[,{{.]){re.escape(word)}([\s\"'\],=}}.]|$)")
     start = 0
     if Path(path).name == "pyproject.toml":
@@ -406,18 +415,24 @@ def _line_of(path: str | None, word: str) -> int | None:
 def _has_table(pyproject: Path) -> bool:
     """Whether a pyproject.toml has a ``[tool.fishbot]`` table (one that is not TOML
     counts when a line opens that table, so that reading it reports the fault)."""
-    try:
-        text = pyproject.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError):
-        return False
-    if "fishbot" not in text:
+    text = _text_or_none(pyproject)
+    if text is None or "fishbot" not in text:
         return False
     try:
         document = _toml().loads(text)
-    except ValueError:
+    except (ValueError, RecursionError):
         return any(_TABLE.match(line) for line in text.splitlines())
     tool = document.get("tool")
     return isinstance(tool, dict) and "fishbot" in tool
+
+
+def _text_or_none(path: str | Path) -> str | None:
+    """The text of a configuration file, or None when it cannot be read (as `load_config`
+    reads it)."""
+    try:
+        return read_input(path).decode("utf-8")
+    except (InputError, UnicodeDecodeError):
+        return None
 
 
 def _toml() -> Any:
