@@ -296,3 +296,19 @@ def test_json_counts_what_was_silenced(monkeypatch: pytest.MonkeyPatch) -> None:
         ("whole_file.urdf", {"count": 2, "rules": {"collision-material": 2}}),
     ]
     assert Config().applies("unused-suppression")
+
+
+def test_github_writes_other_control_characters_visibly() -> None:
+    finding = diagnostic(
+        "limit-range",
+        Severity.ERROR,
+        "joint '\x1b[2Jj': one\x85two\u2028three",
+        path="a\n::error file=x::pwned\x1b.urdf",
+        line=3,
+        hint="tab\there",
+    )
+    assert github_annotations([finding]) == (
+        "::error file=a%0A%3A%3Aerror file=x%3A%3Apwned\\x1b.urdf,line=3,"
+        "title=fishbot limit-range::joint '\\x1b[2Jj': one\\x85two\\u2028three (tab\\there) "
+        "[limit-range]\n"
+    )

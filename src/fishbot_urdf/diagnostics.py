@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from enum import Enum
@@ -103,7 +104,12 @@ class Diagnostic:
         return (_unpickled, (*(getattr(self, name) for name in _FIELDS), dict(self.data)))
 
     def format(self) -> str:
-        """Render as one GCC-style line: ``path:line:col: error: message (hint) [rule]``."""
+        """Render as one GCC-style line: ``path:line:col: error: message (hint) [rule]``.
+
+        Always one line, safe to print to a terminal: control characters in the path, the
+        message or the hint are written as `escape_controls` writes them (a newline as
+        ``\\n``, ESC as ``\\x1b``).
+        """
         return self.format_with(self.hint)
 
     def format_with(self, hint: str | None) -> str:
@@ -111,7 +117,7 @@ class Diagnostic:
         text = f"{self.where}: {self.severity.value}: {self.message}"
         if hint:
             text += f" ({hint})"
-        return f"{text} [{self.rule}]"
+        return escape_controls(f"{text} [{self.rule}]")
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready dict of every field."""
@@ -179,6 +185,34 @@ def from_error(exc: FishbotUrdfError, path: str = "<input>") -> Diagnostic:
         hint=getattr(exc, "hint", None),
         subject=Subject(Kind.FILE, exc.path) if exc.path else None,
     )
+
+
+# C0 controls (newline, CR, tab, ESC, ...), DEL, C1 controls, the Unicode line and paragraph
+# separators, and the C1 bytes of a file name that is no UTF-8 (kept as surrogates).
+_CONTROLS = re.compile("[\x00-\x1f\x7f-\x9f\u2028\u2029\udc80-\udc9f]")
+_NAMED = {"\n": "\\n", "\r": "\\r", "\t": "\\t"}
+
+
+def _escaped(match: re.Match[str]) -> str:
+    char = match[0]
+    named = _NAMED.get(char)
+    if named is not None:
+        return named
+    code = ord(char)
+    if 0xDC80 <= code <= 0xDC9F:  # a byte 0x80-0x9f of a name that is no UTF-8
+        return f"\\x{code - 0xDC00:02x}"
+    return f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}"
+
+
+def escape_controls(text: str) -> str:
+    """``text`` with every control character written visibly, as Python writes it in a
+    string: newline ``\\n``, carriage return ``\\r``, tab ``\\t``, other C0 controls,
+    DEL and C1 controls ``\\xHH`` (ESC is ``\\x1b``; so is a byte 0x80-0x9f of a file
+    name that is no UTF-8), the line and paragraph separators
+    ``\\u2028`` and ``\\u2029``. A line made of such text stays one line, and no
+    terminal escape sequence is in it. Backslashes are left as they are (a name may hold
+    the two characters ``\\n``: only a control character is ever escaped)."""
+    return _CONTROLS.sub(_escaped, text)
 
 
 def shown_path(name: str) -> str:

@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 from urllib.parse import quote
 
-from .diagnostics import Diagnostic, Severity, shown_path
+from .diagnostics import Diagnostic, Severity, escape_controls, shown_path
 
 __all__ = ["FileReport", "github_annotations", "json_report", "sarif_report"]
 
@@ -183,7 +183,13 @@ _ANNOTATIONS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.N
 
 def github_annotations(findings: Iterable[Diagnostic]) -> str:
     """GitHub Actions workflow commands, one per finding: ``::error file=F,line=L,col=C,
-    title=RULE::message``, which the run's summary and the pull request show at the line."""
+    title=RULE::message``, which the run's summary and the pull request show at the line.
+
+    Each command is one line, with no terminal escape sequence in it: a newline or a
+    carriage return is written as GitHub's ``%0A`` and ``%0D`` (which GitHub reads back:
+    the annotation finds the file, its message keeps its lines), any other control
+    character as in the text format (:func:`fishbot_urdf.diagnostics.escape_controls`:
+    ESC as ``\\x1b``)."""
     lines: list[str] = []
     for finding in findings:
         fields = [f"file={_property(shown_path(finding.path))}"]
@@ -199,7 +205,8 @@ def github_annotations(findings: Iterable[Diagnostic]) -> str:
 
 
 def _data(text: str) -> str:
-    return text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+    encoded = text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+    return escape_controls(encoded)
 
 
 def _property(text: str) -> str:
