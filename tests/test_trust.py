@@ -1,9 +1,9 @@
-"""The trust model of expansion: every expression is checked before it runs, at every depth,
-and each file is expanded with evaluation state of its own.
+"""The trust model of expansion: every expression is interpreted by an allowlist, at every
+depth, and each file is expanded with evaluation state of its own.
 
-Each escape attempt below would, if it ran, create a canary file or reach an object that
-leads to one (a frame, a function's globals, the list of every class). The property: the
-expansion stops with one located error and the canary never appears.
+Each escape attempt below would, if it ran as Python, create a canary file or reach an
+object that leads to one (a frame, a function's globals, the list of every class). The
+property: the expansion stops with one located error and the canary never appears.
 """
 
 from __future__ import annotations
@@ -16,7 +16,8 @@ from conftest import xacro_command
 
 from fishbot_urdf.cli import cli
 from fishbot_urdf.expand import XacroError, expand
-from fishbot_urdf.expand._guard import UnsafeExpression, check_expression
+from fishbot_urdf.expand._allowlist import UnsafeExpression, prepare_symbols
+from fishbot_urdf.expand._interpreter import evaluate
 
 NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
 CANARY = "CANARY"
@@ -27,7 +28,20 @@ SYSTEM = (
     "if c.__name__ == '_wrap_close'][0].__init__.__globals__['system']('touch CANARY'))()"
 )
 
-# Expressions refused by the checker before they run, each with what it names first.
+
+def _symbols() -> dict[str, object]:
+    """xacro's global symbol table, prepared as an expansion prepares it, with a YAML-like
+    property."""
+    import xacro  # type: ignore[import-untyped]
+
+    symbols = xacro.create_global_symbols()
+    prepare_symbols(symbols)
+    table = xacro.Table(symbols)
+    table._setitem("props", xacro.YamlDictWrapper({"wheel": {"radius": 0.03}}), False)
+    return table  # type: ignore[no-any-return]
+
+
+# Expressions refused by the interpreter, each with what it names first.
 REFUSED = [
     (SYSTEM, "__class__"),
     ("[c for c in ().__class__.__bases__[0].__subclasses__()]", "__class__"),
@@ -37,17 +51,27 @@ REFUSED = [
     ("(lambda f=(lambda: 0): f.__code__)()", "__code__"),
     ("[[y.__class__ for y in [x]] for x in [1]]", "__class__"),
     ("f'{().__class__}'", "__class__"),
-    ("'{0.__class__.__base__}'.format(1)", "format"),
-    ("'{0[__x]}'.format(python.dict())", "format"),
-    ("python.str.format('{0.__class__}', 1)", "format"),
+    ("'{0.__class__.__base__}'.format(1)", "format field"),
+    ("'{0[__x]}'.format(python.dict())", "format field"),
+    ("'{0[0]}'.format([1])", "format field"),
+    ("'{0.real}'.format(1)", "format field"),
+    ("'{0:{1.real}}'.format(1, 2)", "format field '{1.real}'"),
+    ("python.str.format('{0.__class__}', 1)", "format field"),
+    ("python.str.format.__call__('{0.x}', 1)", "__call__"),
     ("'{x}'.format_map(python.dict())", "format_map"),
     ("python.dict(__class__=1)", "__class__"),
     ("(lambda __x: 0)(1)", "__x"),
+    ("python.type(1)", "python.type"),
+    ("python.vars()", "python.vars"),
+    ("python.list.mro()", "mro"),
+    ("xacro.arg.func_globals", "func_globals"),
+    ("python.list(python.map(python.type, [1]))", "python.type"),
+    ("math.parent", "'parent' is not defined"),
     ("xacro.load_yaml.__globals__", "__globals__"),
     ("xacro.arg.__closure__", "__closure__"),
     ("xacro.arg.func_globals", "func_globals"),
     ("[].__class__.__mro__", "__class__"),
-    ("(y := ().__class__)", "__class__"),
+    ("(y := ().__class__)", ":="),
     ("[*().__class__.__mro__]", "__class__"),
     ("__import__('os')", "__import__"),
     ("math._private", "_private"),
@@ -56,10 +80,18 @@ REFUSED = [
 
 
 @pytest.mark.parametrize(("expression", "what"), REFUSED, ids=[r[0][:40] for r in REFUSED])
-def test_the_checker_refuses_each_escape_naming_what_it_refused(expression: str, what: str) -> None:
-    with pytest.raises(UnsafeExpression) as caught:
-        check_expression(expression)
-    assert caught.value.what == what
+def test_the_interpreter_refuses_each_escape_naming_what_it_refused(
+    expression: str, what: str
+) -> None:
+    with pytest.raises((UnsafeExpression, NameError)) as caught:
+        evaluate(expression, _symbols())
+    shown = caught.value.what if isinstance(caught.value, UnsafeExpression) else str(caught.value)
+    assert what in shown
+    assert (
+        caught.value.expression == expression
+        if isinstance(caught.value, UnsafeExpression)
+        else True
+    )
 
 
 @pytest.mark.parametrize(
@@ -77,7 +109,18 @@ def test_the_checker_refuses_each_escape_naming_what_it_refused(expression: str,
     ],
 )
 def test_what_robot_descriptions_write_is_allowed(expression: str) -> None:
-    check_expression(expression)
+    expected = {
+        "math.pi / 2": 1.5707963267948966,
+        "xacro.arg('x') if False else 1": 1,
+        "python.dict(a=1)['a']": 1,
+        "'{}_link'.format('left')": "left_link",
+        "'{0}_{1:.2f}'.format('w', 0.5)": "w_0.50",
+        "[x * 2 for x in python.range(3)]": [0, 2, 4],
+        "(lambda r: r * r)(2)": 4,
+        "props.wheel.radius": 0.03,
+        "python.sorted([3, 1])": [1, 3],
+    }
+    assert evaluate(expression, _symbols()) == expected[expression]
 
 
 def _expand_in(folder: Path, files: dict[str, str], monkeypatch: pytest.MonkeyPatch) -> Path:
@@ -179,16 +222,16 @@ def test_yaml_unit_tags_still_convert(tmp_path: Path, monkeypatch: pytest.Monkey
 @pytest.mark.parametrize(
     ("expression", "message"),
     [
-        # built while running, out of the checker's sight: the symbol table closes them
         (
             "python.vars(python.type)['_' + '_subclasses' + '__']",
-            "'__subclasses__'",
+            "uses python.vars, which xacro expressions may not here",
         ),
-        ("python.type('X', (), python.dict())", "python.type with three arguments"),
-        ("python.type(python.int)('X', (), python.dict())", "python.type with three arguments"),
+        ("python.type('X', (), python.dict())", "uses python.type, which"),
+        ("python.type(python.int)('X', (), python.dict())", "uses python.type, which"),
+        ("python.len([k for k in python.vars(python.int)])", "uses python.vars, which"),
     ],
 )
-def test_what_is_built_at_run_time_is_closed_in_the_symbol_table(
+def test_type_and_vars_are_refused_where_they_are_called(
     expression: str, message: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     robot = _expand_in(
@@ -196,16 +239,9 @@ def test_what_is_built_at_run_time_is_closed_in_the_symbol_table(
     )
     with pytest.raises(XacroError) as caught:
         expand(robot)
+    assert caught.value.rule == "xacro-unsafe"
     assert message in str(caught.value)
-
-
-def test_python_vars_shows_no_private_names(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    text = _robot('<link name="${python.len([k for k in python.vars(python.int)])}"/>')
-    robot = _expand_in(tmp_path, {"robot.xacro": text}, monkeypatch)
-    shown = int(expand(robot).text.split('link name="')[1].split('"')[0])
-    assert shown == len([k for k in vars(int) if not k.startswith("_")])
+    assert "trust_expressions=True" in (caught.value.hint or "")
 
 
 @pytest.mark.parametrize(

@@ -87,8 +87,9 @@ def error_hint(exc: FishbotUrdfError) -> tuple[str, str | None] | None:
     """The message and hint of an error that stops a command, phrased for the command line,
     or None to keep the library's."""
     from ..errors import ToolTimeoutError
-    from ..expand import ExpansionLimitError
-    from ..inputs import InputTooLargeError
+    from ..expand import ExpansionLimitError, XacroError
+    from ..expand._errors import TRUST_HINT
+    from ..inputs import InputTooLargeError, TimeLimitError
     from ..packages import PackageNotFoundError
 
     if isinstance(exc, InputTooLargeError):
@@ -97,6 +98,11 @@ def error_hint(exc: FishbotUrdfError) -> tuple[str, str | None] | None:
         return exc.message, "allow it longer with --timeout SECONDS"
     if isinstance(exc, ExpansionLimitError):
         return exc.message, "raise the limits with --timeout SECONDS and --max-size MIB"
+    if isinstance(exc, TimeLimitError):
+        return exc.message, "allow it longer with --timeout SECONDS"
+    if isinstance(exc, XacroError) and exc.hint and exc.hint.endswith(TRUST_HINT):
+        opt_in = "or, for a file you trust, run its code as Python with --trust-expressions"
+        return exc.message, exc.hint.removesuffix(TRUST_HINT) + opt_in
     if isinstance(exc, PackageNotFoundError):
         places = [f"--package ({', '.join(exc.given) or 'none given'})", *exc.searched[1:]]
         return (

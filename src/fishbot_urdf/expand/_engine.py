@@ -7,7 +7,6 @@ import functools
 import io
 import os
 import threading
-import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
@@ -15,13 +14,15 @@ from xml.dom import expatbuilder, minidom
 from xml.parsers.expat import ExpatError
 
 from ..diagnostics import shown_path
-from ..errors import FishbotUrdfError, InputError
-from ..inputs import max_bytes, max_seconds, read_input
+from ..errors import FishbotUrdfError, InputError, LimitError
+from ..inputs import Deadline, deadline, max_bytes, read_input
 from ..location import Location
 from ..packages import PackageNotFoundError, find_package
 from . import Expansion, ExpansionLimitError, XacroError
-from ._errors import SOURCE_KEY, Explaining, source
-from ._guard import guard_symbols, guarded
+from ._allowlist import allowed_callables, prepare_symbols
+from ._errors import SOURCE_KEY, Explaining, limited, source
+from ._files import Globbing, load_yaml_bounded
+from ._interpreter import evaluate
 
 
 class _Overgrown(FishbotUrdfError):
@@ -33,12 +34,11 @@ class _KeepOnClone:
     counts the clones: macros that call each other twice per level double the document
     with every level, and a budget stops that before it fills the memory."""
 
-    __slots__ = ("budget", "deadline", "left", "seconds")
+    __slots__ = ("budget", "left", "until")
 
-    def __init__(self, budget: int, seconds: float) -> None:
+    def __init__(self, budget: int, until: Deadline) -> None:
         self.budget = self.left = budget
-        self.seconds = seconds
-        self.deadline = time.monotonic() + seconds
+        self.until = until
 
     def handle(self, operation: int, key: str, data: Any, src: Any, dst: Any) -> None:
         # The clone shares the original's user data: it only ever holds this one entry and
@@ -47,8 +47,8 @@ class _KeepOnClone:
         self.left -= 1
         if self.left < 0:
             raise _Overgrown(f"makes more than {self.budget:,} elements")
-        if not self.left & 63 and time.monotonic() > self.deadline:
-            raise _Overgrown(f"takes longer than {self.seconds:g} s")
+        if not self.left & 63 and self.until.passed():
+            raise _Overgrown(f"takes longer than {self.until.seconds:g} s")
 
 
 class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
@@ -96,7 +96,10 @@ class Run(Explaining):
         self._messages = io.StringIO()  # what xacro would have printed on stderr
         # Elements a run may make by macro calls: one per 32 bytes of the size limit (8.4
         # million by default; a 100,000-link robot made of macros needs about 2 million).
-        self._keeper = _KeepOnClone(max(1, max_bytes() // 32), max_seconds())
+        self.deadline = deadline()  # one for the whole expansion, from the caller's
+        self._keeper = _KeepOnClone(max(1, max_bytes() // 32), self.deadline)
+        self._evaluating = (evaluate.__code__, xacro.safe_eval.__code__)
+        self.allowed: frozenset[int] = frozenset()  # what expressions may call, once known
 
     # -- the hooks -------------------------------------------------------------------------
     def __enter__(self) -> Run:
@@ -108,8 +111,10 @@ class Run(Explaining):
         # keeps its depth the xacro command's.
         self._patch(x, "grab_property", self._property(x.grab_property))
         self._patch(x, "reqd_attrs", self._attributes(x.reqd_attrs))
-        self._patch(x, "safe_eval", guarded)
-        self._patch(subst, "_eval", self._substitution_eval)
+        if not self.trust:
+            self._patch(x, "safe_eval", self._evaluate)
+            self._patch(subst, "_eval", self._substitution_eval)
+        self._patch(x, "glob", Globbing(self.deadline))
         self._patch(x, "eval_extension", self._extension(x.eval_extension))
         self._patch(x, "parse", self._parse)
         self._patch(x, "print_location", lambda: None)
@@ -128,6 +133,8 @@ class Run(Explaining):
         self._patch(x, "verbosity", 1)
         self._patch(x, "substitution_args_context", {})
         x.init_stacks(None)
+        symbols = x._global_symbols
+        self.allowed = allowed_callables(symbols)
         return self
 
     def __exit__(self, *exc: object) -> None:
@@ -149,7 +156,8 @@ class Run(Explaining):
     def _fresh_symbols(self) -> dict[str, Any]:
         x = self.xacro
         symbols: dict[str, Any] = x.create_global_symbols()
-        guard_symbols(symbols)
+        if not self.trust:
+            prepare_symbols(symbols)
         exposed = symbols["xacro"]
         exposed["message"] = self._exposed_message
         exposed["load_yaml"] = self._load_yaml
@@ -164,27 +172,9 @@ class Run(Explaining):
         return symbols
 
     def _load_yaml(self, filename: str) -> Any:
-        """xacro.load_yaml, reading only a regular file, with a YAML loader of its own."""
-        import yaml
-
+        """xacro.load_yaml, reading only a regular file, with its aliases bounded."""
         x = self.xacro
         symbols = x._global_symbols
-
-        class Loader(yaml.SafeLoader):  # type: ignore[misc]
-            pass
-
-        for unit in x.ConstructUnits:
-
-            def construct(
-                loader: Any, node: Any, factor: float = unit.value.conversion_constant
-            ) -> float:
-                value = loader.construct_scalar(node)
-                try:
-                    return float(guarded(value, symbols)) * factor
-                except SyntaxError as exc:
-                    raise x.XacroException(f"invalid expression: {value}") from exc
-
-            Loader.add_constructor(unit.value.tag, construct)
         name = x.abs_filename_spec(filename)
         x.filestack.append(name)
         try:
@@ -192,13 +182,28 @@ class Run(Explaining):
                 data = read_input(name)
             except InputError as exc:
                 raise x.XacroException(f"cannot read {name}: {exc.message}") from exc
+
+            def unit(value: str) -> float:
+                try:
+                    return float(self._evaluate(value, symbols))
+                except SyntaxError as exc:
+                    raise x.XacroException(f"invalid expression: {value}") from exc
+
+            units = {u.value.tag: u.value.conversion_constant for u in x.ConstructUnits}
             try:
-                return x.YamlListWrapper.wrap(yaml.load(data, Loader=Loader))  # a SafeLoader
-            except yaml.YAMLError as exc:
+                loaded = load_yaml_bounded(data, units, unit, self.deadline)
+            except ValueError as exc:
                 raise x.XacroException(f"{name} is not valid YAML: {exc}") from exc
+            return x.YamlListWrapper.wrap(loaded)
         finally:
             x.filestack.pop()
             x.all_includes.append(name)
+
+    def _evaluate(self, expression: str, globals: Any, locals: Any = None) -> Any:
+        """xacro's ``safe_eval``, by allowlist (as xacro's own with --trust-expressions)."""
+        if self.trust:
+            return self.xacro.safe_eval(expression, globals, locals)
+        return evaluate(expression, globals, locals, allowed=self.allowed, until=self.deadline)
 
     def _substitution_eval(self, text: str, context: dict[str, Any]) -> str:
         """``$(eval ...)``: the same check as ``${...}``, and no builtins either."""
@@ -212,7 +217,9 @@ class Run(Explaining):
         functions.pop("__builtins__", None)
         # xacro gives $(eval) all of Python's builtins; here, those ${...} has as python.*
         builtins = dict(self.xacro._global_symbols["python"])
-        return str(guarded(text, {}, subst._DictWrapper(args, functions), builtins))
+        allowed = self.allowed | {id(f) for f in functions.values() if callable(f)}
+        scope = subst._DictWrapper(args, functions)
+        return str(evaluate(text, {}, scope, builtins, allowed=allowed, until=self.deadline))
 
     def _message(self, msg: Any, *args: Any, **kwargs: Any) -> None:
         # As xacro.color.message writes to a stream that is not a terminal: no colour, the
@@ -308,14 +315,13 @@ class Run(Explaining):
             x.check_attrs.__code__: "tag",
             x.xmlutils.reqd_attrs.__code__: "tag",
         }
-        evaluating = guarded.__code__
         calls: list[tuple[str, Location | None]] = []
         # The symbols of the failing expression: its frame is in the error's traceback or,
         # when xacro wrapped the error, in the traceback of the one it wrapped.
         chained: BaseException | None = error
         while chained is not None:
             for frame in _frames(chained):
-                if frame.f_code is evaluating:
+                if frame.f_code in self._evaluating:
                     self.symbols = frame.f_locals.get("globals")
             chained = chained.__context__
         for frame in _frames(error):
@@ -364,6 +370,8 @@ class Run(Explaining):
                 where=source(self.node),
                 calls=self._calls(),
             ) from exc
+        except LimitError as exc:  # the deadline, or too many files globbed
+            raise limited(exc, source(self.node), self._calls()) from exc
         except _Overgrown as exc:
             raise ExpansionLimitError(
                 f"the expansion {exc} (macros that call each other without a bound?)",

@@ -9,11 +9,12 @@ from typing import Any
 from xml.parsers.expat import ExpatError
 
 from ..diagnostics import closest, listing, shown_path
-from ..errors import FishbotUrdfError
+from ..errors import FishbotUrdfError, LimitError
+from ..inputs import TimeLimitError
 from ..location import Location
 from ..packages import PackageNotFoundError
-from . import XacroError
-from ._guard import UnsafeExpression
+from . import ExpansionLimitError, XacroError
+from ._allowlist import UnsafeExpression
 
 _XACRO_NS = "http://www.ros.org/wiki/xacro"
 
@@ -106,25 +107,10 @@ class Explaining:
             )
         if isinstance(inner, PackageNotFoundError):
             return self._located(inner)
-        if isinstance(inner, UnsafeExpression) and inner.too_big:
-            return XacroError(
-                f"expression {_shown(inner.expression)} would make {inner.what}, more than "
-                "a xacro expression may",
-                rule="xacro-unsafe",
-                hint="a robot description needs no value that large",
-                where=where,
-                calls=calls,
-            )
         if isinstance(inner, UnsafeExpression):
-            return XacroError(
-                f"expression {_shown(inner.expression)} uses '{inner.what}', which is not "
-                "allowed in a xacro expression",
-                rule="xacro-unsafe",
-                hint="use properties, arguments and the math, python and xacro functions; "
-                "names that start with '__' and attributes that start with '_' are refused",
-                where=where,
-                calls=calls,
-            )
+            return unsafe(inner, where, calls)
+        if isinstance(inner, LimitError):
+            return limited(inner, where, calls)
         if isinstance(inner, OSError) and self.node is not None:
             if self.node.tagName == "xacro:include":
                 spec = self.node.getAttribute("filename")
@@ -232,6 +218,41 @@ class Explaining:
                 if not same or where is None or line > where.line:
                     return Location(file, line, match.start() - data.rfind(b"\n", 0, match.start()))
         return None
+
+
+TRUST_HINT = "or expand with trust_expressions=True, which runs the file's code as Python"
+"""The end of the hint for an expression refused: the opt-in, in the library's words."""
+
+
+def unsafe(
+    inner: UnsafeExpression, where: Location | None, calls: tuple[tuple[str, Location | None], ...]
+) -> XacroError:
+    """One located error for an expression refused, or stopped by a bound."""
+    shown = _shown(inner.expression)
+    if inner.too_big:
+        message = f"expression {shown} would make {inner.what}, more than a xacro expression may"
+        hint = "a robot description needs no value that large"
+    elif inner.too_long:
+        message = f"expression {shown} takes {inner.what}, more than a xacro expression may"
+        hint = "a robot description needs no loop that long"
+    else:
+        message = f"expression {shown} uses {inner.what}, which xacro expressions may not here"
+        hint = (
+            "write it with properties, arguments and the math, python and xacro functions, "
+            + TRUST_HINT
+        )
+    return XacroError(message, rule="xacro-unsafe", hint=hint, where=where, calls=calls)
+
+
+def limited(
+    inner: LimitError, where: Location | None, calls: tuple[tuple[str, Location | None], ...]
+) -> ExpansionLimitError:
+    """One located error for an expansion stopped by the deadline or a bound on files."""
+    if isinstance(inner, TimeLimitError):
+        message = f"the expansion takes longer than {inner.seconds:g} s"
+    else:
+        message = f"the expansion stops: {inner.message}"
+    return ExpansionLimitError(message, where=where, calls=calls[:3])
 
 
 def _shown(expression: str) -> str:

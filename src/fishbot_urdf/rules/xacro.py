@@ -275,18 +275,20 @@ XACRO_UNSAFE = Rule(
     "xacro-unsafe",
     E,
     Family.XACRO,
-    summary="A xacro expression reaches past its properties, into Python itself.",
-    explanation="A `${...}` or `$(eval ...)` expression is Python code, and xacro runs it. "
-    "fishbot checks every expression before it runs, at every depth (inside lambdas and "
-    "comprehensions too), and refuses names that start with `__`, attributes that start with "
-    "`_`, attributes that lead to frames, code or globals (`gi_frame`, `f_globals`, ...), "
-    "`str.format` on anything but a written string, `python.type` with three arguments, and "
-    "`python.vars` shows no names that start with `_`. These are the ways out of the symbol "
-    "table to the files and programs of the machine; a robot description never needs them. "
-    "An expression that would build a value too large to be a robot's (a number of more than "
-    "a million bits, a string, list or range of more than ten million items, a factorial past "
-    "100,000) is stopped before it does, too: it would run for hours or fill the memory. "
-    "Write the value with the properties, arguments and `math`, `python` and `xacro` functions.",
+    summary="A xacro expression does what the expression allowlist does not allow.",
+    explanation="A `${...}` or `$(eval ...)` expression is Python code, and ROS's xacro runs it "
+    "with Python's `eval`: a robot file can read and write the files of whoever expands it. "
+    "fishbot interprets every expression itself, by an allowlist: literals, properties and "
+    "arguments, the operators, conditionals, subscripts, comprehensions, lambdas, the `math`, "
+    "`python` and `xacro` functions xacro exposes (less `python.type` and `python.vars`), and "
+    "listed methods of strings, lists, dicts, tuples, sets and numbers. An attribute or name "
+    "that starts with `_`, `:=`, `str.format` with a field that reads an attribute or an item "
+    "(`{0.x}`, `{0[k]}`), `format_map`, and any function not listed are refused, naming the "
+    "construct. An expression that would build a value too large to be a robot's (a number of "
+    "more than a million bits, a string, list or range of more than ten million items, twenty "
+    "million in all, a factorial past 100,000) or take more than a million steps is stopped "
+    "before it does. A file you trust that needs more of Python can be expanded with "
+    "`--trust-expressions`, which runs its expressions as ROS's xacro does.",
     bad="""\
 <robot name="fishbot" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:property name="prefix" value="left"/>
