@@ -518,3 +518,180 @@ def test_the_escape_runs_through_no_library_call(
         with pytest.raises(XacroError):
             call("robot.urdf.xacro")
     assert not (tmp_path / CANARY).exists()
+
+
+def test_a_yaml_alias_bomb_stops_before_its_values_are_walked(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # Nine levels of ten aliases each: a billion items when written out, 300 bytes on disk.
+    levels = ["a0: &a0 [x, x, x, x, x, x, x, x, x, x]"]
+    for i in range(1, 9):
+        levels.append(f"a{i}: &a{i} [" + ", ".join([f"*a{i - 1}"] * 10) + "]")
+    files = {
+        "robot.xacro": _robot(
+            '<xacro:property name="p" value="${xacro.load_yaml(\'bomb.yaml\')}"/>\n'
+            '<link name="${python.str(p)}"/>'
+        ),
+        "bomb.yaml": "\n".join(levels) + "\n",
+    }
+    robot = _expand_in(tmp_path, files, monkeypatch)
+    result = CliRunner().invoke(cli, ["expand", str(robot)])
+    assert result.exit_code == 2
+    assert "the YAML file's aliases name more than 10,000,000 items" in result.stderr
+    assert result.stderr.count("\n") == 1
+
+
+def test_yaml_aliases_within_the_bound_load_as_xacro_loads_them(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    files = {
+        "robot.xacro": _robot(
+            '<xacro:property name="p" value="${xacro.load_yaml(\'p.yaml\')}"/>\n'
+            '<link name="l_${p.b[1][0]}_${python.len(p.b)}_${p.c.r}"/>'
+        ),
+        "p.yaml": "a: &a [1, 2]\nb: [*a, *a, *a]\nc: {r: !degrees 90}\n",
+    }
+    robot = _expand_in(tmp_path, files, monkeypatch)
+    assert expand(robot).text == xacro_command(robot, cwd=tmp_path).stdout
+
+
+@pytest.mark.parametrize(
+    "pattern",
+    ["parts/*.xacro", "parts/*/*.xacro", "parts/[ab]*.xacro", "parts/?.xacro", "parts/.*", "*/x*"],
+)
+def test_include_patterns_match_what_glob_matches(
+    pattern: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import glob
+
+    from fishbot_urdf.expand._files import Globbing
+    from fishbot_urdf.inputs import deadline
+
+    for name in ("a.xacro", "b1.xacro", ".hidden.xacro", "c.txt", "d/x.xacro", "d/.y.xacro"):
+        (tmp_path / "parts" / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / "parts" / name).write_text("<robot/>")
+    monkeypatch.chdir(tmp_path)
+    assert sorted(Globbing(deadline()).glob(pattern)) == sorted(glob.glob(pattern))
+    absolute = str(tmp_path / pattern)
+    assert sorted(Globbing(deadline()).glob(absolute)) == sorted(glob.glob(absolute))
+
+
+def test_an_include_pattern_stops_at_the_deadline(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from fishbot_urdf.expand import ExpansionLimitError
+    from fishbot_urdf.inputs import time_limit
+
+    for i in range(50):
+        (tmp_path / f"d{i}" / "e").mkdir(parents=True)
+    robot = _expand_in(
+        tmp_path,
+        {"robot.xacro": _robot('<xacro:include filename="*/*/*/none.xacro"/>')},
+        monkeypatch,
+    )
+    with time_limit(1e-6), pytest.raises(ExpansionLimitError) as caught:
+        expand(robot)
+    assert "the expansion takes longer than 1e-06 s" in caught.value.message
+
+
+@pytest.mark.parametrize(
+    ("expression", "message"),
+    [
+        (
+            "[x for x in python.range(10**6) for y in python.range(10**6)]",
+            "takes more than 1,000,000 steps, more than a xacro expression may",
+        ),
+        ("(lambda f: f(f))(lambda f: f(f))", "lambdas that call each other more than 100 deep"),
+        (
+            "python.str([[[0] * 1000] * 1000] * 1000)",
+            "would make a value of more than 10,000,000 items when written out",
+        ),
+        ("'x'.ljust(10**9)", "would make a value of more than 10,000,000 items"),
+        ("'%999999999d' % 1", "would make a value of more than 10,000,000 items"),
+        ("'\\t'.expandtabs(10**9)", "would make a value of more than 10,000,000 items"),
+        ("('a' * 10**6).replace('a', 'b' * 20)", "would make a value of more than 10,000,000"),
+        ("'-'.join(['a' * 10**6] * 11)", "would make a value of more than 10,000,000 items"),
+        ("[('a' * 9000000) + python.str(i) for i in python.range(3)]", "in all"),
+        ("math.prod(python.range(1, 10**6))", "a number of more than 1,000,000 bits"),
+    ],
+)
+def test_loops_and_growth_stop_at_the_documented_bounds(
+    expression: str, message: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    text = _robot(f'<link name="${{{expression.replace("<", "&lt;")}}}"/>')
+    robot = _expand_in(tmp_path, {"robot.xacro": text}, monkeypatch)
+    with pytest.raises(XacroError) as caught:
+        expand(robot)
+    assert caught.value.rule == "xacro-unsafe"
+    assert message in caught.value.message
+
+
+def test_an_expression_stops_at_the_deadline(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from fishbot_urdf.expand import ExpansionLimitError
+    from fishbot_urdf.inputs import time_limit
+
+    text = _robot('<link name="${python.len([x for x in python.range(900000)])}"/>')
+    robot = _expand_in(tmp_path, {"robot.xacro": text}, monkeypatch)
+    with time_limit(0.01), pytest.raises(ExpansionLimitError) as caught:
+        expand(robot)
+    assert caught.value.message == "the expansion takes longer than 0.01 s"
+    assert caught.value.line == 2
+
+
+def test_a_format_field_in_an_argument_is_refused_as_written_in_the_expression(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # $(arg) text is put into the expression before it is read: the field is still seen.
+    text = _robot(
+        '<xacro:arg name="f" default="{0.__class__}"/>\n<link name="${\'$(arg f)\'.format(1)}"/>'
+    )
+    robot = _expand_in(tmp_path, {"robot.xacro": text}, monkeypatch)
+    with pytest.raises(XacroError) as caught:
+        expand(robot)
+    assert caught.value.rule == "xacro-unsafe"
+    assert "the format field '{0.__class__}'" in caught.value.message
+
+
+def test_a_macro_parameter_named_like_a_function_cannot_be_called(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    text = _robot(
+        '<xacro:macro name="m" params="len"><link name="${len([1])}"/></xacro:macro>\n'
+        '<xacro:m len="x"/>'
+    )
+    robot = _expand_in(tmp_path, {"robot.xacro": text}, monkeypatch)
+    with pytest.raises(XacroError) as caught:
+        expand(robot)
+    assert "'str' object is not callable" in caught.value.message
+
+
+def test_format_widths_are_measured_before_they_are_made() -> None:
+    for expression in (
+        "f'{1:>999999999}'",
+        "'{0:>999999999}'.format(1)",
+        "'{:{}}'.format(1, 10**9)",
+    ):
+        with pytest.raises(UnsafeExpression) as caught:
+            evaluate(expression, _symbols())
+        assert caught.value.too_big or "format field" in caught.value.what
+
+
+def test_trust_expressions_runs_the_file_as_the_xacro_command_does(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    text = _robot('<link name="l_${python.type(1) is python.int}"/>')
+    _expand_in(tmp_path, {"robot.urdf.xacro": text}, monkeypatch)
+    refused = CliRunner().invoke(cli, ["expand", "robot.urdf.xacro"])
+    assert refused.exit_code == 1
+    assert refused.stderr == (
+        "robot.urdf.xacro:2:1: error: expression ${python.type(1) is python.int} uses "
+        "python.type, which xacro expressions may not here (write it with properties, "
+        "arguments and the math, python and xacro functions, or, for a file you trust, run "
+        "its code as Python with --trust-expressions) [xacro-unsafe]\n"
+    )
+    trusted = CliRunner().invoke(cli, ["expand", "robot.urdf.xacro", "--trust-expressions"])
+    assert trusted.exit_code == 0, trusted.stderr
+    assert trusted.stdout == xacro_command("robot.urdf.xacro", cwd=tmp_path).stdout
+    assert 'name="l_True"' in trusted.stdout

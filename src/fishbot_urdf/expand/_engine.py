@@ -21,7 +21,7 @@ from ..packages import PackageNotFoundError, find_package
 from . import Expansion, ExpansionLimitError, XacroError
 from ._allowlist import allowed_callables, prepare_symbols
 from ._errors import SOURCE_KEY, Explaining, limited, source
-from ._files import Globbing, load_yaml_bounded
+from ._files import Globbing, YamlError, load_yaml_bounded
 from ._interpreter import evaluate
 
 
@@ -192,8 +192,8 @@ class Run(Explaining):
             units = {u.value.tag: u.value.conversion_constant for u in x.ConstructUnits}
             try:
                 loaded = load_yaml_bounded(data, units, unit, self.deadline)
-            except ValueError as exc:
-                raise x.XacroException(f"{name} is not valid YAML: {exc}") from exc
+            except YamlError as exc:
+                raise x.XacroException(f"{name} is not valid YAML: {exc.message}") from exc
             return x.YamlListWrapper.wrap(loaded)
         finally:
             x.filestack.pop()
