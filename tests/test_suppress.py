@@ -336,3 +336,77 @@ def test_comments_in_memory_and_on_standard_input() -> None:
     assert {d.path for d in from_bytes.suppressed} == {"<stdin>"}
     result = CliRunner().invoke(cli, ["check", "-q", "-"], input=text)
     assert (result.exit_code, result.stdout, result.stderr) == (0, "", "")
+
+
+def test_twenty_thousand_comments_each_silence_their_own_element() -> None:
+    # Matched by (file, rule) and position: linear in comments plus findings (it took
+    # comments x findings once: minutes for this file).
+    count = 20_000
+    links = "".join(
+        f'  <!-- fishbot: ignore[massless-link] -->\n  <link name="l{i}"/>\n' for i in range(count)
+    )
+    data = f'<robot name="r">\n{links}</robot>\n'.encode()
+    marks = suppressions({"big.urdf": data})
+    assert len(marks) == count
+    findings = [
+        diagnostic("massless-link", Severity.WARNING, "x", path="big.urdf", line=line, column=3)
+        for line in range(3, 2 * count + 2, 2)  # on each link's line
+    ]
+    outside = diagnostic("massless-link", Severity.WARNING, "x", path="big.urdf", line=1, column=1)
+    other = diagnostic("inertia-mismatch", Severity.WARNING, "x", path="big.urdf", line=3, column=3)
+    config = Config(ignore=("unused-suppression",))
+    kept, silenced = apply_suppressions([*findings, outside, other], marks, config)
+    assert (kept, silenced) == ([outside, other], findings)
+    # Every comment is used once: with its lint on, none is reported.
+    kept, silenced = apply_suppressions(findings, marks, Config())
+    assert (kept, len(silenced)) == ([], count)
+    # With one finding only, every other comment silences nothing.
+    kept, silenced = apply_suppressions(findings[:1], marks, Config())
+    assert (len(kept), silenced) == (count - 1, findings[:1])
+    assert {d.rule for d in kept} == {"unused-suppression"}
+    assert kept[0].line == 4  # the second comment
+
+
+def test_a_finding_is_credited_to_the_narrowest_of_nested_comments() -> None:
+    data = (
+        b'<!-- fishbot: ignore[limit-range] -->\n<robot name="r">\n'
+        b'<!-- fishbot: ignore[limit-range] -->\n<joint name="a">\n'
+        b'<!-- fishbot: ignore[limit-range] -->\n<limit lower="1"/>\n'
+        b"<axis/></joint>\n</robot>\n"
+    )
+    marks = suppressions({"f.urdf": data})
+    assert [(m.at.line, m.start, m.end) for m in marks] == [
+        (1, None, None),
+        (3, (4, 1), (7, 16)),
+        (5, (6, 1), (6, 19)),
+    ]
+
+    def credited(line: int, column: int | None) -> int | None:
+        found = diagnostic("limit-range", Severity.ERROR, "x", path="f.urdf", line=line)
+        if column is not None:
+            found = diagnostic(
+                "limit-range", Severity.ERROR, "x", path="f.urdf", line=line, column=column
+            )
+        kept, _ = apply_suppressions([found], marks, Config())
+        unused = {d.line for d in kept if d.rule == "unused-suppression"}
+        (used,) = {1, 3, 5} - unused
+        return used
+
+    assert [credited(6, 1), credited(7, 15), credited(7, 16), credited(2, 1)] == [5, 3, 1, 1]
+    # A finding with no column: the narrowest element whose lines hold its line.
+    assert [credited(6, None), credited(4, None), credited(8, None)] == [5, 3, 1]
+
+
+def test_a_comment_naming_thousands_of_rules_costs_memory_linear_in_it() -> None:
+    names = [f"rule-{i}" for i in range(16_000)]
+    comment = ", ".join([*names, *names])  # each one twice: reported once
+    data = f'<robot name="r"><!-- fishbot: ignore[{comment}] --><link name="a"/></robot>'
+    (mark,) = suppressions({"many.urdf": data.encode()})
+    assert mark.rules == tuple(names)
+    result = check_file(data.encode(), path="many.urdf")
+    unknown = [d for d in result.diagnostics if d.message.endswith("names no rule")]
+    assert len(unknown) == len(names)
+    # The comment is named by its first rules, not by all of them in every finding.
+    shown = "fishbot: ignore[rule-0, rule-1, rule-2, rule-3, rule-4, rule-5, rule-6, rule-7, "
+    assert {d.subject for d in unknown} == {Subject(Kind.COMMENT, f"{shown}... (16000 rules)]")}
+    assert unknown[0].hint == "`fishbot rules` lists them"

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 
 from .diagnostics import Diagnostic, Kind, Subject, did_you_mean
 from .errors import InputError
-from .inputs import read_input
+from .inputs import Deadline, deadline, read_input
 from .location import Location
 
 if TYPE_CHECKING:
@@ -128,7 +128,8 @@ def _scan(data: bytes, path: str) -> list[Suppression]:
             text = comment.decode("utf-8", "replace")
             mark = _MARK.search(text)
             if mark:
-                names = tuple(n.strip() for n in mark[1].split(",") if n.strip())
+                # Each rule once, as written: a comment's findings grow with its rules.
+                names = tuple(dict.fromkeys(n.strip() for n in mark[1].split(",") if n.strip()))
                 pending.append((names, lines.location(path, match.start()), False))
             elif _LOOSE.search(text):
                 pending.append(((), lines.location(path, match.start()), True))
@@ -193,12 +194,12 @@ def apply_suppressions(
     findings = list(findings)
     if not marks:
         return findings, []
-    order = sorted(range(len(marks)), key=lambda i: marks[i].size)
+    index = _Index(marks)
     used: set[tuple[int, str]] = set()
-    kept, silenced = _split(findings, marks, order, used)
+    kept, silenced = index.split(findings, used)
     if config.applies(UNUSED_SUPPRESSION.id):
         unused = _unused(marks, used, config, lint=False)
-        more_kept, more_silenced = _split(unused, marks, order, used)
+        more_kept, more_silenced = index.split(unused, used)
         kept.extend(more_kept)
         silenced.extend(more_silenced)
         # Whether an ignore[unused-suppression] silenced anything is known only now.
@@ -206,39 +207,124 @@ def apply_suppressions(
     return kept, silenced
 
 
-def _split(
-    findings: Iterable[Diagnostic],
-    marks: Sequence[Suppression],
-    order: Sequence[int],
-    used: set[tuple[int, str]],
-) -> tuple[list[Diagnostic], list[Diagnostic]]:
-    from .rules import all_rules
+class _Index:
+    """The suppressions by the file and rule they are about, to find the narrowest one
+    that covers each finding.
 
-    fatal = {rule.id for rule in all_rules() if rule.fatal}
-    files: dict[str, str] = {}
-    kept: list[Diagnostic] = []
-    silenced: list[Diagnostic] = []
-    for finding in findings:
-        if finding.rule in fatal:
-            kept.append(finding)
-            continue
-        file = files.get(finding.path)
+    In time about linear in suppressions plus findings (and in memory linear in the
+    comments' text): the spans of the marks naming a rule in a file, and the findings of
+    that rule there, are swept through once in the order of their positions, the spans
+    begun so far kept on a heap, narrowest on top (one that has ended before a finding has
+    ended for every later one too).
+    """
+
+    def __init__(self, marks: Sequence[Suppression]) -> None:
+        from .rules import all_rules
+
+        self.fatal = {rule.id for rule in all_rules() if rule.fatal}
+        self.files: dict[str, str] = {}
+        limit = deadline()
+        order = sorted(range(len(marks)), key=lambda i: marks[i].size)
+        # How narrow each mark is: 0 for the narrowest (the first of equals).
+        self.rank = {index: place for place, index in enumerate(order)}
+        # (file, rule) -> the best whole-file mark naming it, and the other marks' spans.
+        self.wholes: dict[tuple[str, str], int] = {}
+        self.spans: dict[tuple[str, str], list[tuple[Position, Position, int]]] = {}
+        for index, mark in enumerate(marks):
+            if index % 256 == 0:
+                limit.check("matching suppression comments")
+            if mark.start is not None and mark.end is None:
+                continue  # before no element: it covers nothing
+            file = self.resolved(mark.at.path)
+            for rule in set(mark.rules):
+                key = (file, rule)
+                if mark.start is None or mark.end is None:
+                    best = self.wholes.get(key)
+                    if best is None or self.rank[index] < self.rank[best]:
+                        self.wholes[key] = index
+                else:
+                    self.spans.setdefault(key, []).append((mark.start, mark.end, index))
+
+    def resolved(self, name: str) -> str:
+        file = self.files.get(name)
         if file is None:
-            file = files[finding.path] = _resolved(finding.path)
-        hit = next(
-            (
-                index
-                for index in order
-                if finding.rule in marks[index].rules and marks[index].covers(finding, file)
-            ),
-            None,
-        )
-        if hit is None:
-            kept.append(finding)
-        else:
-            used.add((hit, finding.rule))
-            silenced.append(finding)
-    return kept, silenced
+            file = self.files[name] = _resolved(name)
+        return file
+
+    def split(
+        self, findings: Sequence[Diagnostic], used: set[tuple[int, str]]
+    ) -> tuple[list[Diagnostic], list[Diagnostic]]:
+        """Findings kept and silenced, each silenced one credited in ``used`` to the
+        narrowest suppression that covers it."""
+        limit = deadline()
+        hits: list[int | None] = [None] * len(findings)
+        asked: dict[tuple[str, str], list[int]] = {}  # (file, rule) -> findings to place
+        for number, finding in enumerate(findings):
+            if number % 256 == 0:
+                limit.check("matching suppression comments")
+            if finding.rule in self.fatal:
+                continue
+            key = (self.resolved(finding.path), finding.rule)
+            if key in self.wholes or key in self.spans:
+                asked.setdefault(key, []).append(number)
+        for key, numbers in asked.items():
+            marked = self.spans.get(key, [])
+            # A finding with a column is covered by an element's span; one with only a
+            # line by the element's lines; one with no line by a whole-file comment only.
+            located = [n for n in numbers if findings[n].line is not None]
+            exact = [n for n in located if findings[n].column is not None]
+            lines = [n for n in located if findings[n].column is None]
+            if exact:
+                where = [((findings[n].line or 0, findings[n].column or 0), n) for n in exact]
+                _sweep(where, marked, self.rank, hits, limit)
+            if lines:
+                where = [((findings[n].line or 0, 0), n) for n in lines]
+                # Lines only: a span from its start's line to its end's, both included.
+                widened = [((s[0], 0), (e[0] + 1, 0), i) for s, e, i in marked]
+                _sweep(where, widened, self.rank, hits, limit)
+            whole = self.wholes.get(key)
+            if whole is not None:
+                for number in numbers:
+                    if hits[number] is None:
+                        hits[number] = whole
+        kept: list[Diagnostic] = []
+        silenced: list[Diagnostic] = []
+        for finding, hit in zip(findings, hits, strict=True):
+            if hit is None:
+                kept.append(finding)
+            else:
+                used.add((hit, finding.rule))
+                silenced.append(finding)
+        return kept, silenced
+
+
+def _sweep(
+    where: list[tuple[Position, int]],
+    marked: list[tuple[Position, Position, int]],
+    rank: Mapping[int, int],
+    hits: list[int | None],
+    limit: Deadline,
+) -> None:
+    """Set ``hits[n]`` to the narrowest of the ``marked`` spans (start, end: the end not
+    included; the mark's index) that holds each position of ``where`` (position, n),
+    narrowness by ``rank``."""
+    import heapq
+
+    where.sort()
+    marked = sorted(marked)
+    begun: list[tuple[int, Position, int]] = []  # (narrowness, end, mark), narrowest first
+    next_span = 0
+    for step, (position, number) in enumerate(where):
+        if step % 256 == 0:
+            limit.check("matching suppression comments")
+        while next_span < len(marked) and marked[next_span][0] <= position:
+            _, end, index = marked[next_span]
+            heapq.heappush(begun, (rank[index], end, index))
+            next_span += 1
+        while begun and begun[0][1] <= position:  # ended: for every later position too
+            heapq.heappop(begun)
+        if begun:
+            hits[number] = begun[0][2]
 
 
 def _unused(
@@ -263,7 +349,9 @@ def _unused(
     fatal = {rule.id for rule in all_rules() if rule.fatal}
     families = {family.value for family in Family}
     found: list[Diagnostic] = []
+    limit = deadline()
     for index, mark in enumerate(marks):
+        limit.check("matching suppression comments")
         if mark.malformed:
             found.append(
                 _finding(
@@ -281,12 +369,19 @@ def _unused(
                     "name the rules to silence: fishbot: ignore[rule-id, ...]",
                 )
             )
-        for rule in mark.rules:
+        guesses = 0  # each costs a comparison with every rule: a few for each comment
+        for count, rule in enumerate(mark.rules):
+            if count % 256 == 255:
+                limit.check("matching suppression comments")
             if rule not in known:
+                guess = ""
+                if rule not in families and guesses < _SHOWN_RULES:
+                    guesses += 1
+                    guess = did_you_mean(rule, known)
                 hint = (
                     f"{rule!r} is a family: name its rules (`fishbot rules {rule}` lists them)"
                     if rule in families
-                    else f"{did_you_mean(rule, known)}`fishbot rules` lists them"
+                    else f"{guess}`fishbot rules` lists them"
                 )
                 found.append(_finding(mark, f"fishbot: ignore[{rule}] names no rule", hint))
             elif rule in fatal:
@@ -315,10 +410,17 @@ def _scope(mark: Suppression) -> str:
     return "in this file" if mark.start is None else "for the element after it"
 
 
+_SHOWN_RULES = 8  # a comment naming more is named by its first rules (and how many)
+
+
 def _finding(mark: Suppression, message: str, hint: str) -> Diagnostic:
     from .rules.setup import UNUSED_SUPPRESSION
 
-    subject = Subject(Kind.COMMENT, f"fishbot: ignore[{', '.join(mark.rules)}]")
+    # Bounded: a comment naming thousands of rules has a finding for each of them.
+    names = ", ".join(mark.rules[:_SHOWN_RULES])
+    if len(mark.rules) > _SHOWN_RULES:
+        names += f", ... ({len(mark.rules)} rules)"
+    subject = Subject(Kind.COMMENT, f"fishbot: ignore[{names}]")
     return UNUSED_SUPPRESSION.report(
         message, mark.at, path=mark.at.path, subject=subject, hint=hint
     )
