@@ -695,3 +695,42 @@ def test_trust_expressions_runs_the_file_as_the_xacro_command_does(
     assert trusted.exit_code == 0, trusted.stderr
     assert trusted.stdout == xacro_command("robot.urdf.xacro", cwd=tmp_path).stdout
     assert 'name="l_True"' in trusted.stdout
+
+
+@pytest.mark.parametrize("signal_name", ["SIGTERM", "SIGINT"])
+def test_a_signal_stops_an_expansion_within_a_second(
+    signal_name: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    # Elements doubling without end, and an expression of a million steps per element:
+    # the work would go on for the whole (raised) time limit.
+    text = _robot(
+        '<xacro:macro name="m" params="n"><xacro:if value="${n > 0}">'
+        '<xacro:m n="${n-1}"/><xacro:m n="${n-1}"/></xacro:if>'
+        '<link name="${python.len([x for x in python.range(300000)])}"/></xacro:macro>\n'
+        '<xacro:m n="40"/>'
+    )
+    _expand_in(tmp_path, {"robot.xacro": text}, monkeypatch)
+    process = subprocess.Popen(
+        [sys.executable, "-m", "fishbot_urdf", "expand", "robot.xacro", "--timeout", "300"],
+        cwd=tmp_path,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+    )
+    try:
+        time.sleep(2.0)  # well into the expansion
+        assert process.poll() is None
+        sent = time.monotonic()
+        process.send_signal(getattr(signal, signal_name))
+        process.wait(timeout=10)
+        waited = time.monotonic() - sent
+    finally:
+        process.kill()
+        _, said = process.communicate()
+    assert process.returncode != 0
+    assert waited < 1.0, waited  # what the limits promise of a signal, not a speed
+    assert b"Traceback" not in said
