@@ -14,7 +14,7 @@ from ..inputs import TimeLimitError
 from ..location import Location
 from ..packages import PackageNotFoundError
 from . import ExpansionLimitError, XacroError
-from ._allowlist import UnsafeExpression
+from ._bounds import UnsafeExpression
 
 _XACRO_NS = "http://www.ros.org/wiki/xacro"
 

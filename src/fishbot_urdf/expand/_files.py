@@ -16,7 +16,7 @@ from typing import Any
 
 from ..errors import FishbotUrdfError, LimitError
 from ..inputs import Deadline
-from ._allowlist import MAX_ITEMS
+from ._bounds import MAX_ITEMS
 
 __all__ = ["MAX_MATCHES", "Globbing", "YamlError", "load_yaml_bounded"]
 

@@ -33,17 +33,19 @@ from collections.abc import Callable, Iterable, Iterator, Mapping
 from typing import Any
 
 from ..inputs import Deadline, deadline
-from ._allowlist import (
+from ._allowlist import allowed_attribute, allowed_callables, is_allowed_method
+from ._bounds import (
     MAX_BITS,
     MAX_ITEMS,
+    SIZED,
     UnsafeExpression,
-    allowed_attribute,
-    allowed_callables,
-    check_format,
+    check_binary,
     check_printf,
     check_spec,
-    is_allowed_method,
+    check_str_method,
     too_big,
+    too_long,
+    weight,
 )
 
 __all__ = [
@@ -66,10 +68,8 @@ CHECK_EVERY = 1024
 """How many steps go by between two looks at the deadline."""
 
 _SCALARS = (int, float, complex, bool, type(None), range, slice)
-_CONTAINERS = (list, tuple, dict, set, frozenset)
-_SIZED = (str, bytes, *_CONTAINERS)
 _SUBSCRIPTABLE = (str, bytes, list, tuple, dict, range)
-_LISTED = (*_SIZED, int, float, complex, range, slice)  # the types with listed attributes
+_LISTED = (*SIZED, int, float, complex, range, slice)  # the types with listed attributes
 # Functions that look at their arguments' top level only: no need to weigh them first.
 _SHALLOW = frozenset(
     """abs all any append bool clear copy divmod enumerate filter float get insert int
@@ -246,7 +246,7 @@ class _Evaluation:
 
     def made_value(self, value: Any) -> Any:
         """Count a value made against the bounds."""
-        if isinstance(value, _SIZED):
+        if isinstance(value, SIZED):
             size = len(value)
             if size > MAX_ITEMS:
                 raise too_big(f"a value of more than {MAX_ITEMS:,} items")
@@ -264,7 +264,7 @@ class _Evaluation:
         if isinstance(value, _SCALARS) or (isinstance(value, str | bytes) and len(value) < 64):
             return
         weights: dict[int, int] = {}
-        if _weight(value, weights, self) > MAX_ITEMS:
+        if weight(value, weights, self.tick) > MAX_ITEMS:
             raise too_big(f"a value of more than {MAX_ITEMS:,} items when written out")
 
     # -- the walk ------------------------------------------------------------------------
@@ -373,14 +373,14 @@ class _Evaluation:
         owner, rest = (method.__self__, args) if bound else (args[0] if args else None, args[1:])
         name = method.__name__
         if isinstance(owner, str):
-            _check_str_method(name, owner, rest, kwargs)
+            check_str_method(name, owner, rest, kwargs)
             if name == "join" and rest:
                 parts = self.items(rest[0])
                 total = sum(len(p) for p in parts if isinstance(p, str))
                 if total + len(owner) * max(0, len(parts) - 1) > MAX_ITEMS:
                     raise too_big(f"a value of more than {MAX_ITEMS:,} items")
                 return [parts] if bound else [owner, parts]
-        elif name in ("extend", "update") and rest and _too_long(owner, rest[0]):
+        elif name in ("extend", "update") and rest and too_long(owner, rest[0]):
             raise too_big(f"a value of more than {MAX_ITEMS:,} items")
         return args
 
@@ -417,7 +417,7 @@ class _Evaluation:
         left = self.value(node.left, frame)
         right = self.value(node.right, frame)
         kind = type(node.op)
-        _check_binary(kind, left, right)
+        check_binary(kind, left, right)
         if kind is ast.Mod and isinstance(left, str | bytes):
             check_printf(left, right)
             self.weigh(right)
@@ -475,7 +475,7 @@ class _Evaluation:
         for key, item in zip(node.keys, node.values, strict=True):
             if key is None:
                 given = self.value(item, frame)
-                self.tick(len(given) if isinstance(given, _SIZED) else 1)
+                self.tick(len(given) if isinstance(given, SIZED) else 1)
                 made.update(given)
             else:
                 name = self.value(key, frame)
@@ -701,77 +701,6 @@ def _bind(function: Lambda, args: tuple[Any, ...], kwargs: dict[str, Any]) -> di
     if spec.kwarg is not None:
         names[spec.kwarg.arg] = extra
     return names
-
-
-def _check_binary(kind: type[ast.operator], a: Any, b: Any) -> None:
-    """Refuse ``a op b`` when it would make a value past the bounds, before it does."""
-    whole = isinstance(a, int) and isinstance(b, int)
-    if kind is ast.Pow:
-        if whole and b > 0 and abs(a) > 1 and b * (abs(a).bit_length() - 1) > MAX_BITS:
-            raise too_big(f"a number of more than {MAX_BITS:,} bits")
-    elif kind is ast.LShift:
-        if whole and a and b > MAX_BITS:
-            raise too_big(f"a number of more than {MAX_BITS:,} bits")
-    elif kind is ast.Mult:
-        for sequence, count in ((a, b), (b, a)):
-            repeated = isinstance(sequence, _SIZED) and isinstance(count, int)
-            if repeated and len(sequence) * count > MAX_ITEMS:
-                raise too_big(f"a value of more than {MAX_ITEMS:,} items")
-        if whole and a.bit_length() + b.bit_length() > MAX_BITS:
-            raise too_big(f"a number of more than {MAX_BITS:,} bits")
-    elif kind is ast.Add and _too_long(a, b):
-        raise too_big(f"a value of more than {MAX_ITEMS:,} items")
-
-
-def _too_long(a: Any, b: Any) -> bool:
-    """Whether ``a`` and ``b`` together hold more than :data:`MAX_ITEMS` items."""
-    return isinstance(a, _SIZED) and isinstance(b, _SIZED) and len(a) + len(b) > MAX_ITEMS
-
-
-def _check_str_method(name: str, owner: str, args: list[Any], kwargs: dict[str, Any]) -> None:
-    """Refuse a string method whose result would pass :data:`MAX_ITEMS`, before it runs."""
-    limit = f"a value of more than {MAX_ITEMS:,} items"
-    if name == "format":
-        check_format(owner, args, kwargs.values())
-    elif name in ("ljust", "rjust", "center", "zfill"):
-        width = args[0] if args else kwargs.get("width", 0)
-        if isinstance(width, int) and width > MAX_ITEMS:
-            raise too_big(limit)
-    elif name == "expandtabs":
-        size = args[0] if args else kwargs.get("tabsize", 8)
-        if isinstance(size, int) and len(owner) + owner.count("\t") * max(size, 0) > MAX_ITEMS:
-            raise too_big(limit)
-    elif name == "replace" and len(args) >= 2:
-        old, new = args[0], args[1]
-        if isinstance(old, str) and isinstance(new, str):
-            found = owner.count(old) if old else len(owner) + 1
-            if len(args) > 2 and isinstance(args[2], int) and args[2] >= 0:
-                found = min(found, args[2])
-            if len(owner) + found * (len(new) - len(old)) > MAX_ITEMS:
-                raise too_big(limit)
-
-
-def _weight(value: Any, weights: dict[int, int], run: _Evaluation) -> int:
-    """How many items ``value`` holds when written out, shared parts counted each time they
-    appear; a container that holds itself counts once (Python writes it ``[...]``)."""
-    if isinstance(value, str | bytes):
-        return len(value) + 1
-    if not isinstance(value, _CONTAINERS):
-        return 1
-    key = id(value)
-    known = weights.get(key)
-    if known is not None:
-        return known
-    weights[key] = 1  # while it is weighed: a cycle back to it counts one
-    run.tick(len(value) // 64 + 1)
-    total = len(value) + 1
-    parts: Iterable[Any] = (*value.keys(), *value.values()) if isinstance(value, dict) else value
-    for part in parts:
-        total += _weight(part, weights, run)
-        if total > MAX_ITEMS:
-            break
-    weights[key] = total
-    return total
 
 
 def _kind(value: Any) -> str:
