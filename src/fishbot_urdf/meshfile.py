@@ -1,28 +1,43 @@
-"""What a mesh file holds, read in plain Python: its face count and its extent.
+"""What a mesh file holds: its face count and its extent, read in plain Python, and its
+triangles, read strictly with numpy.
 
-Enough to tell a mesh exported in millimetres, or a collision mesh too fine for a simulator,
-without numpy or trimesh: `check` reads STL (binary and ASCII) and OBJ this way. A binary
-STL of many triangles is sampled evenly for its extent (the count is in its header).
+The facts are enough to tell a mesh exported in millimetres, or a collision mesh too fine for
+a simulator, without numpy or trimesh: `check` reads STL (binary and ASCII) and OBJ this way.
+A binary STL of many triangles is sampled evenly for its extent (the count is in its header).
 COLLADA files carry their own unit and are not read here.
+
+The triangles (:func:`mesh_triangles`, for drawing) are read only from a well-formed file: a
+binary STL as long as its header says, numbers that are numbers and finite, OBJ faces whose
+vertices exist. Anything else is a :class:`~fishbot_urdf.errors.ShapeError` that says what
+is wrong and where, never a foreign exception. Both readers check the deadline in force
+(:func:`fishbot_urdf.inputs.deadline`) as they go.
 """
 
 from __future__ import annotations
 
+import bisect
 import re
 import struct
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
-from .errors import InputError
-from .inputs import read_input
+from .errors import InputError, ShapeError
+from .inputs import deadline, read_input
 from .model import Vector3
 
-__all__ = ["MeshFacts", "mesh_facts"]
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+__all__ = ["MeshFacts", "mesh_bounds", "mesh_facts", "mesh_triangles"]
 
 _SAMPLES = 20_000  # triangles of a binary STL read for its extent, at most
+_STEP = 4096  # vertices or faces read between two looks at the deadline
 _ASCII_VERTEX = re.compile(rb"vertex\s+(\S+)\s+(\S+)\s+(\S+)")
 _OBJ_VERTEX = re.compile(rb"^[ \t]*v[ \t]+(\S+)[ \t]+(\S+)[ \t]+(\S+)", re.MULTILINE)
+_OBJ_VERTEX_LINE = re.compile(rb"^[ \t]*v[ \t]", re.MULTILINE)
 _OBJ_FACE = re.compile(rb"^[ \t]*f[ \t]", re.MULTILINE)
+_OBJ_FACE_LINE = re.compile(rb"^[ \t]*f[ \t]+([^\r\n]*)", re.MULTILINE)
 
 
 @dataclass(frozen=True, slots=True)
@@ -57,12 +72,40 @@ def mesh_facts(path: str | Path) -> MeshFacts | None:
         return None
     if kind == ".obj":
         return _bounds(_OBJ_VERTEX.findall(data), len(_OBJ_FACE.findall(data)))
-    if len(data) >= 84:
-        (count,) = struct.unpack_from("<I", data, 80)
-        if len(data) == 84 + 50 * count:
-            return _binary_stl(data, count)
+    count = _binary_count(data)
+    if count is not None:
+        return _binary_stl(data, count)
     vertices = _ASCII_VERTEX.findall(data)
     return _bounds(vertices, len(vertices) // 3)
+
+
+def mesh_bounds(path: str | Path) -> tuple[Vector3, Vector3] | None:
+    """The smallest and largest corner of the box around what vertices of an STL or OBJ
+    file can be read, even when the file is not well formed: those of its facts (numbers
+    that are not numbers left out), or, for a binary STL longer or shorter than its header
+    says, those of the whole records it holds. None when no finite box is found."""
+    facts = mesh_facts(path)
+    if facts is not None:
+        return facts.low, facts.high
+    if Path(path).suffix.lower() != ".stl":
+        return None
+    try:
+        data = read_input(path)
+    except (InputError, OSError):
+        return None
+    if len(data) < 84 + 50 or _ASCII_VERTEX.search(data):
+        return None
+    records = (len(data) - 84) // 50
+    facts = _binary_stl(data[: 84 + 50 * records], records)
+    return None if facts is None else (facts.low, facts.high)
+
+
+def _binary_count(data: bytes) -> int | None:
+    """The triangles of a binary STL file: None unless its length is what its header says."""
+    if len(data) < 84:
+        return None
+    (count,) = struct.unpack_from("<I", data, 80)
+    return count if len(data) == 84 + 50 * count else None
 
 
 def _binary_stl(data: bytes, count: int) -> MeshFacts | None:
@@ -84,7 +127,10 @@ def _binary_stl(data: bytes, count: int) -> MeshFacts | None:
 def _bounds(vertices: list[tuple[bytes, bytes, bytes]], faces: int) -> MeshFacts | None:
     lows = [float("inf")] * 3
     highs = [float("-inf")] * 3
-    for vertex in vertices:
+    check = deadline()
+    for number, vertex in enumerate(vertices):
+        if not number % _STEP:
+            check.check("reading meshes")
         for axis in range(3):
             try:
                 value = float(vertex[axis])
@@ -100,3 +146,124 @@ def _facts(faces: int, lows: list[float], highs: list[float]) -> MeshFacts | Non
     if not finite:  # no vertex read, or one at infinity (NaN comparisons leave inf)
         return None
     return MeshFacts(faces, (lows[0], lows[1], lows[2]), (highs[0], highs[1], highs[2]))
+
+
+def mesh_triangles(path: str | Path) -> NDArray[Any]:
+    """The triangles of an STL (binary or ASCII) or OBJ file (by its extension), in the
+    file's units: an array (T, 3, 3) of every triangle's corners. An OBJ polygon is cut
+    into a fan of triangles.
+
+    Raises:
+        InputError: The file cannot be read (or is bigger than the size limit).
+        ShapeError: The file is not one of those formats, or is not well formed: empty, a
+            binary STL shorter or longer than its header says, a number that is not one or
+            not finite, a face naming a vertex that does not exist, or no triangles at all.
+        TimeLimitError: Reading went past the deadline in force.
+    """
+    name = str(path)
+    kind = Path(name).suffix.lower()
+    if kind not in (".stl", ".obj"):
+        raise ShapeError(f"{kind or 'no extension'}: not an STL or OBJ file", path=name)
+    data = read_input(path)
+    if not data.strip():
+        raise ShapeError("the file is empty", path=name)
+    import numpy as np
+
+    triangles: NDArray[Any] = _obj(np, data, name) if kind == ".obj" else _stl(np, data, name)
+    if not len(triangles):
+        raise ShapeError(f"no triangles in the {kind[1:].upper()} file", path=name)
+    if not np.isfinite(triangles).all():
+        raise ShapeError("a vertex is not a finite number", path=name)
+    return triangles
+
+
+def _stl(np: Any, data: bytes, name: str) -> Any:
+    count = _binary_count(data)
+    if count is not None:
+        record = np.dtype([("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("a", "<u2")])
+        return np.frombuffer(data, record, count, 84)["corners"].astype(float)
+    found = _ASCII_VERTEX.findall(data)
+    if not found:
+        if len(data) >= 84:
+            (claimed,) = struct.unpack_from("<I", data, 80)
+            raise ShapeError(
+                f"not an ASCII STL, nor a binary one: a binary STL of {claimed:,} triangles "
+                f"is {84 + 50 * claimed:,} bytes long, not {len(data):,}",
+                path=name,
+            )
+        raise ShapeError("no triangles in the STL file", path=name)
+    if len(found) % 3:
+        raise ShapeError(f"{len(found):,} vertices are not a whole number of triangles", path=name)
+    corners = _numbers(np, found, name, "vertex")
+    return corners.reshape(-1, 3, 3)
+
+
+def _numbers(np: Any, rows: list[tuple[bytes, ...]], name: str, what: str) -> Any:
+    """The rows of numbers read as floats, or an error naming the first that is not one."""
+    try:
+        return np.array(rows, dtype=float)
+    except ValueError:
+        pass
+    read = []
+    for row in rows:  # one at a time, to say which
+        values = []
+        for token in row:
+            try:
+                values.append(float(token))
+            except ValueError:
+                shown = token[:40].decode("utf-8", "replace")
+                raise ShapeError(f"{what} {shown!r} is not a number", path=name) from None
+        read.append(values)
+    return np.array(read, dtype=float)
+
+
+def _obj(np: Any, data: bytes, name: str) -> Any:
+    matches = list(_OBJ_VERTEX.finditer(data))
+    if len(matches) != len(_OBJ_VERTEX_LINE.findall(data)):
+        raise ShapeError("a vertex ('v' line) has fewer than three numbers", path=name)
+    vertices = _numbers(np, [m.groups() for m in matches], name, "vertex")
+    starts = [m.start() for m in matches]
+    triangles: list[tuple[int, int, int]] = []
+    check = deadline()
+    for number, face in enumerate(_OBJ_FACE_LINE.finditer(data)):
+        if not number % _STEP:
+            check.check("reading meshes")
+        index = [_vertex_index(token, face, starts, data, name) for token in face[1].split()]
+        if len(index) < 3:
+            raise ShapeError(
+                f"line {_line(data, face)}: a face of fewer than three vertices", path=name
+            )
+        triangles.extend((index[0], index[k], index[k + 1]) for k in range(1, len(index) - 1))
+    if not triangles:
+        return np.empty((0, 3, 3))
+    return vertices[np.array(triangles)]
+
+
+def _vertex_index(
+    token: bytes, face: re.Match[bytes], starts: list[int], data: bytes, name: str
+) -> int:
+    """A face's vertex (``7``, ``7/1``, ``7//2``, ``-1``) as an index into the vertices;
+    a negative one counts back from the last vertex before the face, as OBJ says."""
+    text = token.split(b"/")[0]
+    try:
+        given = int(text)
+    except ValueError:
+        shown = text[:40].decode("utf-8", "replace")
+        raise ShapeError(
+            f"line {_line(data, face)}: vertex {shown!r} of a face is not a whole number",
+            path=name,
+        ) from None
+    before = bisect.bisect_left(starts, face.start())  # vertices defined above the face
+    index = given - 1 if given > 0 else before + given
+    if given == 0 or not 0 <= index < (len(starts) if given > 0 else before):
+        defined = len(starts) if given > 0 else before
+        raise ShapeError(
+            f"line {_line(data, face)}: a face names vertex {given}, of {defined:,}"
+            + (" (OBJ counts from 1)" if given == 0 else ""),
+            path=name,
+        )
+    return index
+
+
+def _line(data: bytes, match: re.Match[bytes]) -> int:
+    return data.count(b"\n", 0, match.start()) + 1
