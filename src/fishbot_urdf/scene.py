@@ -2,10 +2,12 @@
 its mesh file, placed by the forward kinematics at a joint configuration, in the root
 link's frame. `fishbot render` rasterises a scene; `fishbot view` sends one to the browser.
 
-numpy is imported when a scene is built. Meshes are read from STL and OBJ here; other
-formats need trimesh (the `mesh` extra). A mesh that cannot be read is drawn as its
-bounding box when its size is known (a COLLADA file's positions), else left out, and named
-in ``Scene.warnings``.
+numpy is imported when a scene is built. Meshes are read from STL and OBJ (by
+`fishbot_urdf.meshfile`); other formats need trimesh (the `mesh` extra). A mesh that cannot
+be read (missing, malformed, not finite) is drawn as its bounding box when its size is known
+(the vertices found in an STL or OBJ file, a COLLADA file's positions), else left out,
+and named in ``Scene.warnings``; so is a shape whose coordinates, scaled and posed, are not
+finite or lie farther than :data:`FARTHEST` from the root.
 """
 
 from __future__ import annotations
@@ -18,13 +20,19 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .analysis import Analysis, of
+from .inputs import deadline
 from .model import Box, Cylinder, Geometry, Link, Material, Mesh, Origin, Robot, Sphere
 from .spatial import rpy_matrix
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
-__all__ = ["Part", "Scene", "build_scene"]
+__all__ = ["FARTHEST", "Part", "Scene", "build_scene"]
+
+FARTHEST = 1e9
+"""The farthest a drawn shape's corner may lie from the root, in metres: farther than any
+robot reaches, and near enough that drawing it (its normals are squares of its sizes) stays
+within floating point."""
 
 GREY = (0.7, 0.7, 0.72, 1.0)  # RViz draws a visual without a material in a light grey
 _SEGMENTS = 48  # around a cylinder or sphere
@@ -105,7 +113,9 @@ def build_scene(
     near = path or analysis.path
     loader = _Loader(near, packages or {})
     parts: list[Part] = []
+    check = deadline()
     for link in analysis.robot.links:
+        check.check("building the scene")
         if link.name not in poses:
             continue
         pose = poses[link.name]
@@ -118,11 +128,25 @@ def build_scene(
             local = loader.triangles(link, geometry)
             if local is None or not len(local):
                 continue
-            placed = _apply(np, _origin_matrix(np, origin), local)
-            world = _apply(np, pose, placed)
+            with np.errstate(over="ignore", invalid="ignore"):
+                placed = _apply(np, _origin_matrix(np, origin), local)
+                world = _apply(np, pose, placed)
+                near_enough = bool((np.abs(world) <= FARTHEST).all())  # False for nan
+            if not near_enough:
+                loader.warnings.append(
+                    f"link {link.name!r}: {_shown(geometry)} is not drawn: its corners are not "
+                    f"finite numbers, or lie farther than {FARTHEST:g} m from the root"
+                )
+                continue
             color = (0.55, 0.7, 0.85, 1.0) if collision else _color(material, materials)
             parts.append(Part(link.name, world, color, placed, pose))
     return Scene(tuple(parts), tuple(loader.warnings), poses)
+
+
+def _shown(geometry: Geometry) -> str:
+    if isinstance(geometry, Mesh):
+        return f"mesh {geometry.filename!r}"
+    return type(geometry).__name__.lower()
 
 
 def _apply(np: Any, matrix: Any, triangles: Any) -> Any:
@@ -178,7 +202,7 @@ class _Loader:
         return None
 
     def _mesh(self, np: Any, link: Link, mesh: Mesh, scale: tuple[float, ...]) -> Any:
-        from .errors import FishbotUrdfError
+        from .errors import FishbotUrdfError, LimitError
         from .packages import PackageNotFoundError, resolve_package_uri
 
         shown = f"link {link.name!r}: mesh {mesh.filename!r}"
@@ -199,89 +223,84 @@ class _Loader:
         try:
             triangles = _read_mesh(np, file)
         except (OSError, FishbotUrdfError) as exc:
+            if isinstance(exc, LimitError):  # the deadline: the whole scene stops
+                raise
             triangles = None
             reason = getattr(exc, "message", None) or str(exc) or type(exc).__name__
         else:
             reason = ""
+        factors = np.asarray(scale, dtype=float)
         if triangles is not None:
-            return triangles * np.asarray(scale)
+            with np.errstate(over="ignore", invalid="ignore"):
+                return triangles * factors  # (not finite: left out by build_scene)
         box = _bounds_of(np, file)
+        if box is not None:
+            with np.errstate(over="ignore", invalid="ignore"):
+                box = box[0] * factors, box[1] * factors
+            if not (np.abs(box) <= FARTHEST).all():  # garbage read as numbers: no size
+                box = None
         if box is None:
             self.warnings.append(f"{shown} cannot be read ({reason}), nor its size: not drawn")
             return None
-        low, high = box[0] * np.asarray(scale), box[1] * np.asarray(scale)
+        low, high = box
+        corners = _box(np, *(high - low)) + (low + high) / 2
         self.warnings.append(f"{shown} cannot be read ({reason}): drawn as its bounding box")
-        return _box(np, *(high - low)) + (low + high) / 2
+        return corners
 
 
 def _read_mesh(np: Any, file: Path) -> Any:
     """Triangles (T, 3, 3) of an STL or OBJ file (others through trimesh, if installed)."""
     from .errors import ShapeError
-    from .inputs import read_input
+    from .meshfile import mesh_triangles
 
     kind = file.suffix.lower()
-    if kind == ".stl":
-        return _stl(np, read_input(file))
-    if kind == ".obj":
-        return _obj(np, read_input(file))
+    if kind in (".stl", ".obj"):
+        return mesh_triangles(file)
     try:
         import trimesh
     except ImportError:
         raise ShapeError(f"{kind or 'no extension'}: pip install 'fishbot-urdf[mesh]'") from None
     try:
         loaded: Any = trimesh.load(str(file), force="mesh")
+        if not hasattr(loaded, "triangles") or not len(loaded.faces):
+            raise ShapeError("no triangles")
+        triangles = np.asarray(loaded.triangles, dtype=float)
+    except ShapeError:
+        raise
     except Exception as exc:  # whatever a foreign reader makes of a file it cannot read
         raise ShapeError(str(exc) or type(exc).__name__) from exc
-    if not hasattr(loaded, "triangles") or not len(loaded.faces):
-        raise ShapeError("no triangles")
-    return np.asarray(loaded.triangles, dtype=float)
-
-
-def _stl(np: Any, data: bytes) -> Any:
-    from .errors import ShapeError
-
-    if len(data) >= 84:
-        count = int.from_bytes(data[80:84], "little")
-        if len(data) == 84 + 50 * count:
-            record = np.dtype([("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("a", "<u2")])
-            return np.frombuffer(data, record, count, 84)["corners"].astype(float)
-    numbers = re.findall(rb"vertex\s+(\S+)\s+(\S+)\s+(\S+)", data)
-    if not numbers:
-        raise ShapeError("no triangles in the STL file")
-    corners = np.array(numbers, dtype=float)
-    return corners[: len(corners) // 3 * 3].reshape(-1, 3, 3)
-
-
-def _obj(np: Any, data: bytes) -> Any:
-    from .errors import ShapeError
-
-    vertices = np.array(
-        re.findall(rb"^[ \t]*v[ \t]+(\S+)[ \t]+(\S+)[ \t]+(\S+)", data, re.MULTILINE), dtype=float
-    )
-    triangles: list[tuple[int, int, int]] = []
-    for face in re.findall(rb"^[ \t]*f[ \t]+(.+)$", data, re.MULTILINE):
-        index = [int(token.split(b"/")[0]) for token in face.split()]
-        index = [i - 1 if i > 0 else len(vertices) + i for i in index]
-        triangles.extend((index[0], index[k], index[k + 1]) for k in range(1, len(index) - 1))
-    if not triangles or not len(vertices):
-        raise ShapeError("no faces in the OBJ file")
-    return vertices[np.array(triangles)]
+    if triangles.ndim != 3 or triangles.shape[1:] != (3, 3) or not np.isfinite(triangles).all():
+        raise ShapeError("a vertex is not a finite number")
+    return triangles
 
 
 def _bounds_of(np: Any, file: Path) -> tuple[Any, Any] | None:
-    """The box around a mesh file's vertices without reading it as a mesh: a COLLADA file's
-    position arrays (its nodes' transforms left out)."""
+    """The box around a mesh file's vertices without reading it as a mesh: those an STL or
+    OBJ file's facts found, or a COLLADA file's position arrays (its nodes' transforms left
+    out); None when no finite box is found."""
+    from .errors import FishbotUrdfError, LimitError
     from .inputs import read_input
+    from .meshfile import mesh_bounds
 
+    if file.suffix.lower() in (".stl", ".obj"):
+        box = mesh_bounds(file)
+        return None if box is None else (np.array(box[0]), np.array(box[1]))
     try:
         data = read_input(file)
-    except Exception:
+    except LimitError:
+        raise
+    except (OSError, FishbotUrdfError):
         return None
     arrays = re.findall(rb"<float_array[^>]*positions?[^>]*>([^<]*)<", data, re.IGNORECASE)
-    numbers = [float(v) for chunk in arrays for v in chunk.split()]
+    try:
+        numbers = [float(v) for chunk in arrays for v in chunk.split()]
+    except ValueError:
+        return None
     if len(numbers) < 3:
         return None
     points = np.array(numbers[: len(numbers) // 3 * 3]).reshape(-1, 3)
+    if not np.isfinite(points).all():
+        return None
     return points.min(axis=0), points.max(axis=0)
 
 
