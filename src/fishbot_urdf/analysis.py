@@ -15,10 +15,13 @@ from typing import NamedTuple
 
 from .extensions import Reference
 from .graph import Topology, root, topology
+from .inputs import deadline
 from .model import Joint, JointType, Link, Robot
 from .spatial import Pose
 
 __all__ = ["Analysis", "Body", "analyse", "of"]
+
+_STEP = 4096  # links or joints looked at between two looks at the deadline
 
 
 class Body(NamedTuple):
@@ -105,12 +108,17 @@ def analyse(
     robot's extension elements, with no places)."""
     if path is None:
         path = robot.source.path if robot.source else "<robot>"
+    check = deadline()
     links: dict[str, Link] = {}
-    for link in robot.links:
+    for number, link in enumerate(robot.links):
+        if not number % _STEP:
+            check.check("analysing")
         links.setdefault(link.name, link)
     joints: dict[str, Joint] = {}
     parent_joint: dict[str, Joint] = {}
-    for joint in robot.joints:
+    for number, joint in enumerate(robot.joints):
+        if not number % _STEP:
+            check.check("analysing")
         joints.setdefault(joint.name, joint)
         if joint.child in links and joint.parent != joint.child:
             parent_joint.setdefault(joint.child, joint)
@@ -131,7 +139,10 @@ def _bodies(analysis: Analysis) -> tuple[Body, ...]:
     links = analysis.links
     found: list[Body] = []
     alone = Pose()
-    for link in analysis.robot.links:
+    check = deadline()
+    for number, link in enumerate(analysis.robot.links):
+        if not number % _STEP:
+            check.check("analysing")
         moved_by = analysis.parent_joint.get(link.name)
         if moved_by is not None and moved_by.type is JointType.FIXED:
             continue  # part of its parent's body
@@ -142,6 +153,8 @@ def _bodies(analysis: Analysis) -> tuple[Body, ...]:
         stack = [(link.name, alone)]
         seen: set[str] = set()
         while stack:
+            if not len(members) % _STEP:
+                check.check("analysing")
             name, pose = stack.pop()
             if name in seen or name not in links:
                 continue
@@ -157,6 +170,8 @@ def _loops(robot: Robot, topo: Topology) -> tuple[tuple[Joint, ...], ...]:
     (in file order)."""
     state: dict[str, int] = {}  # 1 on the current path, 2 finished
     loops: list[tuple[Joint, ...]] = []
+    check = deadline()
+    steps = 0
     for start in (link.name for link in robot.links):
         if start in state:
             continue
@@ -165,6 +180,9 @@ def _loops(robot: Robot, topo: Topology) -> tuple[tuple[Joint, ...], ...]:
         via: list[Joint] = []  # via[i] is the joint from path[i] to path[i + 1]
         pending = [iter(topo.children[start])]
         while pending:
+            steps += 1
+            if not steps % _STEP:
+                check.check("analysing")
             joint = next(pending[-1], None)
             if joint is None:
                 state[path.pop()] = 2
