@@ -452,3 +452,229 @@ def test_malloc_is_fitted_once_and_only_for_a_big_file(
     _common._fit_allocator(str(big))
     glibc = sys.platform == "linux" and bool(os.confstr("CS_GNU_LIBC_VERSION"))
     assert calls == ([(1, 0)] if glibc else [])  # M_MXFAST, 0: no fast bins
+
+
+def _package_robot(root: Path) -> dict[str, Path]:
+    """A xacro robot in a package: it includes a file and loads YAML through $(find), names
+    a mesh by package://, and has a configuration file. Every file it reads, by role."""
+    from conftest import box_stl
+
+    package = root / "pkg"
+    for folder in ("urdf", "meshes", "config"):
+        (package / folder).mkdir(parents=True)
+    files = {
+        "manifest": package / "package.xml",
+        "config": package / "fishbot.toml",
+        "robot": package / "urdf" / "robot.urdf.xacro",
+        "include": package / "urdf" / "parts.xacro",
+        "yaml": package / "config" / "params.yaml",
+        "mesh": package / "meshes" / "body.stl",
+    }
+    files["manifest"].write_text('<package format="3"><name>pkg</name></package>')
+    files["config"].write_text('ignore = ["mesh-faces"]\n')
+    files["yaml"].write_text("mass: 1.5\n")
+    files["mesh"].write_bytes(box_stl(0.1, 0.1, 0.1))
+    files["include"].write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:property name="params" '
+        "value=\"${xacro.load_yaml('$(find pkg)/config/params.yaml')}\"/>"
+        "</robot>"
+    )
+    files["robot"].write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="$(find pkg)/urdf/parts.xacro"/>'
+        '<link name="base_link"><visual><geometry>'
+        '<mesh filename="package://pkg/meshes/body.stl"/></geometry></visual>'
+        '<collision><geometry><mesh filename="package://pkg/meshes/body.stl"/></geometry>'
+        "</collision></link>"
+        '<link name="arm"><inertial><mass value="${params[\'mass\']}"/>'
+        '<inertia ixx="0.0025" iyy="0.0025" izz="0.0025" ixy="0" ixz="0" iyz="0"/></inertial>'
+        '<collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>'
+        '<joint name="j" type="fixed"><parent link="base_link"/><child link="arm"/></joint>'
+        "</robot>"
+    )
+    return files
+
+
+_WRITING = {
+    "check": ["check", "{robot}", "-q"],
+    "check-json": ["check", "{robot}", "--format", "json"],
+    "expand": ["expand", "{robot}"],
+    "graph": ["graph", "{robot}", "--format", "gv"],
+    "inertia": ["inertia", "{robot}", "--fill", "--density", "1000"],
+    "render": ["render", "{robot}", "--size", "32x32"],
+}
+
+
+@pytest.mark.parametrize("command", sorted(_WRITING))
+@pytest.mark.parametrize("role", ["robot", "include", "yaml", "mesh", "manifest", "config"])
+def test_no_file_read_is_written_over(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, command: str, role: str
+) -> None:
+    files = _package_robot(tmp_path)
+    monkeypatch.chdir(tmp_path)
+    if command == "expand" and role == "config":
+        pytest.skip("expand reads no configuration")
+    before = {path: path.read_bytes() for path in files.values()}
+    target = files[role]
+    args = [a.format(robot=files["robot"]) for a in _WRITING[command]]
+    result = CliRunner().invoke(cli, [*args, "-o", str(target)])
+    assert result.exit_code == 2, result.stderr
+    assert result.stderr.startswith(f"{target}: error: refusing to write over the input ")
+    assert result.stderr.endswith(" [io]\n")
+    assert result.stderr.count("\n") == 1, result.stderr
+    assert {path: path.read_bytes() for path in files.values()} == before
+    assert not [p for p in tmp_path.rglob(".*") if p.is_file()]  # no temporary file left
+
+
+def test_a_link_to_a_file_read_is_refused_too(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    files = _package_robot(tmp_path)
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "link.stl").symlink_to(files["mesh"])
+    (tmp_path / "hard.stl").hardlink_to(files["mesh"])
+    before = files["mesh"].read_bytes()
+    for name in ("link.stl", "hard.stl"):
+        result = CliRunner().invoke(
+            cli, ["render", str(files["robot"]), "--size", "32x32", "-o", name]
+        )
+        assert (result.exit_code, result.stdout) == (2, "")
+        assert result.stderr == (
+            f"{name}: error: refusing to write over the input {files['mesh']} [io]\n"
+        )
+    assert files["mesh"].read_bytes() == before
+    # Elsewhere, it is written.
+    result = CliRunner().invoke(
+        cli, ["render", str(files["robot"]), "--size", "32x32", "-o", "picture.png"]
+    )
+    assert result.exit_code == 0, result.stderr
+    assert (tmp_path / "picture.png").read_bytes().startswith(b"\x89PNG")
+
+
+@pytest.mark.parametrize(
+    "command",
+    [
+        ["check", "-", "-q"],
+        ["check", "--format", "json", "-"],
+        ["graph", "-", "--format", "gv"],
+        ["inertia", "-", "--fill", "--density", "1000"],
+        ["render", "-", "--size", "32x32"],
+    ],
+)
+def test_standard_input_from_the_output_file_is_refused(tmp_path: Path, command: list[str]) -> None:
+    robot = tmp_path / "robot.urdf"
+    robot.write_bytes(FIRST.read_bytes())
+    with open(robot, "rb") as stdin:
+        done = subprocess.run(
+            [sys.executable, "-m", "fishbot_urdf", *command, "-o", str(robot)],
+            stdin=stdin,
+            capture_output=True,
+            cwd=tmp_path,
+            check=False,
+        )
+    assert (done.returncode, done.stdout) == (2, b"")
+    assert done.stderr == (
+        f"{robot}: error: refusing to write over the input <stdin> [io]\n".encode()
+    )
+    assert robot.read_bytes() == FIRST.read_bytes()
+
+
+def test_closed_standard_input_is_one_line() -> None:
+    done = subprocess.run(
+        ["sh", "-c", f'exec "{sys.executable}" -m fishbot_urdf check - <&-'],
+        capture_output=True,
+        check=False,
+    )
+    assert (done.returncode, done.stdout) == (2, b"")
+    assert done.stderr == (
+        b"<stdin>: error: standard input is closed (give a FILE, or pipe the robot in) [io]\n"
+    )
+
+
+_PWNED = "a\n::error file=x::pwned\x1b[2J.urdf"
+_PWNED_SHOWN = "a\\n::error file=x::pwned\\x1b[2J.urdf"
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="a newline in a file name: POSIX only")
+def test_control_characters_in_a_file_name_are_written_visibly(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    robot = tmp_path / _PWNED
+    robot.write_text(
+        '<robot name="r"><link name="a"/>'
+        '<joint name="j" type="fixed"><parent link="b"/><child link="a"/></joint></robot>'
+    )
+    status, out, err = run("check", "-q", _PWNED)
+    assert (status, out) == (1, "")
+    lines = err.splitlines()
+    assert len(lines) == len(fishbot_urdf.check_file(robot).diagnostics) > 0
+    assert all(line.startswith(f"{_PWNED_SHOWN}:1:") for line in lines)
+    assert "\x1b" not in err
+    status, out, err = run("check", "--format", "github", _PWNED)
+    assert (status, err) == (1, "")
+    assert len(out.splitlines()) == len(lines)
+    assert all(
+        line.startswith("::error file=a%0A%3A%3Aerror file=x%3A%3Apwned\\x1b[2J.urdf,line=1,")
+        for line in out.splitlines()
+    )
+    for fmt in ("json", "sarif"):
+        status, out, err = run("check", "--format", fmt, _PWNED)
+        assert (status, err) == (1, "")
+        assert "\x1b" not in out and _PWNED not in out
+        assert _PWNED in out.encode().decode("unicode_escape") or json.loads(out)
+    assert json.loads(run("check", "--format", "json", _PWNED)[1])["files"][0]["path"] == _PWNED
+    # A file that is not there: the one line of the error.
+    status, out, err = run("check", "missing\r\n" + _PWNED)
+    assert (status, out, err) == (2, "", f"missing\\r\\n{_PWNED_SHOWN}: error: no such file [io]\n")
+
+
+def test_control_characters_in_a_link_name_are_written_visibly() -> None:
+    text = (
+        '<robot name="r&#10;x"><link name="a&#10;::error::b&#x9b;2J&#13;"/>'
+        '<joint name="j&#10;k" type="fixed"><parent link="zz&#10;"/>'
+        '<child link="a&#10;::error::b&#x9b;2J&#13;"/></joint></robot>'
+    )
+    status, out, err = run("check", "-", stdin=text.encode())
+    assert status == 1
+    lines = err.splitlines()
+    assert len(lines) == len(fishbot_urdf.check_file(text.encode(), path="<stdin>").diagnostics)
+    assert all(line.startswith("<stdin>:1:") and line.endswith("]") for line in lines)
+    assert "\x9b" not in err and "\r" not in err
+    status, out, err = run("check", "--format", "github", "-", stdin=text.encode())
+    assert len(out.splitlines()) == len(lines) and "\x9b" not in out and "\r" not in out
+    for fmt in ("json", "sarif"):
+        status, out, err = run("check", "--format", fmt, "-", stdin=text.encode())
+        assert json.loads(out)  # valid, its strings escaped by JSON's rules
+    # The tree: no control character but the line ends.
+    status, out, err = run(
+        "check", "-", stdin=text.replace('"zz&#10;"', '"a&#10;::error::b&#x9b;2J&#13;"').encode()
+    )
+    assert "\x9b" not in out and "\r" not in out
+
+
+def test_a_workspace_with_links_that_cannot_be_followed(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
+    monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
+    (tmp_path / "ws" / "build").mkdir(parents=True)
+    urdf = tmp_path / "ws" / "src" / "pkg" / "urdf"
+    urdf.mkdir(parents=True)
+    (tmp_path / "ws" / "src" / "loop").symlink_to("loop")
+    (tmp_path / "ws" / "src" / "dangling").symlink_to(tmp_path / "nowhere")
+    robot = urdf / "r.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="a"><visual><geometry>'
+        '<mesh filename="package://nopkg/m.stl"/></geometry></visual></link></robot>'
+    )
+    status, out, err = run("check", "-q", "ws/src/pkg/urdf/r.urdf")
+    assert (status, out) == (0, "")
+    assert err.count("\n") == 1 and "[mesh-not-found]" in err
+    status, out, err = run("graph", "ws/src/pkg/urdf/r.urdf", "-o", "tree.gv")
+    assert (status, out) == (0, "Created file tree.gv\n")
+    status, out, err = run("render", "ws/src/pkg/urdf/r.urdf", "--size", "32x32", "-o", "r.png")
+    assert (status, out) == (0, "")
+    assert "Traceback" not in err

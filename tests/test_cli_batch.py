@@ -132,3 +132,57 @@ def test_findings_pickle_with_their_facts() -> None:
     assert copies == findings
     assert [dict(d.data) for d in copies] == [dict(d.data) for d in findings]
     assert all(type(c.data) is type(d.data) for c, d in zip(copies, findings, strict=True))
+
+
+def _slow_check(monkeypatch: pytest.MonkeyPatch, seconds: float) -> None:
+    """Every file's check takes ``seconds`` more, and then asks the deadline in force."""
+    import importlib
+    import time
+
+    from fishbot_urdf.inputs import deadline
+
+    checking = importlib.import_module("fishbot_urdf.check")
+
+    real = checking.check_file
+
+    def slow(*args: object, **options: object) -> object:
+        time.sleep(seconds)
+        deadline().check("checking")
+        return real(*args, **options)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(checking, "check_file", slow)
+
+
+def test_each_file_has_the_whole_time_limit(monkeypatch: pytest.MonkeyPatch) -> None:
+    from click.testing import CliRunner
+
+    from fishbot_urdf.cli import cli
+
+    _slow_check(monkeypatch, 0.6)
+    first = str(FISHBOT / "urdf" / "first_robot.urdf")
+    # Two files of 0.6 s each, 1.2 s in all: within a 1-second limit each.
+    result = CliRunner().invoke(cli, ["check", "-q", "--timeout", "1", first, first])
+    assert (result.exit_code, result.stdout, result.stderr) == (0, "", "")
+    # One file that takes longer than the limit is stopped, and the next is checked.
+    _slow_check(monkeypatch, 0.6)  # (now 1.2 s a file)
+    result = CliRunner().invoke(cli, ["check", "-q", "--timeout", "1", first])
+    assert (result.exit_code, result.stdout) == (2, "")
+    assert result.stderr == (
+        f"{first}: error: checking takes longer than the time limit of 1 s (allow it longer "
+        "with --timeout SECONDS) [limit]\n"
+    )
+
+
+@linux_only
+def test_each_file_has_the_whole_time_limit_in_every_process(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    from click.testing import CliRunner
+
+    from fishbot_urdf.cli import cli
+
+    _slow_check(monkeypatch, 0.3)
+    first = str(FISHBOT / "urdf" / "first_robot.urdf")
+    files = [first] * _batch.SHARED_FROM  # 4 files of 0.3 s in each of 2 processes
+    result = CliRunner().invoke(cli, ["check", "-q", "--jobs", "2", "--timeout", "0.5", *files])
+    assert (result.exit_code, result.stdout, result.stderr) == (0, "", "")

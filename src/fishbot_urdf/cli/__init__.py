@@ -152,6 +152,10 @@ def _run(argv: Sequence[str] | None) -> NoReturn:
     except _Terminated:
         _quiet_exit(EXIT_TERMINATED)
     except click.ClickException as exc:
+        from ..diagnostics import escape_controls
+
+        # One line, whatever a name in it holds (click declares the message final).
+        exc.message = escape_controls(exc.message)  # type: ignore[misc]
         exc.show()
         sys.exit(exc.exit_code)
     except BrokenPipeError:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import re
 import signal
 import struct
 import sys
@@ -14,12 +15,13 @@ from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, NoReturn
 
 from ..errors import FishbotUrdfError
-from ._common import EXIT_INVALID, EXIT_OK, check_input, fail, mesh_files, status_of
+from ._common import EXIT_INVALID, EXIT_OK, check_input, fail, read_files, status_of
 
 if TYPE_CHECKING:
     from ..check import CheckResult
     from ..config import Config
     from ..diagnostics import Diagnostic
+    from ..output import Source
     from ..packages import PackageFinder
     from ..report import FileReport
 
@@ -41,7 +43,8 @@ class Run:
             files.
         fmt: The output format.
         skip_includes: Pass over xacro files that define no robot.
-        meshes: The mesh files a robot names are inputs too (``-o FILE``: never written).
+        meshes: An output file is written (``-o FILE``): everything a file's check reads
+            (its meshes too) is an input, never to be written over.
         tree: check_urdf's tree is printed (text format, not quiet).
     """
 
@@ -63,7 +66,9 @@ class Outcome:
         report: Its report (other formats).
         result: The check, for its tree to be streamed (checked in this process).
         tree: Its tree as text (checked in another process).
-        inputs: The files it was read from, never to be written over.
+        inputs: The files it was read from, never to be written over (with ``-o FILE``:
+            the file, what it includes, its meshes, the package.xml files read to find
+            its packages).
     """
 
     status: int
@@ -71,7 +76,7 @@ class Outcome:
     report: FileReport | None = None
     result: CheckResult | None = None
     tree: str | None = None
-    inputs: tuple[str, ...] = ()
+    inputs: tuple[Source, ...] = ()
 
 
 def outcomes(
@@ -100,6 +105,8 @@ def outcomes(
             done = workers.outcome(index)
             yield outcome(name, config, run) if done is None else done
 
+
+_CONTROL = re.compile("[\x00-\x1f\x7f-\x9f\u2028\u2029]")  # in a name: escaped in the tree
 
 _INDEX = struct.Struct("<i")  # a file's index (-1: no more files)
 _HEAD = struct.Struct("<iQ")  # a file's index, and the size of its pickled outcome
@@ -264,16 +271,23 @@ def _away(name: str, config: Config, run: Run) -> Outcome | None:
 
 
 def outcome(name: str, config: Config, run: Run) -> Outcome:
-    """Check one file (``-``: standard input)."""
-    try:
-        result = check_input(name, run.args, run.finder, config)
-    except FishbotUrdfError as exc:
-        if run.fmt == "text":
-            return Outcome(status_of(exc), findings=(fail(exc),))
-        return Outcome(status_of(exc), report=_failure(exc, config))
-    inputs = list(result.files)
-    if run.meshes:
-        inputs.extend(mesh_files(result.robot, result.path, run.finder.packages))
+    """Check one file (``-``: standard input), within a time limit of its own: as long as
+    the command's (``--timeout``), from now."""
+    from ..inputs import max_seconds, time_limit
+    from ..packages import recording_manifests
+
+    with time_limit(max_seconds()), recording_manifests() as manifests:
+        try:
+            result = check_input(name, run.args, run.finder, config)
+        except FishbotUrdfError as exc:
+            if exc.path is None:  # a time limit: about the file all the same
+                exc.path = "<stdin>" if name == "-" else name
+            if run.fmt == "text":
+                return Outcome(status_of(exc), findings=(fail(exc),))
+            return Outcome(status_of(exc), report=_failure(exc, config))
+        inputs: list[Source] = []
+        if run.meshes:  # -o FILE: nothing read may be written over
+            inputs = [*read_files(name, result, None, run.finder.packages), *manifests]
     if run.skip_includes and _is_include(result):
         skipped = None if run.fmt == "text" else _skipped(result, config)
         return Outcome(EXIT_OK, report=skipped, inputs=tuple(inputs))
@@ -293,7 +307,18 @@ def tree_chunks(result: CheckResult) -> Iterable[str]:
     topo = result.topology
     if result.analysis is None or topo is None or topo.root is None or topo.loop_from_root:
         return ()
-    return tree_text(result.analysis)
+    robot = result.analysis.robot
+    if not any(_CONTROL.search(name) for name in (robot.name, *(k.name for k in robot.links))):
+        return tree_text(result.analysis)
+    # A name that holds control characters: written visibly, as in the findings (check_urdf
+    # prints them raw, escape sequences and all). (A newline in a name still ends a line:
+    # the tree's own line ends cannot be told from it here.)
+    from ..diagnostics import escape_controls
+
+    return (
+        "\n".join(escape_controls(part) for part in chunk.split("\n"))
+        for chunk in tree_text(result.analysis)
+    )
 
 
 def _can_fork() -> bool:

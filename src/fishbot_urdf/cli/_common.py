@@ -13,7 +13,7 @@ from typing import IO, TYPE_CHECKING, Any, NoReturn, TypeVar
 
 import click
 
-from ..diagnostics import Diagnostic, Severity, from_error
+from ..diagnostics import Diagnostic, Severity, escape_controls, from_error
 from ..errors import FishbotUrdfError, InputError, ToolError
 from ._hints import command_hint, error_hint
 
@@ -23,6 +23,7 @@ if TYPE_CHECKING:
     from ..check import CheckResult
     from ..config import Config
     from ..model import Robot
+    from ..output import Source
     from ..packages import PackageFinder
 
 EXIT_OK, EXIT_INVALID, EXIT_USAGE = 0, 1, 2
@@ -117,9 +118,13 @@ def packages_option(items: Sequence[str]) -> dict[str, str]:
     for item in items:
         name, sep, folder = item.partition("=")
         if not sep or not name or not folder:
-            raise click.BadParameter(f"'{item}' is not NAME=PATH", param_hint="--package")
+            raise click.BadParameter(
+                escape_controls(f"'{item}' is not NAME=PATH"), param_hint="--package"
+            )
         if not os.path.isdir(folder):
-            raise click.BadParameter(f"{folder} is not a folder", param_hint="--package")
+            raise click.BadParameter(
+                escape_controls(f"{folder} is not a folder"), param_hint="--package"
+            )
         packages[name] = folder
     return packages
 
@@ -133,7 +138,7 @@ def xacro_args(items: Sequence[str]) -> dict[str, str]:
     try:
         return parse_args(list(items))
     except FishbotUrdfError as exc:
-        raise click.BadParameter(exc.message, param_hint="ARGS") from None
+        raise click.BadParameter(escape_controls(exc.message), param_hint="ARGS") from None
 
 
 def check_input(
@@ -179,6 +184,38 @@ def _fit_allocator(name: str) -> None:
         pass  # not glibc
 
 
+STDIN = 0
+"""Standard input's file descriptor: an input that is a file when stdin is one (`fishbot
+check - -o robot.urdf < robot.urdf` is refused)."""
+
+
+def read_files(
+    name: str,
+    result: CheckResult | None,
+    config: Config | None,
+    packages: Mapping[str, str | Path],
+) -> list[Source]:
+    """What a command read for FILE ``name``, never to be written over: the file (standard
+    input for -, when that is a file), every file its reading read (includes, YAML), the
+    mesh files it names that can be found, and the configuration file. The package.xml
+    files read on the way are `manifests_read`'s."""
+    found: list[Source] = [STDIN] if name == "-" else [name]
+    if result is not None:
+        found.extend(result.files)
+        found.extend(mesh_files(result.robot, result.path, packages))
+    if config is not None and config.path is not None:
+        found.append(config.path)
+    return found
+
+
+def manifests_read() -> list[str]:
+    """Every package.xml that the command reads from now on to find a package (for
+    ``$(find)`` and ``package://``), added to the list as they are read: inputs too."""
+    from ..packages import recording_manifests
+
+    return click.get_current_context().with_resource(recording_manifests())
+
+
 def mesh_files(robot: Robot | None, path: str, packages: Mapping[str, str | Path]) -> list[str]:
     """The mesh files ``robot`` names that can be found: inputs too, never to be written
     over (`-o meshes/box.stl` after a mistyped name)."""
@@ -218,7 +255,16 @@ def stdin_urdf() -> bytes:
     from ..inputs import InputTooLargeError, max_bytes
 
     limit = max_bytes()
-    data = sys.stdin.buffer.read(limit + 1)  # within the size limit, as files are
+    stream: IO[bytes] | None = getattr(sys.stdin, "buffer", None)
+    if stream is None:  # closed by the caller (`<&-`)
+        raise InputError(
+            "standard input is closed (give a FILE, or pipe the robot in)", path="<stdin>"
+        )
+    try:
+        data = stream.read(limit + 1)  # within the size limit, as files are
+    except (OSError, ValueError) as exc:  # not readable, or closed since
+        reason = getattr(exc, "strerror", None) or str(exc)
+        raise InputError(f"cannot read: {reason}", path="<stdin>") from exc
     if len(data) > limit:
         raise InputTooLargeError("<stdin>", None, limit)
     if b"xmlns:xacro" in data[:4096] or b"<xacro:" in data:
@@ -302,12 +348,18 @@ def posing_errors(diagnostics: Iterable[Diagnostic]) -> list[Diagnostic]:
 
 
 def posable_input(
-    name: str, args: dict[str, str], packages: dict[str, str], refusal: str | None = None
+    name: str,
+    args: dict[str, str],
+    packages: dict[str, str],
+    refusal: str | None = None,
+    *,
+    config: Config | None = None,
 ) -> CheckResult:
-    """FILE read and checked, for a command that poses the robot (tf, render): a robot whose
-    shape or tree is in doubt stops it with its errors (and ``refusal``), exit 1."""
+    """FILE read and checked (with ``config``, else the nearest configuration), for a
+    command that poses the robot (tf, render): a robot whose shape or tree is in doubt
+    stops it with its errors (and ``refusal``), exit 1."""
     try:
-        result = check_input(name, args, packages, nearest_config(name))
+        result = check_input(name, args, packages, config or nearest_config(name))
     except FishbotUrdfError as exc:
         stop_on(exc)
     blocking = posing_errors(result.diagnostics)

@@ -17,6 +17,7 @@ from ._batch import Run, outcomes, tree_chunks
 from ._common import (
     EXIT_OK,
     EXIT_USAGE,
+    STDIN,
     Number,
     emit_findings,
     fail,
@@ -32,7 +33,7 @@ from ._common import (
 if TYPE_CHECKING:
     from ..config import Config
     from ..diagnostics import Diagnostic
-    from ..output import AtomicFile
+    from ..output import AtomicFile, Source
     from ..report import FileReport
 
 FORMATS = ("text", "json", "sarif", "github")
@@ -299,8 +300,11 @@ def check(
 
     status = EXIT_OK
     reports: list[FileReport] = []
-    # Never written over: the files checked, what they read, the configuration files.
-    inputs = [name for name in (*names, *found) if name and name != "-"]
+    # Never written over: the files checked (standard input, when it is a file), what
+    # they read, the configuration files.
+    inputs: list[Source] = [name for name in (*names, *found) if name and name != "-"]
+    if "-" in names:
+        inputs.append(STDIN)
     sink = _tree_file(output, inputs) if fmt == "text" else None
     run = Run(
         args=args,
@@ -325,7 +329,7 @@ def check(
     sys.exit(status)
 
 
-def _tree_file(output: str | None, inputs: list[str]) -> AtomicFile | None:
+def _tree_file(output: str | None, inputs: list[Source]) -> AtomicFile | None:
     """The file the trees stream into, for -o FILE (checked now, put in place at the end)."""
     if output is None or output == "-":
         return None
@@ -362,7 +366,7 @@ def _finish(
     reports: list[FileReport],
     output: str | None,
     sink: AtomicFile | None,
-    inputs: Sequence[str],
+    inputs: Sequence[Source],
 ) -> None:
     """Write the report (or, for text, the trees) to stdout or ``output``."""
     if fmt == "text":  # the trees: on stdout already, or in the file, put in place now

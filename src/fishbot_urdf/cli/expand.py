@@ -17,6 +17,7 @@ from ._common import (
     EXIT_OK,
     emit_findings,
     limit_options,
+    manifests_read,
     mesh_files,
     package_option,
     packages_option,
@@ -80,6 +81,7 @@ def expand(
 
     values = xacro_args(args)
     packages = packages_option(package_items)
+    manifests = manifests_read()
     try:
         expansion = run(file, args=values, packages=packages)
         findings = [xacro_warning(message, file) for message in expansion.messages]
@@ -96,7 +98,10 @@ def expand(
             to_stdout(text.encode("utf-8", "surrogateescape"))
         else:
             meshes = [] if deps else _mesh_files(expansion, packages)
-            write_atomic(output, text, inputs=[file, *expansion.dependencies, *meshes])
+            # Never over what was read: the file, its includes and YAML files, the meshes
+            # it names, the package.xml files its packages were found by.
+            inputs = [file, *expansion.dependencies, *meshes, *manifests]
+            write_atomic(output, text, inputs=inputs)
     except FishbotUrdfError as exc:
         stop_on(exc)
     emit_findings(findings)

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 
 import click
 
-from ..diagnostics import has_errors
+from ..diagnostics import escape_controls, has_errors
 from ..errors import FishbotUrdfError
 from ._common import (
     EXIT_INVALID,
@@ -17,10 +17,11 @@ from ._common import (
     check_input,
     emit_findings,
     limit_options,
-    mesh_files,
+    manifests_read,
     nearest_config,
     package_option,
     packages_option,
+    read_files,
     stop_on,
     to_stdout,
     xacro_args,
@@ -28,6 +29,7 @@ from ._common import (
 
 if TYPE_CHECKING:
     from ..analysis import Analysis
+    from ..output import Source
 
 # fishbot_urdf.dot.FORMATS, written out so that `fishbot --help` does not load the drawing
 # code (tests/test_dot.py keeps the two equal).
@@ -93,6 +95,7 @@ def graph(
     values = xacro_args([a for a in args if ":=" in a])
     packages = packages_option(package_items)
     outputs = None if output is None else _graph_output(output, fmt)
+    manifests = manifests_read()
     config = nearest_config(file)
     try:
         result = check_input(file, values, packages, config)
@@ -105,7 +108,7 @@ def graph(
     if outputs is None:
         outputs = _graph_pair(names[0] if names else _file_name(result.analysis.robot.name), fmt)
     try:
-        inputs = [*result.files, *mesh_files(result.robot, result.path, packages)]
+        inputs = [*read_files(file, result, config, packages), *manifests]
         _draw_all(result.analysis, outputs, detail, inputs)
     except FishbotUrdfError as exc:
         stop_on(exc)
@@ -140,12 +143,16 @@ def _graph_output(output: str, fmt: str | None) -> list[tuple[str, str]]:
 
 
 def _draw_all(
-    robot: Analysis, outputs: list[tuple[str, str]], detail: bool, inputs: Sequence[str]
+    robot: Analysis, outputs: list[tuple[str, str]], detail: bool, inputs: Sequence[Source]
 ) -> None:
-    """Write each output, saying "Created file" only for files really written."""
+    """Write each output, saying "Created file" only for files really written; none when
+    one of them is an input."""
     from ..dot import draw
-    from ..output import write_atomic
+    from ..output import refuse_inputs, write_atomic
 
+    for path, _ in outputs:
+        if path != "-":
+            refuse_inputs(path, inputs)
     for path, fmt in outputs:
         try:
             data = draw(robot, fmt, detail=detail)
@@ -156,4 +163,4 @@ def _draw_all(
             to_stdout(data)
             continue
         write_atomic(path, data, inputs=inputs)
-        to_stdout(f"Created file {path}\n".encode("utf-8", "surrogateescape"))
+        to_stdout(f"Created file {escape_controls(path)}\n".encode("utf-8", "surrogateescape"))

@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 import click
 
+from ..diagnostics import escape_controls
 from ..errors import FishbotUrdfError
 from ._common import (
     EXIT_INVALID,
@@ -26,10 +27,11 @@ from ._common import (
     joint_option,
     joint_positions,
     limit_options,
-    mesh_files,
+    manifests_read,
     nearest_config,
     package_option,
     packages_option,
+    read_files,
     stop_on,
     to_stdout,
     xacro_args,
@@ -40,6 +42,7 @@ if TYPE_CHECKING:
 
     from ..check import CheckResult
     from ..model import Inertial, Mesh, Vector3
+    from ..output import Source
 
 _SHAPES = ("box", "cylinder", "sphere")
 
@@ -291,6 +294,7 @@ def robot(
     values = xacro_args(args)
     packages = packages_option(package_items)
     positions = joint_positions(joint_items)
+    manifests = manifests_read()
     config = nearest_config(file)
     try:
         result = check_input(file, values, packages, config)
@@ -302,7 +306,10 @@ def robot(
             emit_findings(errors or result.diagnostics)
             click.echo("nothing written: fix the errors above first", err=True)
             sys.exit(EXIT_INVALID)
-        sys.exit(_fill(result, packages, output or "-", density, _link_masses(masses)))
+        # The copy is never written over anything read (the mesh names resolved here
+        # are those the filling resolves: no package.xml is read after).
+        inputs = [*read_files(file, result, config, packages), *manifests]
+        sys.exit(_fill(result, packages, output or "-", density, _link_masses(masses), inputs))
     emit_findings(result.diagnostics)
     if result.analysis is None:
         sys.exit(EXIT_INVALID)
@@ -348,8 +355,10 @@ def _fill(
     output: str,
     density: float | None,
     masses: dict[str, float],
+    inputs: Sequence[Source],
 ) -> int:
-    """Write the copy with the missing inertials; the exit status."""
+    """Write the copy with the missing inertials (never over one of ``inputs``); the exit
+    status."""
     from ..errors import ArgumentError, UnknownNameError
     from ..inertia import fill_inertials
     from ..output import write_atomic
@@ -375,7 +384,6 @@ def _fill(
         if output == "-":
             to_stdout(text.encode("utf-8", "surrogateescape"))
         else:
-            inputs = [*result.files, *mesh_files(result.robot, result.path, packages)]
             write_atomic(output, text, inputs=inputs)
     except FishbotUrdfError as exc:
         emit_findings([fail(exc)])
@@ -387,5 +395,5 @@ def _fill(
         said = f"<inertial> added to {count}: {names}"
     else:
         said = "no link needed an <inertial>"
-    click.echo(f"Wrote {where}: {said}", err=True)
+    click.echo(escape_controls(f"Wrote {where}: {said}"), err=True)
     return EXIT_INVALID if filling.skipped else EXIT_OK

@@ -7,15 +7,19 @@ from collections.abc import Sequence
 
 import click
 
+from ..diagnostics import escape_controls
 from ..errors import FishbotUrdfError
 from ._common import (
     EXIT_OK,
     joint_option,
     joint_positions,
     limit_options,
+    manifests_read,
+    nearest_config,
     package_option,
     packages_option,
     posable_input,
+    read_files,
     stop_on,
     to_stdout,
     xacro_args,
@@ -30,8 +34,8 @@ def _size(text: str) -> tuple[int, int]:
         size = (int(width), int(height))
     except ValueError:
         size = (0, 0)
-    if not sep or not (16 <= size[0] <= 8192 and 16 <= size[1] <= 8192):
-        raise click.BadParameter(f"{text!r} is not WIDTHxHEIGHT (16 to 8192 pixels each)")
+    if not sep or not (size[0] >= 16 and size[1] >= 16):  # the library bounds the pixels
+        raise click.BadParameter(f"{text!r} is not WIDTHxHEIGHT (16 pixels or more each)")
     return size
 
 
@@ -99,7 +103,10 @@ def render(
     values = xacro_args(args)
     positions = joint_positions(joint_items)
     packages = packages_option(package_items)
-    result = posable_input(file, values, packages, "nothing written: fix the errors above first")
+    manifests = manifests_read()
+    config = nearest_config(file)
+    refusal = "nothing written: fix the errors above first"
+    result = posable_input(file, values, packages, refusal, config=config)
     assert result.analysis is not None
     try:
         kinematics = Kinematics(result.analysis)
@@ -110,13 +117,15 @@ def render(
     except FishbotUrdfError as exc:
         stop_on(exc)
     for warning in scene.warnings:
-        click.echo(f"{result.path}: warning: {warning}", err=True)
-    png = render_png(scene, view, width, height)
+        click.echo(escape_controls(f"{result.path}: warning: {warning}"), err=True)
     try:
+        png = render_png(scene, view, width, height)
         if output == "-":
             to_stdout(png)
         else:
-            write_atomic(output, png, inputs=[*result.files])
+            # Never over what was read: the robot's files, its meshes, the configuration.
+            inputs = [*read_files(file, result, config, packages), *manifests]
+            write_atomic(output, png, inputs=inputs)
     except FishbotUrdfError as exc:
         stop_on(exc)
     sys.exit(EXIT_OK)
