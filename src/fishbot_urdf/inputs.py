@@ -41,6 +41,8 @@ __all__ = [
     "read_input",
     "size_limit",
     "time_limit",
+    "trusting_expressions",
+    "trusts_expressions",
 ]
 
 DEFAULT_MAX_BYTES = 256 * 1024 * 1024
@@ -52,6 +54,7 @@ DEFAULT_MAX_SECONDS = 60.0
 _LIMIT: ContextVar[int] = ContextVar("fishbot_urdf_max_bytes", default=DEFAULT_MAX_BYTES)
 _SECONDS: ContextVar[float] = ContextVar("fishbot_urdf_max_seconds", default=DEFAULT_MAX_SECONDS)
 _END: ContextVar[float | None] = ContextVar("fishbot_urdf_deadline", default=None)
+_TRUST: ContextVar[bool] = ContextVar("fishbot_urdf_trust_expressions", default=False)
 
 
 class TimeLimitError(LimitError):
@@ -139,6 +142,19 @@ def time_limit(seconds: float) -> AbstractContextManager[None]:
 def _timing(seconds: float) -> Iterator[None]:
     with _holding(_SECONDS, seconds), _holding(_END, time.monotonic() + seconds):
         yield
+
+
+def trusting_expressions(trust: bool = True) -> AbstractContextManager[None]:
+    """Inside the ``with`` (this thread or task only), xacro expansions evaluate ``${...}``
+    and ``$(eval ...)`` with Python's ``eval``, as ROS's xacro does: the file's code runs
+    with the rights of the process. Outside, expressions are interpreted by an allowlist
+    that cannot reach past the symbol table (see :mod:`fishbot_urdf.expand`)."""
+    return _holding(_TRUST, trust)
+
+
+def trusts_expressions() -> bool:
+    """Whether expansions here run expressions as Python (see :func:`trusting_expressions`)."""
+    return _TRUST.get()
 
 
 @contextmanager

@@ -421,8 +421,13 @@ def limit_options() -> Callable[[Wrapped], Wrapped]:
             trust_expressions: bool,
             **kwargs: Any,
         ) -> Any:
-            from ..expand import trusting_expressions
-            from ..inputs import max_bytes, max_seconds, size_limit, time_limit
+            from ..inputs import (
+                max_bytes,
+                max_seconds,
+                size_limit,
+                time_limit,
+                trusting_expressions,
+            )
 
             limit = max_bytes() if max_size is None else max(1, int(max_size * 1024 * 1024))
             seconds = max_seconds() if timeout is None else timeout

@@ -20,13 +20,12 @@ import os
 import re
 import stat
 import threading
-from collections.abc import Iterator, Mapping
-from contextlib import contextmanager
-from contextvars import ContextVar
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import ArgumentError, FishbotUrdfError, InputError
+from ..inputs import trusting_expressions, trusts_expressions
 from ..location import Location
 
 __all__ = [
@@ -40,20 +39,6 @@ __all__ = [
 ]
 
 _LOCK = threading.RLock()
-_TRUST: ContextVar[bool] = ContextVar("fishbot_urdf_trust_expressions", default=False)
-
-
-@contextmanager
-def trusting_expressions(trust: bool = True) -> Iterator[None]:
-    """Inside the ``with`` (this thread or task only), expansions evaluate ``${...}`` and
-    ``$(eval ...)`` with Python's ``eval``, as ROS's xacro does: the file's code runs with
-    the rights of the process. Outside, expressions are interpreted by an allowlist that
-    cannot reach past the symbol table (see :mod:`fishbot_urdf.expand`)."""
-    token = _TRUST.set(trust)
-    try:
-        yield
-    finally:
-        _TRUST.reset(token)
 
 
 class XacroError(FishbotUrdfError):
@@ -171,7 +156,7 @@ def expand(
         raise InputError(f"{name} is a folder", path=name)
     from ._engine import Run  # xacro and minidom load here, not with the package
 
-    trust = _TRUST.get() if trust_expressions is None else trust_expressions
+    trust = trusts_expressions() if trust_expressions is None else trust_expressions
     with _LOCK, Run(name, dict(args or {}), dict(packages or {}), trust=trust) as run:
         return run.expand()
 
