@@ -1,5 +1,6 @@
 """`fishbot_urdf.meshfile`: face counts and extents of STL and OBJ files, in plain Python,
-against trimesh's reading of the same files."""
+against trimesh's reading of the same files; their triangles read strictly, and what a
+malformed file is said to be."""
 
 from __future__ import annotations
 
@@ -9,7 +10,9 @@ import pytest
 import trimesh
 from conftest import binary_stl, box_stl
 
-from fishbot_urdf.meshfile import MeshFacts, mesh_facts
+from fishbot_urdf.errors import ShapeError
+from fishbot_urdf.inputs import TimeLimitError, time_limit
+from fishbot_urdf.meshfile import MeshFacts, mesh_bounds, mesh_facts, mesh_triangles
 
 
 def _trimesh_facts(path: Path) -> MeshFacts:
@@ -56,3 +59,95 @@ def test_what_is_not_read(tmp_path: Path) -> None:
         assert mesh_facts(tmp_path / name) is None
     (tmp_path / "box.stl").write_bytes(box_stl(1, 2, 3))
     assert mesh_facts(tmp_path / "box.stl") == MeshFacts(12, (0, 0, 0), (1, 2, 3))
+
+
+# -- mesh_triangles: the strict reader, and mesh_bounds: what a malformed file still gives --
+
+_GOOD = box_stl(1, 2, 3)
+_TRIANGLE = b"v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+
+
+@pytest.mark.parametrize(
+    ("name", "data", "said"),
+    [
+        ("empty.stl", b"", "the file is empty"),
+        ("blank.obj", b"\n  \n", "the file is empty"),
+        (
+            "truncated.stl",
+            _GOOD[:-20],
+            "not an ASCII STL, nor a binary one: a binary STL of 12 triangles is 684 bytes "
+            "long, not 664",
+        ),
+        (
+            "claims.stl",
+            _GOOD[:80] + (1000).to_bytes(4, "little") + _GOOD[84:],
+            "a binary STL of 1,000 triangles is 50,084 bytes long, not 684",
+        ),
+        ("short.stl", b"\x01\x02garbage", "no triangles in the STL file"),
+        ("garbage.obj", bytes(range(256)) * 8, "no triangles in the OBJ file"),
+        ("number.obj", b"v 0 0 0\nv 1 x 0\nv 0 1 0\nf 1 2 3\n", "vertex 'x' is not a number"),
+        ("short_vertex.obj", b"v 0 0\n" + _TRIANGLE + b"f 2 3 4\n", "fewer than three numbers"),
+        ("range.obj", _TRIANGLE + b"f 1 2 9\n", "line 4: a face names vertex 9, of 3"),
+        ("zero.obj", _TRIANGLE + b"f 0 1 2\n", "line 4: a face names vertex 0, of 3 (OBJ"),
+        ("negative.obj", _TRIANGLE + b"f -1 -2 -4\n", "line 4: a face names vertex -4, of 3"),
+        ("word.obj", _TRIANGLE + b"f 1 a 3\n", "line 4: vertex 'a' of a face is not a whole"),
+        ("two.obj", _TRIANGLE + b"f 1 2\n", "line 4: a face of fewer than three vertices"),
+        ("nan.obj", b"v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n", "a vertex is not a finite"),
+        ("inf.stl", binary_stl([(0, 0, 0, float("inf"), 0, 0, 0, 1, 0)]), "is not a finite"),
+        (
+            "ascii.stl",
+            b"solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\n",
+            "2 vertices are not a whole number of triangles",
+        ),
+        ("part.ply", b"ply\n", ".ply: not an STL or OBJ file"),
+    ],
+)
+def test_a_malformed_mesh_is_a_shape_error_that_says_why(
+    tmp_path: Path, name: str, data: bytes, said: str
+) -> None:
+    path = tmp_path / name
+    path.write_bytes(data)
+    with pytest.raises(ShapeError) as info:
+        mesh_triangles(path)
+    assert info.value.rule == "shape"
+    assert info.value.path == str(path)
+    assert said in info.value.message
+
+
+def test_triangles_are_read_from_stl_and_obj(tmp_path: Path) -> None:
+    (tmp_path / "box.stl").write_bytes(_GOOD)
+    box = mesh_triangles(tmp_path / "box.stl")
+    assert box.shape == (12, 3, 3)
+    assert box.min(axis=(0, 1)).tolist() == [0, 0, 0]
+    assert box.max(axis=(0, 1)).tolist() == [1, 2, 3]
+    # A quad is a fan of two triangles; indices with texture and normal parts, and
+    # negative ones counted back from the face.
+    (tmp_path / "quad.obj").write_bytes(
+        b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1/1 2/2/2 3//3 4\nv 5 5 5\nf -5 -4 -1\n"
+    )
+    quad = mesh_triangles(tmp_path / "quad.obj")
+    assert quad.tolist() == [
+        [[0, 0, 0], [1, 0, 0], [1, 1, 0]],
+        [[0, 0, 0], [1, 1, 0], [0, 1, 0]],
+        [[0, 0, 0], [1, 0, 0], [5, 5, 5]],
+    ]
+
+
+def test_mesh_bounds_finds_the_box_of_a_malformed_file(tmp_path: Path) -> None:
+    (tmp_path / "truncated.stl").write_bytes(_GOOD[:-20])  # the last triangle cut short
+    low, high = mesh_bounds(tmp_path / "truncated.stl") or ((), ())
+    assert low == (0, 0, 0)
+    assert high == (1, 2, 3)
+    (tmp_path / "range.obj").write_bytes(b"v 0 0 0\nv 2 x 0\nv 0 1 3\nf 1 2 9\n")
+    assert mesh_bounds(tmp_path / "range.obj") == ((0, 0, 0), (2, 1, 3))  # "x" left out
+    for name, data in (("empty.stl", b""), ("inf.obj", b"v inf 0 0\n"), ("a.dae", b"<a/>")):
+        (tmp_path / name).write_bytes(data)
+        assert mesh_bounds(tmp_path / name) is None
+
+
+def test_reading_a_mesh_stops_at_the_deadline(tmp_path: Path) -> None:
+    path = tmp_path / "big.obj"
+    path.write_bytes(_TRIANGLE + b"f 1 2 3\n" * 10)
+    with time_limit(1e-6), pytest.raises(TimeLimitError) as info:
+        mesh_triangles(path)
+    assert info.value.what == "reading meshes"

@@ -8,11 +8,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from conftest import FISHBOT, box_stl
+from conftest import FISHBOT, binary_stl, box_stl
 from PIL import Image
 
 import fishbot_urdf
+from fishbot_urdf.analysis import analyse
 from fishbot_urdf.cli import cli
+from fishbot_urdf.inputs import TimeLimitError, time_limit
 from fishbot_urdf.picture import render_png
 from fishbot_urdf.scene import build_scene
 
@@ -144,3 +146,100 @@ def test_a_package_not_found_is_one_warning_for_all_its_meshes(tmp_path: Path) -
         "link 'a': mesh 'package://elsewhere/a.stl' is not drawn, nor any other mesh of "
         "package 'elsewhere': package 'elsewhere' not found (searched: "
     )
+
+
+def test_a_picture_too_big_is_one_limit_line_and_nothing_written(tmp_path: Path) -> None:
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="a"><visual><geometry><box size="0.1 0.1 0.1"/>'
+        "</geometry></visual></link></robot>"
+    )
+    out = tmp_path / "x.png"
+    result = CliRunner().invoke(
+        cli, ["render", str(robot), "-o", str(out), "--size", "30000x30000"]
+    )
+    assert result.exit_code == 2
+    [line] = result.stderr.splitlines()
+    assert line.endswith("more than the bound of 67,108,864 (a 4096 x 4096 picture) [limit]")
+    assert "Traceback" not in result.output
+    assert not out.exists()
+
+
+_GOOD_STL = box_stl(0.2, 0.1, 0.1)
+_TRIANGLE = b"v 0 0 0\nv 0.2 0 0\nv 0 0.1 0.1\n"
+
+
+@pytest.mark.parametrize(
+    ("name", "data", "drawn"),
+    [
+        ("truncated.stl", _GOOD_STL[:-20], "drawn as its bounding box"),
+        ("claims.stl", _GOOD_STL[:80] + (999).to_bytes(4, "little") + _GOOD_STL[84:], "box"),
+        ("fewer.stl", _GOOD_STL[:80] + (2).to_bytes(4, "little") + _GOOD_STL[84:], "box"),
+        ("empty.stl", b"", "nor its size: not drawn"),
+        ("empty.obj", b"", "nor its size: not drawn"),
+        ("garbage.stl", bytes(range(256)) * 40, "nor its size: not drawn"),
+        ("garbage.obj", bytes(range(256)) * 40, "nor its size: not drawn"),
+        ("number.obj", _TRIANGLE.replace(b"0.2", b"0.2x") + b"f 1 2 3\n", "box"),
+        ("range.obj", _TRIANGLE + b"f 1 2 9\n", "drawn as its bounding box"),
+        ("zero.obj", _TRIANGLE + b"f 0 1 2\n", "drawn as its bounding box"),
+        ("negative.obj", _TRIANGLE + b"f -1 -2 -9\n", "drawn as its bounding box"),
+        ("nan.obj", _TRIANGLE + b"v nan 0 0\nf 1 2 4\n", "drawn as its bounding box"),
+        ("inf.stl", binary_stl([(0, 0, 0, 1, float("-inf"), 0, 0, 1, 0)]), "not drawn"),
+    ],
+)
+def test_a_malformed_mesh_is_drawn_as_its_box_or_left_out_with_a_warning(
+    tmp_path: Path, name: str, data: bytes, drawn: str
+) -> None:
+    (tmp_path / name).write_bytes(data)
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(
+        f'<robot name="r"><link name="a"><visual><geometry><mesh filename="{name}"/>'
+        '</geometry></visual><visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual>'
+        "</link></robot>"
+    )
+    out = tmp_path / "r.png"
+    result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(out), "--size", "64x48"])
+    assert result.exit_code == 0, result.output
+    [line] = result.stderr.splitlines()
+    assert line.startswith(f"{robot}: warning: link 'a': mesh '{name}' cannot be read (")
+    assert drawn in line
+    assert _pixels(out.read_bytes()).shape == (48, 64, 3)
+    scene = build_scene(fishbot_urdf.load(robot))
+    assert len(scene.parts) == (2 if "box" in drawn else 1)
+
+
+@pytest.mark.parametrize(
+    ("mesh", "data"),
+    [
+        ('scale="1e300 1 1"', b"v 0 0 0\nv 1e308 0 0\nv 0 1 0\nf 1 2 3\n"),  # overflows
+        ("", b"v 0 0 0\nv 1e300 0 0\nv 0 1 0\nf 1 2 3\n"),  # finite, but too far
+    ],
+)
+def test_a_mesh_too_big_to_draw_is_a_warning_not_a_numpy_warning(
+    tmp_path: Path, mesh: str, data: bytes
+) -> None:
+    # The test configuration turns every warning into an error: a RuntimeWarning from an
+    # overflow in numpy would fail this test.
+    (tmp_path / "big.obj").write_bytes(data)
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(
+        f'<robot name="r"><link name="a"><visual><geometry><mesh filename="big.obj" {mesh}/>'
+        '</geometry></visual><visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual>'
+        "</link></robot>"
+    )
+    scene = build_scene(fishbot_urdf.load(robot))
+    assert len(scene.parts) == 1
+    assert scene.warnings == (
+        "link 'a': mesh 'big.obj' is not drawn: its corners are not finite numbers, or lie "
+        "farther than 1e+09 m from the root",
+    )
+    result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(tmp_path / "r.png")])
+    assert result.exit_code == 0
+    assert result.stderr == f"{robot}: warning: {scene.warnings[0]}\n"
+
+
+def test_building_a_scene_stops_at_the_deadline(tmp_path: Path) -> None:
+    analysis = analyse(fishbot_urdf.load(XACRO))
+    with time_limit(1e-6), pytest.raises(TimeLimitError) as info:
+        render_png(build_scene(analysis))
+    assert info.value.what == "building the scene"

@@ -1,0 +1,126 @@
+"""`fishbot_urdf.picture`: the rasteriser's bounds (size, overlap, deadline) and the picture
+it still makes of triangles piled on one another, checked by its pixels."""
+
+from __future__ import annotations
+
+import io
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from fishbot_urdf.errors import ArgumentError, LimitError
+from fishbot_urdf.inputs import TimeLimitError, time_limit
+from fishbot_urdf.picture import MAX_PIXELS, PictureLimitError, render_png
+from fishbot_urdf.scene import Part, Scene
+
+RED, BLUE = (1.0, 0.0, 0.0, 1.0), (0.0, 0.0, 1.0, 1.0)
+
+
+def _scene(*parts: tuple[list[list[list[float]]], tuple[float, float, float, float]]) -> Scene:
+    made = []
+    for triangles, color in parts:
+        array = np.array(triangles, dtype=float)
+        made.append(Part("a", array, color, array, np.eye(4)))
+    return Scene(tuple(made), (), {"a": np.eye(4)})
+
+
+def _pixels(data: bytes) -> np.ndarray:
+    return np.asarray(Image.open(io.BytesIO(data))).astype(int)
+
+
+def _hue(pixels: np.ndarray) -> np.ndarray:
+    """Per pixel: 0 background, 1 red (shaded, or blended with the background at an edge),
+    2 blue, 3 anything else."""
+    r, b = pixels[..., 0], pixels[..., 2]
+    out = np.full(pixels.shape[:2], 3)
+    out[r > b] = 1
+    out[b > r] = 2
+    out[(pixels == 255).all(axis=2)] = 0
+    return out
+
+
+def _square(x: float, half: float = 1.0) -> list[list[list[float]]]:
+    """A square facing +x (the front view's camera), at depth ``x``: two triangles."""
+    a, b, c, d = ((x, -half, -half), (x, half, -half), (x, half, half), (x, -half, half))
+    return [[list(a), list(b), list(c)], [list(a), list(c), list(d)]]
+
+
+def test_a_picture_too_big_is_refused_before_it_is_drawn() -> None:
+    scene = _scene((_square(0.0), RED))
+    with pytest.raises(PictureLimitError) as info:
+        render_png(scene, "front", 30000, 30000)
+    error = info.value
+    assert isinstance(error, LimitError)
+    assert error.rule == "limit"
+    assert (error.what, error.needed, error.limit) == ("samples", 3_600_000_000, MAX_PIXELS)
+    assert error.message == (
+        "a 30000 x 30000 picture is drawn on 3,600,000,000 samples (about 40.2 GiB), more "
+        "than the bound of 67,108,864 (a 4096 x 4096 picture)"
+    )
+    with pytest.raises(PictureLimitError):
+        render_png(scene, "front", 8192, 8192)
+    assert MAX_PIXELS == 4 * 4096 * 4096
+
+
+@pytest.mark.parametrize(
+    ("view", "width", "height"), [("nowhere", 10, 10), ("iso", 0, 10), ("iso", 10, -1)]
+)
+def test_a_wrong_view_or_size_is_an_argument_error(view: str, width: int, height: int) -> None:
+    with pytest.raises(ArgumentError):
+        render_png(_scene((_square(0.0), RED)), view, width, height)
+
+
+def test_many_copies_of_a_big_triangle_are_drawn_once_in_the_first_ones_colour() -> None:
+    # 500 copies of the same two screen-filling triangles (as an OBJ file of 4 KB repeating
+    # one face would give), each copy in another colour: far more than MAX_COVER visits
+    # per sample if each were drawn, and the first copy wins every pixel anyway.
+    parts = [(_square(0.0), BLUE)] + [(_square(0.0), RED) for _ in range(499)]
+    pixels = _pixels(render_png(_scene(*parts), "front", 200, 150))
+    hues = _hue(pixels)
+    assert set(np.unique(hues)) == {0, 2}  # blue and background: no red at all
+    assert hues[75, 100] == 2
+    assert (hues == 2).mean() > 0.5
+
+
+def test_the_nearest_of_stacked_big_squares_is_seen_whatever_their_order() -> None:
+    # 40 screen-filling squares, one behind the other, given in a shuffled order: the
+    # nearest (red, at x = 1 towards the front camera) covers every other.
+    depths = np.random.default_rng(7).permutation(np.linspace(-1.0, 1.0, 40))
+    parts = [(_square(float(x)), RED if x == 1.0 else BLUE) for x in depths]
+    hues = _hue(_pixels(render_png(_scene(*parts), "front", 160, 120)))
+    assert set(np.unique(hues)) == {0, 1}
+    assert (hues == 1).mean() > 0.5
+
+
+def test_triangles_piled_past_the_visit_bound_are_refused(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # Tilted squares stacked 0.001 apart: no copy of another, each one seen nowhere.
+    parts = [([[[x, -1, -1], [x + 0.5, 1, -1], [x, 0, 1]]], BLUE) for x in np.arange(20) * 1e-3]
+    scene = _scene(*parts)
+    monkeypatch.setattr("fishbot_urdf.picture.MAX_COVER", 4)
+    with pytest.raises(PictureLimitError) as info:
+        render_png(scene, "front", 64, 48)
+    error = info.value
+    assert (error.what, error.limit) == ("visits", 4 * 128 * 96)
+    assert error.needed > error.limit
+    assert error.message.startswith("the picture's triangles overlap more than 4 times over")
+    monkeypatch.setattr("fishbot_urdf.picture.MAX_COVER", 64)
+    hues = _hue(_pixels(render_png(scene, "front", 64, 48)))
+    assert set(np.unique(hues)) == {0, 2}
+
+
+def test_rendering_stops_at_the_deadline() -> None:
+    scene = _scene((_square(0.0), RED))
+    with time_limit(1e-6), pytest.raises(TimeLimitError) as info:
+        render_png(scene, "front", 64, 64)
+    assert info.value.what == "rendering"
+    assert info.value.rule == "limit"
+
+
+def test_an_empty_scene_is_the_background() -> None:
+    empty = Scene((), (), {"a": np.eye(4)})
+    pixels = _pixels(render_png(empty, "iso", 32, 16))
+    assert pixels.shape == (16, 32, 3)
+    assert (pixels == 255).all()
