@@ -47,7 +47,7 @@ mesh of many big triangles stacked on one another would otherwise cost their num
 the picture."""
 
 _BYTES_PER_SAMPLE = 12  # a float64 depth and an int32 triangle
-_CHUNK = 1 << 17  # candidate pixels worked on at once: small enough to stay in the cache
+_CHUNK = 1 << 16  # candidate pixels worked on at once: small enough to stay in the cache
 _ROWS = 1 << 15  # (triangle, row) pairs whose spans are found at once
 _BIG_ROWS = 32  # a triangle over as many pixel rows is looked at for copies
 _BAND = 256  # rows of the picture coloured and averaged at once
