@@ -654,6 +654,30 @@ def test_control_characters_in_a_link_name_are_written_visibly() -> None:
     assert "\x9b" not in out and "\r" not in out
 
 
+def test_a_newline_in_a_link_name_leaves_one_line_per_link_in_tree_and_table() -> None:
+    text = (
+        '<robot name="r"><link name="base&#10;::error file=x::pwned">'
+        '<inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>'
+        '</inertial></link><link name="w&#13;"><inertial><mass value="1"/>'
+        '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>'
+        '<joint name="j" type="fixed"><parent link="base&#10;::error file=x::pwned"/>'
+        '<child link="w&#13;"/></joint></robot>'
+    )
+    status, out, _ = run("check", "-", stdin=text.encode())
+    assert (status, out) == (
+        0,
+        "robot name is: r\n"
+        "---------- Successfully Parsed XML ---------------\n"
+        "root Link: base\\n::error file=x::pwned has 1 child(ren)\n"
+        "    child(1):  w\\r\n",
+    )
+    status, out, _ = run("inertia", "-", stdin=text.encode())
+    assert status == 0
+    rows = out.splitlines()
+    assert [row.split()[0] for row in rows[1:3]] == ["base\\n::error", "w\\r"]
+    assert len(rows) == 4 and "\r" not in out
+
+
 def test_a_workspace_with_links_that_cannot_be_followed(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:

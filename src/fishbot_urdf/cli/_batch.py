@@ -311,12 +311,11 @@ def tree_chunks(result: CheckResult) -> Iterable[str]:
     if not any(_CONTROL.search(name) for name in (robot.name, *(k.name for k in robot.links))):
         return tree_text(result.analysis)
     # A name that holds control characters: written visibly, as in the findings (check_urdf
-    # prints them raw, escape sequences and all). (A newline in a name still ends a line:
-    # the tree's own line ends cannot be told from it here.)
+    # prints them raw, escape sequences and all). Each piece is one line and its newline.
     from ..diagnostics import escape_controls
 
     return (
-        "\n".join(escape_controls(part) for part in chunk.split("\n"))
+        escape_controls(chunk[:-1]) + "\n" if chunk.endswith("\n") else escape_controls(chunk)
         for chunk in tree_text(result.analysis)
     )
 

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..analysis import Analysis, of
-from ..diagnostics import Diagnostic, Kind
+from ..diagnostics import Diagnostic, Kind, escape_controls
 from ..errors import StructureError
 from ..model import Inertial, Robot, Vector3
 from ._solids import MassProperties, principal_moments
@@ -96,7 +96,8 @@ class MassTable:
         }
 
     def to_text(self) -> str:
-        """The table as aligned text, then a line for the whole robot."""
+        """The table as aligned text, then a line for the whole robot; control characters in
+        names are written visibly (:func:`fishbot_urdf.diagnostics.escape_controls`)."""
         header = (
             "link",
             "mass kg",
@@ -108,11 +109,11 @@ class MassTable:
         for line in self.links:
             checks = ", ".join(line.rules) or "ok"
             if line.inertial is None or line.principal_moments is None:
-                lines.append((line.link, "-", "-", "-", checks))
+                lines.append((escape_controls(line.link), "-", "-", "-", checks))
                 continue
             com = " ".join(_g(v) for v in line.inertial.origin.xyz)
             moments = " ".join(_g(v) for v in line.principal_moments)
-            lines.append((line.link, _g(line.inertial.mass), com, moments, checks))
+            lines.append((escape_controls(line.link), _g(line.inertial.mass), com, moments, checks))
         widths = [max(len(line[k]) for line in lines) for k in range(len(header))]
         out = [
             "  ".join(cell.ljust(w) for cell, w in zip(line, widths, strict=True)).rstrip()
@@ -134,7 +135,7 @@ class MassTable:
             out.append(
                 f"left out of the total, not reached from the root: {', '.join(self.left_out)}"
             )
-        return "\n".join(out) + "\n"
+        return "\n".join(escape_controls(line) for line in out) + "\n"
 
     def _configuration(self) -> str:
         if not self.positions:
