@@ -4,43 +4,56 @@ moving joint within its limits (mimic joints follow), reloaded when the robot's 
 
 Built on viser (``pip install 'fishbot-urdf[view]'``), a maintained web 3D viewer that
 serves its page and talks to it over a websocket. `Viewer` owns one viser server; the
-library never prints: the caller shows the URL.
+library never prints: the caller shows the URL, and what is refused from the page is logged
+(a warning of the ``fishbot_urdf.viewer`` logger, one line each).
+
+Only the viewer's own page may talk to it: an HTTP request or websocket whose ``Host``, or
+``Origin`` when it has one, is not the address served on gets 403 (another site open in the
+same browser, or one that points its name at this machine, reaches nothing), and a value a
+control sends is used only when it is one that control can hold.
 """
 
 from __future__ import annotations
 
+import contextvars
+import logging
 import math
 import os
 import threading
 from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from .errors import ToolNotFoundError
+from ._serving import ServeError, authority, control_id, serve, shown
+from .errors import ArgumentError, UnknownNameError
+from .inputs import max_seconds, time_limit
 
-__all__ = ["Viewer"]
+__all__ = ["ServeError", "Viewer"]
 
+_log = logging.getLogger(__name__)
 
-def _viser() -> Any:
-    try:
-        import viser
-    except ImportError:
-        raise ToolNotFoundError(
-            "fishbot view needs the viser package",
-            tool="viser",
-            hint="pip install 'fishbot-urdf[view]'",
-        ) from None
-    return viser
+_SLACK = 1e-9  # a slider's end, reached in steps of (high - low) / 1000, may miss by a rounding
 
 
 class Viewer:
     """A viser server showing one robot file, kept in step with its files.
 
+    Each (re)load runs within the limits in force where the viewer is made (see
+    :mod:`fishbot_urdf.inputs`: the size limit, trusted expressions, and a time limit that
+    starts again for each load).
+
     Args:
         load: Reads the robot: returns (analysis, the files it was read from). Called again
             when one of those files changes.
-        host, port: Where to serve (port 0: any free port).
+        host, port: Where to serve (port 0: any free port; a port in use: the next free one).
         packages: Folders of ROS packages, for ``package://`` meshes.
+
+    Raises:
+        ServeError: ``host`` and ``port`` cannot be served on.
+        ToolError: viser is of a version whose requests the viewer cannot check.
+        FishbotUrdfError: The first load failed (whatever ``load`` raises); the server is
+            stopped and its port free again.
     """
 
     def __init__(
@@ -51,13 +64,15 @@ class Viewer:
         port: int = 8080,
         packages: Mapping[str, str | Path] | None = None,
     ) -> None:
-        viser = _viser()
         self._load = load
+        self._context = contextvars.copy_context()
         self._packages = dict(packages or {})
         self._lock = threading.RLock()
-        self.server = viser.ViserServer(host=host, port=port, verbose=False)
         self.values: dict[str, float] = {}  # slider values by variable, kept over reloads
         self._sliders: dict[str, Any] = {}
+        self._ranges: dict[str, tuple[float, float]] = {}
+        self._turns: frozenset[str] = frozenset()  # continuous joints: an angle wraps round
+        self._inputs: dict[str, _Input] = {}  # the page's controls by viser's id
         self._frames: dict[str, Any] = {}
         self._collisions: list[Any] = []
         self._nodes: list[Any] = []
@@ -65,12 +80,22 @@ class Viewer:
         self._stop = threading.Event()
         self.reloads = 0
         self.warnings: tuple[str, ...] = ()
-        gui = self.server.gui
-        self._show_collision = gui.add_checkbox("Collision shapes", initial_value=False)
-        self._show_collision.on_update(lambda _: self._toggle())
-        self._show_frames = gui.add_checkbox("Link frames", initial_value=True)
-        self._show_frames.on_update(lambda _: self._toggle())
-        self.reload()
+        self.server = serve(host, port, self._accepts)
+        try:
+            gui = self.server.gui
+            self._show_collision = gui.add_checkbox("Collision shapes", initial_value=False)
+            self._show_collision.on_update(lambda _: self._toggle())
+            self._show_frames = gui.add_checkbox("Link frames", initial_value=True)
+            self._show_frames.on_update(lambda _: self._toggle())
+            self._switches = {
+                control_id(self._show_collision): _Input("Collision shapes", toggle=True),
+                control_id(self._show_frames): _Input("Link frames", toggle=True),
+            }
+            self._inputs = dict(self._switches)
+            self.reload()
+        except BaseException:
+            self.server.stop()  # joins its thread: the port is free again
+            raise
         self._watcher = threading.Thread(target=self._watch, daemon=True)
         self._watcher.start()
 
@@ -78,8 +103,8 @@ class Viewer:
     def url(self) -> str:
         """Where the page is served."""
         host = self.server.get_host()
-        shown = "localhost" if host in ("0.0.0.0", "127.0.0.1", "::") else host
-        return f"http://{shown}:{self.server.get_port()}"
+        name = "localhost" if host in ("0.0.0.0", "127.0.0.1", "::", "") else host
+        return f"http://{authority(name, self.server.get_port())}"
 
     def close(self) -> None:
         """Stop watching the files and stop the server."""
@@ -90,12 +115,16 @@ class Viewer:
     def reload(self) -> None:
         """Read the robot again and rebuild the scene and the sliders (slider values of
         joints that are still there are kept)."""
+        self._context.copy().run(self._reload)
+
+    def _reload(self) -> None:
         import numpy as np
 
         from .kinematics import Kinematics
+        from .model import JointType
         from .scene import build_scene
 
-        with self._lock:
+        with self._lock, time_limit(max_seconds()):
             analysis, files = self._load()
             kinematics = Kinematics(analysis)
             visual = build_scene(analysis, collision=False, packages=self._packages)
@@ -142,8 +171,9 @@ class Viewer:
                 camera.look_at = tuple(float(c) for c in centre)
                 camera.position = tuple(float(c) for c in centre + 2.2 * size * eye)
                 camera.near, camera.far = size / 100, size * 100
-            for name in kinematics.variables:
-                low, high = _range(analysis, name)
+            ranges = {name: _range(analysis, name) for name in kinematics.variables}
+            inputs = dict(self._switches)
+            for name, (low, high) in ranges.items():
                 value = float(min(max(self.values.get(name, 0.0), low), high))
                 self.values[name] = value
                 slider = self.server.gui.add_slider(
@@ -151,18 +181,90 @@ class Viewer:
                 )
                 slider.on_update(lambda event, name=name: self._moved(name, event.target.value))
                 self._sliders[name] = slider
+                inputs[control_id(slider)] = _Input(name, low, high)
+            self._ranges = ranges
+            self._turns = frozenset(
+                name
+                for name in kinematics.variables
+                if (joint := analysis.joints.get(name)) is not None
+                and joint.type is JointType.CONTINUOUS
+            )
+            self._inputs = inputs  # one assignment: the server's thread reads it
             self._stamps = {f: _stamp(f) for f in files}
             self._pose()
 
     def set(self, name: str, value: float) -> None:
-        """Move joint variable ``name`` (as its slider would)."""
-        self._sliders[name].value = value  # viser calls on_update, which poses the robot
-        self._moved(name, value)
+        """Move joint variable ``name`` (as its slider would) to ``value`` (radians or
+        metres; a continuous joint's angle is taken round to -pi .. pi).
 
-    def _moved(self, name: str, value: float) -> None:
+        Raises:
+            UnknownNameError: ``name`` is no joint variable.
+            ArgumentError: ``value`` is not a finite number within the slider's range (the
+                joint's limits, where it has them).
+        """
         with self._lock:
-            self.values[name] = float(value)
+            if name not in self._ranges:
+                raise UnknownNameError("joint", name, self._ranges)
+            low, high = self._ranges[name]
+            if _position(value, -math.inf, math.inf) is None:
+                raise ArgumentError(
+                    f"joint {name!r}: position {shown.repr(value)} is not a finite number",
+                    name=name,
+                )
+            if name in self._turns:
+                value = math.remainder(value, 2 * math.pi)
+            position = _position(value, low, high)
+            if position is None:
+                raise ArgumentError(
+                    f"joint {name!r}: position {value:g} is outside its range {low:g} .. {high:g}",
+                    name=name,
+                )
+            self._sliders[name].value = position  # viser calls on_update, which poses
+            self._moved(name, position)  # (a value the slider already had calls nothing)
+
+    def _moved(self, name: str, value: Any) -> None:
+        """A slider moved (on viser's threads: never raises)."""
+        with self._lock:
+            limits = self._ranges.get(name)
+            if limits is None:
+                return  # a slider of the robot before a reload
+            position = _position(value, *limits)
+            if position is None:
+                _dropped(name, value, *limits)
+                return
+            self.values[name] = position
             self._pose()
+
+    def _accepts(self, message: Any) -> bool:
+        """Whether a change the page sent may reach viser: a known control's value, one that
+        control can hold (called on the server's thread, before viser looks at it)."""
+        uuid, updates = getattr(message, "uuid", None), getattr(message, "updates", None)
+        control = self._inputs.get(uuid) if isinstance(uuid, str) else None
+        if control is None:
+            _log.debug("dropped a change to a control the viewer does not have: %r", uuid)
+            return False
+        if not isinstance(updates, dict) or set(updates) != {"value"}:
+            keys = sorted(map(str, updates)) if isinstance(updates, dict) else updates
+            _log.warning(
+                "%s: dropped a change sent by the page that is not of its value alone: %s",
+                control.title,
+                shown.repr(keys),
+            )
+            return False
+        value = updates["value"]
+        if control.toggle:
+            if type(value) is bool:
+                return True
+            _log.warning(
+                "%s: dropped %s sent by the page (not true or false)",
+                control.title,
+                shown.repr(value),
+            )
+            return False
+        if _position(value, control.low, control.high) is None:
+            _dropped(control.label, value, control.low, control.high)
+            return False
+        return True
 
     def _pose(self) -> None:
         import numpy as np
@@ -193,9 +295,50 @@ class Viewer:
                 self.reload()
             except Exception as exc:
                 self.warnings = (f"the robot could not be read again: {exc}",)
+                _log.warning("%s", self.warnings[0])
                 self._stamps = {f: _stamp(f) for f in self._stamps}
             else:
                 self.reloads += 1
+
+
+@dataclass(frozen=True, slots=True)
+class _Input:
+    """A control on the page: a joint's slider (``low`` .. ``high``), or, with ``toggle``,
+    a checkbox."""
+
+    label: str
+    low: float = 0.0
+    high: float = 0.0
+    toggle: bool = False
+
+    @property
+    def title(self) -> str:
+        """How a log line names it."""
+        return f"{'checkbox' if self.toggle else 'joint'} {self.label!r}"
+
+
+def _position(value: Any, low: float, high: float) -> float | None:
+    """``value`` as a slider's position: a finite number (no bool, no text such as "nan")
+    within ``low`` .. ``high`` (less a rounding error, taken in), else None."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return None
+    try:
+        number = float(value)
+    except OverflowError:  # an int beyond any float
+        return None
+    if not (math.isfinite(number) and low - _SLACK <= number <= high + _SLACK):
+        return None
+    return min(max(number, low), high)
+
+
+def _dropped(label: str, value: Any, low: float, high: float) -> None:
+    _log.warning(
+        "joint %r: dropped %s sent by the page (not a number within %g .. %g)",
+        label,
+        shown.repr(value),
+        low,
+        high,
+    )
 
 
 def _stamp(path: str) -> float:
