@@ -18,6 +18,7 @@ from ._common import (
     emit_findings,
     joint_option,
     joint_positions,
+    limit_options,
     nearest_config,
     package_option,
     packages_option,
@@ -42,6 +43,7 @@ _COLLECT_EVERY = 100_000  # new container objects between two young collections 
 )
 @joint_option()
 @package_option()
+@limit_options()
 def view(
     file: str,
     args: Sequence[str],
@@ -53,8 +55,9 @@ def view(
     """Show FILE (URDF or xacro) in a web browser: visuals in their colours, collision
     shapes on a toggle, link frames as axes, and a slider per moving joint within its
     limits (mimic joints follow). The robot reloads when FILE or a file it includes
-    changes, keeping the sliders. Prints the URL to open; Ctrl-C stops. Needs `pip install
-    'fishbot-urdf[view]'`.
+    changes, keeping the sliders. Prints the URL to open; Ctrl-C stops. Only pages served
+    on --host and --port may talk to the viewer. --timeout and --max-size bound each
+    (re)load of the robot. Needs `pip install 'fishbot-urdf[view]'`.
 
     \b
     Examples:
@@ -81,10 +84,8 @@ def view(
     except _Unreadable as exc:
         emit_findings(exc.findings)
         sys.exit(EXIT_INVALID)
-    except FishbotUrdfError as exc:
+    except FishbotUrdfError as exc:  # cannot serve there, viser missing, a limit reached
         stop_on(exc)
-    except OSError as exc:
-        raise click.UsageError(f"cannot serve on {host}:{port}: {exc.strerror or exc}") from None
     try:
         for name, value in positions.items():
             if name not in viewer.values:
@@ -106,5 +107,11 @@ def view(
 
 
 class _Unreadable(Exception):
+    """The robot cannot be posed; ``findings`` say why (the first, as one line, in its
+    message: what the viewer logs when a reload fails)."""
+
     def __init__(self, findings: list[Any]) -> None:
+        first = findings[0].format() if findings else "the robot cannot be read"
+        more = f" (and {len(findings) - 1} more)" if len(findings) > 1 else ""
+        super().__init__(first + more)
         self.findings = findings

@@ -1,0 +1,147 @@
+"""`fishbot view` serves where it is asked or says in one line why it cannot, frees its port
+when the robot cannot be read, prints nothing from the library, and reads the robot within
+the limits of --timeout and --max-size, each (re)load afresh."""
+
+from __future__ import annotations
+
+import errno
+import os
+import socket
+import subprocess
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import pytest
+from click.testing import CliRunner
+from conftest import REQUIRE_TOOLS
+from test_view_requests import ARM, SECONDS, _http, _websocket
+
+if not REQUIRE_TOOLS:  # on a user's machine without the [view] extra: skipped, with a reason
+    pytest.importorskip("viser", reason="fishbot view needs the [view] extra")
+
+from fishbot_urdf import FishbotUrdfError, InputError, check_file
+from fishbot_urdf.cli import cli
+from fishbot_urdf.inputs import InputTooLargeError, size_limit, time_limit
+from fishbot_urdf.viewer import ServeError, Viewer
+
+UNROUTED = "192.0.2.1"  # TEST-NET-1: never an address of this machine, so never bound
+
+
+def _free_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        return int(probe.getsockname()[1])
+
+
+def _loader(robot: Path) -> Callable[[], tuple[Any, tuple[str, ...]]]:
+    def load() -> tuple[Any, tuple[str, ...]]:
+        result = check_file(robot)
+        return result.analysis, result.files
+
+    return load
+
+
+@pytest.fixture
+def arm(tmp_path: Path) -> Path:
+    robot = tmp_path / "arm.urdf"
+    robot.write_text(ARM, encoding="utf-8")
+    return robot
+
+
+def test_a_host_that_cannot_be_bound_is_one_line_and_status_2(arm: Path) -> None:
+    port = _free_port()
+    started = time.monotonic()
+    command = ["view", str(arm), "--host", UNROUTED, "--port", str(port)]
+    run = subprocess.run(
+        [sys.executable, "-m", "fishbot_urdf", *command],
+        capture_output=True,
+        text=True,
+        timeout=60,  # it used to wait forever
+        check=False,
+    )
+    assert time.monotonic() - started < 30
+    assert run.returncode == 2
+    assert run.stdout == ""
+    reason = os.strerror(errno.EADDRNOTAVAIL)
+    assert run.stderr == f"<input>: error: cannot serve on {UNROUTED}:{port}: {reason} [io]\n"
+
+
+def test_serve_error_says_where_and_why(arm: Path) -> None:
+    with pytest.raises(ServeError) as caught:
+        Viewer(_loader(arm), host=UNROUTED, port=8080)
+    error = caught.value
+    assert isinstance(error, InputError)
+    assert (error.host, error.port, error.rule) == (UNROUTED, 8080, "io")
+    assert error.reason == os.strerror(errno.EADDRNOTAVAIL)
+    assert error.message == f"cannot serve on {UNROUTED}:8080: {error.reason}"
+    with pytest.raises(ServeError) as ipv6:
+        Viewer(_loader(arm), host="2001:db8::1", port=8080)
+    assert ipv6.value.message.startswith("cannot serve on [2001:db8::1]:8080: ")
+
+
+def test_a_failing_first_load_frees_the_port(tmp_path: Path) -> None:
+    broken = tmp_path / "broken.urdf"
+    broken.write_text("<robot name='x'><link name='a'>", encoding="utf-8")
+    port = _free_port()
+    with pytest.raises(FishbotUrdfError):
+        Viewer(_loader(broken), port=port)
+    with socket.socket() as again:  # no SO_REUSEADDR: the viewer's socket is closed
+        again.bind(("127.0.0.1", port))
+    result = CliRunner().invoke(cli, ["view", str(broken), "--port", str(port)])
+    assert result.exit_code == 1
+    assert result.stdout == ""
+    assert "error:" in result.stderr
+    with socket.socket() as again:
+        again.bind(("127.0.0.1", port))
+
+
+def test_the_library_prints_nothing(arm: Path, capfd: pytest.CaptureFixture[str]) -> None:
+    capfd.readouterr()
+    shown = Viewer(_loader(arm), port=0)  # viser's banner went to stdout
+    try:
+        port = int(shown.server.get_port())
+        assert _http(port, f"Host: localhost:{port}") == "HTTP/1.1 200 OK"
+        with _websocket(port, f"http://localhost:{port}") as page:
+            assert page.recv(timeout=SECONDS)
+    finally:
+        shown.close()  # and "(viser) Server stopped" too
+    assert capfd.readouterr() == ("", "")
+
+
+def test_view_takes_the_limit_options() -> None:
+    result = CliRunner().invoke(cli, ["view", "--help"])
+    assert result.exit_code == 0
+    for option in ("--timeout SECONDS", "--max-size MIB", "--trust-expressions"):
+        assert option in result.stdout
+
+
+def test_max_size_bounds_the_first_load(arm: Path) -> None:
+    port = _free_port()
+    result = CliRunner().invoke(
+        cli, ["view", str(arm), "--port", str(port), "--max-size", str(100 / 1024 / 1024)]
+    )
+    assert result.exit_code == 2
+    assert result.stdout == ""
+    size = len(ARM.encode())
+    assert result.stderr == (
+        f"{arm}: error: is {size} bytes, more than the limit of 100 bytes "
+        "(raise the limit with --max-size MIB) [io]\n"
+    )
+    with socket.socket() as again:
+        again.bind(("127.0.0.1", port))
+
+
+def test_every_reload_is_within_the_limits_the_viewer_was_made_in(arm: Path) -> None:
+    with size_limit(4096), time_limit(0.5):
+        shown = Viewer(_loader(arm), port=0)
+    try:
+        time.sleep(0.6)  # past the first deadline: each load has the time limit afresh
+        shown.reload()
+        arm.write_text(ARM + "<!--" + "x" * 4096 + "-->\n", encoding="utf-8")
+        with pytest.raises(InputTooLargeError):  # the size limit of then, not of now
+            shown.reload()
+    finally:
+        shown.close()
