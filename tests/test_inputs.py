@@ -128,3 +128,42 @@ def test_standard_input_is_read_within_the_limit_too() -> None:
         "<stdin>: error: is more than the limit of 1,048 bytes "
         "(raise the limit with --max-size MIB) [io]\n"
     )
+
+
+def test_one_deadline_holds_for_the_whole_with_and_reports_the_work() -> None:
+    import time
+
+    from fishbot_urdf.inputs import TimeLimitError, deadline, time_limit
+
+    with time_limit(0.05):
+        first = deadline()
+        time.sleep(0.06)
+        second = deadline()
+        assert first.end == second.end  # one deadline, not one per piece of work
+        with pytest.raises(TimeLimitError) as caught:
+            second.check("reading the robot")
+    assert caught.value.rule == "limit"
+    assert caught.value.message == "reading the robot takes longer than the time limit of 0.05 s"
+    assert not deadline().passed()  # outside, each piece of work gets its own
+
+
+def test_reading_a_robot_stops_at_the_deadline(tmp_path: Path) -> None:
+    from click.testing import CliRunner
+
+    import fishbot_urdf
+    from fishbot_urdf.cli import cli
+    from fishbot_urdf.inputs import TimeLimitError, time_limit
+
+    links = "".join(f'<link name="l{i}"/>' for i in range(5000))
+    robot = tmp_path / "many.urdf"
+    robot.write_text(f'<robot name="r">{links}</robot>')
+    with time_limit(1e-9), pytest.raises(TimeLimitError) as caught:
+        fishbot_urdf.check_file(robot)
+    assert caught.value.what == "reading the robot"
+    result = CliRunner().invoke(cli, ["check", str(robot), "--timeout", "0.000000001"])
+    assert result.exit_code == 2
+    assert result.stderr.endswith(
+        "reading the robot takes longer than the time limit of 1e-09 s "
+        "(allow it longer with --timeout SECONDS) [limit]\n"
+    )
+    assert result.stderr.count("\n") == 1

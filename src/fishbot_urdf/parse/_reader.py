@@ -9,6 +9,7 @@ from lxml import etree
 
 from ..diagnostics import Kind, Subject
 from ..extensions import TAGS, collect
+from ..inputs import deadline
 from ..model import Joint, Link, Material, Robot
 from ..rules.reading import NO_ROBOT, ROBOT_NAME, ROBOT_VERSION
 from ._base import xml_text
@@ -50,7 +51,10 @@ class Reader(JointReader):
         materials: list[Material] = []
         extras: list[str] = []
         locate = self.locator.locate
-        for child in children:
+        until = deadline()
+        for index, child in enumerate(children):
+            if not index & 4095:
+                until.check("reading the robot")
             self.subject = whole
             tag = child.tag
             if tag == "link":
