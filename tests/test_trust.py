@@ -459,6 +459,22 @@ def test_an_expansion_that_doubles_without_end_stops_at_the_time_limit(
         ("python.sum(python.range(10**12))", "a range of more than 10,000,000 items"),
         ("math.factorial(10**7)", "a math.factorial of a number past 100,000"),
         ("factorial(10**7)", "a math.factorial of a number past 100,000"),
+        (
+            "[x for x in python.range(10**6) for y in python.range(10**6)]",
+            "takes more than 1,000,000 steps, more than a xacro expression may",
+        ),
+        ("(lambda f: f(f))(lambda f: f(f))", "takes more than 100 nested lambda calls"),
+        (
+            "python.str([[[0] * 1000] * 1000] * 1000)",
+            "would make a value of more than 10,000,000 items when written out",
+        ),
+        ("'x'.ljust(10**9)", "would make a value of more than 10,000,000 items"),
+        ("'%999999999d' % 1", "would make a value of more than 10,000,000 items"),
+        ("'\\t'.expandtabs(10**9)", "would make a value of more than 10,000,000 items"),
+        ("('a' * 10**6).replace('a', 'b' * 20)", "would make a value of more than 10,000,000"),
+        ("'-'.join(['a' * 10**6] * 11)", "would make a value of more than 10,000,000 items"),
+        ("[('a' * 9000000) + python.str(i) for i in python.range(3)]", "in all"),
+        ("math.prod(python.range(1, 10**6))", "a number of more than 1,000,000 bits"),
     ],
 )
 def test_an_expression_that_would_build_a_huge_value_stops_before_it_does(
@@ -469,7 +485,8 @@ def test_an_expression_that_would_build_a_huge_value_stops_before_it_does(
     with pytest.raises(XacroError) as caught:
         expand(robot)
     assert caught.value.rule == "xacro-unsafe"
-    assert f"would make {what}, more than a xacro expression may" in caught.value.message
+    assert what in caught.value.message
+    assert caught.value.message.endswith(", more than a xacro expression may")
 
 
 def test_arithmetic_within_the_bounds_is_what_xacro_makes(
@@ -592,38 +609,6 @@ def test_an_include_pattern_stops_at_the_deadline(
     with time_limit(1e-6), pytest.raises(ExpansionLimitError) as caught:
         expand(robot)
     assert "the expansion takes longer than 1e-06 s" in caught.value.message
-
-
-@pytest.mark.parametrize(
-    ("expression", "message"),
-    [
-        (
-            "[x for x in python.range(10**6) for y in python.range(10**6)]",
-            "takes more than 1,000,000 steps, more than a xacro expression may",
-        ),
-        ("(lambda f: f(f))(lambda f: f(f))", "lambdas that call each other more than 100 deep"),
-        (
-            "python.str([[[0] * 1000] * 1000] * 1000)",
-            "would make a value of more than 10,000,000 items when written out",
-        ),
-        ("'x'.ljust(10**9)", "would make a value of more than 10,000,000 items"),
-        ("'%999999999d' % 1", "would make a value of more than 10,000,000 items"),
-        ("'\\t'.expandtabs(10**9)", "would make a value of more than 10,000,000 items"),
-        ("('a' * 10**6).replace('a', 'b' * 20)", "would make a value of more than 10,000,000"),
-        ("'-'.join(['a' * 10**6] * 11)", "would make a value of more than 10,000,000 items"),
-        ("[('a' * 9000000) + python.str(i) for i in python.range(3)]", "in all"),
-        ("math.prod(python.range(1, 10**6))", "a number of more than 1,000,000 bits"),
-    ],
-)
-def test_loops_and_growth_stop_at_the_documented_bounds(
-    expression: str, message: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    text = _robot(f'<link name="${{{expression.replace("<", "&lt;")}}}"/>')
-    robot = _expand_in(tmp_path, {"robot.xacro": text}, monkeypatch)
-    with pytest.raises(XacroError) as caught:
-        expand(robot)
-    assert caught.value.rule == "xacro-unsafe"
-    assert message in caught.value.message
 
 
 def test_an_expression_stops_at_the_deadline(

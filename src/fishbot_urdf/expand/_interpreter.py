@@ -386,7 +386,7 @@ class _Evaluation:
 
     def call_lambda(self, function: Lambda, args: tuple[Any, ...], kwargs: dict[str, Any]) -> Any:
         if self.depth >= MAX_DEPTH:
-            raise UnsafeExpression("", f"lambdas that call each other more than {MAX_DEPTH} deep")
+            raise UnsafeExpression("", f"more than {MAX_DEPTH} nested lambda calls", too_long=True)
         names = _bind(function, args, kwargs)
         self.depth += 1
         try:
