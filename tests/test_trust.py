@@ -67,6 +67,9 @@ REFUSED = [
     ("xacro.arg.func_globals", "func_globals"),
     ("python.list(python.map(python.type, [1]))", "python.type"),
     ("math.parent", "'parent' is not defined"),
+    ("python.list(python.map('{0.__globals__[os]}'.format, [xacro.tokenize]))", "format field"),
+    ("python.sorted([1], key='{0.__class__}'.format)", "format field"),
+    ("None.__class__", "__class__"),
     ("xacro.load_yaml.__globals__", "__globals__"),
     ("xacro.arg.__closure__", "__closure__"),
     ("xacro.arg.func_globals", "func_globals"),
@@ -83,7 +86,7 @@ REFUSED = [
 def test_the_interpreter_refuses_each_escape_naming_what_it_refused(
     expression: str, what: str
 ) -> None:
-    with pytest.raises((UnsafeExpression, NameError)) as caught:
+    with pytest.raises((UnsafeExpression, NameError, AttributeError)) as caught:
         evaluate(expression, _symbols())
     shown = caught.value.what if isinstance(caught.value, UnsafeExpression) else str(caught.value)
     assert what in shown

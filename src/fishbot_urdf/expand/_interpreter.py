@@ -69,13 +69,13 @@ CHECK_EVERY = 1024
 
 _SCALARS = (int, float, complex, bool, type(None), range, slice)
 _SUBSCRIPTABLE = (str, bytes, list, tuple, dict, range)
-_LISTED = (*SIZED, int, float, complex, range, slice)  # the types with listed attributes
 # Functions that look at their arguments' top level only: no need to weigh them first.
 _SHALLOW = frozenset(
     """abs all any append bool clear copy divmod enumerate filter float get insert int
     isinstance issubclass items keys len list map ord pop popitem range reverse reversed
     round setdefault slice tuple values zip""".split()  # noqa: SIM905
 )
+_KINDS_TAKEN = (isinstance, issubclass)  # functions whose arguments may be classes as such
 _ACTIVE = threading.local()  # the evaluations running in this thread, innermost last
 
 
@@ -172,6 +172,24 @@ class Lambda:
 
     def __repr__(self) -> str:
         return "<lambda>"
+
+
+class _CalledBack:
+    """A function of the allowlist handed to another, called back through the evaluation
+    (``python.map('{0.x}'.format, ...)`` has its format looked at, ``sorted(key='x'.ljust)``
+    its width)."""
+
+    __slots__ = ("function", "run")
+
+    def __init__(self, function: Any, run: _Evaluation) -> None:
+        self.function = function
+        self.run = run
+
+    def __call__(self, *args: Any, **kwargs: Any) -> Any:
+        return self.run.call(self.function, list(args), kwargs)
+
+    def __repr__(self) -> str:
+        return repr(self.function)
 
 
 _BINARY: dict[type[ast.operator], Callable[[Any, Any], Any]] = {
@@ -351,13 +369,23 @@ class _Evaluation:
                     raise TypeError(f"'{type(function).__name__}' object is not callable")
                 raise UnsafeExpression("", f"a call of {_kind(function)}")
             args = self._method_arguments(function, args, kwargs)
-        for given in (*args, *kwargs.values()):
-            if callable(given) and not self._may_call(given):
-                raise UnsafeExpression("", f"passing {_kind(given)} to a function")
+        if function not in _KINDS_TAKEN:
+            args = [self._called_back(given) for given in args]
+            kwargs = {key: self._called_back(given) for key, given in kwargs.items()}
         if getattr(function, "__name__", None) not in _SHALLOW:
             for given in (*args, *kwargs.values()):
                 self.weigh(given)
         return self.made_value(function(*args, **kwargs))
+
+    def _called_back(self, given: Any) -> Any:
+        """A function handed to another (``map``'s, ``sorted``'s key), made to go through
+        :meth:`call` when it is called back: its arguments are looked at as if the
+        expression had called it."""
+        if not callable(given) or isinstance(given, Lambda):
+            return given
+        if not self._may_call(given):
+            raise UnsafeExpression("", f"passing {_kind(given)} to a function")
+        return _CalledBack(given, self)
 
     def _may_call(self, function: Any) -> bool:
         return (
@@ -475,7 +503,9 @@ class _Evaluation:
         for key, item in zip(node.keys, node.values, strict=True):
             if key is None:
                 given = self.value(item, frame)
-                self.tick(len(given) if isinstance(given, SIZED) else 1)
+                if not isinstance(given, Mapping):
+                    raise TypeError(f"'{type(given).__name__}' object is not a mapping")
+                self.tick(len(given))
                 made.update(given)
             else:
                 name = self.value(key, frame)
@@ -646,7 +676,10 @@ def attribute(owner: Any, name: str) -> Any:
             return entry
     if allowed_attribute(owner, name):
         return getattr(owner, name)
-    if isinstance(owner, _LISTED) and not hasattr(type(owner), name):  # a typo: as Python says
+    if isinstance(owner, type):
+        if not hasattr(owner, name):  # a typo: as Python says it
+            raise AttributeError(f"type object '{owner.__name__}' has no attribute '{name}'")
+    elif not hasattr(type(owner), name):
         raise AttributeError(f"'{type(owner).__name__}' object has no attribute '{name}'")
     raise UnsafeExpression("", f"the attribute '{name}' of {_kind(owner)}")
 
