@@ -24,6 +24,7 @@ if TYPE_CHECKING:
     from .errors import (
         ArgumentError,
         ConfigError,
+        FieldTypeError,
         FishbotUrdfError,
         InputError,
         RobotError,
@@ -107,6 +108,7 @@ __all__ = [
     "Diagnostic",
     "Dynamics",
     "Expansion",
+    "FieldTypeError",
     "FileReport",
     "Filling",
     "FishbotUrdfError",
@@ -210,6 +212,7 @@ _WHERE = {
     "Diagnostic": "diagnostics",
     "Dynamics": "model",
     "Expansion": "expand",
+    "FieldTypeError": "errors",
     "FileReport": "report",
     "Filling": "inertia",
     "FishbotUrdfError": "errors",

@@ -161,3 +161,28 @@ class ConfigError(FishbotUrdfError):
     wrong type. ``path`` and ``line`` say where, when it came from a file."""
 
     rule = "config"
+
+
+class FieldTypeError(FishbotUrdfError, TypeError):
+    """A field of a model built in Python holds a value of the wrong type: a str where a
+    number is expected, a list where a tuple is, an int where a `JointType` is.
+
+    Attributes:
+        field: Where the value is, from the robot down (``robot.links[0].inertial.mass``).
+        expected: What the field takes (``a number (int or float)``).
+        value: The value found there.
+    """
+
+    rule = "field-type"
+
+    def __init__(self, field: str, expected: str, value: object) -> None:
+        self.field = field
+        self.expected = expected
+        self.value = value
+        try:
+            shown = " " + repr(value)
+        except Exception:  # a value whose repr fails is still named by its type
+            shown = ""
+        if len(shown) > 41:
+            shown = shown[:38] + "..."
+        super().__init__(f"{field} is {type(value).__name__}{shown}, not {expected}")
