@@ -8,7 +8,7 @@ from itertools import chain
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .analysis import Analysis, analyse
+from .analysis import Analysis, analyse, of
 from .config import Config
 from .diagnostics import (
     FOLLOWS,
@@ -25,14 +25,18 @@ from .parse import is_xacro_path, read
 from .rules.joints import joints
 from .rules.meshes import meshes
 from .rules.physics import GROUND_TOLERANCE, physics
+from .rules.reading import MISSING_ATTRIBUTE, ROBOT_NAME
 from .rules.references import references
 from .rules.structure import structure
+from .rules.values import readable, values
 from .suppress import apply_suppressions, suppressions
 
 if TYPE_CHECKING:
     from .packages import PackageFinder
 
 __all__ = ["CheckResult", "check", "check_file"]
+
+_UNNAMED = (MISSING_ATTRIBUTE.id, ROBOT_NAME.id)
 
 
 @dataclass(frozen=True, slots=True)
@@ -129,11 +133,28 @@ def check(
 ) -> tuple[Diagnostic, ...]:
     """Check a robot's structure and values; returns every finding of the selected rules,
     sorted by position. ``packages`` are folders for the ``package://`` names of meshes
-    (looked up as for xacro's ``$(find)``). (Comments are not read here: see `check_file`.)"""
-    analysis = robot if isinstance(robot, Analysis) else analyse(robot)
+    (looked up as for xacro's ``$(find)``). (Comments are not read here: see `check_file`.)
+
+    A robot built in Python is held to what the reader gives: a number that is not finite, a
+    missing name or a character XML cannot hold is the reader's finding (see
+    `fishbot_urdf.rules.values`), and the other rules say nothing more about its link or
+    joint.
+
+    Raises:
+        FieldTypeError: A field of the robot holds a value of the wrong type (a str where a
+            number is, a list where a tuple is); a TypeError too.
+    """
+    given = robot.robot if isinstance(robot, Analysis) else robot
+    path = robot.path if isinstance(robot, Analysis) else None
+    model = values(given, path)  # first: an analysis needs the types right
+    if any(d.rule in _UNNAMED for d in model):
+        # The rules compare and sort names: one that is None is read as one left out, "".
+        analysis = analyse(readable(given), path)
+    else:
+        analysis = of(robot)
     config = config or Config()
-    found = without_consequences(config.apply(_rule_findings(analysis, (), config, packages)))
-    return tuple(sorted(found, key=sort_key))
+    found = [*model, *_rule_findings(analysis, model, config, packages)]
+    return tuple(sorted(without_consequences(config.apply(found)), key=sort_key))
 
 
 def _rule_findings(

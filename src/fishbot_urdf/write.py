@@ -6,7 +6,7 @@ from collections.abc import Iterable, Mapping
 
 from lxml import etree
 
-from .errors import ArgumentError, UnknownNameError
+from .errors import ArgumentError, RobotError, UnknownNameError
 from .model import (
     DEFAULT_AXIS,
     Box,
@@ -23,6 +23,7 @@ from .model import (
     Sphere,
     Visual,
 )
+from .rules.values import values
 from .xmlsource import STRING_PATH, parse_xml
 
 __all__ = ["add_inertials", "inertial_xml", "to_urdf"]
@@ -144,7 +145,16 @@ def to_urdf(robot: Robot) -> str:
     """Write ``robot`` as URDF XML text (materials, links, joints, then other elements).
 
     Reading the text back with ``fishbot_urdf.parse`` gives a Robot equal to ``robot``.
+
+    Raises:
+        FieldTypeError: A field of ``robot`` holds a value of the wrong type (a TypeError too).
+        RobotError: ``robot`` holds what the reader would refuse (a number that is not finite,
+            a missing name, a character XML cannot hold); ``.diagnostics`` lists each, as
+            `fishbot_urdf.check` reports them.
     """
+    refused = values(robot)
+    if refused:
+        raise RobotError(refused)
     root = etree.Element("robot", name=robot.name)
     if robot.version is not None:
         root.set("version", robot.version)
