@@ -215,6 +215,16 @@ def escape_controls(text: str) -> str:
     return _CONTROLS.sub(_escaped, text)
 
 
+_TERMINAL = re.compile("[\x00-\x08\x0a-\x1f\x80-\x9f\u2028\u2029\udc80-\udc9f]")
+
+
+def escape_line_controls(text: str) -> str:
+    """``text`` with the control characters that end a line or drive a terminal written as
+    :func:`escape_controls` writes them; a tab and DEL, which do neither, are left as they
+    are (for output that keeps another tool's bytes, such as check_urdf's tree)."""
+    return _TERMINAL.sub(_escaped, text)
+
+
 def shown_path(name: str) -> str:
     """A path as a user would write it: relative to the current folder when inside it."""
     import os

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import contextlib
 import os
-import re
 import signal
 import struct
 import sys
@@ -105,8 +104,6 @@ def outcomes(
             done = workers.outcome(index)
             yield outcome(name, config, run) if done is None else done
 
-
-_CONTROL = re.compile("[\x00-\x1f\x7f-\x9f\u2028\u2029]")  # in a name: escaped in the tree
 
 _INDEX = struct.Struct("<i")  # a file's index (-1: no more files)
 _HEAD = struct.Struct("<iQ")  # a file's index, and the size of its pickled outcome
@@ -308,14 +305,15 @@ def tree_chunks(result: CheckResult) -> Iterable[str]:
     if result.analysis is None or topo is None or topo.root is None or topo.loop_from_root:
         return ()
     robot = result.analysis.robot
-    if not any(_CONTROL.search(name) for name in (robot.name, *(k.name for k in robot.links))):
-        return tree_text(result.analysis)
-    # A name that holds control characters: written visibly, as in the findings (check_urdf
-    # prints them raw, escape sequences and all). Each piece is one line and its newline.
-    from ..diagnostics import escape_controls
+    from ..diagnostics import escape_line_controls as shown
 
+    if all(shown(name) == name for name in (robot.name, *(k.name for k in robot.links))):
+        return tree_text(result.analysis)
+    # A name that holds a line end or a terminal control: written visibly, as in the
+    # findings (check_urdf prints them raw, escape sequences and all); a tab and DEL are
+    # kept as check_urdf prints them. Each piece is one line and its newline.
     return (
-        escape_controls(chunk[:-1]) + "\n" if chunk.endswith("\n") else escape_controls(chunk)
+        shown(chunk[:-1]) + "\n" if chunk.endswith("\n") else shown(chunk)
         for chunk in tree_text(result.analysis)
     )
 
