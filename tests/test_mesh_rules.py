@@ -220,3 +220,28 @@ def test_a_package_not_found_is_reported_once_for_all_its_meshes(
         "link 'a': mesh 'package://elsewhere/a.stl' is in package 'elsewhere', which is not "
         "found, so the file cannot be checked (nor 2 other meshes of it)"
     )
+
+
+@pytest.mark.parametrize(
+    ("data", "said"),
+    [
+        (
+            b"solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+            b"vertex 1e999 1 0\nendloop\nendfacet\nendsolid s\n",
+            "a vertex is not a finite number",
+        ),
+        (
+            b"\0" * 80 + (2).to_bytes(4, "little") + b"\0" * 50,  # says 2 triangles, holds 1
+            "a binary STL of 2 triangles is 184 bytes long, not 134",
+        ),
+    ],
+)
+def test_a_malformed_mesh_is_a_warning_saying_what_is_wrong(
+    package: Path, data: bytes, said: str
+) -> None:
+    (package / "meshes" / "bad.stl").write_bytes(data)
+    [(rule, severity, message)] = _found(package, "package://demo/meshes/bad.stl")
+    assert (rule, severity) == ("mesh-invalid", "warning")
+    assert message.startswith("link 'base_link': mesh 'package://demo/meshes/bad.stl' ")
+    assert said in message
+    assert message.endswith("(export the mesh again) [mesh-invalid]")

@@ -29,7 +29,12 @@ from .model import Vector3
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
-__all__ = ["MeshFacts", "mesh_bounds", "mesh_facts", "mesh_triangles"]
+__all__ = ["EmptyMeshError", "MeshFacts", "mesh_bounds", "mesh_facts", "mesh_triangles"]
+
+
+class EmptyMeshError(ShapeError):
+    """A mesh file holds no triangles at all (an empty file, a placeholder)."""
+
 
 _SAMPLES = 20_000  # triangles of a binary STL read for its extent, at most
 _STEP = 4096  # vertices or faces read between two looks at the deadline
@@ -166,12 +171,12 @@ def mesh_triangles(path: str | Path) -> NDArray[Any]:
         raise ShapeError(f"{kind or 'no extension'}: not an STL or OBJ file", path=name)
     data = read_input(path)
     if not data.strip():
-        raise ShapeError("the file is empty", path=name)
+        raise EmptyMeshError("the file is empty", path=name)
     import numpy as np
 
     triangles: NDArray[Any] = _obj(np, data, name) if kind == ".obj" else _stl(np, data, name)
     if not len(triangles):
-        raise ShapeError(f"no triangles in the {kind[1:].upper()} file", path=name)
+        raise EmptyMeshError(f"no triangles in the {kind[1:].upper()} file", path=name)
     if not np.isfinite(triangles).all():
         raise ShapeError("a vertex is not a finite number", path=name)
     return triangles
@@ -191,7 +196,7 @@ def _stl(np: Any, data: bytes, name: str) -> Any:
                 f"is {84 + 50 * claimed:,} bytes long, not {len(data):,}",
                 path=name,
             )
-        raise ShapeError("no triangles in the STL file", path=name)
+        raise EmptyMeshError("no triangles in the STL file", path=name)
     if len(found) % 3:
         raise ShapeError(f"{len(found):,} vertices are not a whole number of triangles", path=name)
     corners = _numbers(np, found, name, "vertex")

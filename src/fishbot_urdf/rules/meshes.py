@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 
 from ..analysis import Analysis
 from ..diagnostics import Diagnostic, Kind, Severity, Subject, closest
+from ..errors import FishbotUrdfError
 from ..model import Box, Cylinder, Link, Mesh, Sphere
 from . import Consumer, Family, Rule
 
@@ -43,8 +44,9 @@ _COLLIDING = """\
   </link>
 </robot>
 """
-# The examples' folder holds meshes/base_link.stl and .step (empty), base_link_mm.stl (a
-# box 200 x 200 x 100 units) and base_link_fine.stl (30 000 triangles).
+# The examples' folder holds meshes/base_link.stl (a box in metres) and .step (empty),
+# base_link_mm.stl (a box 200 x 200 x 100 units), base_link_cut.stl (a binary STL cut
+# short) and base_link_fine.stl (30 000 triangles).
 _FOUND = "meshes/base_link.stl"
 
 MESH_NOT_FOUND = Rule(
@@ -104,6 +106,20 @@ MESH_FORMAT = Rule(
     consumers=(Consumer.GAZEBO, Consumer.MUJOCO, Consumer.PYBULLET),
 )
 
+MESH_INVALID = Rule(
+    "mesh-invalid",
+    W,
+    Family.MESHES,
+    summary="An STL or OBJ mesh file cannot be read: cut short, or bad numbers.",
+    explanation="The file is there, but a binary STL is shorter or "
+    "longer than its header says (a copy cut short, a file written as text), a number is not "
+    "one or is not finite (nan, inf), or an OBJ face names a vertex that does not exist. RViz "
+    "and Gazebo show nothing or stop loading, MuJoCo refuses the model, and `fishbot render` "
+    "draws the mesh as its box. The message says what is wrong; export the mesh again.",
+    bad=_ONE_BOX.format(name="meshes/base_link_cut.stl"),
+    good=_ONE_BOX.format(name=_FOUND),
+    consumers=_VIEWERS,
+)
 MESH_UNITS = Rule(
     "mesh-units",
     W,
@@ -213,6 +229,9 @@ def _mesh(
     if exact:
         facts = finder.facts(file)
         if facts is None:
+            fault = finder.fault(file) if extension in (".stl", ".obj") else None
+            if fault is not None:
+                yield report(MESH_INVALID, fault, "export the mesh again")
             return
         if collides and facts.faces > _MOST_FACES:
             yield report(
@@ -394,6 +413,23 @@ class _Finder:
             if entry.lower() == parent.name.lower() and entry != parent.name:
                 found, other = self.exists(parent.parent / entry / file.name)
                 return str(parent.parent / entry / file.name) if found else other
+        return None
+
+    def fault(self, file: Path) -> str | None:
+        """What is wrong with an STL or OBJ file whose facts could not be read (looked at
+        only then: a file read well pays nothing); None for a file that holds nothing (an
+        empty placeholder) or cannot be read at all."""
+        from ..errors import ShapeError
+        from ..meshfile import EmptyMeshError, mesh_triangles  # (for a mesh found malformed)
+
+        try:
+            mesh_triangles(file)
+        except EmptyMeshError:
+            return None
+        except ShapeError as exc:
+            return exc.message
+        except FishbotUrdfError:
+            return None  # not readable: another rule's matter
         return None
 
     def facts(self, file: Path) -> MeshFacts | None:
