@@ -577,7 +577,24 @@ def test_check_only_finds_and_to_urdf_only_refuses(robot: Robot) -> None:
         assert {d.rule for d in error.diagnostics} <= {d.rule for d in found}
         return
     if not any(d.is_error for d in found):
-        assert parse(text) == robot
+        assert parse(text) == _as_read(robot)
+
+
+def _as_read(robot: Robot) -> Robot:
+    """``robot`` as a reader gives it back: an empty texture file name is none (urdfdom
+    ignores ``<texture filename=""/>``, and so does the reader)."""
+    from dataclasses import replace
+
+    def material(m: Material | None) -> Material | None:
+        return m if m is None or m.texture != "" else replace(m, texture=None)
+
+    links = tuple(
+        replace(
+            link, visuals=tuple(replace(v, material=material(v.material)) for v in link.visuals)
+        )
+        for link in robot.links
+    )
+    return replace(robot, links=links, materials=tuple(map(material, robot.materials)))
 
 
 @settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -594,3 +611,43 @@ def test_the_quick_test_agrees_with_the_walk(robot: Robot) -> None:
         finally:
             values_module.plain = plain
     assert outcomes[0] == outcomes[1]
+
+
+def _turned(robot: fishbot_urdf.Robot, where: str, value: float) -> fishbot_urdf.Robot:
+    """``robot`` (one link with a cylinder collision, a revolute joint to a second link)
+    with one number made ``value``."""
+    from dataclasses import replace
+
+    link, joint = robot.links[0], robot.joints[0]
+    if where == "collision rpy":
+        shape = link.collisions[0]
+        turned = replace(shape, origin=replace(shape.origin, rpy=(0.0, value, 0.0)))
+        return replace(robot, links=(replace(link, collisions=(turned,)), *robot.links[1:]))
+    if where == "joint xyz":
+        joint = replace(joint, origin=replace(joint.origin, xyz=(value, 0.0, 0.0)))
+    elif where == "joint axis":
+        joint = replace(joint, axis=(value, 0.0, 0.0))
+    return replace(robot, joints=(joint,))
+
+
+@pytest.mark.parametrize("where", ["collision rpy", "joint xyz", "joint axis"])
+@pytest.mark.parametrize("value", [math.inf, -math.inf, math.nan])
+def test_the_other_rules_read_a_number_that_is_not_finite_as_0(where: str, value: float) -> None:
+    robot = fishbot_urdf.parse(
+        '<robot name="r"><link name="a"><inertial><mass value="1"/>'
+        '<inertia ixx="0.00333333" ixy="0" ixz="0" iyy="0.00333333" iyz="0" izz="0.005"/>'
+        "</inertial>"
+        '<collision><geometry><cylinder radius="0.1" length="0.1"/></geometry></collision>'
+        '</link><link name="b"/><joint name="j" type="revolute"><parent link="a"/>'
+        '<child link="b"/><axis xyz="1 0 0"/>'
+        '<limit effort="1" velocity="1" lower="-1" upper="1"/></joint></robot>'
+    )
+    assert fishbot_urdf.check(robot) == ()
+    found = fishbot_urdf.check(_turned(robot, where, value))
+    assert [d.rule for d in found] == ["bad-number"], found
+    said = {
+        "collision rpy": "collision origin rpy",
+        "joint xyz": "origin xyz",
+        "joint axis": "axis",
+    }
+    assert said[where] in found[0].message

@@ -25,10 +25,10 @@ from .parse import is_xacro_path, read
 from .rules.joints import joints
 from .rules.meshes import meshes
 from .rules.physics import GROUND_TOLERANCE, physics
-from .rules.reading import MISSING_ATTRIBUTE, ROBOT_NAME
+from .rules.reading import BAD_NUMBER, MISSING_ATTRIBUTE, ROBOT_NAME
 from .rules.references import references
 from .rules.structure import structure
-from .rules.values import readable, values
+from .rules.values import finite, readable, values
 from .suppress import apply_suppressions, suppressions
 
 if TYPE_CHECKING:
@@ -147,9 +147,13 @@ def check(
     given = robot.robot if isinstance(robot, Analysis) else robot
     path = robot.path if isinstance(robot, Analysis) else None
     model = values(given, path)  # first: an analysis needs the types right
-    if any(d.rule in _UNNAMED for d in model):
+    unnamed = any(d.rule in _UNNAMED for d in model)
+    infinite = any(d.rule == BAD_NUMBER.id for d in model)
+    if unnamed or infinite:
         # The rules compare and sort names: one that is None is read as one left out, "".
-        analysis = analyse(readable(given), path)
+        # They do arithmetic on numbers: one that is not finite is read as 0.
+        readable_robot = readable(given) if unnamed else given
+        analysis = analyse(finite(readable_robot) if infinite else readable_robot, path)
     else:
         analysis = of(robot)
     config = config or Config()

@@ -29,7 +29,7 @@ instructions, the walk 256 M, the other rules 190 M.
 from __future__ import annotations
 
 import math
-from dataclasses import replace
+from dataclasses import fields, is_dataclass, replace
 from numbers import Real
 from typing import TypeVar
 
@@ -63,7 +63,7 @@ from ._plain import plain
 from .reading import BAD_COLOR, BAD_NUMBER, MISSING_ATTRIBUTE, ROBOT_NAME, ROBOT_VERSION
 from .xml import XML_CONTROL_CHAR
 
-__all__ = ["readable", "values"]
+__all__ = ["finite", "readable", "values"]
 
 _T = TypeVar("_T")
 
@@ -107,6 +107,35 @@ def readable(robot: Robot) -> Robot:
         joints=tuple(map(_named_joint, robot.joints)),
         materials=tuple(map(_named, robot.materials)),
     )
+
+
+def finite(robot: Robot) -> Robot:
+    """``robot`` with every number that is not finite made 0 (an axis that is not finite
+    made URDF's default, 1 0 0), so that the rules, which do arithmetic on them, can read
+    it; the numbers were reported (see `values`), and the rules' findings about those links
+    and joints follow from that report. Its types must be right."""
+    made = _zeroed(robot)
+    assert isinstance(made, Robot)
+    joints = tuple(
+        replace(j, axis=(1.0, 0.0, 0.0)) if _not_finite(given.axis) else j
+        for j, given in zip(made.joints, robot.joints, strict=True)
+    )
+    return replace(made, joints=joints)
+
+
+def _not_finite(axis: tuple[float, float, float] | None) -> bool:
+    return axis is not None and not all(map(math.isfinite, axis))
+
+
+def _zeroed(value: object) -> object:
+    if isinstance(value, float):
+        return value if math.isfinite(value) else 0.0
+    if type(value) is tuple:  # (a place in a file is a named tuple: kept as it is)
+        return tuple(map(_zeroed, value))
+    if is_dataclass(value) and not isinstance(value, type):
+        changed = {f.name: _zeroed(getattr(value, f.name)) for f in fields(value) if f.init}
+        return replace(value, **changed)
+    return value
 
 
 def _named(item: _Named) -> _Named:
