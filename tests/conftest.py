@@ -31,6 +31,14 @@ STUB = Path(__file__).resolve().parent / "ament_stub"
 # Set in CI: a missing tool is then a failure, never a skip.
 REQUIRE_TOOLS = os.environ.get("FISHBOT_REQUIRE_TOOLS") == "1"
 
+# In CI the property tests draw the same examples every run (a run's verdict is the code's,
+# not the draw's); on a developer's machine they explore, and remember what failed.
+if os.environ.get("CI"):
+    from hypothesis import settings
+
+    settings.register_profile("ci", derandomize=True, database=None)
+    settings.load_profile("ci")
+
 
 # The ROS tools come from the system (liburdfdom-tools) or a ROS install. pin, a test
 # dependency, brings cmeel-urdfdom, whose own check_urdf and urdf_to_graphviz (another
