@@ -22,13 +22,14 @@ from .diagnostics import (
 from .graph import Topology
 from .model import Robot
 from .parse import is_xacro_path, read
+from .rules._readable import finite, readable
 from .rules.joints import joints
 from .rules.meshes import meshes
 from .rules.physics import GROUND_TOLERANCE, physics
 from .rules.reading import BAD_NUMBER, MISSING_ATTRIBUTE, ROBOT_NAME
 from .rules.references import references
 from .rules.structure import structure
-from .rules.values import finite, readable, values
+from .rules.values import values
 from .suppress import apply_suppressions, suppressions
 
 if TYPE_CHECKING:
