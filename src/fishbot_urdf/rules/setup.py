@@ -37,7 +37,8 @@ LIMIT = Rule(
     summary="The work on a robot went past the time limit or a size bound.",
     explanation="Every command works within a deadline (`--timeout`, 60 s by default) and "
     "within bounds on what it reads and builds (`--max-size`, 256 MiB by default, and the "
-    "pixels of a picture). Expanding, globbing includes, loading YAML, reading, matching "
+    "pixels of a picture: 4096 x 4096 at most). Expanding, globbing includes, loading YAML, "
+    "reading, matching "
     "suppression comments, analysing and rendering all stop when the deadline passes, and a "
     "picture whose memory would pass the bound is refused before it is drawn. The message "
     "names the work that was stopped. A real robot takes well under a second; raise the limit "
