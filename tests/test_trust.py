@@ -666,6 +666,19 @@ def test_format_widths_are_measured_before_they_are_made() -> None:
         assert caught.value.too_big or "format field" in caught.value.what
 
 
+def test_bytes_have_the_methods_of_str_within_the_same_bounds() -> None:
+    assert evaluate("b'xy'.upper().decode()", _symbols()) == "XY"
+    for expression in (
+        "b'x'.ljust(10**9)",
+        "b'\\t'.expandtabs(10**9)",
+        "(b'a' * 10**6).replace(b'a', b'b' * 20)",
+        "b'-'.join([b'a' * 10**6] * 11)",
+    ):
+        with pytest.raises(UnsafeExpression) as caught:
+            evaluate(expression, _symbols())
+        assert caught.value.too_big, expression
+
+
 def test_trust_expressions_runs_the_file_as_the_xacro_command_does(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:

@@ -64,7 +64,7 @@ _NUMBER = frozenset(
 )
 _METHODS: dict[type, frozenset[str]] = {
     str: _STR,
-    bytes: frozenset(("decode", *_SEQUENCE)),
+    bytes: frozenset({"decode", *(_STR & set(dir(bytes)))}),
     list: _LIST,
     tuple: frozenset(_SEQUENCE),
     dict: _DICT,

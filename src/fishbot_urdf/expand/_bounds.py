@@ -253,10 +253,13 @@ def too_long(a: Any, b: Any) -> bool:
     return isinstance(a, SIZED) and isinstance(b, SIZED) and len(a) + len(b) > MAX_ITEMS
 
 
-def check_str_method(name: str, owner: str, args: list[Any], kwargs: dict[str, Any]) -> None:
-    """Refuse a string method whose result would pass :data:`MAX_ITEMS`, before it runs."""
+def check_str_method(
+    name: str, owner: str | bytes, args: list[Any], kwargs: dict[str, Any]
+) -> None:
+    """Refuse a method of a string (or bytes) whose result would pass :data:`MAX_ITEMS`,
+    before it runs."""
     limit = f"a value of more than {MAX_ITEMS:,} items"
-    if name == "format":
+    if name == "format" and isinstance(owner, str):
         check_format(owner, args, kwargs.values())
     elif name in ("ljust", "rjust", "center", "zfill"):
         width = args[0] if args else kwargs.get("width", 0)
@@ -264,12 +267,13 @@ def check_str_method(name: str, owner: str, args: list[Any], kwargs: dict[str, A
             raise too_big(limit)
     elif name == "expandtabs":
         size = args[0] if args else kwargs.get("tabsize", 8)
-        if isinstance(size, int) and len(owner) + owner.count("\t") * max(size, 0) > MAX_ITEMS:
+        tabs = owner.count("\t") if isinstance(owner, str) else owner.count(b"\t")
+        if isinstance(size, int) and len(owner) + tabs * max(size, 0) > MAX_ITEMS:
             raise too_big(limit)
     elif name == "replace" and len(args) >= 2:
         old, new = args[0], args[1]
-        if isinstance(old, str) and isinstance(new, str):
-            found = owner.count(old) if old else len(owner) + 1
+        if isinstance(old, type(owner)) and isinstance(new, type(owner)):
+            found = owner.count(old) if old else len(owner) + 1  # type: ignore[arg-type]
             if len(args) > 2 and isinstance(args[2], int) and args[2] >= 0:
                 found = min(found, args[2])
             if len(owner) + found * (len(new) - len(old)) > MAX_ITEMS:

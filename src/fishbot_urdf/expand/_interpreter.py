@@ -400,11 +400,11 @@ class _Evaluation:
         bound = hasattr(method, "__self__") and not isinstance(method.__self__, type)
         owner, rest = (method.__self__, args) if bound else (args[0] if args else None, args[1:])
         name = method.__name__
-        if isinstance(owner, str):
+        if isinstance(owner, str | bytes):
             check_str_method(name, owner, rest, kwargs)
             if name == "join" and rest:
                 parts = self.items(rest[0])
-                total = sum(len(p) for p in parts if isinstance(p, str))
+                total = sum(len(p) for p in parts if isinstance(p, str | bytes))
                 if total + len(owner) * max(0, len(parts) - 1) > MAX_ITEMS:
                     raise too_big(f"a value of more than {MAX_ITEMS:,} items")
                 return [parts] if bound else [owner, parts]
