@@ -37,8 +37,10 @@ def test_the_facts_are_trimeshs(tmp_path: Path, kind: str) -> None:
     assert ours.high == pytest.approx(theirs.high, abs=1e-6)
 
 
-def test_a_big_binary_stl_is_sampled_and_its_count_comes_from_the_header(tmp_path: Path) -> None:
-    # 100 000 slivers along x from 0 to 99.999, each 1 tall in y: every 5th is read.
+def test_a_big_binary_stl_is_read_whole_and_its_count_comes_from_the_header(
+    tmp_path: Path,
+) -> None:
+    # 100 000 slivers along x from 0 to 99.999, each 1 tall in y: the last one counts too.
     path = tmp_path / "fine.stl"
     path.write_bytes(
         binary_stl([(i / 1000, 0, 0, i / 1000, 1, 0, i / 1000, 0, 1) for i in range(100_000)])
@@ -46,9 +48,9 @@ def test_a_big_binary_stl_is_sampled_and_its_count_comes_from_the_header(tmp_pat
     facts = mesh_facts(path)
     assert facts is not None
     assert facts.faces == 100_000
-    assert facts.high[0] == pytest.approx(99.995, abs=0.01)
-    assert facts.extent() == pytest.approx(99.995, abs=0.01)
-    assert facts.extent((0.001, 0.001, 0.001)) == pytest.approx(0.099995, abs=1e-5)
+    assert facts.high[0] == pytest.approx(99.999, abs=1e-4)
+    assert facts.extent() == pytest.approx(99.999, abs=1e-4)
+    assert facts.extent((0.001, 0.001, 0.001)) == pytest.approx(0.099999, abs=1e-7)
 
 
 def test_what_is_not_read(tmp_path: Path) -> None:
@@ -151,3 +153,56 @@ def test_reading_a_mesh_stops_at_the_deadline(tmp_path: Path) -> None:
     with time_limit(1e-6), pytest.raises(TimeLimitError) as info:
         mesh_triangles(path)
     assert info.value.what == "reading meshes"
+
+
+def test_a_files_facts_are_read_once_while_it_is_unchanged(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import os
+
+    from fishbot_urdf import meshfile
+
+    path = tmp_path / "box.stl"
+    path.write_bytes(box_stl(1, 2, 3))
+    reads: list[str] = []
+    real = meshfile.read_input
+    monkeypatch.setattr(meshfile, "read_input", lambda p: reads.append(str(p)) or real(p))
+    first = mesh_facts(path)
+    assert mesh_facts(path) == first and first is not None
+    assert mesh_facts(str(path)) == first
+    assert reads == [str(path)]
+    path.write_bytes(box_stl(4, 2, 3))  # changed: read again
+    os.utime(path, ns=(1, 1))
+    changed = mesh_facts(path)
+    assert changed is not None and changed.extent() == pytest.approx(4.0)
+    assert len(reads) == 2
+
+
+@pytest.mark.parametrize(
+    ("vertices", "high"),
+    [
+        ([("0", "0", "0"), ("1", "2", "3"), ("-1", "0.5", "2")], (1.0, 2.0, 3.0)),
+        ([("0", "0", "0"), ("x", "2", "3"), ("-1", "0.5", "2")], (0.0, 2.0, 3.0)),  # a word
+    ],
+)
+def test_ascii_numbers_read_at_once_or_one_by_one_give_one_box(
+    tmp_path: Path, vertices: list[tuple[str, str, str]], high: tuple[float, float, float]
+) -> None:
+    text = "solid s\nfacet normal 0 0 1\nouter loop\n"
+    text += "".join(f"vertex {x} {y} {z}\n" for x, y, z in vertices)
+    text += "endloop\nendfacet\nendsolid s\n"
+    path = tmp_path / "one.stl"
+    path.write_text(text)
+    facts = mesh_facts(path)
+    assert facts is not None
+    assert facts.faces == 1
+    assert facts.low == (-1.0, 0.0, 0.0)
+    assert facts.high == high
+
+
+def test_a_binary_stl_with_a_number_that_is_not_finite_has_no_facts(tmp_path: Path) -> None:
+    path = tmp_path / "nan.stl"
+    path.write_bytes(binary_stl([(0, 0, 0, 1, 0, 0, float("nan"), 1, 0)]))
+    assert mesh_facts(path) is None
+    with pytest.raises(ShapeError, match="not a finite number"):
+        mesh_triangles(path)
