@@ -327,3 +327,19 @@ def test_a_consequence_is_reported_when_its_cause_is_not() -> None:
     assert [d.rule for d in check_file(path).diagnostics] == ["undefined-link"]
     quiet = fishbot_urdf.Config(ignore=("undefined-link",))
     assert [d.rule for d in check_file(path, config=quiet).diagnostics] == ["multiple-roots"]
+
+
+def test_a_family_turned_off_is_not_looked_at(monkeypatch: pytest.MonkeyPatch) -> None:
+    import importlib
+
+    check_module = importlib.import_module("fishbot_urdf.check")
+
+    def refuse(*args: object, **kwargs: object) -> None:
+        raise AssertionError("the mesh files were looked at")
+
+    monkeypatch.setattr(check_module, "meshes", refuse)
+    robot = Path(__file__).parent / "data" / "valid" / "all_elements.urdf"
+    ignored = fishbot_urdf.Config(ignore=("meshes",))
+    assert check_module.check_file(robot, config=ignored).diagnostics == ()
+    with pytest.raises(AssertionError, match="mesh files were looked at"):
+        check_module.check_file(robot)

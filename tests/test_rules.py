@@ -394,3 +394,41 @@ def test_a_readme_without_markers_is_refused(tmp_path: Path) -> None:
     assert proc.returncode == 1
     assert proc.stderr.startswith(f"{path}: the README has no {README_BEGIN}")
     assert path.read_text(encoding="utf-8") == "# robot\n"
+
+
+def test_each_check_reports_only_the_rules_it_lists(tmp_path: Path) -> None:
+    # check() runs a family's check only when one of the rules it lists is selected: a rule
+    # it reports but does not list would be lost when the others are turned off. Every
+    # rule's failing and passing example, read and analysed, goes through each check.
+    from fishbot_urdf.analysis import analyse
+    from fishbot_urdf.parse import read
+    from fishbot_urdf.rules import joints, meshes, physics, references
+
+    seen: dict[str, set[str]] = {}
+    for rule in all_rules():
+        for index, text in enumerate((rule.bad, rule.good)):
+            if rule.language not in ("urdf", "xacro") or not text:
+                continue
+            folder = tmp_path / f"{rule.id}-{index}"
+            folder.mkdir()
+            _check(folder, rule, text)  # lays out the examples' files
+            name = folder / ("robot.urdf.xacro" if rule.language == "xacro" else "robot.urdf")
+            try:
+                parsed = read(name)
+            except FishbotUrdfError:
+                continue
+            if parsed.robot is None:
+                continue
+            analysis = analyse(parsed.robot, parsed.path, parsed.references)
+            for module, found in (
+                (joints, joints.joints(analysis)),
+                (references, references.references(analysis)),
+                (meshes, meshes.meshes(analysis, None)),
+                (physics, physics.physics(analysis)),
+            ):
+                rules = {d.rule for d in found}
+                assert rules <= {r.id for r in module.REPORTS}, (rule.id, rules)
+                seen.setdefault(module.__name__, set()).update(rules)
+    for module in (joints, references, meshes, physics):  # each listed rule is met
+        listed = {r.id for r in module.REPORTS} - {"bad-number", "negative-mass"}
+        assert listed <= seen[module.__name__], listed - seen[module.__name__]

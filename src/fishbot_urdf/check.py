@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field, replace
 from itertools import chain
 from pathlib import Path
@@ -22,11 +22,16 @@ from .diagnostics import (
 from .graph import Topology
 from .model import Robot
 from .parse import is_xacro_path, read
+from .rules import Rule
 from .rules._readable import finite, readable
+from .rules.joints import REPORTS as JOINT_RULES
 from .rules.joints import joints
+from .rules.meshes import REPORTS as MESH_RULES
 from .rules.meshes import meshes
 from .rules.physics import GROUND_TOLERANCE, physics
+from .rules.physics import REPORTS as PHYSICS_RULES
 from .rules.reading import BAD_NUMBER, MISSING_ATTRIBUTE, ROBOT_NAME
+from .rules.references import REPORTS as REFERENCE_RULES
 from .rules.references import references
 from .rules.structure import structure
 from .rules.values import values
@@ -178,13 +183,23 @@ def _rule_findings(
             unread.setdefault(d.subject, set()).add(d.rule)
     mm = config.ground_tolerance
     tolerance = GROUND_TOLERANCE if mm is None else mm / 1000.0
-    for finding in chain(
-        joints(analysis),
-        references(analysis),
-        meshes(analysis, packages),
-        physics(analysis, ground_tolerance=tolerance),
-    ):
+    # Each family's check runs only when one of its rules is selected (--ignore meshes
+    # reads no mesh file).
+    found: list[Iterable[Diagnostic]] = []
+    if _selected(JOINT_RULES, config):
+        found.append(joints(analysis))
+    if _selected(REFERENCE_RULES, config):
+        found.append(references(analysis))
+    if _selected(MESH_RULES, config):
+        found.append(meshes(analysis, packages))
+    if _selected(PHYSICS_RULES, config):
+        found.append(physics(analysis, ground_tolerance=tolerance))
+    for finding in chain.from_iterable(found):
         causes = unread.get(finding.subject) if finding.subject is not None else None
         if causes:
             finding = replace(finding, data={**finding.data, FOLLOWS: sorted(causes)})
         yield finding
+
+
+def _selected(reports: Iterable[Rule], config: Config) -> bool:
+    return any(config.applies(rule.id) for rule in reports)

@@ -10,7 +10,7 @@ from ..diagnostics import Diagnostic, Kind, Severity, Subject, subject
 from ..model import Cylinder, Joint, JointType, Link, Origin, Vector3
 from . import Consumer, Family, Rule
 
-__all__ = ["joints"]
+__all__ = ["REPORTS", "joints"]
 
 W = Severity.WARNING
 _ALL = (Consumer.URDFDOM, Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE, Consumer.PYBULLET)
@@ -364,3 +364,15 @@ def _rpy(analysis: Analysis, named: str, origin: Origin, subject: Subject) -> Di
 
 def _vector(values: Vector3) -> str:
     return " ".join(f"{v:g}" for v in values)
+
+
+REPORTS: tuple[Rule, ...] = (
+    AXIS_LENGTH,
+    MIMIC_CHAIN,
+    RPY_DEGREES,
+    VELOCITY_DEGREES,
+    WHEEL_AXIS,
+    WIDE_LIMIT,
+    ZERO_LIMIT,
+)
+"""Every rule this module's check may report: the check runs only when one is selected."""

@@ -19,7 +19,7 @@ if TYPE_CHECKING:
     from ..meshfile import MeshFacts
     from ..packages import PackageFinder
 
-__all__ = ["meshes"]
+__all__ = ["REPORTS", "meshes"]
 
 E, W = Severity.ERROR, Severity.WARNING
 _VIEWERS = (Consumer.URDFDOM, Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE, Consumer.PYBULLET)
@@ -445,3 +445,15 @@ class _Finder:
             return None
         close = closest(file.name, names)
         return None if close is None else str(file.parent / close)
+
+
+REPORTS: tuple[Rule, ...] = (
+    MESH_CASE,
+    MESH_FACES,
+    MESH_FORMAT,
+    MESH_INVALID,
+    MESH_NOT_FOUND,
+    MESH_UNITS,
+    MESH_URI,
+)
+"""Every rule this module's check may report: the check runs only when one is selected."""

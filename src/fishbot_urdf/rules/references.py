@@ -11,7 +11,7 @@ from ..extensions import Reference, Target
 from ..model import JointType, Location, Material
 from . import Consumer, Family, Rule
 
-__all__ = ["references"]
+__all__ = ["REPORTS", "references"]
 
 E, W = Severity.ERROR, Severity.WARNING
 
@@ -278,3 +278,12 @@ def _look(material: Material) -> str:
 
 def _at(where: Location | None) -> str:
     return f" at {shown_path(where.path)}:{where.line}" if where is not None else " first"
+
+
+REPORTS: tuple[Rule, ...] = (
+    CONTROL_INTERFACE,
+    MATERIAL_CONFLICT,
+    UNDEFINED_MATERIAL,
+    UNKNOWN_REFERENCE,
+)
+"""Every rule this module's check may report: the check runs only when one is selected."""

@@ -13,6 +13,8 @@ from ...analysis import Analysis
 from ...diagnostics import Diagnostic
 from ...model import Inertia, Vector3
 from ...spatial import eigenvalues
+from .. import Rule
+from ..reading import BAD_NUMBER, NEGATIVE_MASS
 from ._common import (
     ABOVE_GROUND,
     BELOW_GROUND,
@@ -36,6 +38,7 @@ __all__ = [
     "MASSLESS_LINK",
     "MISMATCH",
     "MISSING_INERTIAL",
+    "REPORTS",
     "physics",
 ]
 
@@ -74,3 +77,17 @@ def physics(
             if found is not None:
                 yield found
     yield from ground(analysis, ground_tolerance)
+
+
+REPORTS: tuple[Rule, ...] = (
+    ABOVE_GROUND,
+    BAD_NUMBER,
+    BELOW_GROUND,
+    INERTIA_MISMATCH,
+    INERTIA_NOT_POSITIVE,
+    INERTIA_TRIANGLE,
+    MASSLESS_LINK,
+    MISSING_INERTIAL,
+    NEGATIVE_MASS,
+)
+"""Every rule this module's check may report: the check runs only when one is selected."""
