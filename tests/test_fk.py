@@ -27,7 +27,7 @@ from fishbot_urdf import (
     link_poses,
     transform,
 )
-from fishbot_urdf.spatial import Pose, rpy_matrix
+from fishbot_urdf.spatial import Pose, axis_angle, rpy_matrix
 
 CORPUS = [item for item in golden_inputs() if item.in_corpus]
 # Corpus robots we refuse to load (check_urdf refuses them too): nothing to compare.
@@ -258,3 +258,39 @@ def test_a_10000_link_chain_works_without_recursion() -> None:
     assert poses.shape == (2, count, 4, 4)
     # straight up: the last link 9 999 steps of 0.01 m above the first
     assert poses[1, -1, 2, 3] == pytest.approx(99.99)
+
+
+def test_both_evaluators_follow_one_mimic_rule() -> None:
+    # A revolute joint mimicking a fixed joint is held at its offset (the fixed joint is at
+    # 0); one mimicking a planar joint too; mimics that loop move on their own.
+    robot = Robot(
+        "r",
+        links=tuple(Link(n) for n in "abcdefgh"),
+        joints=(
+            Joint("fixed", JointType.FIXED, "a", "b"),
+            Joint("held", JointType.REVOLUTE, "b", "c", mimic=Mimic("fixed", 2.0, 0.5)),
+            Joint("plane", JointType.PLANAR, "a", "d"),
+            Joint("held2", JointType.CONTINUOUS, "d", "e", mimic=Mimic("plane", 1.0, -0.25)),
+            Joint("loop1", JointType.CONTINUOUS, "a", "f", mimic=Mimic("loop2", 1.0, 0.3)),
+            Joint("loop2", JointType.CONTINUOUS, "f", "g", mimic=Mimic("loop1", 1.0, 0.2)),
+            Joint("lead", JointType.PRISMATIC, "a", "h"),
+        ),
+    )
+    kin = Kinematics(robot)
+    assert kin.variables == ("plane.x", "plane.y", "plane.yaw", "loop1", "loop2", "lead")
+    rng = np.random.default_rng(7)
+    for _ in range(20):
+        loop1, loop2, lead = rng.uniform(-3, 3, 3)
+        q = kin.configuration({"loop1": loop1, "loop2": loop2, "lead": lead})
+        plain = link_poses(robot, {"loop1": loop1, "loop2": loop2, "lead": lead})
+        poses = kin.forward(q)
+        for link in "abcdefgh":
+            np.testing.assert_allclose(
+                poses[kin.link_index(link)], np.array(plain[link].matrix()), atol=1e-12
+            )
+    turned = Pose(rotation=axis_angle((1.0, 0.0, 0.0), 0.5))  # the default axis, at 0.5
+    np.testing.assert_allclose(
+        kin.forward(kin.configuration())[kin.link_index("c")],
+        np.array(turned.matrix()),
+        atol=1e-15,
+    )

@@ -14,6 +14,7 @@ from ..analysis import Analysis, of
 from ..errors import ArgumentError, UnknownNameError
 from ..model import Joint, JointType, Robot
 from ..spatial import Pose, axis_angle, scale
+from ._mimic import follows
 
 if TYPE_CHECKING:
     from ._batched import Kinematics, forward_kinematics, jacobian, transform
@@ -36,7 +37,8 @@ def joint_positions(
     """The position of every revolute, continuous and prismatic joint (rad or m).
 
     Joints not named in ``positions`` are at zero, except mimic joints, which follow their
-    leader: multiplier * leader + offset.
+    leader: multiplier * leader + offset (chains followed to their end; see
+    :mod:`fishbot_urdf.kinematics._mimic` for a leader that is fixed, and for loops).
 
     Raises:
         UnknownNameError: ``positions`` names a joint the robot does not have.
@@ -70,21 +72,17 @@ def joint_positions(
                 name=name,
             )
     values: dict[str, float] = {}
-
-    def value(joint: Joint, depth: int = 0) -> float:
-        if joint.name in values:
-            return values[joint.name]
-        result = given.get(joint.name, 0.0)
-        mimic = joint.mimic
-        leader = by_name.get(mimic.joint) if mimic else None
-        if mimic and leader and joint.name not in given and depth < len(by_name):
-            result = mimic.multiplier * value(leader, depth + 1) + mimic.offset
-        values[joint.name] = result
-        return result
-
     for joint in model.joints:
-        if joint.type in _MOVING:
-            value(joint)
+        if joint.type not in _MOVING:
+            continue
+        source = None if joint.name in given else follows(by_name, joint)
+        if source is None:
+            values[joint.name] = given.get(joint.name, 0.0)
+        elif source.leader is None:
+            values[joint.name] = source.offset
+        else:
+            leader = given.get(source.leader, 0.0)
+            values[joint.name] = source.multiplier * leader + source.offset
     return values
 
 

@@ -31,6 +31,7 @@ from ..errors import ArgumentError, UnknownNameError
 from ..graph import root
 from ..model import Joint, JointType, Robot
 from ..spatial import rpy_matrix
+from ._mimic import follows
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
@@ -87,7 +88,7 @@ class Kinematics:
             j
             for j in analysis.robot.joints
             if analysis.parent_joint.get(j.child) is j
-            and (j.type in _PARTS or (j.type in _ONE and _leader(analysis, j) is None))
+            and (j.type in _PARTS or (j.type in _ONE and follows(analysis.joints, j) is None))
         ]
         variables: list[str] = []
         first: dict[str, int] = {}
@@ -130,12 +131,12 @@ class Kinematics:
             return _Step(link, parent, joint, joint.type, self._first[joint.name], 1.0, 0.0)
         if joint.type not in _ONE:
             return _Step(link, parent, joint, JointType.FIXED, -1, 0.0, 0.0)
-        lead = _leader(analysis, joint)
-        if lead is None:
+        source = follows(analysis.joints, joint)
+        if source is None:
             return _Step(link, parent, joint, joint.type, self._first[joint.name], 1.0, 0.0)
-        leader, multiplier, offset = lead
-        column = self._first.get(leader, -1)
-        return _Step(link, parent, joint, joint.type, column, multiplier, offset)
+        # held at its offset (column -1) when its chain ends at a joint of no one position
+        column = -1 if source.leader is None else self._first.get(source.leader, -1)
+        return _Step(link, parent, joint, joint.type, column, source.multiplier, source.offset)
 
     def configuration(self, positions: Mapping[str, float] | None = None) -> NDArray[Any]:
         """The configuration vector of ``positions`` (by variable name; the rest are 0).
@@ -492,28 +493,6 @@ def _columns(
         for i in range(3):
             result[:, :, c + i] += slide(child_r[:, :, i])
             result[:, :, c + 3 + i] += turn(child_r[:, :, i], child_p)
-
-
-def _leader(analysis: Analysis, joint: Joint) -> tuple[str, float, float] | None:
-    """The joint a mimic joint follows in the end (chains combined), with the combined
-    multiplier and offset; None for a joint that is no mimic, or whose mimics loop or end
-    at a joint that is not of one variable."""
-    if joint.mimic is None:
-        return None
-    multiplier, offset = 1.0, 0.0
-    seen = {joint.name}
-    current = joint
-    while current.mimic is not None:
-        leader = analysis.joints.get(current.mimic.joint)
-        if leader is None or leader.name in seen or leader.type not in _ONE:
-            return None
-        multiplier, offset = (
-            multiplier * current.mimic.multiplier,
-            multiplier * current.mimic.offset + offset,
-        )
-        seen.add(leader.name)
-        current = leader
-    return current.name, multiplier, offset
 
 
 def forward_kinematics(robot: Robot | Analysis | Kinematics, q: Configuration) -> NDArray[Any]:
