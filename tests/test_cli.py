@@ -427,33 +427,6 @@ def test_output_that_cannot_be_written_at_the_end_is_one_line_and_status_2() -> 
     assert ended.stderr == "<stdout>: error: cannot write: No space left on device [io]\n"
 
 
-def test_malloc_is_fitted_once_and_only_for_a_big_file(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    import ctypes
-
-    from fishbot_urdf.cli import _common
-
-    calls: list[tuple[int, int]] = []
-
-    class Libc:
-        def __init__(self, name: object) -> None:
-            self.mallopt = lambda option, value: calls.append((option, value))
-
-    monkeypatch.setattr(ctypes, "CDLL", Libc)
-    monkeypatch.setattr(_common, "_fitted", [])
-    small, big = tmp_path / "small.urdf", tmp_path / "big.urdf"
-    small.write_bytes(b" " * (_common._BIG_FILE - 1))
-    big.write_bytes(b" " * _common._BIG_FILE)
-    _common._fit_allocator(str(small))
-    _common._fit_allocator(str(tmp_path / "missing.urdf"))
-    assert calls == []
-    _common._fit_allocator(str(big))
-    _common._fit_allocator(str(big))
-    glibc = sys.platform == "linux" and bool(os.confstr("CS_GNU_LIBC_VERSION"))
-    assert calls == ([(1, 0)] if glibc else [])  # M_MXFAST, 0: no fast bins
-
-
 def _package_robot(root: Path) -> dict[str, Path]:
     """A xacro robot in a package: it includes a file and loads YAML through $(find), names
     a mesh by package://, and has a configuration file. Every file it reads, by role."""

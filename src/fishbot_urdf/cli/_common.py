@@ -152,36 +152,7 @@ def check_input(
 
     if name == "-":
         return check_file(stdin_urdf(), path="<stdin>", config=config)
-    _fit_allocator(name)
     return check_file(name, args=args, packages=packages, config=config)
-
-
-_BIG_FILE = 512 * 1024  # bytes from which a file's XML tree is big enough for the below
-_fitted: list[bool] = []  # once a process
-
-
-def _fit_allocator(name: str) -> None:
-    """Before a big file is read, in this process of its own: glibc's malloc off its "fast
-    bins" (`mallopt(M_MXFAST, 0)`). lxml's tree is hundreds of thousands of small blocks;
-    freed into those bins, they are all merged at the next large request (the first list
-    made after the 10,000-link tree's is freed took 55 ms) instead of as each is freed. The
-    10,000-link tree's whole check: 0.83 s with the fast bins, 0.73 s without."""
-    if _fitted or sys.platform != "linux":
-        return
-    try:
-        if os.stat(name).st_size < _BIG_FILE:
-            return
-    except OSError:
-        return  # the read says what is wrong
-    _fitted.append(True)
-    try:
-        if not os.confstr("CS_GNU_LIBC_VERSION"):
-            return
-        import ctypes
-
-        ctypes.CDLL(None).mallopt(1, 0)  # M_MXFAST
-    except (OSError, ValueError, AttributeError):
-        pass  # not glibc
 
 
 STDIN = 0
