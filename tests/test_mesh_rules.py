@@ -102,7 +102,14 @@ def test_a_package_not_found_is_a_warning_naming_the_places_searched(
     assert (rule, severity) == ("mesh-not-found", "warning")
     assert "is in package 'elsewhere', which is not found, so the file cannot be checked" in message
     assert "ROS_PACKAGE_PATH (not set)" in message
-    assert "give its folder with --package elsewhere=PATH" in message
+    assert "--package" not in message  # the library's words name no command-line option
+    from click.testing import CliRunner
+
+    from fishbot_urdf.cli import cli
+
+    robot = str(package / "urdf" / "robot.urdf")
+    said = CliRunner().invoke(cli, ["check", "-q", "--isolated", robot]).stderr
+    assert said.endswith("; give its folder with --package elsewhere=PATH) [mesh-not-found]\n")
     other = package.parent / "elsewhere"
     (other / "meshes").mkdir(parents=True)
     (other / "meshes" / "a.stl").write_bytes(b"")

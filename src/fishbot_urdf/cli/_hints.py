@@ -73,6 +73,11 @@ def _fill_skipped(data: Any) -> str | None:
     return None
 
 
+def _package(data: Any) -> str | None:
+    package = data.get("package")
+    return None if package is None else f"give its folder with --package {package}=PATH"
+
+
 _EXTRA: dict[str, Callable[[Any], str | None]] = {
     "inertia-mismatch": _shape_command,
     "below-ground": _tolerance,
@@ -80,6 +85,7 @@ _EXTRA: dict[str, Callable[[Any], str | None]] = {
     "missing-inertial": _fill,
     "massless-link": _moments,
     "fill-skipped": _fill_skipped,
+    "mesh-not-found": _package,
 }
 
 

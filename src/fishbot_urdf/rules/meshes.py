@@ -184,8 +184,8 @@ def meshes(
             mesh.source,
             path=analysis.path,
             subject=Subject(Kind.LINK, link.name),
-            hint=f"searched: {'; '.join(unknown.searched)}; give its folder with --package "
-            f"{unknown.package}=PATH",
+            hint=f"searched: {'; '.join(unknown.searched)}",
+            data={"package": unknown.package},
             severity=Severity.WARNING,
         )
 
