@@ -160,6 +160,7 @@ def test_a_picture_too_big_is_one_limit_line_and_nothing_written(tmp_path: Path)
     )
     assert result.exit_code == 2
     [line] = result.stderr.splitlines()
+    assert line.startswith(f"{out}: error: a 30000 x 30000 picture is drawn on ")
     assert line.endswith("more than the bound of 67,108,864 (a 4096 x 4096 picture) [limit]")
     assert "Traceback" not in result.output
     assert not out.exists()

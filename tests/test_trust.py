@@ -445,7 +445,7 @@ def test_an_expansion_that_doubles_without_end_stops_at_the_time_limit(
     robot = _expand_in(tmp_path, {"robot.xacro": _doubling(60)}, monkeypatch)
     with time_limit(0.2), pytest.raises(ExpansionLimitError) as caught:
         expand(robot)
-    assert "the expansion takes longer than 0.2 s" in caught.value.message
+    assert caught.value.message.startswith("the expansion takes longer than 0.2 s, in macro m")
     # and the same file within its bounds expands
     (tmp_path / "small.xacro").write_text(_doubling(3))
     assert expand(tmp_path / "small.xacro").text.count("<link") == 15

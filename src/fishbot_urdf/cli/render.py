@@ -127,5 +127,7 @@ def render(
             inputs = [*read_files(file, result, config, packages), *manifests]
             write_atomic(output, png, inputs=inputs)
     except FishbotUrdfError as exc:
+        if exc.path is None:  # the picture's own bound: about the picture asked for
+            exc.path = "<stdout>" if output == "-" else output
         stop_on(exc)
     sys.exit(EXIT_OK)
