@@ -298,9 +298,9 @@ def _in_process(files: Sequence[Path]) -> tuple[float, float, float, float, floa
     from lxml import etree
 
     import fishbot_urdf
-    from fishbot_urdf.locator import Locator
     from fishbot_urdf.model import Location, Origin, builder
-    from fishbot_urdf.parse.values import to_doubles
+    from fishbot_urdf.parsing.values import to_doubles
+    from fishbot_urdf.xml.locator import Locator
 
     new_origin = builder(Origin)
     zero = (0.0, 0.0, 0.0)

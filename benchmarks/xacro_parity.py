@@ -14,7 +14,7 @@ extracts what is missing: 1.5 GB; keep CACHE out of any git checkout):
 
 For every `.xacro` file, with the file's folder as the working directory and the file named
 by its base name (the banner says it), the script runs the xacro command of this Python (60 s
-timeout; `$(find NAME)` answered by tests/ament_stub) and `fishbot_urdf.expand.expand` in this
+timeout; `$(find NAME)` answered by tests/ament_stub) and `fishbot_urdf.expansion.expand` in this
 process (the default allowlist), and compares the text. `$(find NAME)` gives both tools the
 same folder: of the folders under the roots holding a package.xml whose <name> is NAME (or,
 when no package.xml names NAME, the folders named NAME), the nearest parent of the file,
@@ -54,7 +54,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 
 from fishbot_urdf.errors import FishbotUrdfError
-from fishbot_urdf.expand import expand
+from fishbot_urdf.expansion import expand
 
 ROOT = Path(__file__).resolve().parent.parent
 STUB = ROOT / "tests" / "ament_stub"

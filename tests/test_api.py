@@ -241,7 +241,7 @@ def test_every_exception_the_library_raises_is_a_fishbot_urdf_error() -> None:
         # The expression interpreter raises what Python's eval would for the same text,
         # inside xacro's run, which turns it into a XacroError as it does eval's.
         python = ("NameError", "TypeError", "ValueError", "AttributeError")
-        if module == "fishbot_urdf.expand._interpreter" and name in python:
+        if module == "fishbot_urdf.expansion._interpreter" and name in python:
             continue
         namespace = vars(importlib.import_module(module))
         cls = namespace.get(name) or getattr(fishbot_urdf.errors, name, None)

@@ -332,7 +332,7 @@ def test_a_consequence_is_reported_when_its_cause_is_not() -> None:
 def test_a_family_turned_off_is_not_looked_at(monkeypatch: pytest.MonkeyPatch) -> None:
     import importlib
 
-    check_module = importlib.import_module("fishbot_urdf.check")
+    check_module = importlib.import_module("fishbot_urdf.lint")
 
     def refuse(*args: object, **kwargs: object) -> None:
         raise AssertionError("the mesh files were looked at")

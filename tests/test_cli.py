@@ -373,10 +373,10 @@ def _modules_after(*args: str) -> set[str]:
 def test_help_and_check_import_only_what_they_use() -> None:
     assert not {m for m in _modules_after("--help") if m.startswith("fishbot_urdf.cli.")}
     loaded = _modules_after("check", str(FIRST), "-q")
-    drawn = {"fishbot_urdf.cli.graph", "fishbot_urdf.dot", "fishbot_urdf.cli.render"}
+    drawn = {"fishbot_urdf.cli.graph", "fishbot_urdf.drawing.dot", "fishbot_urdf.cli.render"}
     assert "fishbot_urdf.cli.check" in loaded
     assert not loaded & drawn
-    assert "fishbot_urdf.expand" not in loaded  # a URDF file needs no xacro
+    assert "fishbot_urdf.expansion" not in loaded  # a URDF file needs no xacro
 
 
 def _python(

@@ -12,9 +12,9 @@ from pathlib import Path
 import pytest
 from conftest import DATA, FISHBOT
 
-from fishbot_urdf.check import check_file
 from fishbot_urdf.cli import _batch
 from fishbot_urdf.config import Config
+from fishbot_urdf.lint import check_file
 from fishbot_urdf.packages import PackageFinder
 
 # Valid and faulty robots, a xacro file, one that is no XML and one that is not there.
@@ -141,7 +141,7 @@ def _slow_check(monkeypatch: pytest.MonkeyPatch, seconds: float) -> None:
 
     from fishbot_urdf.inputs import deadline
 
-    checking = importlib.import_module("fishbot_urdf.check")
+    checking = importlib.import_module("fishbot_urdf.lint")
 
     real = checking.check_file
 

@@ -148,7 +148,7 @@ def test_the_command_line_extends_and_ignores_on_top_of_the_file() -> None:
 
 
 def test_apply_drops_unselected_findings_and_relevels() -> None:
-    from fishbot_urdf.check import check_file
+    from fishbot_urdf.lint import check_file
 
     config = Config(select=("structure", "urdf"), severity={"limit-range": Severity.WARNING})
     result = check_file(ARM.encode(), path="arm.urdf", config=config)

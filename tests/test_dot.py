@@ -34,7 +34,7 @@ from conftest import (
 
 import fishbot_urdf
 from fishbot_urdf.cli import cli
-from fishbot_urdf.dot import drawing
+from fishbot_urdf.drawing.dot import drawing
 
 FIRST = FISHBOT / "urdf" / "first_robot.urdf"
 FISHBOT_XACRO = FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"
@@ -630,6 +630,6 @@ def test_a_dot_that_fails_says_its_first_line(
 
 def test_the_graph_command_offers_every_format_the_drawing_writes() -> None:
     from fishbot_urdf.cli.graph import _GRAPH_FORMATS
-    from fishbot_urdf.dot import FORMATS
+    from fishbot_urdf.drawing.dot import FORMATS
 
     assert tuple(FORMATS) == _GRAPH_FORMATS

@@ -12,8 +12,8 @@ from conftest import DATA, FISHBOT, XACRO_CORPUS, xacro_command
 
 import fishbot_urdf
 from fishbot_urdf.cli import cli
-from fishbot_urdf.expand import XacroError, expand, parse_args
-from fishbot_urdf.expand._errors import shown_path
+from fishbot_urdf.expansion import XacroError, expand, parse_args
+from fishbot_urdf.expansion._errors import shown_path
 
 FISHBOT_XACRO = FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"
 NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'

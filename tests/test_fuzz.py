@@ -50,7 +50,7 @@ from test_interpreter import ANY as EXPRESSION_GRAMMAR
 
 from fishbot_urdf.cli import cli
 from fishbot_urdf.errors import FishbotUrdfError
-from fishbot_urdf.expand import expand
+from fishbot_urdf.expansion import expand
 
 XACRO_NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
 ROOT = Path(__file__).resolve().parent.parent
@@ -332,9 +332,9 @@ def test_mesh_readers_read_a_mesh_or_say_why_not(
 ) -> None:
     import numpy as np
 
+    from fishbot_urdf.drawing.scene import _read_mesh
     from fishbot_urdf.errors import FishbotUrdfError as Refusal
     from fishbot_urdf.meshfile import mesh_facts
-    from fishbot_urdf.scene import _read_mesh
 
     suffix, data = mesh
     folder = tmp_path_factory.mktemp("mesh")
@@ -466,7 +466,7 @@ _RANGES = st.tuples(st.floats(-1e6, 1e6), st.floats(0, 1e6)).map(lambda t: (t[0]
 def test_a_slider_value_from_the_page_is_a_number_in_range_or_dropped(
     value: Any, limits: tuple[float, float]
 ) -> None:
-    from fishbot_urdf.viewer import _position
+    from fishbot_urdf.drawing.viewer import _position
 
     low, high = limits
     position = _position(value, low, high)
@@ -484,7 +484,7 @@ def test_a_slider_value_from_the_page_is_a_number_in_range_or_dropped(
 def test_a_message_from_the_page_is_accepted_only_when_its_control_can_hold_it(
     uuid: Any, updates: Any, limits: tuple[float, float]
 ) -> None:
-    from fishbot_urdf.viewer import Viewer, _Input
+    from fishbot_urdf.drawing.viewer import Viewer, _Input
 
     viewer = SimpleNamespace(
         _inputs={"slider": _Input("j", *limits), "toggle": _Input("t", toggle=True)}

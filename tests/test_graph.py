@@ -116,7 +116,7 @@ def test_networkx_is_not_imported_by_check() -> None:
 
 def test_tree_text_of_a_deep_chain_indents_four_spaces_per_level() -> None:
     from fishbot_urdf.graph import tree_text
-    from fishbot_urdf.parse import parse
+    from fishbot_urdf.parsing import parse
 
     depth = 3000
     links = "".join(f'<link name="l{i}"/>' for i in range(depth + 1))

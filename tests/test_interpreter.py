@@ -61,9 +61,9 @@ import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
-from fishbot_urdf.expand import _interpreter
-from fishbot_urdf.expand._allowlist import MAX_BITS, MAX_ITEMS, UnsafeExpression, prepare_symbols
-from fishbot_urdf.expand._interpreter import Lambda, evaluate, parsed
+from fishbot_urdf.expansion import _interpreter
+from fishbot_urdf.expansion._allowlist import MAX_BITS, MAX_ITEMS, UnsafeExpression, prepare_symbols
+from fishbot_urdf.expansion._interpreter import Lambda, evaluate, parsed
 from fishbot_urdf.inputs import TimeLimitError
 
 # -- how many examples (the same knob as tests/test_fuzz.py) ---------------------------------
@@ -235,7 +235,7 @@ _INTERPRETER_FILE = os.path.normcase(_interpreter.__file__ or "")
 _WALKER_FILES = {_INTERPRETER_FILE} | {
     os.path.normcase(getattr(sys.modules[v.__module__], "__file__", "") or "")
     for v in vars(_interpreter).values()
-    if getattr(v, "__module__", "").startswith("fishbot_urdf.expand.")
+    if getattr(v, "__module__", "").startswith("fishbot_urdf.expansion.")
 }
 _THIS_FILE = os.path.normcase(__file__)
 

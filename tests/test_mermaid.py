@@ -7,7 +7,7 @@ import re
 from conftest import DATA, FISHBOT
 
 import fishbot_urdf
-from fishbot_urdf.dot import drawing
+from fishbot_urdf.drawing.dot import drawing
 
 FISHBOT_XACRO = FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"
 

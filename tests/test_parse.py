@@ -31,7 +31,7 @@ from fishbot_urdf import (
     parse,
     to_urdf,
 )
-from fishbot_urdf.parse.values import plain_numbers, to_double, to_doubles
+from fishbot_urdf.parsing.values import plain_numbers, to_double, to_doubles
 
 ALL = DATA / "valid" / "all_elements.urdf"
 
@@ -303,8 +303,8 @@ def test_inertia_and_limits_read_at_once_as_one_by_one(texts: list[str | None]) 
     ).encode()
     at_once = fishbot_urdf.read(data)
     with (
-        mock.patch("fishbot_urdf.parse._links.plain_numbers", return_value=None),
-        mock.patch("fishbot_urdf.parse._joints.plain_numbers", return_value=None),
+        mock.patch("fishbot_urdf.parsing._links.plain_numbers", return_value=None),
+        mock.patch("fishbot_urdf.parsing._joints.plain_numbers", return_value=None),
     ):
         one_by_one = fishbot_urdf.read(data)
     assert at_once == one_by_one

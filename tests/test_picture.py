@@ -1,4 +1,4 @@
-"""`fishbot_urdf.picture`: the rasteriser's bounds (size, overlap, deadline) and the picture
+"""`fishbot_urdf.drawing.picture`: the rasteriser's bounds (size, overlap, deadline) and the picture
 it still makes of triangles piled on one another, checked by its pixels."""
 
 from __future__ import annotations
@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 from PIL import Image
 
+from fishbot_urdf.drawing.picture import MAX_PIXELS, PictureLimitError, render_png
+from fishbot_urdf.drawing.scene import Part, Scene
 from fishbot_urdf.errors import ArgumentError, LimitError
 from fishbot_urdf.inputs import TimeLimitError, time_limit
-from fishbot_urdf.picture import MAX_PIXELS, PictureLimitError, render_png
-from fishbot_urdf.scene import Part, Scene
 
 RED, BLUE = (1.0, 0.0, 0.0, 1.0), (0.0, 0.0, 1.0, 1.0)
 
@@ -99,14 +99,14 @@ def test_triangles_piled_past_the_visit_bound_are_refused(
     # Tilted squares stacked 0.001 apart: no copy of another, each one seen nowhere.
     parts = [([[[x, -1, -1], [x + 0.5, 1, -1], [x, 0, 1]]], BLUE) for x in np.arange(20) * 1e-3]
     scene = _scene(*parts)
-    monkeypatch.setattr("fishbot_urdf.picture.MAX_COVER", 4)
+    monkeypatch.setattr("fishbot_urdf.drawing.picture.MAX_COVER", 4)
     with pytest.raises(PictureLimitError) as info:
         render_png(scene, "front", 64, 48)
     error = info.value
     assert (error.what, error.limit) == ("visits", 4 * 128 * 96)
     assert error.needed > error.limit
     assert error.message.startswith("the picture's triangles overlap more than 4 times over")
-    monkeypatch.setattr("fishbot_urdf.picture.MAX_COVER", 64)
+    monkeypatch.setattr("fishbot_urdf.drawing.picture.MAX_COVER", 64)
     hues = _hue(_pixels(render_png(scene, "front", 64, 48)))
     assert set(np.unique(hues)) == {0, 2}
 

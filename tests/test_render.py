@@ -14,9 +14,9 @@ from PIL import Image
 import fishbot_urdf
 from fishbot_urdf.analysis import analyse
 from fishbot_urdf.cli import cli
+from fishbot_urdf.drawing.picture import render_png
+from fishbot_urdf.drawing.scene import build_scene
 from fishbot_urdf.inputs import TimeLimitError, time_limit
-from fishbot_urdf.picture import render_png
-from fishbot_urdf.scene import build_scene
 
 XACRO = FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"
 

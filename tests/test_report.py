@@ -16,9 +16,9 @@ from conftest import DATA, FISHBOT
 from test_config import ARM
 
 from fishbot_urdf import Config
-from fishbot_urdf.check import check_file
 from fishbot_urdf.cli import cli
 from fishbot_urdf.diagnostics import Severity, diagnostic
+from fishbot_urdf.lint import check_file
 from fishbot_urdf.report import SARIF_SCHEMA, github_annotations
 from fishbot_urdf.rules import all_rules
 

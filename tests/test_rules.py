@@ -401,7 +401,7 @@ def test_each_check_reports_only_the_rules_it_lists(tmp_path: Path) -> None:
     # it reports but does not list would be lost when the others are turned off. Every
     # rule's failing and passing example, read and analysed, goes through each check.
     from fishbot_urdf.analysis import analyse
-    from fishbot_urdf.parse import read
+    from fishbot_urdf.parsing import read
     from fishbot_urdf.rules import joints, meshes, physics, references
 
     seen: dict[str, set[str]] = {}

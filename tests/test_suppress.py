@@ -12,9 +12,9 @@ from click.testing import CliRunner
 from conftest import DATA, run_check_urdf
 
 from fishbot_urdf import Config
-from fishbot_urdf.check import check_file
 from fishbot_urdf.cli import cli
 from fishbot_urdf.diagnostics import Kind, Severity, Subject, diagnostic
+from fishbot_urdf.lint import check_file
 from fishbot_urdf.model import Location
 from fishbot_urdf.suppress import Suppression, apply_suppressions, suppressions
 

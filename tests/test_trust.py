@@ -15,9 +15,9 @@ from click.testing import CliRunner
 from conftest import xacro_command
 
 from fishbot_urdf.cli import cli
-from fishbot_urdf.expand import XacroError, expand
-from fishbot_urdf.expand._allowlist import UnsafeExpression, prepare_symbols
-from fishbot_urdf.expand._interpreter import evaluate
+from fishbot_urdf.expansion import XacroError, expand
+from fishbot_urdf.expansion._allowlist import UnsafeExpression, prepare_symbols
+from fishbot_urdf.expansion._interpreter import evaluate
 
 NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
 CANARY = "CANARY"
@@ -439,7 +439,7 @@ def test_an_expansion_that_doubles_without_end_stops_at_the_size_limit(
 def test_an_expansion_that_doubles_without_end_stops_at_the_time_limit(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    from fishbot_urdf.expand import ExpansionLimitError
+    from fishbot_urdf.expansion import ExpansionLimitError
     from fishbot_urdf.inputs import time_limit
 
     robot = _expand_in(tmp_path, {"robot.xacro": _doubling(60)}, monkeypatch)
@@ -584,7 +584,7 @@ def test_include_patterns_match_what_glob_matches(
 ) -> None:
     import glob
 
-    from fishbot_urdf.expand._files import Globbing
+    from fishbot_urdf.expansion._files import Globbing
     from fishbot_urdf.inputs import deadline
 
     for name in ("a.xacro", "b1.xacro", ".hidden.xacro", "c.txt", "d/x.xacro", "d/.y.xacro"):
@@ -599,7 +599,7 @@ def test_include_patterns_match_what_glob_matches(
 def test_an_include_pattern_stops_at_the_deadline(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    from fishbot_urdf.expand import ExpansionLimitError
+    from fishbot_urdf.expansion import ExpansionLimitError
     from fishbot_urdf.inputs import time_limit
 
     for i in range(50):
@@ -617,7 +617,7 @@ def test_an_include_pattern_stops_at_the_deadline(
 def test_an_expression_stops_at_the_deadline(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    from fishbot_urdf.expand import ExpansionLimitError
+    from fishbot_urdf.expansion import ExpansionLimitError
     from fishbot_urdf.inputs import time_limit
 
     text = _robot('<link name="${python.len([x for x in python.range(900000)])}"/>')

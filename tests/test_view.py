@@ -29,7 +29,7 @@ from selenium import webdriver
 from selenium.webdriver.common.by import By
 from selenium.webdriver.common.keys import Keys
 
-from fishbot_urdf.viewer import Viewer
+from fishbot_urdf.drawing.viewer import Viewer
 
 CHROME_FLAGS = (
     "--headless=new",

@@ -22,8 +22,8 @@ from websockets.exceptions import InvalidStatus
 from websockets.sync.client import ClientConnection, connect
 
 from fishbot_urdf import ArgumentError, check_file
-from fishbot_urdf._serving import _Origin, control_id
-from fishbot_urdf.viewer import Viewer
+from fishbot_urdf.drawing._serving import _Origin, control_id
+from fishbot_urdf.drawing.viewer import Viewer
 
 ARM = """\
 <?xml version="1.0"?>
@@ -100,7 +100,7 @@ def _websocket(port: int, origin: str | None, host: str = "localhost") -> Client
 
 
 def _refusals(caplog: pytest.LogCaptureFixture) -> list[str]:
-    return [r.getMessage() for r in caplog.records if r.name == "fishbot_urdf.viewer"]
+    return [r.getMessage() for r in caplog.records if r.name == "fishbot_urdf.drawing.viewer"]
 
 
 @pytest.mark.parametrize(

@@ -24,8 +24,8 @@ if not REQUIRE_TOOLS:  # on a user's machine without the [view] extra: skipped, 
 
 from fishbot_urdf import FishbotUrdfError, InputError, check_file
 from fishbot_urdf.cli import cli
+from fishbot_urdf.drawing.viewer import ServeError, Viewer
 from fishbot_urdf.inputs import InputTooLargeError, size_limit, time_limit
-from fishbot_urdf.viewer import ServeError, Viewer
 
 UNROUTED = "192.0.2.1"  # TEST-NET-1: never an address of this machine, so never bound
 

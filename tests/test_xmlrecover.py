@@ -16,12 +16,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from xml_survey import CASES
 
-from fishbot_urdf import XmlSyntaxError, check_file, xmlrecover
+from fishbot_urdf import XmlSyntaxError, check_file
 from fishbot_urdf.cli import cli
 from fishbot_urdf.diagnostics import Severity
-from fishbot_urdf.parse import read
+from fishbot_urdf.parsing import read
 from fishbot_urdf.rules.xml import BY_ID as RULES
-from fishbot_urdf.xmlrecover import UNDECLARED, needed
+from fishbot_urdf.xml import recover as xmlrecover
+from fishbot_urdf.xml.recover import UNDECLARED, needed
 
 DATA = Path(__file__).parent / "data" / "xml"
 FIXTURES = sorted(DATA.glob("*.urdf"))

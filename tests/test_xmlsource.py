@@ -14,8 +14,10 @@ from hypothesis import strategies as st
 from lxml import etree
 
 import fishbot_urdf
-from fishbot_urdf import locator, xmlsource, xmlstream
-from fishbot_urdf.locator import Locator
+from fishbot_urdf.xml import locator
+from fishbot_urdf.xml import source as xmlsource
+from fishbot_urdf.xml import stream as xmlstream
+from fishbot_urdf.xml.locator import Locator
 
 
 def _place(data: bytes, offset: int) -> tuple[int, int]:

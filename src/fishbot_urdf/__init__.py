@@ -10,17 +10,15 @@
 # (and every `fishbot` command) loads only what it uses.
 from __future__ import annotations
 
-import sys
 from importlib import import_module
-from types import ModuleType
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from .analysis import Analysis, Body, analyse
-    from .check import CheckResult, check, check_file
     from .config import Config, find_config, load_config
     from .diagnostics import Diagnostic, Kind, Severity, Subject
-    from .dot import draw, render, to_dot
+    from .drawing.dot import draw, render, to_dot
+    from .drawing.mermaid import to_mermaid
     from .errors import (
         ArgumentError,
         ConfigError,
@@ -35,7 +33,7 @@ if TYPE_CHECKING:
         UnknownNameError,
         XmlSyntaxError,
     )
-    from .expand import Expansion, XacroError, expand
+    from .expansion import Expansion, XacroError, expand
     from .graph import Topology, chain, leaves, root, subtree, to_networkx, topology, tree_text
     from .inertia import (
         Filling,
@@ -63,7 +61,7 @@ if TYPE_CHECKING:
         link_poses,
         transform,
     )
-    from .mermaid import to_mermaid
+    from .lint import CheckResult, check, check_file
     from .model import (
         Box,
         Calibration,
@@ -88,7 +86,7 @@ if TYPE_CHECKING:
         Visual,
     )
     from .packages import PackageFinder, PackageNotFoundError, find_package, resolve_package_uri
-    from .parse import Parsed, load, parse, read
+    from .parsing import Parsed, load, parse, read
     from .report import FileReport, github_annotations, json_report, sarif_report
     from .rules import Rule
     from .spatial import Pose
@@ -204,14 +202,14 @@ _WHERE = {
     "Body": "analysis",
     "Box": "model",
     "Calibration": "model",
-    "CheckResult": "check",
+    "CheckResult": "lint",
     "Collision": "model",
     "Config": "config",
     "ConfigError": "errors",
     "Cylinder": "model",
     "Diagnostic": "diagnostics",
     "Dynamics": "model",
-    "Expansion": "expand",
+    "Expansion": "expansion",
     "FieldTypeError": "errors",
     "FileReport": "report",
     "Filling": "inertia",
@@ -236,7 +234,7 @@ _WHERE = {
     "Origin": "model",
     "PackageFinder": "packages",
     "PackageNotFoundError": "packages",
-    "Parsed": "parse",
+    "Parsed": "parsing",
     "Pose": "spatial",
     "Robot": "model",
     "RobotError": "errors",
@@ -252,18 +250,18 @@ _WHERE = {
     "Topology": "graph",
     "UnknownNameError": "errors",
     "Visual": "model",
-    "XacroError": "expand",
+    "XacroError": "expansion",
     "XmlSyntaxError": "errors",
     "add_inertials": "write",
     "analyse": "analysis",
     "box_inertia": "inertia",
     "chain": "graph",
-    "check": "check",
-    "check_file": "check",
+    "check": "lint",
+    "check_file": "lint",
     "combine": "inertia",
     "cylinder_inertia": "inertia",
-    "draw": "dot",
-    "expand": "expand",
+    "draw": "drawing.dot",
+    "expand": "expansion",
     "fill_inertials": "inertia",
     "find_config": "config",
     "find_package": "packages",
@@ -277,22 +275,22 @@ _WHERE = {
     "leaves": "graph",
     "link_inertial": "inertia",
     "link_poses": "kinematics",
-    "load": "parse",
+    "load": "parsing",
     "load_config": "config",
     "mass_properties": "inertia",
     "mass_table": "inertia",
     "mesh_inertia": "inertia",
-    "parse": "parse",
+    "parse": "parsing",
     "principal_moments": "inertia",
-    "read": "parse",
-    "render": "dot",
+    "read": "parsing",
+    "render": "drawing.dot",
     "resolve_package_uri": "packages",
     "root": "graph",
     "sarif_report": "report",
     "sphere_inertia": "inertia",
     "subtree": "graph",
-    "to_dot": "dot",
-    "to_mermaid": "mermaid",
+    "to_dot": "drawing.dot",
+    "to_mermaid": "drawing.mermaid",
     "to_networkx": "graph",
     "to_urdf": "write",
     "topology": "graph",
@@ -300,20 +298,6 @@ _WHERE = {
     "tree_text": "graph",
     "volume": "inertia",
 }
-
-
-class _Package(ModuleType):
-    """This package, whose functions ``check`` and ``expand`` share their names with its
-    modules: importing such a module keeps the function under the name (as an eager
-    ``from .check import check`` did)."""
-
-    def __setattr__(self, name: str, value: Any) -> None:
-        if isinstance(value, ModuleType) and _WHERE.get(name) == name:
-            return
-        super().__setattr__(name, value)
-
-
-sys.modules[__name__].__class__ = _Package
 
 
 def __getattr__(name: str) -> Any:

@@ -87,7 +87,7 @@ def collect(
     """The references in one top-level extension element.
 
     ``locate`` is called on the element and on every element inside it, in document order
-    (a `fishbot_urdf.locator.Locator` needs that); ``attribute`` gives an attribute's place
+    (a `fishbot_urdf.xml.locator.Locator` needs that); ``attribute`` gives an attribute's place
     from its element's.
     """
     found: list[Reference] = []
@@ -137,7 +137,7 @@ def from_robot(robot: Robot) -> tuple[Reference, ...]:
     """The references in ``robot``'s extension elements, read again from their text (with no
     places: the reader of a file gives them with places)."""
     from .errors import FishbotUrdfError
-    from .xmlsource import parse_xml
+    from .xml.source import parse_xml
 
     found: list[Reference] = []
     for text in robot.extras:

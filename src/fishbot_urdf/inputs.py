@@ -148,7 +148,7 @@ def trusting_expressions(trust: bool = True) -> AbstractContextManager[None]:
     """Inside the ``with`` (this thread or task only), xacro expansions evaluate ``${...}``
     and ``$(eval ...)`` with Python's ``eval``, as ROS's xacro does: the file's code runs
     with the rights of the process. Outside, expressions are interpreted by an allowlist
-    that cannot reach past the symbol table (see :mod:`fishbot_urdf.expand`)."""
+    that cannot reach past the symbol table (see :mod:`fishbot_urdf.expansion`)."""
     return _holding(_TRUST, trust)
 
 

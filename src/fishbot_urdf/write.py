@@ -24,7 +24,7 @@ from .model import (
     Visual,
 )
 from .rules.values import values
-from .xmlsource import STRING_PATH, parse_xml
+from .xml.source import STRING_PATH, parse_xml
 
 __all__ = ["add_inertials", "inertial_xml", "to_urdf"]
 

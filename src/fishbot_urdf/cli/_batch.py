@@ -17,9 +17,9 @@ from ..errors import FishbotUrdfError
 from ._common import EXIT_INVALID, EXIT_OK, check_input, fail, read_files, status_of
 
 if TYPE_CHECKING:
-    from ..check import CheckResult
     from ..config import Config
     from ..diagnostics import Diagnostic
+    from ..lint import CheckResult
     from ..output import Source
     from ..packages import PackageFinder
     from ..report import FileReport
@@ -361,7 +361,7 @@ def _skipped(result: CheckResult, config: Config) -> FileReport:
 
 def _is_include(result: CheckResult) -> bool:
     """A xacro file that defines no robot: macros, properties, materials for others."""
-    from ..parse import is_xacro_path
+    from ..parsing import is_xacro_path
 
     robot = result.robot
     return (

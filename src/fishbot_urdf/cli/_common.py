@@ -20,8 +20,8 @@ from ._hints import command_hint, error_hint
 if TYPE_CHECKING:
     from pathlib import Path
 
-    from ..check import CheckResult
     from ..config import Config
+    from ..lint import CheckResult
     from ..model import Robot
     from ..output import Source
     from ..packages import PackageFinder
@@ -92,7 +92,7 @@ def status_of(exc: FishbotUrdfError) -> int:
     fault (a file cannot be read or written, a package or a program is not found, the
     configuration is wrong, a limit is reached), 1 when the robot is."""
     from ..errors import ConfigError, LimitError
-    from ..expand import ExpansionLimitError
+    from ..expansion import ExpansionLimitError
     from ..packages import PackageNotFoundError
 
     setup = (
@@ -133,7 +133,7 @@ def xacro_args(items: Sequence[str]) -> dict[str, str]:
     """``name:=value`` arguments as a mapping."""
     if not items:
         return {}
-    from ..expand import parse_args
+    from ..expansion import parse_args
 
     try:
         return parse_args(list(items))
@@ -148,7 +148,7 @@ def check_input(
     config: Config | None = None,
 ) -> CheckResult:
     """Read and check FILE (- is standard input, read as URDF)."""
-    from ..check import check_file
+    from ..lint import check_file
 
     if name == "-":
         return check_file(stdin_urdf(), path="<stdin>", config=config)

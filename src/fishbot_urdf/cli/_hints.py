@@ -93,8 +93,8 @@ def error_hint(exc: FishbotUrdfError) -> tuple[str, str | None] | None:
     """The message and hint of an error that stops a command, phrased for the command line,
     or None to keep the library's."""
     from ..errors import ToolTimeoutError
-    from ..expand import ExpansionLimitError, XacroError
-    from ..expand._errors import TRUST_HINT
+    from ..expansion import ExpansionLimitError, XacroError
+    from ..expansion._errors import TRUST_HINT
     from ..inputs import InputTooLargeError, TimeLimitError
     from ..packages import PackageNotFoundError
 

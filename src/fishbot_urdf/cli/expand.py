@@ -11,7 +11,7 @@ import click
 from ..errors import FishbotUrdfError
 
 if TYPE_CHECKING:
-    from ..expand import Expansion
+    from ..expansion import Expansion
 from ._common import (
     EXIT_INVALID,
     EXIT_OK,
@@ -74,8 +74,8 @@ def expand(
     from dataclasses import replace
 
     from ..diagnostics import Severity
-    from ..expand import declared_args
-    from ..expand import expand as run
+    from ..expansion import declared_args
+    from ..expansion import expand as run
     from ..output import write_atomic
     from ..rules.xacro import unknown_args, xacro_warning
 
@@ -110,7 +110,7 @@ def expand(
 
 def _mesh_files(expansion: Expansion, packages: dict[str, str]) -> list[str]:
     """The mesh files the expanded robot names, read as far as it reads."""
-    from ..parse import read
+    from ..parsing import read
 
     try:
         robot = read(expansion.text.encode("utf-8", "replace"), path=expansion.path).robot

@@ -31,7 +31,7 @@ if TYPE_CHECKING:
     from ..analysis import Analysis
     from ..output import Source
 
-# fishbot_urdf.dot.FORMATS, written out so that `fishbot --help` does not load the drawing
+# fishbot_urdf.drawing.dot.FORMATS, written out so that `fishbot --help` does not load the drawing
 # code (tests/test_dot.py keeps the two equal).
 _GRAPH_FORMATS = ("gv", "dot", "pdf", "svg", "png", "mmd")
 
@@ -147,7 +147,7 @@ def _draw_all(
 ) -> None:
     """Write each output, saying "Created file" only for files really written; none when
     one of them is an input."""
-    from ..dot import draw
+    from ..drawing.dot import draw
     from ..output import refuse_inputs, write_atomic
 
     for path, _ in outputs:

@@ -40,7 +40,7 @@ from ._common import (
 if TYPE_CHECKING:
     from pathlib import Path
 
-    from ..check import CheckResult
+    from ..lint import CheckResult
     from ..model import Inertial, Mesh, Vector3
     from ..output import Source
 

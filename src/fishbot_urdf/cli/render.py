@@ -91,11 +91,11 @@ def render(
       fishbot render arm.urdf -o arm.png --view side -j shoulder=45deg --size 1200x900
       fishbot render robot.urdf.xacro -o collision.png --collision
     """
+    from ..drawing.picture import render_png
+    from ..drawing.scene import build_scene
     from ..errors import ArgumentError, UnknownNameError
     from ..kinematics import Kinematics
     from ..output import write_atomic
-    from ..picture import render_png
-    from ..scene import build_scene
 
     width, height = _size(size_text)
     if file == "-" and args:

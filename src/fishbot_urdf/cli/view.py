@@ -64,8 +64,8 @@ def view(
       fishbot view robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
       fishbot view robot.urdf.xacro use_sim:=true --port 8081 -j shoulder=45deg
     """
+    from ..drawing.viewer import Viewer
     from ..errors import ArgumentError, UnknownNameError
-    from ..viewer import Viewer
 
     values = xacro_args(args)
     packages = packages_option(package_items)

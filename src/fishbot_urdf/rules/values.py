@@ -56,7 +56,7 @@ from ..model import (
     Sphere,
     Visual,
 )
-from ..parse._reader import _VERSION  # the one test of a version, the reader's
+from ..parsing._reader import _VERSION  # the one test of a version, the reader's
 from . import Rule
 from ._plain import plain
 from .reading import BAD_COLOR, BAD_NUMBER, MISSING_ATTRIBUTE, ROBOT_NAME, ROBOT_VERSION

@@ -1,6 +1,6 @@
 """Rules for XML that urdfdom reads and strict XML parsers refuse (or read otherwise).
 
-These are data only: ``fishbot_urdf.xmlrecover`` reads such files as urdfdom's TinyXML
+These are data only: ``fishbot_urdf.xml.recover`` reads such files as urdfdom's TinyXML
 does, and each rule it applied is one warning per file (at the first place).
 """
 

@@ -1,5 +1,5 @@
 """Safe XML reading, as urdfdom reads a file: whole, or a part at a time for a big file
-(`fishbot_urdf.xmlstream`), with every element's place (`fishbot_urdf.locator`)."""
+(`fishbot_urdf.xml.stream`), with every element's place (`fishbot_urdf.xml.locator`)."""
 
 from __future__ import annotations
 
@@ -11,13 +11,13 @@ from pathlib import Path
 
 from lxml import etree
 
-from . import xmlrecover
-from .diagnostics import Diagnostic, Kind, Subject
-from .errors import XmlSyntaxError
-from .inputs import read_input
-from .location import Location
+from ..diagnostics import Diagnostic, Kind, Subject
+from ..errors import XmlSyntaxError
+from ..inputs import read_input
+from ..location import Location
+from . import recover
 from .locator import Alongside, Locator, located
-from .xmlstream import (
+from .stream import (
     SAFE,
     STREAM_FROM,
     ElementStream,
@@ -117,12 +117,12 @@ def read_xml(
     finally:
         alongside.join()  # (no thread is left running, whatever happens)
     # (where the root's start tag ends: a DOCTYPE comes before)
-    if strict is None and not xmlrecover.needed(data, _line_end(data, root.sourceline)):
+    if strict is None and not recover.needed(data, _line_end(data, root.sourceline)):
         return XmlDocument(root, alongside.result(), ())
     try:
-        recovered = xmlrecover.recover(data)
+        recovered = recover.recover(data)
         root = parse(recovered.data, path)
-    except (xmlrecover.Refused, XmlSyntaxError) as refusal:
+    except (recover.Refused, XmlSyntaxError) as refusal:
         if strict is not None:
             raise strict from refusal
         if isinstance(refusal, XmlSyntaxError):  # pragma: no cover - a rewrite lxml refuses
@@ -135,7 +135,7 @@ def read_xml(
             column=column if refusal.offset is not None else None,
         ) from refusal
     locator = Locator(data, path, starts=recovered.starts, tags=recovered.tags)
-    from .rules.xml import BY_ID
+    from ..rules.xml import BY_ID
 
     findings = []
     for recovery in recovered.recoveries:
@@ -157,7 +157,7 @@ def _streamed(data: bytes, path: str, origins: Sequence[Location] | None) -> Xml
     not clean XML, or urdfdom reads it otherwise)."""
     pieces = Pieces.cut(data) if origins is None else None
     if pieces is not None:
-        if xmlrecover.needed(data, pieces.head_end):
+        if recover.needed(data, pieces.head_end):
             return None
         try:
             return XmlDocument(pieces.start(path), pieces.locator, (), pieces)
@@ -167,7 +167,7 @@ def _streamed(data: bytes, path: str, origins: Sequence[Location] | None) -> Xml
         stream = ElementStream(data)
     except Unstreamable:
         return None  # for urdfdom's reading, or the strict parser's message
-    if xmlrecover.needed(data, _line_end(data, stream.root.sourceline)):
+    if recover.needed(data, _line_end(data, stream.root.sourceline)):
         return None
     return XmlDocument(stream.root, Locator(data, path, origins), (), stream)
 

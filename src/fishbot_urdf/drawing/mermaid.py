@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from .analysis import Analysis
+from ..analysis import Analysis
+from ..model import Robot, Vector3
 from .dot import JOINT_COLORS, Drawing, drawing, joint_facts, link_facts
-from .model import Robot, Vector3
 
 __all__ = ["to_mermaid"]
 

@@ -7,7 +7,7 @@ import re
 from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Generic, NamedTuple, TypeVar
 
-from .location import Location
+from ..location import Location
 
 if TYPE_CHECKING:
     from lxml import etree

@@ -15,11 +15,13 @@ from dataclasses import dataclass
 from typing import Any
 from urllib.parse import urlsplit
 
-from .errors import InputError, ToolError, ToolNotFoundError
+from ..errors import InputError, ToolError, ToolNotFoundError
 
 __all__ = ["ServeError", "authority", "control_id", "serve"]
 
-_log = logging.getLogger("fishbot_urdf.viewer")  # the viewer's one channel for what it refuses
+_log = logging.getLogger(
+    "fishbot_urdf.drawing.viewer"
+)  # the viewer's one channel for what it refuses
 
 _LOOPBACK = frozenset({"127.0.0.1", "localhost", "::1"})
 _EVERYWHERE = frozenset({"", "0.0.0.0", "::"})

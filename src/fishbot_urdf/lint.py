@@ -21,7 +21,7 @@ from .diagnostics import (
 )
 from .graph import Topology
 from .model import Robot
-from .parse import is_xacro_path, read
+from .parsing import is_xacro_path, read
 from .rules import Rule
 from .rules._readable import finite, readable
 from .rules.joints import REPORTS as JOINT_RULES

@@ -19,10 +19,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from .analysis import Analysis, of
-from .inputs import deadline
-from .model import Box, Cylinder, Geometry, Link, Material, Mesh, Origin, Robot, Sphere
-from .spatial import rpy_matrix
+from ..analysis import Analysis, of
+from ..inputs import deadline
+from ..model import Box, Cylinder, Geometry, Link, Material, Mesh, Origin, Robot, Sphere
+from ..spatial import rpy_matrix
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
@@ -102,7 +102,7 @@ def build_scene(
     """
     import numpy as np
 
-    from .kinematics import Kinematics
+    from ..kinematics import Kinematics
 
     analysis = of(robot)
     kin = Kinematics(analysis)
@@ -202,8 +202,8 @@ class _Loader:
         return None
 
     def _mesh(self, np: Any, link: Link, mesh: Mesh, scale: tuple[float, ...]) -> Any:
-        from .errors import FishbotUrdfError, LimitError
-        from .packages import PackageNotFoundError, resolve_package_uri
+        from ..errors import FishbotUrdfError, LimitError
+        from ..packages import PackageNotFoundError, resolve_package_uri
 
         shown = f"link {link.name!r}: mesh {mesh.filename!r}"
         near = self.robot if not self.robot.startswith("<") else None
@@ -250,8 +250,8 @@ class _Loader:
 
 def _read_mesh(np: Any, file: Path) -> Any:
     """Triangles (T, 3, 3) of an STL or OBJ file (others through trimesh, if installed)."""
-    from .errors import ShapeError
-    from .meshfile import mesh_triangles
+    from ..errors import ShapeError
+    from ..meshfile import mesh_triangles
 
     kind = file.suffix.lower()
     if kind in (".stl", ".obj"):
@@ -278,9 +278,9 @@ def _bounds_of(np: Any, file: Path) -> tuple[Any, Any] | None:
     """The box around a mesh file's vertices without reading it as a mesh: those an STL or
     OBJ file's facts found, or a COLLADA file's position arrays (its nodes' transforms left
     out); None when no finite box is found."""
-    from .errors import FishbotUrdfError, LimitError
-    from .inputs import read_input
-    from .meshfile import mesh_bounds
+    from ..errors import FishbotUrdfError, LimitError
+    from ..inputs import read_input
+    from ..meshfile import mesh_bounds
 
     if file.suffix.lower() in (".stl", ".obj"):
         box = mesh_bounds(file)

@@ -5,7 +5,7 @@ moving joint within its limits (mimic joints follow), reloaded when the robot's 
 Built on viser (``pip install 'fishbot-urdf[view]'``), a maintained web 3D viewer that
 serves its page and talks to it over a websocket. `Viewer` owns one viser server; the
 library never prints: the caller shows the URL, and what is refused from the page is logged
-(a warning of the ``fishbot_urdf.viewer`` logger, one line each).
+(a warning of the ``fishbot_urdf.drawing.viewer`` logger, one line each).
 
 Only the viewer's own page may talk to it: an HTTP request or websocket whose ``Host``, or
 ``Origin`` when it has one, is not the address served on gets 403 (another site open in the
@@ -25,9 +25,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from ..errors import ArgumentError, UnknownNameError
+from ..inputs import max_seconds, time_limit
 from ._serving import ServeError, authority, control_id, serve, shown
-from .errors import ArgumentError, UnknownNameError
-from .inputs import max_seconds, time_limit
 
 __all__ = ["ServeError", "Viewer"]
 
@@ -120,8 +120,8 @@ class Viewer:
     def _reload(self) -> None:
         import numpy as np
 
-        from .kinematics import Kinematics
-        from .model import JointType
+        from ..kinematics import Kinematics
+        from ..model import JointType
         from .scene import build_scene
 
         with self._lock, time_limit(max_seconds()):
@@ -355,7 +355,7 @@ def _node(link: str) -> str:
 
 def _range(analysis: Any, variable: str) -> tuple[float, float]:
     """A slider's range: the joint's limits, else a turn each way (or a metre, sliding)."""
-    from .model import JointType
+    from ..model import JointType
 
     joint = analysis.joints.get(variable)
     if (
@@ -382,7 +382,7 @@ def _frame_size(np: Any, scene: Any) -> float:
 
 def _wxyz(m: Any) -> tuple[float, float, float, float]:
     """A rotation matrix as viser's unit quaternion (w, x, y, z)."""
-    from .spatial import quaternion
+    from ..spatial import quaternion
 
     x, y, z, w = quaternion(m)
     return (w, x, y, z)

@@ -12,7 +12,7 @@ from typing import Any
 
 from lxml import etree
 
-from .errors import XmlSyntaxError
+from ..errors import XmlSyntaxError
 from .locator import MARKUP, Alongside, Locator
 
 # No entity expansion, no DTD loading, no network, libxml2's size and depth guards on.
@@ -59,13 +59,13 @@ def parse(data: bytes, path: str, options: dict[str, Any] = READING) -> etree._E
 
 STREAM_FROM = 16 * 2**20
 """Files at least this big (bytes) are read a part at a time (see
-`fishbot_urdf.xmlsource.read_xml`): the tree lxml builds takes about 13 times the file's
+`fishbot_urdf.xml.source.read_xml`): the tree lxml builds takes about 13 times the file's
 size."""
 
 
 class Unstreamable(Exception):
     """A file read a part at a time turned out not to be clean XML past its start: read it
-    whole (`fishbot_urdf.xmlsource.read_xml` with ``stream=False``) to learn what urdfdom
+    whole (`fishbot_urdf.xml.source.read_xml` with ``stream=False``) to learn what urdfdom
     makes of it."""
 
 

@@ -16,8 +16,8 @@ from ..errors import RobotError
 from ..extensions import Reference
 from ..model import Location, Robot
 from ..rules.xacro import unknown_args, xacro_warning
-from ..xmlsource import STRING_PATH, XmlDocument, read_bytes, read_xml
-from ..xmlstream import Unstreamable
+from ..xml.source import STRING_PATH, XmlDocument, read_bytes, read_xml
+from ..xml.stream import Unstreamable
 from ._reader import Reader
 from .values import to_double
 
@@ -74,7 +74,7 @@ def read(
     Raises:
         InputError: The file cannot be read.
         XmlSyntaxError: The file is not XML that urdfdom reads (see
-            :func:`fishbot_urdf.xmlsource.read_xml`).
+            :func:`fishbot_urdf.xml.source.read_xml`).
         XacroError: The xacro file cannot be expanded.
         PackageNotFoundError: The xacro file names a package that is not found.
     """
@@ -84,7 +84,7 @@ def read(
     if isinstance(source, bytes):
         data, name = source, path or STRING_PATH
     elif is_xacro_path(source):
-        from ..expand import declared_args, expand
+        from ..expansion import declared_args, expand
 
         expansion = expand(source, args=args, packages=packages)
         # A file name that is no UTF-8 (the banner names the file) is no XML text either.

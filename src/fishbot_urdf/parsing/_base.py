@@ -6,10 +6,10 @@ from lxml import etree
 
 from ..diagnostics import Diagnostic, Kind, Severity, Subject
 from ..extensions import Reference
-from ..locator import Locator
 from ..model import ZERO3, Location, Vector3
 from ..rules import Rule
 from ..rules.reading import BAD_NUMBER, BAD_VECTOR, MISSING_ATTRIBUTE, UNKNOWN_ELEMENT
+from ..xml.locator import Locator
 from .values import to_double, to_doubles
 
 Owner = Subject | str  # what a message names: a link, a joint, ... (or just "link")

@@ -14,10 +14,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from .analysis import Analysis, of
-from .errors import ArgumentError, ToolError, ToolNotFoundError, ToolTimeoutError
-from .graph import to_networkx
-from .model import Joint, JointType, Link, Robot, Vector3
+from ..analysis import Analysis, of
+from ..errors import ArgumentError, ToolError, ToolNotFoundError, ToolTimeoutError
+from ..graph import to_networkx
+from ..model import Joint, JointType, Link, Robot, Vector3
 
 __all__ = ["FORMATS", "Drawing", "draw", "drawing", "pipe_dot", "render", "to_dot"]
 
@@ -261,7 +261,7 @@ def pipe_dot(text: str, format: str, *, timeout: float | None = None) -> bytes:
     import shutil
     import subprocess
 
-    from .inputs import max_seconds
+    from ..inputs import max_seconds
 
     if timeout is None:
         timeout = max_seconds()
@@ -363,7 +363,7 @@ def render(
         ToolError: `dot` failed.
         InputError: The file cannot be written.
     """
-    from .output import write_atomic
+    from ..output import write_atomic
 
     chosen = format or Path(path).suffix.lstrip(".")
     analysis = of(robot)

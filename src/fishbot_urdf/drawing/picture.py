@@ -18,8 +18,8 @@ import struct
 import zlib
 from typing import TYPE_CHECKING, Any
 
-from .errors import ArgumentError, LimitError
-from .inputs import deadline
+from ..errors import ArgumentError, LimitError
+from ..inputs import deadline
 
 if TYPE_CHECKING:
     from .scene import Scene
