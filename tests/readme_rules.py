@@ -12,9 +12,9 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
+from fishbot_urdf.catalog import all_rules
+from fishbot_urdf.catalog.docs import with_rule_table
 from fishbot_urdf.errors import FishbotUrdfError
-from fishbot_urdf.rules import all_rules
-from fishbot_urdf.rules.docs import with_rule_table
 
 
 def main(argv: Sequence[str] | None = None) -> int:

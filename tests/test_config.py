@@ -13,9 +13,9 @@ from click.testing import CliRunner
 from conftest import DATA
 
 from fishbot_urdf import Config, ConfigError, find_config, load_config
+from fishbot_urdf.catalog import Family, all_rules, ids
 from fishbot_urdf.cli import cli
 from fishbot_urdf.diagnostics import Severity
-from fishbot_urdf.rules import Family, all_rules, ids
 
 # An arm with one finding in each of three families: urdf (a warning), physics and
 # structure (errors).

@@ -21,7 +21,7 @@ from fishbot_urdf import (
     Robot,
     Visual,
 )
-from fishbot_urdf.rules import Family, get
+from fishbot_urdf.catalog import Family, get
 
 
 def _rules(*joints: Joint, links: tuple[Link, ...] = ()) -> list[tuple[str, str]]:

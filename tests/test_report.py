@@ -16,11 +16,11 @@ from conftest import DATA, FISHBOT
 from test_config import ARM
 
 from fishbot_urdf import Config
+from fishbot_urdf.catalog import all_rules
 from fishbot_urdf.cli import cli
 from fishbot_urdf.diagnostics import Severity, diagnostic
 from fishbot_urdf.lint import check_file
 from fishbot_urdf.report import SARIF_SCHEMA, github_annotations
-from fishbot_urdf.rules import all_rules
 
 SCHEMA = json.loads((DATA / "schemas" / "sarif-schema-2.1.0.json").read_text())
 LEVELS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.NOTE: "note"}

@@ -19,10 +19,8 @@ from click.testing import CliRunner, Result
 from conftest import ROOT, box_stl, fine_stl, require_tool, run_check_urdf
 
 import fishbot_urdf
-from fishbot_urdf.cli import cli
-from fishbot_urdf.errors import ArgumentError, FishbotUrdfError
-from fishbot_urdf.rules import Family, Rule, all_rules, get, ids
-from fishbot_urdf.rules.docs import (
+from fishbot_urdf.catalog import Family, Rule, all_rules, get, ids
+from fishbot_urdf.catalog.docs import (
     README_BEGIN,
     README_END,
     explanation,
@@ -30,6 +28,8 @@ from fishbot_urdf.rules.docs import (
     table,
     with_rule_table,
 )
+from fishbot_urdf.cli import cli
+from fishbot_urdf.errors import ArgumentError, FishbotUrdfError
 
 RULES = all_rules()
 SCRIPT = Path(__file__).resolve().parent / "readme_rules.py"

@@ -17,10 +17,10 @@ from hypothesis import strategies as st
 from xml_survey import CASES
 
 from fishbot_urdf import XmlSyntaxError, check_file
+from fishbot_urdf.catalog.xml import BY_ID as RULES
 from fishbot_urdf.cli import cli
 from fishbot_urdf.diagnostics import Severity
 from fishbot_urdf.parsing import read
-from fishbot_urdf.rules.xml import BY_ID as RULES
 from fishbot_urdf.xml import recover as xmlrecover
 from fishbot_urdf.xml.recover import UNDECLARED, needed
 

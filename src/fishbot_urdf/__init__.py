@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from .analysis import Analysis, Body, analyse
+    from .catalog import Rule
     from .config import Config, find_config, load_config
     from .diagnostics import Diagnostic, Kind, Severity, Subject
     from .drawing.dot import draw, render, to_dot
@@ -88,7 +89,6 @@ if TYPE_CHECKING:
     from .packages import PackageFinder, PackageNotFoundError, find_package, resolve_package_uri
     from .parsing import Parsed, load, parse, read
     from .report import FileReport, github_annotations, json_report, sarif_report
-    from .rules import Rule
     from .spatial import Pose
     from .write import add_inertials, inertial_xml, to_urdf
 
@@ -238,7 +238,7 @@ _WHERE = {
     "Pose": "spatial",
     "Robot": "model",
     "RobotError": "errors",
-    "Rule": "rules",
+    "Rule": "catalog",
     "SafetyController": "model",
     "Severity": "diagnostics",
     "ShapeError": "errors",

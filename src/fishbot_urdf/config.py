@@ -90,7 +90,7 @@ class Config:
     enabled: frozenset[str] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        from .rules import all_rules
+        from .catalog import all_rules
 
         layers = (Selection(self.select, self.extend_select, self.ignore), *self.overrides)
         for layer in layers:
@@ -325,7 +325,7 @@ def _wrong(path: str, key: str, wanted: str) -> ConfigError:
 
 
 def _known(name: str, key: str, path: str | None, *, allow_groups: bool) -> None:
-    from .rules import Family, ids
+    from .catalog import Family, ids
 
     rules = ids()
     families = {f.value for f in Family}
@@ -347,7 +347,7 @@ def _known(name: str, key: str, path: str | None, *, allow_groups: bool) -> None
 
 
 def _changeable(name: str, key: str, path: str | None) -> None:
-    from .rules import all_rules
+    from .catalog import all_rules
 
     if any(rule.id == name and rule.fatal for rule in all_rules()):
         raise ConfigError(
@@ -359,7 +359,7 @@ def _changeable(name: str, key: str, path: str | None) -> None:
 
 def _resolve(layers: Iterable[Selection]) -> set[str]:
     """The rules the layers choose, the more specific name winning within a layer."""
-    from .rules import all_rules
+    from .catalog import all_rules
 
     rules = all_rules()
     enabled = {rule.id for rule in rules}

@@ -9,6 +9,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .analysis import Analysis, analyse, of
+from .catalog import Rule
+from .catalog.reading import BAD_NUMBER, MISSING_ATTRIBUTE, ROBOT_NAME
 from .config import Config
 from .diagnostics import (
     FOLLOWS,
@@ -22,7 +24,6 @@ from .diagnostics import (
 from .graph import Topology
 from .model import Robot
 from .parsing import is_xacro_path, read
-from .rules import Rule
 from .rules._readable import finite, readable
 from .rules.joints import REPORTS as JOINT_RULES
 from .rules.joints import joints
@@ -30,7 +31,6 @@ from .rules.meshes import REPORTS as MESH_RULES
 from .rules.meshes import meshes
 from .rules.physics import GROUND_TOLERANCE, physics
 from .rules.physics import REPORTS as PHYSICS_RULES
-from .rules.reading import BAD_NUMBER, MISSING_ATTRIBUTE, ROBOT_NAME
 from .rules.references import REPORTS as REFERENCE_RULES
 from .rules.references import references
 from .rules.structure import structure

@@ -90,8 +90,8 @@ def sarif_report(files: Sequence[FileReport], *, version: str) -> dict[str, Any]
     inside the current folder is a URI relative to ``%SRCROOT%`` (that folder: the
     checkout, in CI), any other an absolute file: URI.
     """
-    from .rules import all_rules
-    from .rules.docs import explanation, markdown_explanation
+    from .catalog import all_rules
+    from .catalog.docs import explanation, markdown_explanation
 
     rules = all_rules()
     index = {rule.id: i for i, rule in enumerate(rules)}

@@ -189,7 +189,7 @@ def apply_suppressions(
     kept list as ``unused-suppression`` findings, which a ``fishbot: ignore
     [unused-suppression]`` comment covering them silences in turn.
     """
-    from .rules.setup import UNUSED_SUPPRESSION
+    from .catalog.setup import UNUSED_SUPPRESSION
 
     findings = list(findings)
     if not marks:
@@ -219,7 +219,7 @@ class _Index:
     """
 
     def __init__(self, marks: Sequence[Suppression]) -> None:
-        from .rules import all_rules
+        from .catalog import all_rules
 
         self.fatal = {rule.id for rule in all_rules() if rule.fatal}
         self.files: dict[str, str] = {}
@@ -332,8 +332,8 @@ def _unused(
 ) -> list[Diagnostic]:
     """The findings about faulty suppressions; with ``lint``, only those naming
     unused-suppression that silence nothing, else all the others."""
-    from .rules import Family, all_rules, ids
-    from .rules.setup import UNUSED_SUPPRESSION
+    from .catalog import Family, all_rules, ids
+    from .catalog.setup import UNUSED_SUPPRESSION
 
     lint_id = UNUSED_SUPPRESSION.id
     remove = "remove it, or move it right before the element the finding is about"
@@ -414,7 +414,7 @@ _SHOWN_RULES = 8  # a comment naming more is named by its first rules (and how m
 
 
 def _finding(mark: Suppression, message: str, hint: str) -> Diagnostic:
-    from .rules.setup import UNUSED_SUPPRESSION
+    from .catalog.setup import UNUSED_SUPPRESSION
 
     # Bounded: a comment naming thousands of rules has a finding for each of them.
     names = ", ".join(mark.rules[:_SHOWN_RULES])

@@ -311,7 +311,7 @@ def package_option() -> Callable[[Wrapped], Wrapped]:
 def posing_errors(diagnostics: Iterable[Diagnostic]) -> list[Diagnostic]:
     """The errors that leave a robot's shape or tree in doubt (reading, URDF and structure
     rules): `tf` and `render` stop on them; physics and mesh findings are `check`'s."""
-    from ..rules import Family, all_rules
+    from ..catalog import Family, all_rules
 
     shaping = {Family.XML, Family.URDF, Family.STRUCTURE, Family.XACRO}
     ids = {rule.id for rule in all_rules() if rule.family in shaping}

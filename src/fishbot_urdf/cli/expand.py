@@ -76,8 +76,8 @@ def expand(
     from ..diagnostics import Severity
     from ..expansion import declared_args
     from ..expansion import expand as run
+    from ..expansion._findings import unknown_args, xacro_warning
     from ..output import write_atomic
-    from ..rules.xacro import unknown_args, xacro_warning
 
     values = xacro_args(args)
     packages = packages_option(package_items)

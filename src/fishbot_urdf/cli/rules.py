@@ -34,9 +34,9 @@ def rules(name: str | None, fmt: str) -> None:
       fishbot rules physics
       fishbot rules --format json
     """
+    from ..catalog import Family, Rule, all_rules, get
     from ..diagnostics import did_you_mean
     from ..errors import UnknownNameError
-    from ..rules import Family, Rule, all_rules, get
 
     families = {f.value for f in Family}
     if name is not None and name not in families:
@@ -59,11 +59,11 @@ def rules(name: str | None, fmt: str) -> None:
         data = [r.to_dict() for r in chosen]
         text = json.dumps(data[0] if one else data, indent=2) + "\n"
     elif fmt == "markdown":
-        from ..rules.docs import markdown_explanation, markdown_table
+        from ..catalog.docs import markdown_explanation, markdown_table
 
         text = markdown_explanation(chosen[0]) if one else markdown_table(chosen)
     else:
-        from ..rules.docs import explanation, table
+        from ..catalog.docs import explanation, table
 
         text = explanation(chosen[0]) if one else table(chosen)
     to_stdout(text.encode("utf-8", "surrogateescape"))

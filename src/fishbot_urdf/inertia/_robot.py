@@ -8,12 +8,12 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..analysis import Analysis, of
+from ..catalog.setup import FILL_SKIPPED
 from ..diagnostics import Diagnostic, Kind, Subject
 from ..errors import ArgumentError, FishbotUrdfError, ShapeError, UnknownNameError
 from ..graph import root
 from ..kinematics import link_poses
 from ..model import Inertial, Link, Mesh, Origin, Robot
-from ..rules.setup import FILL_SKIPPED
 from ..spatial import Pose
 from ._solids import MassProperties, combine, exact_sum, geometry_inertia, plausible_mesh, volume
 

@@ -13,9 +13,9 @@ from pathlib import Path
 
 from ..diagnostics import Diagnostic
 from ..errors import RobotError
+from ..expansion._findings import unknown_args, xacro_warning
 from ..extensions import Reference
 from ..model import Location, Robot
-from ..rules.xacro import unknown_args, xacro_warning
 from ..xml.source import STRING_PATH, XmlDocument, read_bytes, read_xml
 from ..xml.stream import Unstreamable
 from ._reader import Reader

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 from lxml import etree
 
+from ..catalog import Rule
+from ..catalog.reading import BAD_NUMBER, BAD_VECTOR, MISSING_ATTRIBUTE, UNKNOWN_ELEMENT
 from ..diagnostics import Diagnostic, Kind, Severity, Subject
 from ..extensions import Reference
 from ..model import ZERO3, Location, Vector3
-from ..rules import Rule
-from ..rules.reading import BAD_NUMBER, BAD_VECTOR, MISSING_ATTRIBUTE, UNKNOWN_ELEMENT
 from ..xml.locator import Locator
 from .values import to_double, to_doubles
 

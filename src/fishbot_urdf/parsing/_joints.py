@@ -6,6 +6,7 @@ from collections.abc import Callable
 
 from lxml import etree
 
+from ..catalog.reading import DUPLICATE_ELEMENT, JOINT_TYPE, MISSING_ATTRIBUTE, MISSING_ELEMENT
 from ..diagnostics import Kind, Severity, subject
 from ..model import (
     DEFAULT_AXIS,
@@ -21,7 +22,6 @@ from ..model import (
     SafetyController,
     builder,
 )
-from ..rules.reading import DUPLICATE_ELEMENT, JOINT_TYPE, MISSING_ATTRIBUTE, MISSING_ELEMENT
 from ._base import Owner
 from ._links import LinkReader
 from .values import plain_numbers

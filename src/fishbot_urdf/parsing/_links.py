@@ -4,6 +4,13 @@ from __future__ import annotations
 
 from lxml import etree
 
+from ..catalog.reading import (
+    BAD_COLOR,
+    COLLISION_MATERIAL,
+    DUPLICATE_ELEMENT,
+    MISSING_ELEMENT,
+    UNKNOWN_GEOMETRY,
+)
 from ..diagnostics import Kind, Subject, subject
 from ..model import (
     ZERO3,
@@ -21,13 +28,6 @@ from ..model import (
     Sphere,
     Visual,
     builder,
-)
-from ..rules.reading import (
-    BAD_COLOR,
-    COLLISION_MATERIAL,
-    DUPLICATE_ELEMENT,
-    MISSING_ELEMENT,
-    UNKNOWN_GEOMETRY,
 )
 from ._base import Owner, ReaderBase, xml_text
 from .values import plain_numbers

@@ -7,11 +7,11 @@ from collections.abc import Iterable
 
 from lxml import etree
 
+from ..catalog.reading import NO_ROBOT, ROBOT_NAME, ROBOT_VERSION
 from ..diagnostics import Kind, Subject
 from ..extensions import TAGS, collect
 from ..inputs import deadline
 from ..model import Joint, Link, Material, Robot
-from ..rules.reading import NO_ROBOT, ROBOT_NAME, ROBOT_VERSION
 from ._base import xml_text
 from ._joints import JointReader
 

@@ -32,6 +32,9 @@ import math
 from numbers import Real
 from typing import TypeVar
 
+from ..catalog import Rule
+from ..catalog.reading import BAD_COLOR, BAD_NUMBER, MISSING_ATTRIBUTE, ROBOT_NAME, ROBOT_VERSION
+from ..catalog.xml import XML_CONTROL_CHAR
 from ..diagnostics import Diagnostic, Kind, Severity, Subject
 from ..errors import FieldTypeError
 from ..model import (
@@ -57,10 +60,7 @@ from ..model import (
     Visual,
 )
 from ..parsing._reader import _VERSION  # the one test of a version, the reader's
-from . import Rule
 from ._plain import plain
-from .reading import BAD_COLOR, BAD_NUMBER, MISSING_ATTRIBUTE, ROBOT_NAME, ROBOT_VERSION
-from .xml import XML_CONTROL_CHAR
 
 __all__ = ["values"]
 

@@ -135,7 +135,7 @@ def read_xml(
             column=column if refusal.offset is not None else None,
         ) from refusal
     locator = Locator(data, path, starts=recovered.starts, tags=recovered.tags)
-    from ..rules.xml import BY_ID
+    from ..catalog.xml import BY_ID
 
     findings = []
     for recovery in recovered.recoveries:

@@ -10,12 +10,8 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from ...analysis import Analysis
-from ...diagnostics import Diagnostic
-from ...model import Inertia, Vector3
-from ...spatial import eigenvalues
-from .. import Rule
-from ..reading import BAD_NUMBER, NEGATIVE_MASS
-from ._common import (
+from ...catalog import Rule
+from ...catalog.physics import (
     ABOVE_GROUND,
     BELOW_GROUND,
     INERTIA_MISMATCH,
@@ -24,6 +20,10 @@ from ._common import (
     MASSLESS_LINK,
     MISSING_INERTIAL,
 )
+from ...catalog.reading import BAD_NUMBER, NEGATIVE_MASS
+from ...diagnostics import Diagnostic
+from ...model import Inertia, Vector3
+from ...spatial import eigenvalues
 from ._ground import GROUND_TOLERANCE, ground
 from ._mass import body_findings, finite
 from ._shape import MISMATCH, mismatch

@@ -6,10 +6,11 @@ import math
 from collections.abc import Iterator
 
 from ...analysis import Analysis
+from ...catalog.physics import ABOVE_GROUND, BELOW_GROUND
 from ...diagnostics import Diagnostic
 from ...model import Box, Collision, Cylinder, JointType, Link, Sphere
 from ...spatial import Pose
-from ._common import ABOVE_GROUND, BELOW_GROUND, link_subject
+from ._common import link_subject
 
 GROUND_TOLERANCE = 0.002
 """How far (m) the lowest collision point may be from the ground before it is reported."""

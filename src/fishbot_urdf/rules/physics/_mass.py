@@ -6,25 +6,19 @@ import math
 from collections.abc import Iterator, Mapping
 
 from ...analysis import Body
-from ...diagnostics import Diagnostic
-from ...inertia import combine
-from ...model import Inertial, Joint, Link, Vector3
-from ...spatial import Pose
-from ..reading import BAD_NUMBER, NEGATIVE_MASS
-from ._common import (
+from ...catalog.physics import (
     INERTIA_NOT_POSITIVE,
     INERTIA_TRIANGLE,
     MASSLESS_LINK,
     MISSING_INERTIAL,
-    TINY,
     W,
-    link_subject,
-    moment_text,
-    moments_text,
-    physical,
-    place,
-    tolerance,
 )
+from ...catalog.reading import BAD_NUMBER, NEGATIVE_MASS
+from ...diagnostics import Diagnostic
+from ...inertia import combine
+from ...model import Inertial, Joint, Link, Vector3
+from ...spatial import Pose
+from ._common import TINY, link_subject, moment_text, moments_text, physical, place, tolerance
 
 
 def finite(inertial: Inertial) -> bool:

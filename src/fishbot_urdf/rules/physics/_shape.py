@@ -7,6 +7,7 @@ from itertools import chain
 from operator import sub
 from typing import Any
 
+from ...catalog.physics import INERTIA_MISMATCH
 from ...diagnostics import Diagnostic
 from ...inertia import solid_moments
 from ...model import Box, Cylinder, Link, Origin, Sphere, Vector3
@@ -19,7 +20,7 @@ from ...spatial import (
     rpy_matrix,
     transpose,
 )
-from ._common import INERTIA_MISMATCH, TINY, link_subject, place, short, tolerance
+from ._common import TINY, link_subject, place, short, tolerance
 
 MISMATCH = 0.10
 """How far (relative to the largest moment) an inertia may be from its collision shape's."""

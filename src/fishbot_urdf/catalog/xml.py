@@ -10,7 +10,7 @@ from collections.abc import Mapping
 from types import MappingProxyType
 
 from ..diagnostics import Severity
-from . import Consumer, Family, Rule
+from ._rule import Consumer, Family, Rule
 
 _STRICT = (Consumer.XACRO, Consumer.XML_TOOLS)
 W = Severity.WARNING

@@ -6,7 +6,7 @@ These are data only; the reader (``fishbot_urdf.parse``) reports them as it read
 from __future__ import annotations
 
 from ..diagnostics import Severity
-from . import Consumer, Family, Rule
+from ._rule import Consumer, Family, Rule
 
 _SIMULATORS = (Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE, Consumer.PYBULLET)
 _ALL = (Consumer.URDFDOM, *_SIMULATORS)

@@ -7,7 +7,7 @@ These are data only; errors of the setup stop a command with exit status 2.
 from __future__ import annotations
 
 from ..diagnostics import Severity
-from . import Consumer, Family, Rule
+from ._rule import Consumer, Family, Rule
 
 E, W = Severity.ERROR, Severity.WARNING
 

@@ -6,10 +6,8 @@ reports xacro's warnings.
 
 from __future__ import annotations
 
-from collections.abc import Collection, Iterable, Iterator
-
-from ..diagnostics import Diagnostic, Kind, Severity, Subject, closest, listing
-from . import Consumer, Family, Rule
+from ..diagnostics import Severity
+from ._rule import Consumer, Family, Rule
 
 _XACRO = (Consumer.XACRO,)
 E, W = Severity.ERROR, Severity.WARNING
@@ -305,33 +303,3 @@ XACRO_UNSAFE = Rule(
     language="xacro",
     fatal=True,
 )
-
-
-def unknown_args(
-    given: Iterable[str], declared: Collection[str], path: str
-) -> Iterator[Diagnostic]:
-    """A finding for each argument given that no file declares, with the closest name."""
-    for name in given:
-        if name in declared:
-            continue
-        close = closest(name, declared)
-        if close:
-            hint = f"did you mean {close!r}?"
-        elif declared:
-            hint = f"declared: {listing(declared)}"
-        else:
-            hint = "the files declare no arguments"
-        yield XACRO_UNKNOWN_ARG.report(
-            f"argument {name!r} is given, but no <xacro:arg> declares it and nothing reads it",
-            None,
-            path=path,
-            subject=Subject(Kind.FILE, path),
-            hint=hint,
-        )
-
-
-def xacro_warning(message: str, path: str) -> Diagnostic:
-    """A warning xacro gave while expanding ``path``, as a finding about the file."""
-    return XACRO_WARNING.report(
-        message.removeprefix("warning: ").strip(), None, path=path, subject=Subject(Kind.FILE, path)
-    )

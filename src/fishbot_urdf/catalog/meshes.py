@@ -1,0 +1,133 @@
+"""The rules on mesh files.
+
+Data only: the checks that report them are in `fishbot_urdf.rules`.
+"""
+
+from __future__ import annotations
+
+from ..diagnostics import Severity
+from ._rule import Consumer, Family, Rule
+
+E, W = Severity.ERROR, Severity.WARNING
+_VIEWERS = (Consumer.URDFDOM, Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE, Consumer.PYBULLET)
+_ONE_BOX = """\
+<robot name="fishbot">
+  <link name="base_link">
+    <visual>
+      <geometry><mesh filename="{name}"/></geometry>
+    </visual>
+  </link>
+</robot>
+"""
+_COLLIDING = """\
+<robot name="fishbot">
+  <link name="base_link">
+    <collision>
+      <geometry><mesh filename="{name}"/></geometry>
+    </collision>
+    <inertial><mass value="1"/>
+      <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+</robot>
+"""
+# The examples' folder holds meshes/base_link.stl (a box in metres) and .step (empty),
+# base_link_mm.stl (a box 200 x 200 x 100 units), base_link_cut.stl (a binary STL cut
+# short) and base_link_fine.stl (30 000 triangles).
+_FOUND = "meshes/base_link.stl"
+MESH_NOT_FOUND = Rule(
+    "mesh-not-found",
+    E,
+    Family.MESHES,
+    summary="A <mesh filename> names a file that is not there.",
+    explanation="check_urdf never opens meshes, so a wrong mesh name passes it; RViz then shows "
+    "nothing for the part and Gazebo, MuJoCo and PyBullet refuse the robot. `package://` names "
+    "are looked up as for xacro's `$(find)`, relative names beside the robot file; a package "
+    "that is not found makes one warning naming the places searched (`--package NAME=PATH` "
+    "tells where it is). Among robots shipped in PyPI packages about 7% fail it: packages that "
+    "ship a robot without its meshes (fetched later, or left behind when it was copied), "
+    "absolute paths of the author's machine, and a package whose folder is not its name.",
+    bad=_ONE_BOX.format(name="meshes/base.stl"),
+    good=_ONE_BOX.format(name=_FOUND),
+    consumers=_VIEWERS,
+)
+MESH_CASE = Rule(
+    "mesh-case",
+    E,
+    Family.MESHES,
+    summary="A mesh file name differs from the file's only in upper and lower case.",
+    explanation="macOS and Windows find `Base_Link.STL` when the file is `base_link.stl`, Linux "
+    "does not: the robot works on the laptop it was written on and loses its meshes on the "
+    "robot's computer and in CI. Write the name exactly as the file is named.",
+    bad=_ONE_BOX.format(name="meshes/Base_Link.stl"),
+    good=_ONE_BOX.format(name=_FOUND),
+    consumers=_VIEWERS,
+)
+MESH_URI = Rule(
+    "mesh-uri",
+    E,
+    Family.MESHES,
+    summary="A mesh file name is a malformed URI (package:///, package:/, file://relative, "
+    "backslashes).",
+    explanation="`package://NAME/path` names a file in ROS package NAME, so `package:///x` names "
+    "a package with no name and ROS's resource retriever fails on it. `file://` must be "
+    "followed by an absolute path, and backslashes only work on Windows. Write "
+    "`package://my_robot/meshes/base.stl`, a `file:///` path, or a path relative to the robot "
+    "file with forward slashes.",
+    bad=_ONE_BOX.format(name="package:///meshes/base_link.stl"),
+    good=_ONE_BOX.format(name=_FOUND),
+    consumers=_VIEWERS,
+)
+MESH_FORMAT = Rule(
+    "mesh-format",
+    W,
+    Family.MESHES,
+    summary="A mesh is in a format most robot programs cannot load (not STL, OBJ or COLLADA).",
+    explanation="RViz loads many formats, but Gazebo Classic loads STL, OBJ and COLLADA (.dae) "
+    "only, MuJoCo and PyBullet STL and OBJ, and CAD formats (STEP, IGES) or files without an "
+    "extension load nowhere. Export the mesh as STL or OBJ (COLLADA keeps colours for RViz and "
+    "Gazebo).",
+    bad=_ONE_BOX.format(name="meshes/base_link.step"),
+    good=_ONE_BOX.format(name=_FOUND),
+    consumers=(Consumer.GAZEBO, Consumer.MUJOCO, Consumer.PYBULLET),
+)
+MESH_INVALID = Rule(
+    "mesh-invalid",
+    W,
+    Family.MESHES,
+    summary="An STL or OBJ mesh file cannot be read: cut short, or bad numbers.",
+    explanation="The file is there, but a binary STL is shorter or "
+    "longer than its header says (a copy cut short, a file written as text), a number is not "
+    "one or is not finite (nan, inf), or an OBJ face names a vertex that does not exist. RViz "
+    "and Gazebo show nothing or stop loading, MuJoCo refuses the model, and `fishbot render` "
+    "draws the mesh as its box. The message says what is wrong; export the mesh again.",
+    bad=_ONE_BOX.format(name="meshes/base_link_cut.stl"),
+    good=_ONE_BOX.format(name=_FOUND),
+    consumers=_VIEWERS,
+)
+MESH_UNITS = Rule(
+    "mesh-units",
+    W,
+    Family.MESHES,
+    summary="A mesh's size says it is in millimetres (an STL or OBJ file read as metres).",
+    explanation="URDF lengths are metres, and STL and OBJ files carry no unit, so a part "
+    "exported from CAD in millimetres comes in a thousand times too big: RViz shows a giant, "
+    "and `fishbot inertia --fill` makes a link of tonnes. The mesh is judged by plain sense (a "
+    "part more than 5 m across) and against the link's other shapes and its inertia. Add "
+    '`scale="0.001 0.001 0.001"` to the `<mesh>`, or export in metres.',
+    bad=_ONE_BOX.format(name="meshes/base_link_mm.stl"),
+    good=_ONE_BOX.format(name=_FOUND),
+    consumers=_VIEWERS,
+)
+MESH_FACES = Rule(
+    "mesh-faces",
+    Severity.NOTE,
+    Family.MESHES,
+    summary="A collision mesh has so many faces that simulators slow down.",
+    explanation="Physics engines test collision meshes triangle by triangle, and a mesh of tens "
+    "of thousands of faces (a visual mesh reused for collision, often) makes every step slow; "
+    "MuJoCo and PyBullet replace it with its convex hull anyway. Simplify it (a few hundred "
+    "faces, or its convex hull) or use boxes, cylinders and spheres for collision.",
+    bad=_COLLIDING.format(name="meshes/base_link_fine.stl"),
+    good=_COLLIDING.format(name=_FOUND),
+    consumers=(Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE, Consumer.PYBULLET),
+)

@@ -1,0 +1,41 @@
+"""The findings an expansion gives besides its errors: arguments nobody reads, and xacro's
+own warnings."""
+
+from __future__ import annotations
+
+from collections.abc import Collection, Iterable, Iterator
+
+from ..catalog.xacro import XACRO_UNKNOWN_ARG, XACRO_WARNING
+from ..diagnostics import Diagnostic, Kind, Subject, closest, listing
+
+__all__ = ["unknown_args", "xacro_warning"]
+
+
+def unknown_args(
+    given: Iterable[str], declared: Collection[str], path: str
+) -> Iterator[Diagnostic]:
+    """A finding for each argument given that no file declares, with the closest name."""
+    for name in given:
+        if name in declared:
+            continue
+        close = closest(name, declared)
+        if close:
+            hint = f"did you mean {close!r}?"
+        elif declared:
+            hint = f"declared: {listing(declared)}"
+        else:
+            hint = "the files declare no arguments"
+        yield XACRO_UNKNOWN_ARG.report(
+            f"argument {name!r} is given, but no <xacro:arg> declares it and nothing reads it",
+            None,
+            path=path,
+            subject=Subject(Kind.FILE, path),
+            hint=hint,
+        )
+
+
+def xacro_warning(message: str, path: str) -> Diagnostic:
+    """A warning xacro gave while expanding ``path``, as a finding about the file."""
+    return XACRO_WARNING.report(
+        message.removeprefix("warning: ").strip(), None, path=path, subject=Subject(Kind.FILE, path)
+    )
