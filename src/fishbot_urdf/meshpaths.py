@@ -142,6 +142,7 @@ class MeshPaths:
         """The file of ``mesh``, which is there.
 
         Raises:
+            PackageNotFoundError: The name is in a package that is not found.
             MeshNotFoundError: The name leads to no file (or to one that is not ours to
                 fetch).
         """
@@ -149,12 +150,13 @@ class MeshPaths:
         if path.found and path.file is not None:
             return path.file
         where = mesh.source
-        raise MeshNotFoundError(
-            f"mesh {mesh.filename!r} {self.why(path)}",
-            path=where.path if where else None,
-            line=where.line if where else None,
-            column=where.column if where else None,
-        )
+        at = where.path if where else None
+        line, column = (where.line, where.column) if where else (None, None)
+        if path.state is State.NO_PACKAGE:
+            package = str(path.package)
+            raise PackageNotFoundError(package, path.searched, path=at, line=line, column=column)
+        message = f"mesh {mesh.filename!r} {self.why(path)}"
+        raise MeshNotFoundError(message, path=at, line=line, column=column)
 
     def why(self, path: MeshPath) -> str:
         """Why ``path`` leads to no file, as a message goes on after the mesh's name."""

@@ -124,7 +124,7 @@ def render(
             to_stdout(png)
         else:
             # Never over what was read: the robot's files, its meshes, the configuration.
-            inputs = [*read_files(file, result, config, packages), *manifests]
+            inputs = [*read_files(file, result, config), *manifests]
             write_atomic(output, png, inputs=inputs)
     except FishbotUrdfError as exc:
         if exc.path is None:  # the picture's own bound: about the picture asked for
