@@ -148,7 +148,7 @@ def check_input(
     from ..check import check_file
 
     if name == "-":
-        return check_file(stdin_urdf(), path="<stdin>", config=config)
+        return check_file(stdin_urdf(), path="<stdin>", packages=packages, config=config)
     return check_file(name, args=args, packages=packages, config=config)
 
 
@@ -281,12 +281,23 @@ def package_option() -> Callable[[Wrapped], Wrapped]:
 
 def posing_errors(diagnostics: Iterable[Diagnostic]) -> list[Diagnostic]:
     """The errors that leave a robot's shape or tree in doubt (reading, URDF and structure
-    rules): `tf` and `render` stop on them; physics and mesh findings are `check`'s."""
-    from ..rules import Family, all_rules
+    rules): `tf`, `render` and `view` stop on them; physics and mesh findings are
+    `check`'s."""
+    from ..rules import all_rules
 
-    shaping = {Family.XML, Family.URDF, Family.STRUCTURE, Family.XACRO}
-    ids = {rule.id for rule in all_rules() if rule.family in shaping}
+    ids = {rule.id for rule in all_rules() if rule.family.value in _SHAPING}
     return [d for d in diagnostics if d.is_error and d.rule in ids]
+
+
+_SHAPING = ("xml", "urdf", "structure", "xacro")  # the families of `posing_errors`
+
+
+def posing(config: Config) -> Config:
+    """``config`` with only the rules `posing_errors` looks at: a command that poses the
+    robot runs no other check (and opens no mesh file to check it)."""
+    from ..rules import Family
+
+    return config.updated(ignore=[f.value for f in Family if f.value not in _SHAPING])
 
 
 def posable_input(
@@ -297,11 +308,11 @@ def posable_input(
     *,
     config: Config | None = None,
 ) -> CheckResult:
-    """FILE read and checked (with ``config``, else the nearest configuration), for a
-    command that poses the robot (tf, render): a robot whose shape or tree is in doubt
-    stops it with its errors (and ``refusal``), exit 1."""
+    """FILE read and checked (with ``config``, else the nearest configuration, narrowed to
+    the rules of `posing_errors`), for a command that poses the robot (tf, render): a robot
+    whose shape or tree is in doubt stops it with its errors (and ``refusal``), exit 1."""
     try:
-        result = check_input(name, args, packages, config or nearest_config(name))
+        result = check_input(name, args, packages, posing(config or nearest_config(name)))
     except FishbotUrdfError as exc:
         stop_on(exc)
     blocking = posing_errors(result.diagnostics)

@@ -148,6 +148,29 @@ MESH_FACES = Rule(
     consumers=(Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE, Consumer.PYBULLET),
 )
 
+SHAPE_NOT_DRAWN = Rule(
+    "shape-not-drawn",
+    W,
+    Family.MESHES,
+    summary="A shape `fishbot render` and `fishbot view` cannot draw: its corners, posed, are "
+    "not finite or lie farther than 1e9 m from the root.",
+    explanation="render and view pose every shape at the joint configuration asked for, and "
+    "leave out one whose corners are not finite numbers or lie farther than 1e9 m from the "
+    "root: no robot reaches that far, and drawing it would overflow. Such a shape comes from "
+    "a scale, a size or an origin with a wild number (an exponent mistyped, a unit mistaken), "
+    "or a mesh file whose numbers are garbage. The picture is drawn without it and the command "
+    "succeeds; fix the number.",
+    bad="""\
+# far.urdf places a box 1e10 m from its link
+fishbot render far.urdf -o far.png
+""",
+    good="""\
+fishbot render fishbot.urdf -o fishbot.png
+""",
+    consumers=(),
+    language="shell",
+)
+
 _LOADED = frozenset({".stl", ".obj", ".dae"})
 _MOST_FACES = 20_000  # a collision mesh above this is slow to simulate
 _LARGEST_PART = 5.0  # metres: a robot part larger than this is implausible
