@@ -110,12 +110,30 @@ def test_a_mesh_is_read_and_one_that_cannot_be_is_its_bounding_box(tmp_path: Pat
     # the STL's box, and the COLLADA file's positions' box
     np.testing.assert_allclose(low, [0, 0, 0], atol=1e-6)
     np.testing.assert_allclose(high, [0.3, 0.2, 0.1], atol=1e-6)
-    assert "link 'a': mesh 'missing.stl' cannot be read" in scene.warnings[1]
-    assert scene.warnings[1].endswith("nor its size: not drawn")
+    dae, missing = scene.findings
+    text = robot.read_text()
+    column = text.index('<mesh filename="part.dae"') + 1
+    assert (dae.rule, dae.severity.value, dae.where) == (
+        "mesh-invalid",
+        "warning",
+        f"{robot}:1:{column}",
+    )
+    assert dae.message.startswith("link 'a': mesh 'part.dae' cannot be read (")
+    assert dae.message.endswith("), drawn as its bounding box")
+    column = text.index('<mesh filename="missing.stl"') + 1
+    assert (missing.rule, missing.where) == ("mesh-not-found", f"{robot}:1:{column}")
+    assert missing.message == (
+        f"link 'a': mesh 'missing.stl' is not found (looked for {tmp_path / 'missing.stl'}; "
+        "relative mesh names are read beside the robot file, as Gazebo, MuJoCo, PyBullet, "
+        "pinocchio and yourdfpy read them), so it is not drawn"
+    )
     result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(tmp_path / "r.png")])
     assert result.exit_code == 0
-    assert "mesh 'part.dae' cannot be read" in result.stderr
-    assert "drawn as its bounding box" in result.stderr
+    # printed as check prints its findings: place, severity, message, hint, rule
+    assert result.stderr == "".join(d.format() + "\n" for d in scene.findings)
+    assert result.stderr.splitlines()[1].endswith(
+        "(write package://PACKAGE/path for a file of a ROS package) [mesh-not-found]"
+    )
 
 
 @pytest.mark.parametrize(
@@ -141,11 +159,14 @@ def test_a_package_not_found_is_one_warning_for_all_its_meshes(tmp_path: Path) -
     )
     scene = build_scene(fishbot_urdf.load(robot))
     assert len(scene.parts) == 1  # the box
-    [warning] = scene.warnings
-    assert warning.startswith(
-        "link 'a': mesh 'package://elsewhere/a.stl' is not drawn, nor any other mesh of "
-        "package 'elsewhere': package 'elsewhere' not found (searched: "
+    [finding] = scene.findings
+    assert (finding.rule, finding.severity.value) == ("mesh-not-found", "warning")
+    assert finding.message == (
+        "link 'a': mesh 'package://elsewhere/a.stl' is in package 'elsewhere', which is not "
+        "found, so it is not drawn (nor 1 other mesh of it)"
     )
+    assert finding.hint is not None and finding.hint.startswith("searched: the packages given")
+    assert finding.data["package"] == "elsewhere"
 
 
 def test_a_picture_too_big_is_one_limit_line_and_nothing_written(tmp_path: Path) -> None:
@@ -202,11 +223,13 @@ def test_a_malformed_mesh_is_drawn_as_its_box_or_left_out_with_a_warning(
     result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(out), "--size", "64x48"])
     assert result.exit_code == 0, result.output
     [line] = result.stderr.splitlines()
-    assert line.startswith(f"{robot}: warning: link 'a': mesh '{name}' cannot be read (")
+    assert line.startswith(f"{robot}:1:50: warning: link 'a': mesh '{name}' cannot be read (")
     assert drawn in line
+    assert line.endswith("(export the mesh again) [mesh-invalid]")
     assert _pixels(out.read_bytes()).shape == (48, 64, 3)
     scene = build_scene(fishbot_urdf.load(robot))
     assert len(scene.parts) == (2 if "box" in drawn else 1)
+    assert [d.rule for d in scene.findings] == ["mesh-invalid"]
 
 
 @pytest.mark.parametrize(
@@ -230,13 +253,17 @@ def test_a_mesh_too_big_to_draw_is_a_warning_not_a_numpy_warning(
     )
     scene = build_scene(fishbot_urdf.load(robot))
     assert len(scene.parts) == 1
-    assert scene.warnings == (
+    [finding] = scene.findings
+    assert (finding.rule, finding.where) == ("shape-not-drawn", f"{robot}:1:50")
+    assert finding.message == (
         "link 'a': mesh 'big.obj' is not drawn: its corners are not finite numbers, or lie "
-        "farther than 1e+09 m from the root",
+        "farther than 1e+09 m from the root"
     )
     result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(tmp_path / "r.png")])
     assert result.exit_code == 0
-    assert result.stderr == f"{robot}: warning: {scene.warnings[0]}\n"
+    assert result.stderr == finding.format() + "\n"
+    with pytest.deprecated_call():  # the strings of old, for a while
+        assert scene.warnings == (finding.message,)
 
 
 def test_building_a_scene_stops_at_the_deadline(tmp_path: Path) -> None:

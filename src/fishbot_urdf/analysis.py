@@ -2,21 +2,24 @@
 
 An `Analysis` holds the robot with its topology, its links and joints by name, each link's
 parent joint, the joint loops, the rigid bodies simulators make of links welded by fixed
-joints, and the links' poses, computed on first use. Build it with `analyse` and pass it
-on; functions that take a robot take an analysis too.
+joints, the links' poses and the files its meshes name, computed on first use. Build it
+with `analyse` and pass it on; functions that take a robot take an analysis too.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
+from pathlib import Path
 from typing import NamedTuple
 
 from .extensions import Reference
 from .graph import Topology, root, topology
 from .inputs import deadline
+from .meshpaths import MeshPaths
 from .model import Joint, JointType, Link, Robot
+from .packages import PackageFinder
 from .spatial import Pose
 
 __all__ = ["Analysis", "Body", "analyse", "of"]
@@ -49,6 +52,8 @@ class Analysis:
         links: Each link by name (the first one, if a name is used twice).
         joints: Each joint by name (the first one, if a name is used twice).
         parent_joint: Each link's parent joint (the first in file order, if it has several).
+        packages: Where the ``package://`` names of its meshes are found (None: as
+            `fishbot_urdf.packages.find_package` finds them, with no folders given).
     """
 
     robot: Robot
@@ -58,6 +63,7 @@ class Analysis:
     joints: Mapping[str, Joint] = field(repr=False)
     parent_joint: Mapping[str, Joint] = field(repr=False)
     given_references: tuple[Reference, ...] | None = field(default=None, repr=False)
+    packages: PackageFinder | None = field(default=None, repr=False)
 
     @property
     def root(self) -> str:
@@ -92,6 +98,15 @@ class Analysis:
         return from_robot(self.robot)
 
     @cached_property
+    def mesh_paths(self) -> MeshPaths:
+        """Where each of its mesh names leads, by the one rule of `fishbot_urdf.meshpaths`
+        (relative names beside ``path``), looked up on first use."""
+        from .meshpaths import MeshPaths
+        from .packages import PackageFinder
+
+        return MeshPaths(self.path, self.packages or PackageFinder())
+
+    @cached_property
     def zero_poses(self) -> Mapping[str, Pose]:
         """Every reached link's pose in its root's frame, every joint at zero."""
         from .kinematics import link_poses
@@ -100,12 +115,17 @@ class Analysis:
 
 
 def analyse(
-    robot: Robot, path: str | None = None, references: Iterable[Reference] | None = None
+    robot: Robot,
+    path: str | None = None,
+    references: Iterable[Reference] | None = None,
+    packages: Mapping[str, str | Path] | PackageFinder | None = None,
 ) -> Analysis:
     """Analyse ``robot`` (linear in its size). ``path`` names the file it came from (by
     default, where the robot element was read); ``references`` are the names its extension
     elements give, as the file's reader found them (by default, read again from the
-    robot's extension elements, with no places)."""
+    robot's extension elements, with no places); ``packages`` are where its meshes'
+    ``package://`` names are found (folders by name, or a
+    `fishbot_urdf.packages.PackageFinder`)."""
     if path is None:
         path = robot.source.path if robot.source else "<robot>"
     check = deadline()
@@ -123,12 +143,35 @@ def analyse(
         if joint.child in links and joint.parent != joint.child:
             parent_joint.setdefault(joint.child, joint)
     given = None if references is None else tuple(references)
-    return Analysis(robot, path, topology(robot), links, joints, parent_joint, given)
+    finder = _finder(packages)
+    return Analysis(robot, path, topology(robot), links, joints, parent_joint, given, finder)
 
 
-def of(robot: Robot | Analysis) -> Analysis:
-    """The analysis of ``robot``, built if a Robot is given."""
-    return robot if isinstance(robot, Analysis) else analyse(robot)
+def of(
+    robot: Robot | Analysis, packages: Mapping[str, str | Path] | PackageFinder | None = None
+) -> Analysis:
+    """The analysis of ``robot``, built if a Robot is given; with ``packages`` other than
+    those it was analysed with, a copy that finds its meshes' packages there."""
+    if not isinstance(robot, Analysis):
+        return analyse(robot, packages=packages)
+    if packages is None or _same(robot.packages, packages):
+        return robot
+    return replace(robot, packages=_finder(packages))
+
+
+def _finder(packages: Mapping[str, str | Path] | PackageFinder | None) -> PackageFinder | None:
+    if packages is None:
+        return None
+    return packages if isinstance(packages, PackageFinder) else PackageFinder(packages)
+
+
+def _same(finder: PackageFinder | None, packages: Mapping[str, str | Path] | PackageFinder) -> bool:
+    """Whether ``packages`` find what ``finder`` finds."""
+    if isinstance(packages, PackageFinder):
+        return packages is finder
+    if finder is None:
+        return not packages
+    return finder.environ is None and dict(finder.packages) == dict(packages)
 
 
 def _bodies(analysis: Analysis) -> tuple[Body, ...]:

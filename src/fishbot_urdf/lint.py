@@ -110,7 +110,7 @@ def check_file(
     found = list(parsed.diagnostics)
     analysis = None
     if parsed.robot is not None:
-        analysis = analyse(parsed.robot, parsed.path, parsed.references)
+        analysis = analyse(parsed.robot, parsed.path, parsed.references, packages)
         found.extend(_rule_findings(analysis, found, config, packages))
     if parsed.files and is_xacro_path(parsed.files[0]):  # the comments are in the sources
         sources: dict[str, bytes | None] = {shown_path(f): None for f in parsed.files}
@@ -159,9 +159,10 @@ def check(
         # The rules compare and sort names: one that is None is read as one left out, "".
         # They do arithmetic on numbers: one that is not finite is read as 0.
         readable_robot = readable(given) if unnamed else given
-        analysis = analyse(finite(readable_robot) if infinite else readable_robot, path)
+        robot_read = finite(readable_robot) if infinite else readable_robot
+        analysis = analyse(robot_read, path, packages=packages)
     else:
-        analysis = of(robot)
+        analysis = of(robot, packages)
     config = config or Config()
     found = [*model, *_rule_findings(analysis, model, config, packages)]
     return tuple(sorted(without_consequences(config.apply(found)), key=sort_key))

@@ -41,9 +41,12 @@ MESH_NOT_FOUND = Rule(
     summary="A <mesh filename> names a file that is not there.",
     explanation="check_urdf never opens meshes, so a wrong mesh name passes it; RViz then shows "
     "nothing for the part and Gazebo, MuJoCo and PyBullet refuse the robot. `package://` names "
-    "are looked up as for xacro's `$(find)`, relative names beside the robot file; a package "
-    "that is not found makes one warning naming the places searched (`--package NAME=PATH` "
-    "tells where it is). Among robots shipped in PyPI packages about 7% fail it: packages that "
+    "are looked up as for xacro's `$(find)`, and a package that is not found makes one warning "
+    "naming the places searched (`--package NAME=PATH` tells where it is). Relative names are "
+    "read beside the robot file, never beside an included xacro file that wrote them: after "
+    "xacro the robot is one text, and Gazebo, MuJoCo, PyBullet, pinocchio and yourdfpy read "
+    "relative names beside the file they load (RViz reads only `package://` and `file://`). "
+    "Among robots shipped in PyPI packages about 7% fail it: packages that "
     "ship a robot without its meshes (fetched later, or left behind when it was copied), "
     "absolute paths of the author's machine, and a package whose folder is not its name.",
     bad=_ONE_BOX.format(name="meshes/base.stl"),
@@ -130,4 +133,26 @@ MESH_FACES = Rule(
     bad=_COLLIDING.format(name="meshes/base_link_fine.stl"),
     good=_COLLIDING.format(name=_FOUND),
     consumers=(Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE, Consumer.PYBULLET),
+)
+SHAPE_NOT_DRAWN = Rule(
+    "shape-not-drawn",
+    W,
+    Family.MESHES,
+    summary="A shape `fishbot render` and `fishbot view` cannot draw: its corners, posed, are "
+    "not finite or lie farther than 1e9 m from the root.",
+    explanation="render and view pose every shape at the joint configuration asked for, and "
+    "leave out one whose corners are not finite numbers or lie farther than 1e9 m from the "
+    "root: no robot reaches that far, and drawing it would overflow. Such a shape comes from "
+    "a scale, a size or an origin with a wild number (an exponent mistyped, a unit mistaken), "
+    "or a mesh file whose numbers are garbage. The picture is drawn without it and the command "
+    "succeeds; fix the number.",
+    bad="""\
+# far.urdf places a box 1e10 m from its link
+fishbot render far.urdf -o far.png
+""",
+    good="""\
+fishbot render fishbot.urdf -o fishbot.png
+""",
+    consumers=(),
+    language="shell",
 )

@@ -284,7 +284,7 @@ def outcome(name: str, config: Config, run: Run) -> Outcome:
             return Outcome(status_of(exc), report=_failure(exc, config))
         inputs: list[Source] = []
         if run.meshes:  # -o FILE: nothing read may be written over
-            inputs = [*read_files(name, result, None, run.finder.packages), *manifests]
+            inputs = [*read_files(name, result, None), *manifests]
     if run.skip_includes and _is_include(result):
         skipped = None if run.fmt == "text" else _skipped(result, config)
         return Outcome(EXIT_OK, report=skipped, inputs=tuple(inputs))

@@ -7,7 +7,7 @@ import functools
 import math
 import os
 import sys
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import replace
 from typing import IO, TYPE_CHECKING, Any, NoReturn, TypeVar
 
@@ -18,11 +18,8 @@ from ..errors import FishbotUrdfError, InputError, ToolError
 from ._hints import command_hint, error_hint
 
 if TYPE_CHECKING:
-    from pathlib import Path
-
     from ..config import Config
     from ..lint import CheckResult
-    from ..model import Robot
     from ..output import Source
     from ..packages import PackageFinder
 
@@ -151,7 +148,7 @@ def check_input(
     from ..lint import check_file
 
     if name == "-":
-        return check_file(stdin_urdf(), path="<stdin>", config=config)
+        return check_file(stdin_urdf(), path="<stdin>", packages=packages, config=config)
     return check_file(name, args=args, packages=packages, config=config)
 
 
@@ -160,20 +157,16 @@ STDIN = 0
 check - -o robot.urdf < robot.urdf` is refused)."""
 
 
-def read_files(
-    name: str,
-    result: CheckResult | None,
-    config: Config | None,
-    packages: Mapping[str, str | Path],
-) -> list[Source]:
+def read_files(name: str, result: CheckResult | None, config: Config | None) -> list[Source]:
     """What a command read for FILE ``name``, never to be written over: the file (standard
     input for -, when that is a file), every file its reading read (includes, YAML), the
-    mesh files it names that can be found, and the configuration file. The package.xml
-    files read on the way are `manifests_read`'s."""
+    mesh files it names that are there (as its analysis found them), and the configuration
+    file. The package.xml files read on the way are `manifests_read`'s."""
     found: list[Source] = [STDIN] if name == "-" else [name]
     if result is not None:
         found.extend(result.files)
-        found.extend(mesh_files(result.robot, result.path, packages))
+        if result.analysis is not None:
+            found.extend(map(str, result.analysis.mesh_paths.found(result.analysis.robot)))
     if config is not None and config.path is not None:
         found.append(config.path)
     return found
@@ -185,28 +178,6 @@ def manifests_read() -> list[str]:
     from ..packages import recording_manifests
 
     return click.get_current_context().with_resource(recording_manifests())
-
-
-def mesh_files(robot: Robot | None, path: str, packages: Mapping[str, str | Path]) -> list[str]:
-    """The mesh files ``robot`` names that can be found: inputs too, never to be written
-    over (`-o meshes/box.stl` after a mistyped name)."""
-    from ..model import Mesh
-    from ..packages import resolve_package_uri
-
-    if robot is None:
-        return []
-    found: list[str] = []
-    shapes = [part.geometry for link in robot.links for part in link.visuals]
-    shapes += [part.geometry for link in robot.links for part in link.collisions]
-    for shape in shapes:
-        if isinstance(shape, Mesh) and shape.filename:
-            near = shape.source.path if shape.source else path
-            try:
-                where = resolve_package_uri(shape.filename, near=near, packages=packages)
-            except FishbotUrdfError:
-                continue  # a package not found: nothing there to write over
-            found.append(str(where))
-    return found
 
 
 def nearest_config(file: str) -> Config:
@@ -310,12 +281,23 @@ def package_option() -> Callable[[Wrapped], Wrapped]:
 
 def posing_errors(diagnostics: Iterable[Diagnostic]) -> list[Diagnostic]:
     """The errors that leave a robot's shape or tree in doubt (reading, URDF and structure
-    rules): `tf` and `render` stop on them; physics and mesh findings are `check`'s."""
-    from ..catalog import Family, all_rules
+    rules): `tf`, `render` and `view` stop on them; physics and mesh findings are
+    `check`'s."""
+    from ..catalog import all_rules
 
-    shaping = {Family.XML, Family.URDF, Family.STRUCTURE, Family.XACRO}
-    ids = {rule.id for rule in all_rules() if rule.family in shaping}
+    ids = {rule.id for rule in all_rules() if rule.family.value in _SHAPING}
     return [d for d in diagnostics if d.is_error and d.rule in ids]
+
+
+_SHAPING = ("xml", "urdf", "structure", "xacro")  # the families of `posing_errors`
+
+
+def posing(config: Config) -> Config:
+    """``config`` with only the rules `posing_errors` looks at: a command that poses the
+    robot runs no other check (and opens no mesh file to check it)."""
+    from ..rules import Family
+
+    return config.updated(ignore=[f.value for f in Family if f.value not in _SHAPING])
 
 
 def posable_input(
@@ -326,11 +308,11 @@ def posable_input(
     *,
     config: Config | None = None,
 ) -> CheckResult:
-    """FILE read and checked (with ``config``, else the nearest configuration), for a
-    command that poses the robot (tf, render): a robot whose shape or tree is in doubt
-    stops it with its errors (and ``refusal``), exit 1."""
+    """FILE read and checked (with ``config``, else the nearest configuration, narrowed to
+    the rules of `posing_errors`), for a command that poses the robot (tf, render): a robot
+    whose shape or tree is in doubt stops it with its errors (and ``refusal``), exit 1."""
     try:
-        result = check_input(name, args, packages, config or nearest_config(name))
+        result = check_input(name, args, packages, posing(config or nearest_config(name)))
     except FishbotUrdfError as exc:
         stop_on(exc)
     blocking = posing_errors(result.diagnostics)

@@ -18,7 +18,6 @@ from ._common import (
     emit_findings,
     limit_options,
     manifests_read,
-    mesh_files,
     package_option,
     packages_option,
     stop_on,
@@ -109,11 +108,16 @@ def expand(
 
 
 def _mesh_files(expansion: Expansion, packages: dict[str, str]) -> list[str]:
-    """The mesh files the expanded robot names, read as far as it reads."""
+    """The mesh files the expanded robot names that are there, read as far as it reads, and
+    found as every command finds them (`fishbot_urdf.meshpaths`)."""
+    from ..analysis import analyse
     from ..parsing import read
 
     try:
         robot = read(expansion.text.encode("utf-8", "replace"), path=expansion.path).robot
     except FishbotUrdfError:
         return []
-    return mesh_files(robot, expansion.path, packages)
+    if robot is None:
+        return []
+    found = analyse(robot, expansion.path, packages=packages).mesh_paths.found(robot)
+    return [str(file) for file in found]

@@ -108,7 +108,7 @@ def graph(
     if outputs is None:
         outputs = _graph_pair(names[0] if names else _file_name(result.analysis.robot.name), fmt)
     try:
-        inputs = [*read_files(file, result, config, packages), *manifests]
+        inputs = [*read_files(file, result, config), *manifests]
         _draw_all(result.analysis, outputs, detail, inputs)
     except FishbotUrdfError as exc:
         stop_on(exc)

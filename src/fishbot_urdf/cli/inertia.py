@@ -38,10 +38,8 @@ from ._common import (
 )
 
 if TYPE_CHECKING:
-    from pathlib import Path
-
     from ..lint import CheckResult
-    from ..model import Inertial, Mesh, Vector3
+    from ..model import Inertial, Vector3
     from ..output import Source
 
 _SHAPES = ("box", "cylinder", "sphere")
@@ -306,10 +304,10 @@ def robot(
             emit_findings(errors or result.diagnostics)
             click.echo("nothing written: fix the errors above first", err=True)
             sys.exit(EXIT_INVALID)
-        # The copy is never written over anything read (the mesh names resolved here
-        # are those the filling resolves: no package.xml is read after).
-        inputs = [*read_files(file, result, config, packages), *manifests]
-        sys.exit(_fill(result, packages, output or "-", density, _link_masses(masses), inputs))
+        # The copy is never written over anything read (the mesh files listed here are
+        # those the filling opens, by the same analysis: no package.xml is read after).
+        inputs = [*read_files(file, result, config), *manifests]
+        sys.exit(_fill(result, output or "-", density, _link_masses(masses), inputs))
     emit_findings(result.diagnostics)
     if result.analysis is None:
         sys.exit(EXIT_INVALID)
@@ -351,7 +349,6 @@ def _link_masses(items: Sequence[str]) -> dict[str, float]:
 
 def _fill(
     result: CheckResult,
-    packages: dict[str, str],
     output: str,
     density: float | None,
     masses: dict[str, float],
@@ -362,16 +359,11 @@ def _fill(
     from ..errors import ArgumentError, UnknownNameError
     from ..inertia import fill_inertials
     from ..output import write_atomic
-    from ..packages import resolve_package_uri
     from ..write import add_inertials
 
-    def resolve(mesh: Mesh) -> Path:
-        near = mesh.source.path if mesh.source else result.path
-        return resolve_package_uri(mesh.filename, near=near, packages=packages)
-
-    assert result.analysis is not None
+    assert result.analysis is not None  # (its mesh_paths find the meshes, as check found them)
     try:
-        filling = fill_inertials(result.analysis, density=density, masses=masses, resolve=resolve)
+        filling = fill_inertials(result.analysis, density=density, masses=masses)
     except (ArgumentError, UnknownNameError) as exc:  # a --mass naming a wrong link
         raise click.BadParameter(exc.message, param_hint="--mass") from None
     emit_findings(filling.skipped)

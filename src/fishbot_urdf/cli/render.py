@@ -7,10 +7,10 @@ from collections.abc import Sequence
 
 import click
 
-from ..diagnostics import escape_controls
 from ..errors import FishbotUrdfError
 from ._common import (
     EXIT_OK,
+    emit_findings,
     joint_option,
     joint_positions,
     limit_options,
@@ -80,9 +80,10 @@ def render(
 ) -> None:
     """A shaded PNG of FILE (URDF or xacro) at a joint configuration: no display, GPU or
     ROS needed. The camera frames the whole robot. Visuals keep their materials' colours;
-    meshes are read from STL and OBJ (other formats with `pip install
-    'fishbot-urdf[mesh]'`), and one that cannot be read is drawn as its bounding box, with a
-    warning. Exit status: 0 written, 1 the robot has errors, 2 a file could not be read or
+    meshes are found as `fishbot check` finds them and read from STL and OBJ (other formats
+    with `pip install 'fishbot-urdf[mesh]'`); one that cannot be read is drawn as its
+    bounding box, and what is not drawn as it is is a warning, printed as check prints its
+    findings. Exit status: 0 written, 1 the robot has errors, 2 a file could not be read or
     written, a joint or position is wrong, or the command line is wrong.
 
     \b
@@ -111,20 +112,20 @@ def render(
     try:
         kinematics = Kinematics(result.analysis)
         q = kinematics.configuration(positions)
-        scene = build_scene(result.analysis, q, collision=collision, packages=packages)
+        # The analysis finds the meshes (with the packages given), as check does.
+        scene = build_scene(result.analysis, q, collision=collision)
     except (UnknownNameError, ArgumentError) as exc:
         raise click.BadParameter(exc.message, param_hint="--joint") from None
     except FishbotUrdfError as exc:
         stop_on(exc)
-    for warning in scene.warnings:
-        click.echo(escape_controls(f"{result.path}: warning: {warning}"), err=True)
+    emit_findings(config.apply(scene.findings))
     try:
         png = render_png(scene, view, width, height)
         if output == "-":
             to_stdout(png)
         else:
             # Never over what was read: the robot's files, its meshes, the configuration.
-            inputs = [*read_files(file, result, config, packages), *manifests]
+            inputs = [*read_files(file, result, config), *manifests]
             write_atomic(output, png, inputs=inputs)
     except FishbotUrdfError as exc:
         if exc.path is None:  # the picture's own bound: about the picture asked for

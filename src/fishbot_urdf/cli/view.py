@@ -22,6 +22,7 @@ from ._common import (
     nearest_config,
     package_option,
     packages_option,
+    posing,
     posing_errors,
     stop_on,
     xacro_args,
@@ -73,7 +74,7 @@ def view(
     config = nearest_config(file)
 
     def load() -> tuple[Any, Sequence[str]]:
-        result = check_input(file, values, packages, config)
+        result = check_input(file, values, packages, posing(config))
         blocking = posing_errors(result.diagnostics)
         if result.analysis is None or blocking:
             raise _Unreadable(blocking)
@@ -94,8 +95,7 @@ def view(
     except (UnknownNameError, ArgumentError) as exc:
         viewer.close()
         raise click.BadParameter(exc.message, param_hint="--joint") from None
-    for warning in viewer.warnings:
-        click.echo(f"{file}: warning: {warning}", err=True)
+    emit_findings(config.apply(viewer.findings))
     click.echo(f"fishbot view: {viewer.url} (Ctrl-C stops)")
     # Off for the commands that end (see main); on, rarely, for the reloads to come.
     gc.set_threshold(_COLLECT_EVERY, *gc.get_threshold()[1:])

@@ -2,26 +2,34 @@
 its mesh file, placed by the forward kinematics at a joint configuration, in the root
 link's frame. `fishbot render` rasterises a scene; `fishbot view` sends one to the browser.
 
-numpy is imported when a scene is built. Meshes are read from STL and OBJ (by
-`fishbot_urdf.meshfile`); other formats need trimesh (the `mesh` extra). A mesh that cannot
-be read (missing, malformed, not finite) is drawn as its bounding box when its size is known
-(the vertices found in an STL or OBJ file, a COLLADA file's positions), else left out,
-and named in ``Scene.warnings``; so is a shape whose coordinates, scaled and posed, are not
-finite or lie farther than :data:`FARTHEST` from the root.
+numpy is imported when a scene is built. Mesh files are found by the analysis's
+``mesh_paths`` (`fishbot_urdf.meshpaths`: the files `check` finds) and read from STL and OBJ
+(by `fishbot_urdf.meshfile`); other formats need trimesh (the `mesh` extra). A mesh whose
+file is not found is left out; one that cannot be read (malformed, not finite) is drawn as
+its bounding box when its size is known (the vertices found in an STL or OBJ file, a
+COLLADA file's positions), else left out; so is a shape whose coordinates, scaled and posed,
+are not finite or lie farther than :data:`FARTHEST` from the root. Each is a finding in
+``Scene.findings``, of the mesh rule it breaks (``shape-not-drawn`` for a shape too far).
 """
 
 from __future__ import annotations
 
 import math
 import re
+import warnings
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..analysis import Analysis, of
+from ..catalog import Rule
+from ..catalog.meshes import MESH_FORMAT, MESH_INVALID, SHAPE_NOT_DRAWN
+from ..catalog.setup import TOOL_MISSING
+from ..diagnostics import Diagnostic, Kind, Severity, Subject, sort_key
 from ..inputs import deadline
 from ..model import Box, Cylinder, Geometry, Link, Material, Mesh, Origin, Robot, Sphere
+from ..rules.meshes import unresolved
 from ..spatial import rpy_matrix
 
 if TYPE_CHECKING:
@@ -63,13 +71,23 @@ class Scene:
 
     Attributes:
         parts: The shapes, in link order.
-        warnings: One line for each mesh drawn as its bounding box, or not at all.
+        findings: One warning for each shape drawn as its bounding box, or not at all, at
+            its element, with the rule it breaks.
         poses: Every link's 4x4 pose in the root frame, by name.
     """
 
     parts: tuple[Part, ...]
-    warnings: tuple[str, ...]
+    findings: tuple[Diagnostic, ...]
     poses: Mapping[str, NDArray[Any]]
+
+    @property
+    def warnings(self) -> tuple[str, ...]:
+        """The findings' messages (deprecated: read ``findings``, which have their rule and
+        place)."""
+        warnings.warn(
+            "Scene.warnings is deprecated: read Scene.findings", DeprecationWarning, stacklevel=2
+        )
+        return tuple(finding.message for finding in self.findings)
 
     def bounds(self) -> tuple[NDArray[Any], NDArray[Any]]:
         """The smallest and largest corner of the box around every part (or of the link
@@ -92,9 +110,10 @@ def build_scene(
     path: str | None = None,
 ) -> Scene:
     """The robot's visual (or ``collision``) shapes posed at configuration ``q`` (see
-    `fishbot_urdf.Kinematics`; None: every joint at zero). ``path`` is the robot file
-    relative mesh names are read beside (default: where the robot was read);
-    ``packages`` resolve ``package://`` names as for ``$(find)``.
+    `fishbot_urdf.Kinematics`; None: every joint at zero). Mesh files are found by the
+    analysis's ``mesh_paths``; ``path`` is the robot file relative mesh names are read
+    beside (default: the analysis's), ``packages`` where ``package://`` names are found (as
+    for ``$(find)``; default: the analysis's).
 
     Raises:
         StructureError: The robot has no single root.
@@ -104,14 +123,15 @@ def build_scene(
 
     from ..kinematics import Kinematics
 
-    analysis = of(robot)
+    analysis = of(robot, packages)
+    if path is not None and path != analysis.path:
+        analysis = replace(analysis, path=path)
     kin = Kinematics(analysis)
     config = np.zeros(len(kin.variables)) if q is None else q
     poses_array = kin.forward(config)
     poses = {name: poses_array[i] for i, name in enumerate(kin.links)}
     materials = {m.name: m for m in analysis.robot.materials if m.name}
-    near = path or analysis.path
-    loader = _Loader(near, packages or {})
+    loader = _Loader(analysis)
     parts: list[Part] = []
     check = deadline()
     for link in analysis.robot.links:
@@ -124,6 +144,7 @@ def build_scene(
             shapes = [(c.geometry, c.origin, None) for c in link.collisions]
         else:
             shapes = [(v.geometry, v.origin, v.material) for v in link.visuals]
+        loader.unresolved(link, [geometry for geometry, _, _ in shapes])
         for geometry, origin, material in shapes:
             local = loader.triangles(link, geometry)
             if local is None or not len(local):
@@ -133,14 +154,18 @@ def build_scene(
                 world = _apply(np, pose, placed)
                 near_enough = bool((np.abs(world) <= FARTHEST).all())  # False for nan
             if not near_enough:
-                loader.warnings.append(
-                    f"link {link.name!r}: {_shown(geometry)} is not drawn: its corners are not "
-                    f"finite numbers, or lie farther than {FARTHEST:g} m from the root"
+                loader.report(
+                    SHAPE_NOT_DRAWN,
+                    link,
+                    geometry,
+                    "is not drawn: its corners are not finite numbers, or lie farther than "
+                    f"{FARTHEST:g} m from the root",
+                    "a scale, a size or an origin holds a wild number",
                 )
                 continue
             color = (0.55, 0.7, 0.85, 1.0) if collision else _color(material, materials)
             parts.append(Part(link.name, world, color, placed, pose))
-    return Scene(tuple(parts), tuple(loader.warnings), poses)
+    return Scene(tuple(parts), tuple(sorted(loader.findings, key=sort_key)), poses)
 
 
 def _shown(geometry: Geometry) -> str:
@@ -177,12 +202,35 @@ def _color(
 class _Loader:
     """Shapes to triangles in their own frame; each mesh file read once."""
 
-    def __init__(self, robot: str, packages: Mapping[str, str | Path]) -> None:
-        self.robot = robot
-        self.packages = packages
-        self.read: dict[tuple[str, tuple[float, ...]], Any] = {}
-        self.warnings: list[str] = []
-        self.missing: set[str] = set()  # packages not found
+    def __init__(self, analysis: Analysis) -> None:
+        self.analysis = analysis
+        self.paths = analysis.mesh_paths
+        self.read: dict[tuple[Path, tuple[float, ...]], Any] = {}
+        self.findings: list[Diagnostic] = []
+        self.missing: set[str] = set()  # packages not found, said once
+
+    def report(self, rule: Rule, link: Link, shape: Geometry, what: str, hint: str | None) -> None:
+        self.findings.append(
+            rule.report(
+                f"link {link.name!r}: {_shown(shape)} {what}",
+                shape.source,
+                path=self.analysis.path,
+                subject=Subject(Kind.LINK, link.name),
+                hint=hint,
+                severity=Severity.WARNING,
+            )
+        )
+
+    def unresolved(self, link: Link, shapes: list[Geometry]) -> None:
+        """Say, once for each, which of a link's meshes lead to no file."""
+        uses = [(link, shape) for shape in shapes if isinstance(shape, Mesh) and shape.filename]
+        for finding in unresolved(self.analysis, uses, drawing=True):
+            package = finding.data.get("package")
+            if package is not None:  # one finding for a package, for all its meshes
+                if package in self.missing:
+                    continue
+                self.missing.add(package)
+            self.findings.append(finding)
 
     def triangles(self, link: Link, geometry: Geometry) -> Any:
         import numpy as np
@@ -194,41 +242,28 @@ class _Loader:
         if isinstance(geometry, Sphere):
             return _sphere(np, geometry.radius)
         if isinstance(geometry, Mesh):
+            path = self.paths.get(geometry.filename)
+            if not path.found or path.file is None:
+                return None  # said by `unresolved`
             scale = geometry.scale or (1.0, 1.0, 1.0)
-            key = (geometry.filename, tuple(scale))
+            key = (path.file, tuple(scale))
             if key not in self.read:
-                self.read[key] = self._mesh(np, link, geometry, scale)
+                self.read[key] = self._mesh(np, link, geometry, path.file, scale)
             return self.read[key]
         return None
 
-    def _mesh(self, np: Any, link: Link, mesh: Mesh, scale: tuple[float, ...]) -> Any:
-        from ..errors import FishbotUrdfError, LimitError
-        from ..packages import PackageNotFoundError, resolve_package_uri
+    def _mesh(self, np: Any, link: Link, mesh: Mesh, file: Path, scale: tuple[float, ...]) -> Any:
+        from ..errors import FishbotUrdfError, LimitError, ToolNotFoundError
 
-        shown = f"link {link.name!r}: mesh {mesh.filename!r}"
-        near = self.robot if not self.robot.startswith("<") else None
-        try:
-            file = resolve_package_uri(mesh.filename, near=near, packages=self.packages)
-        except PackageNotFoundError as exc:  # one line for the package, not one per mesh
-            if exc.package not in self.missing:
-                self.missing.add(exc.package)
-                self.warnings.append(
-                    f"{shown} is not drawn, nor any other mesh of package {exc.package!r}: "
-                    f"{exc.message}"
-                )
-            return None
-        except FishbotUrdfError as exc:
-            self.warnings.append(f"{shown} is not drawn: {exc.message}")
-            return None
         try:
             triangles = _read_mesh(np, file)
         except (OSError, FishbotUrdfError) as exc:
             if isinstance(exc, LimitError):  # the deadline: the whole scene stops
                 raise
             triangles = None
-            reason = getattr(exc, "message", None) or str(exc) or type(exc).__name__
+            failure: OSError | FishbotUrdfError | None = exc
         else:
-            reason = ""
+            failure = None
         factors = np.asarray(scale, dtype=float)
         if triangles is not None:
             with np.errstate(over="ignore", invalid="ignore"):
@@ -239,18 +274,25 @@ class _Loader:
                 box = box[0] * factors, box[1] * factors
             if not (np.abs(box) <= FARTHEST).all():  # garbage read as numbers: no size
                 box = None
+        reason = getattr(failure, "message", None) or str(failure) or type(failure).__name__
+        drawn = "nor its size: not drawn" if box is None else "drawn as its bounding box"
+        kind = file.suffix.lower()
+        rule: Rule = MESH_INVALID
+        hint = "export the mesh again" if kind in (".stl", ".obj") else None
+        if isinstance(failure, ToolNotFoundError):
+            rule, hint = TOOL_MISSING, failure.hint
+        elif kind not in (".stl", ".obj", ".dae"):
+            rule, hint = MESH_FORMAT, "export it as STL or OBJ"
+        self.report(rule, link, mesh, f"cannot be read ({reason}), {drawn}", hint)
         if box is None:
-            self.warnings.append(f"{shown} cannot be read ({reason}), nor its size: not drawn")
             return None
         low, high = box
-        corners = _box(np, *(high - low)) + (low + high) / 2
-        self.warnings.append(f"{shown} cannot be read ({reason}): drawn as its bounding box")
-        return corners
+        return _box(np, *(high - low)) + (low + high) / 2
 
 
 def _read_mesh(np: Any, file: Path) -> Any:
     """Triangles (T, 3, 3) of an STL or OBJ file (others through trimesh, if installed)."""
-    from ..errors import ShapeError
+    from ..errors import ShapeError, ToolNotFoundError
     from ..meshfile import mesh_triangles
 
     kind = file.suffix.lower()
@@ -259,7 +301,11 @@ def _read_mesh(np: Any, file: Path) -> Any:
     try:
         import trimesh
     except ImportError:
-        raise ShapeError(f"{kind or 'no extension'}: pip install 'fishbot-urdf[mesh]'") from None
+        raise ToolNotFoundError(
+            f"reading a {kind or 'file without extension'} mesh needs the trimesh package",
+            tool="trimesh",
+            hint="pip install 'fishbot-urdf[mesh]'",
+        ) from None
     try:
         loaded: Any = trimesh.load(str(file), force="mesh")
         if not hasattr(loaded, "triangles") or not len(loaded.faces):

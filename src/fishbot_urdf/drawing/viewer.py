@@ -20,11 +20,13 @@ import logging
 import math
 import os
 import threading
+import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from ..diagnostics import Diagnostic
 from ..errors import ArgumentError, UnknownNameError
 from ..inputs import max_seconds, time_limit
 from ._serving import ServeError, authority, control_id, serve, shown
@@ -79,7 +81,8 @@ class Viewer:
         self._stamps: dict[str, float] = {}
         self._stop = threading.Event()
         self.reloads = 0
-        self.warnings: tuple[str, ...] = ()
+        # What the scene could not draw as it is, with rules and places (the last load's).
+        self.findings: tuple[Diagnostic, ...] = ()
         self.server = serve(host, port, self._accepts)
         try:
             gui = self.server.gui
@@ -98,6 +101,15 @@ class Viewer:
             raise
         self._watcher = threading.Thread(target=self._watch, daemon=True)
         self._watcher.start()
+
+    @property
+    def warnings(self) -> tuple[str, ...]:
+        """The findings' messages (deprecated: read ``findings``, which have their rule and
+        place)."""
+        warnings.warn(
+            "Viewer.warnings is deprecated: read Viewer.findings", DeprecationWarning, stacklevel=2
+        )
+        return tuple(finding.message for finding in self.findings)
 
     @property
     def url(self) -> str:
@@ -160,7 +172,7 @@ class Viewer:
                     )
                     if kind == "collision":
                         self._collisions.append(mesh)
-            self.warnings = tuple(dict.fromkeys((*visual.warnings, *collision.warnings)))
+            self.findings = tuple(dict.fromkeys((*visual.findings, *collision.findings)))
             if not self.reloads:  # frame the robot, from the front left and above
                 corner, far_corner = visual.bounds()
                 centre = (corner + far_corner) / 2
@@ -293,9 +305,8 @@ class Viewer:
                 continue
             try:
                 self.reload()
-            except Exception as exc:
-                self.warnings = (f"the robot could not be read again: {exc}",)
-                _log.warning("%s", self.warnings[0])
+            except Exception as exc:  # the page keeps the robot loaded last
+                _log.warning("the robot could not be read again: %s", exc)
                 self._stamps = {f: _stamp(f) for f in self._stamps}
             else:
                 self.reloads += 1

@@ -62,7 +62,8 @@ def link_inertial(
     by volume). One box, cylinder or sphere gives the closed form about the shape's own
     origin (the numbers common_inertia.xacro gives); several shapes are added up about
     their joint centre of mass. Closed meshes count when trimesh is installed; ``resolve``
-    turns one into its file (by default, as `geometry_inertia` does).
+    turns one into its file (by default, as `geometry_inertia` does; for a link of a robot,
+    give its analysis's ``mesh_paths.file``).
 
     Raises:
         ArgumentError: Neither or both of density and mass are given, or one is not a
@@ -71,6 +72,7 @@ def link_inertial(
             mesh), or a mesh is too large to be a robot part (in millimetres, read as
             metres).
         PackageNotFoundError: A mesh's package is not found.
+        MeshNotFoundError: A mesh's file is not found.
         ToolNotFoundError: A mesh needs trimesh, which is not installed.
     """
     if density is None and mass is None:
@@ -149,7 +151,8 @@ def fill_inertials(
         density: The density of every filled link (kg/m^3).
         masses: The mass of some links (kg), by name; a link given here ignores
             ``density``.
-        resolve: Finds a mesh's file (see `link_inertial`).
+        resolve: Finds a mesh's file (default: the analysis's ``mesh_paths``, as every
+            command finds it).
 
     Raises:
         ArgumentError: Neither density nor masses are given; a mass or the density is not
@@ -158,6 +161,7 @@ def fill_inertials(
         UnknownNameError: ``masses`` names a link the robot does not have.
     """
     analysis = of(robot)
+    resolve = resolve or analysis.mesh_paths.file
     wanted = dict(masses or {})
     if density is None and not wanted:
         raise ArgumentError("give a density or the mass of some links", name="density")

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import io
 import math
+import os
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
@@ -17,6 +18,7 @@ from typing import Any
 
 from ..errors import ArgumentError, ShapeError, ToolNotFoundError
 from ..inputs import read_input
+from ..meshpaths import MeshPaths
 from ..model import (
     ZERO3,
     Box,
@@ -29,6 +31,7 @@ from ..model import (
     Sphere,
     Vector3,
 )
+from ..packages import PackageFinder
 from ..spatial import (
     Matrix3,
     Pose,
@@ -113,14 +116,16 @@ def geometry_inertia(
     """The inertia of a URDF box, cylinder or sphere filled uniformly with ``mass`` (kg),
     or of a closed mesh when the optional trimesh package is installed.
 
-    A mesh's file is found by ``resolve``, or else from its filename: a path (relative to
-    the file the mesh was read from), ``file://``, or ``package://`` (see
-    `resolve_package_uri`).
+    A mesh's file is found by ``resolve`` (for a robot's mesh, its analysis's
+    ``mesh_paths.file``, as every command finds it), or else by the rule of
+    `fishbot_urdf.meshpaths` with the file the mesh was read from as the robot file (the
+    working folder for a mesh made in Python).
 
     Raises:
         ArgumentError: The geometry is not a box, cylinder, sphere or mesh.
         ShapeError: The mesh is not closed.
         PackageNotFoundError: The mesh's package is not found.
+        MeshNotFoundError: The mesh's file is not found.
         ToolNotFoundError: The geometry is a mesh and trimesh is not installed.
     """
     if isinstance(geometry, Box):
@@ -140,9 +145,9 @@ def geometry_inertia(
 
 
 def _mesh_file(mesh: Mesh) -> Path:
-    from ..packages import resolve_package_uri
-
-    return resolve_package_uri(mesh.filename, near=mesh.source.path if mesh.source else None)
+    # A mesh made in Python has no file: its relative name is read from the working folder.
+    robot_file = mesh.source.path if mesh.source else os.path.join(os.curdir, "robot.urdf")
+    return MeshPaths(robot_file, PackageFinder()).file(mesh)
 
 
 def principal_moments(inertia: Inertia) -> Vector3:
@@ -212,6 +217,7 @@ def volume(geometry: Geometry, resolve: Callable[[Mesh], Path] | None = None) ->
     Raises:
         ShapeError: The mesh is not closed.
         PackageNotFoundError: The mesh's package is not found.
+        MeshNotFoundError: The mesh's file is not found.
         ToolNotFoundError: The geometry is a mesh and trimesh is not installed.
     """
     if isinstance(geometry, Box):

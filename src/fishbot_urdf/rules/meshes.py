@@ -5,11 +5,10 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING
 
-from ..analysis import Analysis
+from ..analysis import Analysis, of
 from ..catalog import Rule
 from ..catalog.meshes import (
     MESH_CASE,
@@ -20,19 +19,16 @@ from ..catalog.meshes import (
     MESH_UNITS,
     MESH_URI,
 )
-from ..diagnostics import Diagnostic, Kind, Severity, Subject, closest
-from ..errors import FishbotUrdfError
+from ..diagnostics import Diagnostic, Kind, Severity, Subject
+from ..errors import FishbotUrdfError, ShapeError
+from ..meshpaths import MeshPath, State, robot_meshes
 from ..model import Box, Cylinder, Link, Mesh, Sphere
+from ..packages import PackageFinder
 
-if TYPE_CHECKING:
-    from ..meshfile import MeshFacts
-    from ..packages import PackageFinder
-
-__all__ = ["REPORTS", "meshes"]
+__all__ = ["REPORTS", "meshes", "unresolved"]
 
 
 _LOADED = frozenset({".stl", ".obj", ".dae"})
-_REMOTE = ("http://", "https://", "model://")  # not ours to fetch: Gazebo's model path, the web
 _MOST_FACES = 20_000  # a collision mesh above this is slow to simulate
 _LARGEST_PART = 5.0  # metres: a robot part larger than this is implausible
 
@@ -42,55 +38,127 @@ def meshes(
     packages: Mapping[str, str | Path] | PackageFinder | None = None,
     environ: Mapping[str, str] | None = None,
 ) -> Iterator[Diagnostic]:
-    """Every finding about the robot's mesh files. ``packages`` and ``environ`` are where
-    ``package://`` names are looked up (as for xacro's ``$(find)``); or ``packages`` is a
-    `fishbot_urdf.packages.PackageFinder` that keeps its answers for other robots (its own
-    environment is read then)."""
-    from ..packages import PackageFinder
+    """Every finding about the robot's mesh files, found by the analysis's
+    ``mesh_paths`` (see `fishbot_urdf.meshpaths`). ``packages`` and ``environ``, when
+    given, are where ``package://`` names are looked up instead (as for xacro's
+    ``$(find)``); or ``packages`` is a `fishbot_urdf.packages.PackageFinder` that keeps its
+    answers for other robots (its own environment is read then)."""
+    if environ is not None and not isinstance(packages, PackageFinder):
+        packages = PackageFinder(packages, environ)
+    analysis = of(analysis, packages)
+    uses = list(robot_meshes(analysis.robot))
+    for link, mesh, collides in uses:
+        yield from _mesh(analysis, link, mesh, collides)
+    yield from unresolved(analysis, ((link, mesh) for link, mesh, _ in uses))
 
-    if not isinstance(packages, PackageFinder):
-        packages = PackageFinder(packages, os.environ if environ is None else environ)
-    finder = _Finder(analysis.path, packages)
-    for link in analysis.robot.links:
-        shapes = [(part.geometry, False) for part in link.visuals]
-        shapes += [(part.geometry, True) for part in link.collisions]
-        for shape, collides in shapes:
-            if isinstance(shape, Mesh) and shape.filename:
-                yield from _mesh(analysis, link, shape, finder, collides)
-    for unknown, named in finder.unknown.values():
+
+def unresolved(
+    analysis: Analysis, uses: Iterable[tuple[Link, Mesh]], *, drawing: bool = False
+) -> Iterator[Diagnostic]:
+    """The findings about meshes whose names lead to no file (by the analysis's
+    ``mesh_paths``): one for each such mesh, and one for each package not found, for all
+    of its meshes. For ``drawing`` (a scene), each says the mesh is not drawn, as a
+    warning, and names that lead to nothing to draw (a remote file, a relative name of a
+    robot read from text) are findings too."""
+    paths = analysis.mesh_paths
+    missing: dict[str, list[tuple[Link, Mesh]]] = {}
+    for link, mesh in uses:
+        path = paths.get(mesh.filename)
+        if path.state is State.NO_PACKAGE:
+            missing.setdefault(str(path.package), []).append((link, mesh))
+            continue
+        finding = _unresolved(analysis, link, mesh, path, drawing)
+        if finding is not None:
+            yield finding
+    for package, named in missing.items():
         link, mesh = named[0]
+        path = paths.get(mesh.filename)
         others = len(named) - 1
         also = f" (nor {others} other mesh{'es' if others > 1 else ''} of it)" if others else ""
+        then = "it is not drawn" if drawing else "the file cannot be checked"
         yield MESH_NOT_FOUND.report(
-            f"link {link.name!r}: mesh {mesh.filename!r} is in package {unknown.package!r}, "
-            f"which is not found, so the file cannot be checked{also}",
+            f"link {link.name!r}: mesh {mesh.filename!r} is in package {package!r}, "
+            f"which is not found, so {then}{also}",
             mesh.source,
             path=analysis.path,
             subject=Subject(Kind.LINK, link.name),
-            hint=f"searched: {'; '.join(unknown.searched)}",
-            data={"package": unknown.package},
+            hint=f"searched: {'; '.join(path.searched)}",
+            data={"package": package},
             severity=Severity.WARNING,
         )
 
 
-def _mesh(
-    analysis: Analysis, link: Link, mesh: Mesh, finder: _Finder, collides: bool
-) -> Iterator[Diagnostic]:
-    path, name = analysis.path, mesh.filename
+def _unresolved(
+    analysis: Analysis, link: Link, mesh: Mesh, path: MeshPath, drawing: bool
+) -> Diagnostic | None:
+    state = path.state
+    if state is State.FOUND or (not drawing and state in (State.REMOTE, State.NO_FOLDER)):
+        return None  # found, or not ours to judge
+    named = f"link {link.name!r}: mesh {mesh.filename!r}"
+    then = ", so it is not drawn" if drawing else ""
+    data: dict[str, str] = {}
+    if state is State.MALFORMED:
+        rule, what, hint = MESH_URI, f"{path.problem}{then}", path.fix
+    elif state is State.OTHER_CASE:
+        rule, what = MESH_CASE, f"is found only as {path.other!r}, a name that differs in case"
+        what += then
+        hint = "Linux file names are case-sensitive: write the name exactly as the file's"
+    elif state is State.MISSING:
+        rule, what = MESH_NOT_FOUND, analysis.mesh_paths.why(path) + then
+        hint, data = _not_found(analysis, mesh, path)
+    elif state is State.REMOTE:
+        rule, what = MESH_NOT_FOUND, f"is not a file on this machine{then}"
+        hint = "http://, https:// and model:// files are not fetched"
+    else:  # NO_FOLDER
+        rule, what = MESH_NOT_FOUND, f"is a relative name, and the robot was read from text{then}"
+        hint = "a relative name is read beside the robot file, and text has none"
+    return rule.report(
+        f"{named} {what}",
+        mesh.source,
+        path=analysis.path,
+        subject=Subject(Kind.LINK, link.name),
+        hint=hint,
+        data=data,
+        severity=Severity.WARNING if drawing else None,
+    )
+
+
+def _not_found(analysis: Analysis, mesh: Mesh, path: MeshPath) -> tuple[str, dict[str, str]]:
+    """The hint and the data of a mesh whose file is not where programs look for it."""
+    paths = analysis.mesh_paths
+    assert path.file is not None
+    data = {"looked_for": str(path.file)}
+    beside = paths.beside_writer(mesh)
+    if beside is not None:
+        # The classic mistake: the name is right beside the xacro file that wrote it.
+        data["beside_writer"] = str(beside)
+        writer = mesh.source.path if mesh.source else "the file that wrote it"
+        held = paths.in_package(beside)
+        package, inside = held if held is not None else ("PACKAGE", "path")
+        return (
+            f"it is beside {writer}, which wrote it, but the expanded robot keeps no trace of "
+            f"that file: write package://{package}/{inside} (or $(find {package})/{inside})",
+            data,
+        )
+    close = paths.closest(path.file)
+    guess = f"did you mean {close!r}? " if close else ""
+    return guess + _fix(mesh.filename), data
+
+
+def _mesh(analysis: Analysis, link: Link, mesh: Mesh, collides: bool) -> Iterator[Diagnostic]:
+    """The findings about one mesh that need no file, or its file found."""
+    paths = analysis.mesh_paths
+    name = mesh.filename
     subject = Subject(Kind.LINK, link.name)
     named = f"link {link.name!r}: mesh {name!r}"
-    where = mesh.source
 
-    def report(rule: Rule, what: str, hint: str, severity: Severity | None = None) -> Diagnostic:
+    def report(rule: Rule, what: str, hint: str) -> Diagnostic:
         return rule.report(
-            f"{named} {what}", where, path=path, subject=subject, hint=hint, severity=severity
+            f"{named} {what}", mesh.source, path=analysis.path, subject=subject, hint=hint
         )
 
-    malformed = _malformed(name)
-    if malformed:
-        yield report(MESH_URI, malformed[0], malformed[1])
-        return
-    if name.startswith(_REMOTE):
+    path = paths.get(name)
+    if path.state in (State.MALFORMED, State.REMOTE):
         return
     extension = os.path.splitext(name)[1].lower()
     if extension not in _LOADED:
@@ -101,46 +169,28 @@ def _mesh(
             "Gazebo loads STL, OBJ and COLLADA; MuJoCo and PyBullet STL and OBJ: export it "
             "as one of those",
         )
-    try:
-        file = finder.file(name)
-    except _Unknown as exc:  # reported once per package, after every mesh is seen
-        finder.unknown.setdefault(exc.package, (exc, []))[1].append((link, mesh))
+    if not path.found or path.file is None:
         return
-    if file is None:
-        return  # a relative name with no robot file to be relative to
-    exact, other = finder.exists(file)
-    if exact:
-        facts = finder.facts(file)
-        if facts is None:
-            fault = finder.fault(file) if extension in (".stl", ".obj") else None
-            if fault is not None:
-                yield report(MESH_INVALID, fault, "export the mesh again")
-            return
-        if collides and facts.faces > _MOST_FACES:
-            yield report(
-                MESH_FACES,
-                f"has {facts.faces} faces, too many for a collision shape",
-                "simplify it to a few hundred faces or its convex hull, or collide with boxes, "
-                "cylinders and spheres",
-            )
-        units = _millimetres(link, facts.extent(mesh.scale))
-        if units is not None:
-            yield report(
-                MESH_UNITS,
-                units,
-                'if it is in millimetres, add scale="0.001 0.001 0.001" to the <mesh>',
-            )
+    facts = paths.facts(path.file)
+    if facts is None:
+        fault = _fault(path.file) if extension in (".stl", ".obj") else None
+        if fault is not None:
+            yield report(MESH_INVALID, fault, "export the mesh again")
         return
-    if other is not None:
+    if collides and facts.faces > _MOST_FACES:
         yield report(
-            MESH_CASE,
-            f"is found only as {other!r}, a name that differs in case",
-            "Linux file names are case-sensitive: write the name exactly as the file's",
+            MESH_FACES,
+            f"has {facts.faces} faces, too many for a collision shape",
+            "simplify it to a few hundred faces or its convex hull, or collide with boxes, "
+            "cylinders and spheres",
         )
-        return
-    close = finder.close(file)
-    guess = f"did you mean {close!r}? " if close else ""
-    yield report(MESH_NOT_FOUND, f"is not found (looked for {file})", guess + _fix(name))
+    units = _millimetres(link, facts.extent(mesh.scale))
+    if units is not None:
+        yield report(
+            MESH_UNITS,
+            units,
+            'if it is in millimetres, add scale="0.001 0.001 0.001" to the <mesh>',
+        )
 
 
 def _millimetres(link: Link, extent: float) -> str | None:
@@ -195,139 +245,26 @@ def _sizes(link: Link) -> Iterator[tuple[float, str]]:
 def _fix(name: str) -> str:
     if name.startswith("package://"):
         return "package:// names a file inside the package's folder"
-    if name.startswith("file://"):
-        return "file:// names an absolute path on this machine"
-    return "a relative name is read beside the robot file"
+    if name.startswith("file://") or os.path.isabs(name):
+        return "an absolute path names a file on this machine only: write package://PACKAGE/path"
+    return "write package://PACKAGE/path for a file of a ROS package"
 
 
-def _malformed(name: str) -> tuple[str, str] | None:
-    """What is wrong with a mesh name written as a URI, and the fix; None if nothing is."""
-    if "\\" in name:
-        return "holds backslashes", "write forward slashes (/): backslashes work only on Windows"
-    if name.startswith("package://"):
-        package, _, rest = name[len("package://") :].partition("/")
-        if not package:
-            return (
-                "names a package with no name (package:///)",
-                "write package://PACKAGE/path, with the package's name after the two slashes",
-            )
-        if not rest:
-            return "names a package but no file in it", "write package://PACKAGE/path/to/mesh"
+def _fault(file: Path) -> str | None:
+    """What is wrong with an STL or OBJ file whose facts could not be read (looked at only
+    then: a file read well pays nothing); None for a file that holds nothing (an empty
+    placeholder) or cannot be read at all."""
+    from ..meshfile import EmptyMeshError, mesh_triangles  # (for a mesh found malformed)
+
+    try:
+        mesh_triangles(file)
+    except EmptyMeshError:
         return None
-    if name.startswith(("package:", "package//")):
-        return "is not a package:// URI", "write package://PACKAGE/path, with two slashes"
-    if name.startswith("file://") and not name.startswith("file:///"):
-        return (
-            "is a file:// URI with a relative path (the first folder is read as a host name)",
-            "write file:///absolute/path, or a path relative to the robot file without file://",
-        )
+    except ShapeError as exc:
+        return exc.message
+    except FishbotUrdfError:
+        return None  # not readable: another rule's matter
     return None
-
-
-class _Unknown(Exception):
-    def __init__(self, package: str, searched: tuple[str, ...]) -> None:
-        self.package, self.searched = package, searched
-
-
-class _Finder:
-    """Mesh names to files, with each package and folder looked up once."""
-
-    def __init__(self, robot: str, packages: PackageFinder):
-        # A robot read from a string or stdin has no folder for relative names.
-        self.robot = None if robot.startswith("<") or robot == "-" else robot
-        self.packages = packages
-        self.found: dict[str, Path | _Unknown] = {}
-        self.listings: dict[Path, list[str] | None] = {}
-        self.read: dict[Path, MeshFacts | None] = {}
-        # Packages not found: the error, and every (link, mesh) in them.
-        self.unknown: dict[str, tuple[_Unknown, list[tuple[Link, Mesh]]]] = {}
-
-    def file(self, name: str) -> Path | None:
-        if name.startswith("package://"):
-            package, _, rest = name[len("package://") :].partition("/")
-            folder = self.found.get(package)
-            if folder is None:
-                folder = self.found[package] = self._package(package)
-            if isinstance(folder, _Unknown):
-                raise folder
-            return folder / rest
-        if name.startswith("file://"):
-            return Path(name[len("file://") :])
-        path = Path(name)
-        if path.is_absolute():
-            return path
-        return None if self.robot is None else Path(self.robot).parent / path
-
-    def _package(self, package: str) -> Path | _Unknown:
-        from ..packages import PackageNotFoundError
-
-        try:
-            return self.packages.find(package, near=self.robot)
-        except PackageNotFoundError as exc:
-            return _Unknown(package, exc.searched)
-
-    def _listing(self, folder: Path) -> list[str] | None:
-        if folder not in self.listings:
-            try:
-                self.listings[folder] = sorted(os.listdir(folder))
-            except OSError:
-                self.listings[folder] = None
-        return self.listings[folder]
-
-    def exists(self, file: Path) -> tuple[bool, str | None]:
-        """Whether ``file`` is there under exactly its name, and else the name of a file
-        whose name differs only in case."""
-        names = self._listing(file.parent)
-        if names is None:
-            # The folder is missing, or is named in another case itself.
-            return False, self._other_case_folder(file)
-        if file.name in names:
-            return True, None
-        lower = file.name.lower()
-        for entry in names:
-            if entry.lower() == lower:
-                return False, str(file.parent / entry)
-        return False, None
-
-    def _other_case_folder(self, file: Path) -> str | None:
-        parent = file.parent
-        names = self._listing(parent.parent) if parent != parent.parent else None
-        for entry in names or ():
-            if entry.lower() == parent.name.lower() and entry != parent.name:
-                found, other = self.exists(parent.parent / entry / file.name)
-                return str(parent.parent / entry / file.name) if found else other
-        return None
-
-    def fault(self, file: Path) -> str | None:
-        """What is wrong with an STL or OBJ file whose facts could not be read (looked at
-        only then: a file read well pays nothing); None for a file that holds nothing (an
-        empty placeholder) or cannot be read at all."""
-        from ..errors import ShapeError
-        from ..meshfile import EmptyMeshError, mesh_triangles  # (for a mesh found malformed)
-
-        try:
-            mesh_triangles(file)
-        except EmptyMeshError:
-            return None
-        except ShapeError as exc:
-            return exc.message
-        except FishbotUrdfError:
-            return None  # not readable: another rule's matter
-        return None
-
-    def facts(self, file: Path) -> MeshFacts | None:
-        if file not in self.read:
-            from ..meshfile import mesh_facts  # (read only for a robot with mesh files)
-
-            self.read[file] = mesh_facts(file)
-        return self.read[file]
-
-    def close(self, file: Path) -> str | None:
-        names = self._listing(file.parent)
-        if not names:
-            return None
-        close = closest(file.name, names)
-        return None if close is None else str(file.parent / close)
 
 
 REPORTS: tuple[Rule, ...] = (
