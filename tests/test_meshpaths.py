@@ -14,11 +14,11 @@ from conftest import box_stl
 
 import fishbot_urdf
 from fishbot_urdf.analysis import analyse
+from fishbot_urdf.analysis.meshpaths import RULE, MeshNotFoundError, MeshPaths, State
 from fishbot_urdf.cli import cli
 from fishbot_urdf.drawing.scene import build_scene
 from fishbot_urdf.inertia import fill_inertials
 from fishbot_urdf.lint import check_file
-from fishbot_urdf.meshpaths import RULE, MeshNotFoundError, MeshPaths, State
 from fishbot_urdf.packages import PackageFinder
 
 _LINK = """\

@@ -41,8 +41,8 @@ from fishbot_urdf import (
     parse,
     to_urdf,
 )
-from fishbot_urdf.rules import values as values_module
-from fishbot_urdf.rules.values import values
+from fishbot_urdf import validation as values_module
+from fishbot_urdf.validation import values
 
 NAN, INF = math.nan, math.inf
 INERTIAL = Inertial(1.0, Inertia(0.1, 0.0, 0.0, 0.1, 0.0, 0.1))

@@ -11,8 +11,8 @@ from hypothesis import strategies as st
 
 import fishbot_urdf
 from fishbot_urdf import check_file
-from fishbot_urdf.diagnostics import closest
 from fishbot_urdf.extensions import Target, from_robot
+from fishbot_urdf.wording import closest
 
 ARM = """\
 <robot name="arm">

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from .analysis import Analysis, Body, analyse
+    from .analysis.topology import Topology, topology
     from .catalog import Rule
     from .config import Config, find_config, load_config
     from .diagnostics import Diagnostic, Kind, Severity, Subject
@@ -35,7 +36,7 @@ if TYPE_CHECKING:
         XmlSyntaxError,
     )
     from .expansion import Expansion, XacroError, expand
-    from .graph import Topology, chain, leaves, root, subtree, to_networkx, topology, tree_text
+    from .graph import chain, leaves, root, subtree, to_networkx, tree_text
     from .inertia import (
         Filling,
         LinkMass,
@@ -247,7 +248,7 @@ _WHERE = {
     "Subject": "diagnostics",
     "ToolError": "errors",
     "ToolNotFoundError": "errors",
-    "Topology": "graph",
+    "Topology": "analysis.topology",
     "UnknownNameError": "errors",
     "Visual": "model",
     "XacroError": "expansion",
@@ -293,7 +294,7 @@ _WHERE = {
     "to_mermaid": "drawing.mermaid",
     "to_networkx": "graph",
     "to_urdf": "write",
-    "topology": "graph",
+    "topology": "analysis.topology",
     "transform": "kinematics",
     "tree_text": "graph",
     "volume": "inertia",

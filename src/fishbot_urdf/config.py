@@ -22,9 +22,10 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import Any
 
-from .diagnostics import Diagnostic, Severity, did_you_mean, listing
+from .diagnostics import Diagnostic, Severity
 from .errors import ConfigError, InputError
 from .inputs import read_input
+from .wording import did_you_mean, listing
 
 __all__ = [
     "CONFIG_FILES",

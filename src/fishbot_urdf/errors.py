@@ -5,6 +5,8 @@ from __future__ import annotations
 from collections.abc import Iterable, Sequence
 from typing import TYPE_CHECKING
 
+from .wording import did_you_mean, listing
+
 if TYPE_CHECKING:
     from .diagnostics import Diagnostic
 
@@ -129,8 +131,6 @@ class UnknownNameError(FishbotUrdfError, KeyError):
     rule = "unknown-name"
 
     def __init__(self, kind: str, name: str, known: Iterable[str]) -> None:
-        from .diagnostics import did_you_mean, listing
-
         self.kind = kind
         self.name = name
         self.known = tuple(sorted(set(known)))

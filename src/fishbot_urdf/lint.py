@@ -9,6 +9,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .analysis import Analysis, analyse, of
+from .analysis.topology import Topology
 from .catalog import Rule
 from .catalog.reading import BAD_NUMBER, MISSING_ATTRIBUTE, ROBOT_NAME
 from .config import Config
@@ -21,10 +22,8 @@ from .diagnostics import (
     sort_key,
     without_consequences,
 )
-from .graph import Topology
 from .model import Robot
 from .parsing import is_xacro_path, read
-from .rules._readable import finite, readable
 from .rules.joints import REPORTS as JOINT_RULES
 from .rules.joints import joints
 from .rules.meshes import REPORTS as MESH_RULES
@@ -34,8 +33,9 @@ from .rules.physics import REPORTS as PHYSICS_RULES
 from .rules.references import REPORTS as REFERENCE_RULES
 from .rules.references import references
 from .rules.structure import structure
-from .rules.values import values
 from .suppress import apply_suppressions, suppressions
+from .validation import values
+from .validation._readable import finite, readable
 
 if TYPE_CHECKING:
     from .packages import PackageFinder
@@ -143,7 +143,7 @@ def check(
 
     A robot built in Python is held to what the reader gives: a number that is not finite, a
     missing name or a character XML cannot hold is the reader's finding (see
-    `fishbot_urdf.rules.values`), and the other rules say nothing more about its link or
+    `fishbot_urdf.validation`), and the other rules say nothing more about its link or
     joint.
 
     Raises:

@@ -8,7 +8,7 @@ from typing import Any
 
 from .model import ZERO3, Origin, Vector3
 
-__all__ = ["IDENTITY", "Matrix3", "Pose", "eigenvalues", "eigh", "rpy_matrix"]
+__all__ = ["IDENTITY", "Matrix3", "Pose", "eigenvalues", "eigh", "rpy_matrix", "urdfdom_rpy"]
 
 Matrix3 = tuple[Vector3, Vector3, Vector3]
 
@@ -219,3 +219,34 @@ def eigh(m: Matrix3) -> tuple[Vector3, Matrix3]:
         (v[2][order[0]], v[2][order[1]], v[2][order[2]]),
     )
     return values, vectors
+
+
+def urdfdom_rpy(rpy: Vector3) -> Vector3:
+    """Roll, pitch, yaw as urdfdom gives them back after storing them as a quaternion.
+
+    The same operations in the same order as urdfdom's Rotation::setFromRPY, normalize and
+    getRPY, so the printed numbers match urdf_to_graphviz's, down to the sign of a zero
+    pitch (``0 0 0`` comes back as ``0 -0 0``) and the gimbal-lock cases.
+    """
+    phi, the, psi = rpy[0] / 2.0, rpy[1] / 2.0, rpy[2] / 2.0
+    sin, cos = math.sin, math.cos
+    x = sin(phi) * cos(the) * cos(psi) - cos(phi) * sin(the) * sin(psi)
+    y = cos(phi) * sin(the) * cos(psi) + sin(phi) * cos(the) * sin(psi)
+    z = cos(phi) * cos(the) * sin(psi) - sin(phi) * sin(the) * cos(psi)
+    w = cos(phi) * cos(the) * cos(psi) + sin(phi) * sin(the) * sin(psi)
+    s = math.sqrt(x * x + y * y + z * z + w * w)
+    if s == 0.0:
+        x, y, z, w = 0.0, 0.0, 0.0, 1.0
+    else:
+        x, y, z, w = x / s, y / s, z / s, w / s
+    sqx, sqy, sqz, sqw = x * x, y * y, z * z, w * w
+    sarg = -2 * (x * z - w * y)
+    if sarg <= -0.99999:
+        return 0.0, -math.pi / 2, 2 * math.atan2(x, -y)
+    if sarg >= 0.99999:
+        return 0.0, math.pi / 2, 2 * math.atan2(-x, y)
+    return (
+        math.atan2(2 * (y * z + w * x), sqw - sqx - sqy + sqz),
+        math.asin(sarg),
+        math.atan2(2 * (x * y + w * z), sqw + sqx - sqy - sqz),
+    )

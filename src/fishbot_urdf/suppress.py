@@ -18,10 +18,11 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from .diagnostics import Diagnostic, Kind, Subject, did_you_mean
+from .diagnostics import Diagnostic, Kind, Subject
 from .errors import InputError
 from .inputs import Deadline, deadline, read_input
 from .location import Location
+from .wording import did_you_mean
 
 if TYPE_CHECKING:
     from .config import Config

@@ -23,7 +23,7 @@ from .model import (
     Sphere,
     Visual,
 )
-from .rules.values import values
+from .validation import values
 from .xml.source import STRING_PATH, parse_xml
 
 __all__ = ["add_inertials", "inertial_xml", "to_urdf"]

@@ -109,7 +109,7 @@ def expand(
 
 def _mesh_files(expansion: Expansion, packages: dict[str, str]) -> list[str]:
     """The mesh files the expanded robot names that are there, read as far as it reads, and
-    found as every command finds them (`fishbot_urdf.meshpaths`)."""
+    found as every command finds them (`fishbot_urdf.analysis.meshpaths`)."""
     from ..analysis import analyse
     from ..parsing import read
 

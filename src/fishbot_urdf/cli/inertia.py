@@ -54,7 +54,7 @@ class _ShapeOrRobot(click.Group):
             return super().parse_args(ctx, args)
         if not any(a in _SHAPES for a in args) or first == "-" or not first.startswith("-"):
             if not first.startswith("-") and _looks_like_a_shape(first):
-                from ..diagnostics import closest
+                from ..wording import closest
 
                 guess = closest(first, _SHAPES)
                 hint = f"did you mean {guess!r}? " if guess else ""

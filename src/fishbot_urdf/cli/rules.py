@@ -35,8 +35,8 @@ def rules(name: str | None, fmt: str) -> None:
       fishbot rules --format json
     """
     from ..catalog import Family, Rule, all_rules, get
-    from ..diagnostics import did_you_mean
     from ..errors import UnknownNameError
+    from ..wording import did_you_mean
 
     families = {f.value for f in Family}
     if name is not None and name not in families:

@@ -1,132 +1,33 @@
 """Robot -> DOT text as urdf_to_graphviz writes it, and rendering through Graphviz's `dot`.
 
-The DOT text is built from ``to_networkx``'s graph. For a robot urdfdom accepts it is
-byte for byte what urdf_to_graphviz writes; beyond that, names are escaped, a joint named
-like a link gets its own node, and links the root does not reach are drawn too, marked.
+The DOT text is written from the drawing's plan (`fishbot_urdf.drawing.layout`). For a
+robot urdfdom accepts it is byte for byte what urdf_to_graphviz writes; beyond that, names
+are escaped, a joint named like a link gets its own node, and links the root does not reach
+are drawn too, marked.
 """
 
 from __future__ import annotations
 
-import math
 import os
 from collections.abc import Iterator
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from ..analysis import Analysis, of
 from ..errors import ArgumentError, ToolError, ToolNotFoundError, ToolTimeoutError
-from ..graph import to_networkx
-from ..model import Joint, JointType, Link, Robot, Vector3
+from ..model import Joint, Link, Robot
+from ..spatial import urdfdom_rpy
+from .layout import JOINT_COLORS, Drawing, drawing, joint_facts, link_facts, numbers
 
 __all__ = ["FORMATS", "Drawing", "draw", "drawing", "pipe_dot", "render", "to_dot"]
 
 #: Output formats by file extension: DOT text, what `dot` renders, and Mermaid.
 FORMATS = {"gv": "DOT", "dot": "DOT", "pdf": "PDF", "svg": "SVG", "png": "PNG", "mmd": "Mermaid"}
 
-#: Joint colours of the detailed drawing (names both Graphviz and CSS know).
-JOINT_COLORS = {
-    JointType.REVOLUTE: "blue",
-    JointType.CONTINUOUS: "darkgreen",
-    JointType.PRISMATIC: "darkorange",
-    JointType.FIXED: "dimgray",
-    JointType.FLOATING: "purple",
-    JointType.PLANAR: "brown",
-}
-
 INSTALL_GRAPHVIZ = (
     "install Graphviz: apt install graphviz, brew install graphviz, winget install graphviz, "
     "or conda install -c conda-forge graphviz"
 )
-
-
-@dataclass(frozen=True, slots=True)
-class Edge:
-    """One joint as drawn: its parent and child link, and its DOT node id."""
-
-    parent: str
-    child: str
-    joint: Joint
-    node: str
-
-    @property
-    def name(self) -> str:
-        """The joint's name (the node's label)."""
-        return self.joint.name
-
-
-@dataclass(frozen=True, slots=True)
-class Drawing:
-    """What a drawing shows, in drawing order, worked out once from ``to_networkx``.
-
-    Attributes:
-        links: Link names in urdf_to_graphviz's order (depth-first from the root, children
-            by joint name), then the other trees and the links only loops reach.
-        edges: The joints in the same depth-first order.
-        defined: For each link name, its Link, or None when a joint names a missing link.
-        unreachable: Links the root does not reach (all of them when there is no root).
-    """
-
-    links: tuple[str, ...]
-    edges: tuple[Edge, ...]
-    defined: dict[str, Link | None]
-    unreachable: frozenset[str]
-
-
-def drawing(robot: Robot | Analysis) -> Drawing:
-    """Work out what to draw and in which order, in time linear in the robot's size."""
-    analysis = of(robot)
-    graph = to_networkx(analysis)
-    defined: dict[str, Link | None] = {n: data.get("link") for n, data in graph.nodes(data=True)}
-    # One pass over the edges (networkx's per-node views cost more than the whole walk).
-    children: dict[str, list[tuple[str, str, Joint]]] = {name: [] for name in defined}
-    parents: dict[str, int] = dict.fromkeys(defined, 0)
-    for parent, child, key, data in graph.edges(keys=True, data=True):
-        children[parent].append((child, key, data["joint"]))
-        parents[child] += 1
-    # As in urdfdom's tree: a joint from a missing link or from the link itself is no parent.
-    roots = list(analysis.topology.roots)
-    # The root's tree first, then the other trees, then links only loops reach.
-    starts = [*roots, *(n for n, count in parents.items() if not count), *defined]
-    links: list[str] = []
-    order: list[tuple[str, str, str, Joint]] = []
-    seen: set[str] = set()
-    reached: frozenset[str] | None = None
-    for start in starts:
-        if start in seen:
-            continue
-        seen.add(start)
-        links.append(start)
-        stack = [(start, iter(children[start]))]
-        while stack:
-            parent, below = stack[-1]
-            for child, key, joint in below:
-                order.append((parent, child, key, joint))
-                if child not in seen:
-                    seen.add(child)
-                    links.append(child)
-                    stack.append((child, iter(children[child])))
-                    break
-            else:
-                stack.pop()
-        if reached is None:
-            reached = frozenset(links) if roots else frozenset()
-    taken = set(graph)
-    edges = []
-    for parent, child, key, joint in order:
-        node = key
-        count = 0
-        while node in taken:  # a joint named like a link (or a duplicate joint name)
-            count += 1
-            node = f"{key} (joint)" if count == 1 else f"{key} (joint {count})"
-        taken.add(node)
-        edges.append(Edge(parent, child, joint, node))
-    return Drawing(
-        links=tuple(links),
-        edges=tuple(edges),
-        defined=defined,
-        unreachable=frozenset(links) - (reached or frozenset()),
-    )
 
 
 def to_dot(robot: Robot | Analysis, detail: bool = False) -> str:
@@ -181,69 +82,9 @@ def _label(text: str) -> str:
     return _quote(text).replace("\n", "\\n")
 
 
-def numbers(values: Vector3) -> str:
-    # C++ iostream's default for a double is printf's %g: 6 significant digits.
-    return " ".join(f"{v:g}" for v in values)
-
-
 def origin_numbers(joint: Joint) -> tuple[str, str]:
     """A joint's origin as urdf_to_graphviz prints it: xyz, and rpy as urdfdom recovers it."""
     return numbers(joint.origin.xyz), numbers(urdfdom_rpy(joint.origin.rpy))
-
-
-def urdfdom_rpy(rpy: Vector3) -> Vector3:
-    """Roll, pitch, yaw as urdfdom gives them back after storing them as a quaternion.
-
-    The same operations in the same order as urdfdom's Rotation::setFromRPY, normalize and
-    getRPY, so the printed numbers match urdf_to_graphviz's, down to the sign of a zero
-    pitch (``0 0 0`` comes back as ``0 -0 0``) and the gimbal-lock cases.
-    """
-    phi, the, psi = rpy[0] / 2.0, rpy[1] / 2.0, rpy[2] / 2.0
-    sin, cos = math.sin, math.cos
-    x = sin(phi) * cos(the) * cos(psi) - cos(phi) * sin(the) * sin(psi)
-    y = cos(phi) * sin(the) * cos(psi) + sin(phi) * cos(the) * sin(psi)
-    z = cos(phi) * cos(the) * sin(psi) - sin(phi) * sin(the) * cos(psi)
-    w = cos(phi) * cos(the) * cos(psi) + sin(phi) * sin(the) * sin(psi)
-    s = math.sqrt(x * x + y * y + z * z + w * w)
-    if s == 0.0:
-        x, y, z, w = 0.0, 0.0, 0.0, 1.0
-    else:
-        x, y, z, w = x / s, y / s, z / s, w / s
-    sqx, sqy, sqz, sqw = x * x, y * y, z * z, w * w
-    sarg = -2 * (x * z - w * y)
-    if sarg <= -0.99999:
-        return 0.0, -math.pi / 2, 2 * math.atan2(x, -y)
-    if sarg >= 0.99999:
-        return 0.0, math.pi / 2, 2 * math.atan2(-x, y)
-    return (
-        math.atan2(2 * (y * z + w * x), sqw - sqx - sqy + sqz),
-        math.asin(sarg),
-        math.atan2(2 * (x * y + w * z), sqw + sqx - sqy - sqz),
-    )
-
-
-def link_facts(link: Link) -> list[str]:
-    visuals, collisions = len(link.visuals), len(link.collisions)
-    facts = [
-        f"{visuals} visual{'' if visuals == 1 else 's'}, "
-        f"{collisions} collision{'' if collisions == 1 else 's'}"
-    ]
-    facts.append("no inertial" if link.inertial is None else f"mass {link.inertial.mass:g} kg")
-    return facts
-
-
-def joint_facts(joint: Joint) -> list[str]:
-    facts = [joint.type.value]
-    if joint.type.uses_axis:
-        facts.append(f"axis {numbers(joint.axis)}")
-    limit = joint.limit
-    if limit is not None:
-        span = f"{limit.lower:g} .. {limit.upper:g}, " if joint.type.needs_limit else ""
-        facts.append(f"limit {span}effort {limit.effort:g}, velocity {limit.velocity:g}")
-    if joint.mimic is not None:
-        mimic = joint.mimic
-        facts.append(f"mimic {mimic.joint} x{mimic.multiplier:g} {mimic.offset:+g}")
-    return facts
 
 
 def pipe_dot(text: str, format: str, *, timeout: float | None = None) -> bytes:

@@ -6,7 +6,7 @@ from collections.abc import Iterator
 
 from ..analysis import Analysis
 from ..model import Robot, Vector3
-from .dot import JOINT_COLORS, Drawing, drawing, joint_facts, link_facts
+from .layout import JOINT_COLORS, Drawing, drawing, joint_facts, link_facts
 
 __all__ = ["to_mermaid"]
 

@@ -3,7 +3,8 @@ its mesh file, placed by the forward kinematics at a joint configuration, in the
 link's frame. `fishbot render` rasterises a scene; `fishbot view` sends one to the browser.
 
 numpy is imported when a scene is built. Mesh files are found by the analysis's
-``mesh_paths`` (`fishbot_urdf.meshpaths`: the files `check` finds) and read from STL and OBJ
+``mesh_paths`` (`fishbot_urdf.analysis.meshpaths`: the files `check` finds) and read from STL
+and OBJ
 (by `fishbot_urdf.meshfile`); other formats need trimesh (the `mesh` extra). A mesh whose
 file is not found is left out; one that cannot be read (malformed, not finite) is drawn as
 its bounding box when its size is known (the vertices found in an STL or OBJ file, a

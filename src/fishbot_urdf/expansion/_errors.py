@@ -8,11 +8,12 @@ from pathlib import Path
 from typing import Any
 from xml.parsers.expat import ExpatError
 
-from ..diagnostics import closest, listing, shown_path
+from ..diagnostics import shown_path
 from ..errors import FishbotUrdfError, LimitError
 from ..inputs import TimeLimitError
 from ..location import Location
 from ..packages import PackageNotFoundError
+from ..wording import closest, listing
 from . import ExpansionLimitError, XacroError
 from ._bounds import UnsafeExpression
 

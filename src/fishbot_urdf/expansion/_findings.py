@@ -6,7 +6,8 @@ from __future__ import annotations
 from collections.abc import Collection, Iterable, Iterator
 
 from ..catalog.xacro import XACRO_UNKNOWN_ARG, XACRO_WARNING
-from ..diagnostics import Diagnostic, Kind, Subject, closest, listing
+from ..diagnostics import Diagnostic, Kind, Subject
+from ..wording import closest, listing
 
 __all__ = ["unknown_args", "xacro_warning"]
 

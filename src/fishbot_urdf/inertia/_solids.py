@@ -16,9 +16,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from ..analysis.meshpaths import MeshPaths
 from ..errors import ArgumentError, ShapeError, ToolNotFoundError
 from ..inputs import read_input
-from ..meshpaths import MeshPaths
 from ..model import (
     ZERO3,
     Box,
@@ -118,7 +118,7 @@ def geometry_inertia(
 
     A mesh's file is found by ``resolve`` (for a robot's mesh, its analysis's
     ``mesh_paths.file``, as every command finds it), or else by the rule of
-    `fishbot_urdf.meshpaths` with the file the mesh was read from as the robot file (the
+    `fishbot_urdf.analysis.meshpaths` with the file the mesh was read from as the robot file (the
     working folder for a mesh made in Python).
 
     Raises:

@@ -9,6 +9,7 @@ from collections.abc import Iterable, Iterator, Mapping
 from pathlib import Path
 
 from ..analysis import Analysis, of
+from ..analysis.meshpaths import MeshPath, State, robot_meshes
 from ..catalog import Rule
 from ..catalog.meshes import (
     MESH_CASE,
@@ -21,7 +22,6 @@ from ..catalog.meshes import (
 )
 from ..diagnostics import Diagnostic, Kind, Severity, Subject
 from ..errors import FishbotUrdfError, ShapeError
-from ..meshpaths import MeshPath, State, robot_meshes
 from ..model import Box, Cylinder, Link, Mesh, Sphere
 from ..packages import PackageFinder
 
@@ -39,7 +39,7 @@ def meshes(
     environ: Mapping[str, str] | None = None,
 ) -> Iterator[Diagnostic]:
     """Every finding about the robot's mesh files, found by the analysis's
-    ``mesh_paths`` (see `fishbot_urdf.meshpaths`). ``packages`` and ``environ``, when
+    ``mesh_paths`` (see `fishbot_urdf.analysis.meshpaths`). ``packages`` and ``environ``, when
     given, are where ``package://`` names are looked up instead (as for xacro's
     ``$(find)``); or ``packages`` is a `fishbot_urdf.packages.PackageFinder` that keeps its
     answers for other robots (its own environment is read then)."""

@@ -13,9 +13,10 @@ from ..catalog.references import (
     UNDEFINED_MATERIAL,
     UNKNOWN_REFERENCE,
 )
-from ..diagnostics import Diagnostic, Kind, Subject, closest, listing, shown_path
+from ..diagnostics import Diagnostic, Kind, Subject, shown_path
 from ..extensions import Reference, Target
 from ..model import JointType, Location, Material
+from ..wording import closest, listing
 
 __all__ = ["REPORTS", "references"]
 

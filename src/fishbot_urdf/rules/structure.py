@@ -23,16 +23,9 @@ from ..catalog.structure import (
     UNREACHABLE_LINK,
     ZERO_AXIS,
 )
-from ..diagnostics import (
-    FOLLOWS,
-    Diagnostic,
-    Kind,
-    Subject,
-    did_you_mean,
-    listing,
-    subject,
-)
+from ..diagnostics import FOLLOWS, Diagnostic, Kind, Subject, subject
 from ..model import Joint, Location, Robot
+from ..wording import did_you_mean, listing
 
 __all__ = ["structure"]
 

@@ -14,13 +14,13 @@ from functools import cached_property
 from pathlib import Path
 from typing import NamedTuple
 
-from .extensions import Reference
-from .graph import Topology, root, topology
-from .inputs import deadline
+from ..extensions import Reference, from_robot
+from ..inputs import deadline
+from ..model import Joint, JointType, Link, Robot
+from ..packages import PackageFinder
+from ..spatial import Pose
 from .meshpaths import MeshPaths
-from .model import Joint, JointType, Link, Robot
-from .packages import PackageFinder
-from .spatial import Pose
+from .topology import Topology, single_root, topology
 
 __all__ = ["Analysis", "Body", "analyse", "of"]
 
@@ -72,7 +72,7 @@ class Analysis:
         Raises:
             StructureError: There is no root, or several.
         """
-        return root(self)
+        return single_root(self.robot, self.topology)
 
     @cached_property
     def loops(self) -> tuple[tuple[Joint, ...], ...]:
@@ -93,23 +93,18 @@ class Analysis:
         links and joints (with their places when the file's reader gave them)."""
         if self.given_references is not None:
             return self.given_references
-        from .extensions import from_robot
-
         return from_robot(self.robot)
 
     @cached_property
     def mesh_paths(self) -> MeshPaths:
-        """Where each of its mesh names leads, by the one rule of `fishbot_urdf.meshpaths`
+        """Where each of its mesh names leads, by the one rule of `fishbot_urdf.analysis.meshpaths`
         (relative names beside ``path``), looked up on first use."""
-        from .meshpaths import MeshPaths
-        from .packages import PackageFinder
-
         return MeshPaths(self.path, self.packages or PackageFinder())
 
     @cached_property
     def zero_poses(self) -> Mapping[str, Pose]:
         """Every reached link's pose in its root's frame, every joint at zero."""
-        from .kinematics import link_poses
+        from ..kinematics import link_poses
 
         return link_poses(self)
 

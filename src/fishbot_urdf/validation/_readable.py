@@ -2,7 +2,7 @@
 name that is None made "" (as the reader makes a missing one), a number that is not finite
 made 0 (an axis, URDF's default). The rules compare and sort names and do arithmetic on
 numbers; their findings about what was mended follow from the report (see
-:mod:`fishbot_urdf.rules.values`)."""
+:mod:`fishbot_urdf.validation`)."""
 
 from __future__ import annotations
 

@@ -3,7 +3,7 @@
 Every field is of the exact type the model declares (a float, not an int), every number
 finite, every name printable ASCII. The test goes field by field over all links and joints
 at once (``map``, ``set`` and ``sum`` loop in C), not object by object: 51 M instructions on
-a 1,000-link tree where the careful walk of `fishbot_urdf.rules.values` takes 256 M.
+a 1,000-link tree where the careful walk of `fishbot_urdf.validation` takes 256 M.
 Failing proves nothing: the walk then looks at every link and joint, and may find nothing
 wrong (an int, a name with a line break or an é).
 """

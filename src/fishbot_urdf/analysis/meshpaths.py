@@ -25,15 +25,15 @@ from enum import Enum
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .diagnostics import closest
-from .errors import FishbotUrdfError
-from .model import Link, Mesh, Robot
-from .packages import PackageFinder, PackageNotFoundError, package_name
+from ..errors import FishbotUrdfError
+from ..model import Link, Mesh, Robot
+from ..packages import PackageFinder, PackageNotFoundError, package_name
+from ..wording import closest
 
 if TYPE_CHECKING:
     from collections.abc import Iterator
 
-    from .meshfile import MeshFacts
+    from ..meshfile import MeshFacts
 
 __all__ = ["RULE", "MeshNotFoundError", "MeshPath", "MeshPaths", "State", "robot_meshes"]
 
@@ -223,7 +223,7 @@ class MeshPaths:
     def facts(self, file: Path) -> MeshFacts | None:
         """The facts of an STL or OBJ file found (see `fishbot_urdf.meshfile.mesh_facts`)."""
         if file not in self._facts:
-            from .meshfile import mesh_facts  # (read only for a robot with mesh files)
+            from ..meshfile import mesh_facts  # (read only for a robot with mesh files)
 
             self._facts[file] = mesh_facts(file)
         return self._facts[file]
