@@ -22,10 +22,16 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import Any
 
+from .catalog import Family, all_rules, ids
 from .diagnostics import Diagnostic, Severity
 from .errors import ConfigError, InputError
 from .inputs import read_input
 from .wording import did_you_mean, listing
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # Python 3.10
+    import tomli as tomllib
 
 __all__ = [
     "CONFIG_FILES",
@@ -91,8 +97,6 @@ class Config:
     enabled: frozenset[str] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        from .catalog import all_rules
-
         layers = (Selection(self.select, self.extend_select, self.ignore), *self.overrides)
         for layer in layers:
             for key, names in (
@@ -263,7 +267,7 @@ def load_config(path: str | Path) -> Config:
 
 def _parse(text: str, path: str) -> dict[str, Any]:
     try:
-        document: dict[str, Any] = _toml().loads(text)
+        document: dict[str, Any] = tomllib.loads(text)
     except RecursionError as exc:  # tomllib reads nested arrays and tables recursively
         raise ConfigError(
             "not valid TOML: arrays or tables nested too deeply to read (nest them less)",
@@ -326,8 +330,6 @@ def _wrong(path: str, key: str, wanted: str) -> ConfigError:
 
 
 def _known(name: str, key: str, path: str | None, *, allow_groups: bool) -> None:
-    from .catalog import Family, ids
-
     rules = ids()
     families = {f.value for f in Family}
     known = rules | families | {_ALL} if allow_groups else rules
@@ -348,8 +350,6 @@ def _known(name: str, key: str, path: str | None, *, allow_groups: bool) -> None
 
 
 def _changeable(name: str, key: str, path: str | None) -> None:
-    from .catalog import all_rules
-
     if any(rule.id == name and rule.fatal for rule in all_rules()):
         raise ConfigError(
             f"{key}: rule {name!r} cannot be changed: it stops the file from being read",
@@ -360,8 +360,6 @@ def _changeable(name: str, key: str, path: str | None) -> None:
 
 def _resolve(layers: Iterable[Selection]) -> set[str]:
     """The rules the layers choose, the more specific name winning within a layer."""
-    from .catalog import all_rules
-
     rules = all_rules()
     enabled = {rule.id for rule in rules}
     earlier_ignores: tuple[str, ...] = ()
@@ -420,7 +418,7 @@ def _has_table(pyproject: Path) -> bool:
     if text is None or "fishbot" not in text:
         return False
     try:
-        document = _toml().loads(text)
+        document = tomllib.loads(text)
     except (ValueError, RecursionError):
         return any(_TABLE.match(line) for line in text.splitlines())
     tool = document.get("tool")
@@ -434,13 +432,3 @@ def _text_or_none(path: str | Path) -> str | None:
         return read_input(path).decode("utf-8")
     except (InputError, UnicodeDecodeError):
         return None
-
-
-def _toml() -> Any:
-    if sys.version_info >= (3, 11):
-        import tomllib
-
-        return tomllib
-    import tomli  # the same module, from PyPI, for Python 3.10
-
-    return tomli

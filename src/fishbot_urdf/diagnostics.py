@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
@@ -227,8 +228,6 @@ def escape_line_controls(text: str) -> str:
 
 def shown_path(name: str) -> str:
     """A path as a user would write it: relative to the current folder when inside it."""
-    import os
-
     try:
         relative = os.path.relpath(name)
     except ValueError:  # another drive (Windows)

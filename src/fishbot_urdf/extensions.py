@@ -14,7 +14,9 @@ from enum import Enum
 
 from lxml import etree
 
+from .errors import FishbotUrdfError
 from .model import Location, Robot
+from .xml.source import parse_xml
 
 __all__ = ["Interface", "Reference", "Target", "collect", "from_robot"]
 
@@ -136,9 +138,6 @@ def collect(
 def from_robot(robot: Robot) -> tuple[Reference, ...]:
     """The references in ``robot``'s extension elements, read again from their text (with no
     places: the reader of a file gives them with places)."""
-    from .errors import FishbotUrdfError
-    from .xml.source import parse_xml
-
     found: list[Reference] = []
     for text in robot.extras:
         if not text.startswith(tuple(f"<{tag}" for tag in TAGS)):

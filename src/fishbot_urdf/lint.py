@@ -23,6 +23,7 @@ from .diagnostics import (
     without_consequences,
 )
 from .model import Robot
+from .packages import PackageFinder
 from .parsing import is_xacro_path, read
 from .rules.joints import REPORTS as JOINT_RULES
 from .rules.joints import joints
@@ -102,8 +103,6 @@ def check_file(
         XacroError: The xacro file cannot be expanded.
         PackageNotFoundError: The xacro file names a package that is not found.
     """
-    from .packages import PackageFinder
-
     config = config or Config()
     folders = packages.packages if isinstance(packages, PackageFinder) else packages
     parsed = read(source, path=path, args=args, packages=folders)

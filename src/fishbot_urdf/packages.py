@@ -25,6 +25,7 @@ from collections.abc import Callable, Iterable, Iterator, Mapping
 from contextlib import contextmanager
 from contextvars import ContextVar
 from pathlib import Path
+from xml.parsers import expat
 
 from .errors import FishbotUrdfError, InputError
 from .inputs import deadline, read_input
@@ -117,7 +118,6 @@ def _name_in(data: bytes) -> str | None:
     # start-up): no DTD is loaded, no external entity is read, and a file that declares an
     # entity is refused as the URDF reader refuses it. The name is the text of the root's
     # first <name> up to anything inside it, as lxml's ``.text`` gives it.
-    from xml.parsers import expat
 
     depth, state, root_ok = 0, _BEFORE, False
     parts: list[str] = []

@@ -11,6 +11,8 @@ from pathlib import Path
 from typing import Any
 from urllib.parse import quote
 
+from .catalog import all_rules
+from .catalog.docs import explanation, markdown_explanation
 from .diagnostics import Diagnostic, Severity, escape_controls, shown_path
 
 __all__ = ["FileReport", "github_annotations", "json_report", "sarif_report"]
@@ -90,9 +92,6 @@ def sarif_report(files: Sequence[FileReport], *, version: str) -> dict[str, Any]
     inside the current folder is a URI relative to ``%SRCROOT%`` (that folder: the
     checkout, in CI), any other an absolute file: URI.
     """
-    from .catalog import all_rules
-    from .catalog.docs import explanation, markdown_explanation
-
     rules = all_rules()
     index = {rule.id: i for i, rule in enumerate(rules)}
     results: list[dict[str, Any]] = []

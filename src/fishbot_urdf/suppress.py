@@ -12,12 +12,15 @@ never silenced.
 from __future__ import annotations
 
 import bisect
+import heapq
 import os
 import re
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from .catalog import Family, all_rules, ids
+from .catalog.setup import UNUSED_SUPPRESSION
 from .diagnostics import Diagnostic, Kind, Subject
 from .errors import InputError
 from .inputs import Deadline, deadline, read_input
@@ -190,8 +193,6 @@ def apply_suppressions(
     kept list as ``unused-suppression`` findings, which a ``fishbot: ignore
     [unused-suppression]`` comment covering them silences in turn.
     """
-    from .catalog.setup import UNUSED_SUPPRESSION
-
     findings = list(findings)
     if not marks:
         return findings, []
@@ -220,8 +221,6 @@ class _Index:
     """
 
     def __init__(self, marks: Sequence[Suppression]) -> None:
-        from .catalog import all_rules
-
         self.fatal = {rule.id for rule in all_rules() if rule.fatal}
         self.files: dict[str, str] = {}
         limit = deadline()
@@ -309,8 +308,6 @@ def _sweep(
     """Set ``hits[n]`` to the narrowest of the ``marked`` spans (start, end: the end not
     included; the mark's index) that holds each position of ``where`` (position, n),
     narrowness by ``rank``."""
-    import heapq
-
     where.sort()
     marked = sorted(marked)
     begun: list[tuple[int, Position, int]] = []  # (narrowness, end, mark), narrowest first
@@ -333,9 +330,6 @@ def _unused(
 ) -> list[Diagnostic]:
     """The findings about faulty suppressions; with ``lint``, only those naming
     unused-suppression that silence nothing, else all the others."""
-    from .catalog import Family, all_rules, ids
-    from .catalog.setup import UNUSED_SUPPRESSION
-
     lint_id = UNUSED_SUPPRESSION.id
     remove = "remove it, or move it right before the element the finding is about"
     if lint:
@@ -415,8 +409,6 @@ _SHOWN_RULES = 8  # a comment naming more is named by its first rules (and how m
 
 
 def _finding(mark: Suppression, message: str, hint: str) -> Diagnostic:
-    from .catalog.setup import UNUSED_SUPPRESSION
-
     # Bounded: a comment naming thousands of rules has a finding for each of them.
     names = ", ".join(mark.rules[:_SHOWN_RULES])
     if len(mark.rules) > _SHOWN_RULES:

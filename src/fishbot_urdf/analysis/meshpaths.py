@@ -26,6 +26,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..errors import FishbotUrdfError
+from ..meshfile import mesh_facts
 from ..model import Link, Mesh, Robot
 from ..packages import PackageFinder, PackageNotFoundError, package_name
 from ..wording import closest
@@ -223,8 +224,6 @@ class MeshPaths:
     def facts(self, file: Path) -> MeshFacts | None:
         """The facts of an STL or OBJ file found (see `fishbot_urdf.meshfile.mesh_facts`)."""
         if file not in self._facts:
-            from ..meshfile import mesh_facts  # (read only for a robot with mesh files)
-
             self._facts[file] = mesh_facts(file)
         return self._facts[file]
 

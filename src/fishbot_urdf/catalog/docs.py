@@ -11,6 +11,7 @@ import re
 import textwrap
 from collections.abc import Sequence
 
+from ..errors import ArgumentError
 from . import Rule
 
 __all__ = [
@@ -111,8 +112,6 @@ def with_rule_table(readme: str, rules: Sequence[Rule]) -> str:
     begin = readme.find(README_BEGIN)
     end = readme.find(README_END)
     if begin < 0 or end < begin:
-        from ..errors import ArgumentError
-
         raise ArgumentError(
             f"the README has no {README_BEGIN} ... {README_END} section for the rule list",
             name="readme",

@@ -13,8 +13,22 @@ from typing import IO, TYPE_CHECKING, Any, NoReturn, TypeVar
 
 import click
 
+from ..catalog import all_rules
+from ..config import Config, find_config, load_config
 from ..diagnostics import Diagnostic, Severity, escape_controls, from_error
-from ..errors import FishbotUrdfError, InputError, ToolError
+from ..errors import ConfigError, FishbotUrdfError, InputError, LimitError, ToolError
+from ..expansion import ExpansionLimitError, parse_args
+from ..inputs import (
+    InputTooLargeError,
+    max_bytes,
+    max_seconds,
+    size_limit,
+    time_limit,
+    trusting_expressions,
+)
+from ..lint import check_file
+from ..packages import PackageNotFoundError, recording_manifests
+from ..rules import Family
 from ._hints import command_hint, error_hint
 
 if TYPE_CHECKING:
@@ -88,10 +102,6 @@ def status_of(exc: FishbotUrdfError) -> int:
     """Exit status for an error that stopped a file: 2 when the input or the setup is at
     fault (a file cannot be read or written, a package or a program is not found, the
     configuration is wrong, a limit is reached), 1 when the robot is."""
-    from ..errors import ConfigError, LimitError
-    from ..expansion import ExpansionLimitError
-    from ..packages import PackageNotFoundError
-
     setup = (
         InputError,
         PackageNotFoundError,
@@ -130,7 +140,6 @@ def xacro_args(items: Sequence[str]) -> dict[str, str]:
     """``name:=value`` arguments as a mapping."""
     if not items:
         return {}
-    from ..expansion import parse_args
 
     try:
         return parse_args(list(items))
@@ -145,8 +154,6 @@ def check_input(
     config: Config | None = None,
 ) -> CheckResult:
     """Read and check FILE (- is standard input, read as URDF)."""
-    from ..lint import check_file
-
     if name == "-":
         return check_file(stdin_urdf(), path="<stdin>", packages=packages, config=config)
     return check_file(name, args=args, packages=packages, config=config)
@@ -175,16 +182,12 @@ def read_files(name: str, result: CheckResult | None, config: Config | None) -> 
 def manifests_read() -> list[str]:
     """Every package.xml that the command reads from now on to find a package (for
     ``$(find)`` and ``package://``), added to the list as they are read: inputs too."""
-    from ..packages import recording_manifests
-
     return click.get_current_context().with_resource(recording_manifests())
 
 
 def nearest_config(file: str) -> Config:
     """The configuration of the nearest fishbot.toml or pyproject.toml above ``file`` (the
     current folder for -), or the default; a wrong one stops the command."""
-    from ..config import Config, find_config, load_config
-
     found = find_config("." if file == "-" else file)
     try:
         return Config() if found is None else load_config(found)
@@ -194,8 +197,6 @@ def nearest_config(file: str) -> Config:
 
 def stdin_urdf() -> bytes:
     """Standard input, which must be URDF: xacro there has no folder for its includes."""
-    from ..inputs import InputTooLargeError, max_bytes
-
     limit = max_bytes()
     stream: IO[bytes] | None = getattr(sys.stdin, "buffer", None)
     if stream is None:  # closed by the caller (`<&-`)
@@ -283,8 +284,6 @@ def posing_errors(diagnostics: Iterable[Diagnostic]) -> list[Diagnostic]:
     """The errors that leave a robot's shape or tree in doubt (reading, URDF and structure
     rules): `tf`, `render` and `view` stop on them; physics and mesh findings are
     `check`'s."""
-    from ..catalog import all_rules
-
     ids = {rule.id for rule in all_rules() if rule.family.value in _SHAPING}
     return [d for d in diagnostics if d.is_error and d.rule in ids]
 
@@ -295,8 +294,6 @@ _SHAPING = ("xml", "urdf", "structure", "xacro")  # the families of `posing_erro
 def posing(config: Config) -> Config:
     """``config`` with only the rules `posing_errors` looks at: a command that poses the
     robot runs no other check (and opens no mesh file to check it)."""
-    from ..rules import Family
-
     return config.updated(ignore=[f.value for f in Family if f.value not in _SHAPING])
 
 
@@ -374,14 +371,6 @@ def limit_options() -> Callable[[Wrapped], Wrapped]:
             trust_expressions: bool,
             **kwargs: Any,
         ) -> Any:
-            from ..inputs import (
-                max_bytes,
-                max_seconds,
-                size_limit,
-                time_limit,
-                trusting_expressions,
-            )
-
             limit = max_bytes() if max_size is None else max(1, int(max_size * 1024 * 1024))
             seconds = max_seconds() if timeout is None else timeout
             with size_limit(limit), time_limit(seconds), trusting_expressions(trust_expressions):

@@ -7,7 +7,11 @@ from collections.abc import Callable
 from typing import Any
 
 from ..diagnostics import Diagnostic
-from ..errors import FishbotUrdfError
+from ..errors import FishbotUrdfError, ToolTimeoutError
+from ..expansion import ExpansionLimitError, XacroError
+from ..expansion._errors import TRUST_HINT
+from ..inputs import InputTooLargeError, TimeLimitError
+from ..packages import PackageNotFoundError
 
 
 def phrased(finding: Diagnostic) -> Diagnostic:
@@ -92,12 +96,6 @@ _EXTRA: dict[str, Callable[[Any], str | None]] = {
 def error_hint(exc: FishbotUrdfError) -> tuple[str, str | None] | None:
     """The message and hint of an error that stops a command, phrased for the command line,
     or None to keep the library's."""
-    from ..errors import ToolTimeoutError
-    from ..expansion import ExpansionLimitError, XacroError
-    from ..expansion._errors import TRUST_HINT
-    from ..inputs import InputTooLargeError, TimeLimitError
-    from ..packages import PackageNotFoundError
-
     if isinstance(exc, InputTooLargeError):
         return exc.message, "raise the limit with --max-size MIB"
     if isinstance(exc, ToolTimeoutError):

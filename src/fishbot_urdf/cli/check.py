@@ -3,16 +3,22 @@
 from __future__ import annotations
 
 import contextlib
+import json
 import os
 import sys
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 import click
 
+from ..config import Config, check_selectors, check_severities, find_config, load_config
+from ..diagnostics import Severity, shown_path
 from ..errors import FishbotUrdfError
+from ..output import AtomicFile, write_atomic
+from ..packages import PackageFinder
+from ..report import github_annotations, json_report, sarif_report
 from ._batch import Run, outcomes, tree_chunks
 from ._common import (
     EXIT_OK,
@@ -29,6 +35,7 @@ from ._common import (
     write_chunks,
     xacro_args,
 )
+from ._hints import phrased
 
 if TYPE_CHECKING:
     from ..config import Config
@@ -51,8 +58,6 @@ class _Rules(click.ParamType):  # type: ignore[type-arg]
     def convert(
         self, value: object, param: click.Parameter | None, ctx: click.Context | None
     ) -> tuple[str, ...]:
-        from ..config import check_selectors
-
         if isinstance(value, tuple):
             return value
         names = tuple(part.strip() for part in str(value).split(",") if part.strip())
@@ -71,8 +76,6 @@ class _Severity(click.ParamType):  # type: ignore[type-arg]
     def convert(
         self, value: object, param: click.Parameter | None, ctx: click.Context | None
     ) -> tuple[str, str]:
-        from ..config import check_severities
-
         if isinstance(value, tuple):
             return value
         rule, sep, level = (part.strip() for part in str(value).partition("="))
@@ -104,9 +107,6 @@ class _Options:
         """The configuration that applies to ``file``: its nearest configuration file (or
         ``--config``, or none with ``--isolated``), with the options on top. ``found`` and
         ``folders`` keep what earlier files of the run found."""
-        from ..config import Config, find_config, load_config
-        from ..diagnostics import Severity, shown_path
-
         if self.isolated:
             where = None
         elif self.config_file is not None:
@@ -296,7 +296,6 @@ def check(
         configs = [options.config_for(name, found, folders) for name in names]
     except FishbotUrdfError as exc:
         stop_on(exc)
-    from ..packages import PackageFinder
 
     status = EXIT_OK
     reports: list[FileReport] = []
@@ -333,7 +332,6 @@ def _tree_file(output: str | None, inputs: list[Source]) -> AtomicFile | None:
     """The file the trees stream into, for -o FILE (checked now, put in place at the end)."""
     if output is None or output == "-":
         return None
-    from ..output import AtomicFile
 
     try:
         return AtomicFile(output, inputs=inputs)
@@ -376,10 +374,6 @@ def _finish(
             except FishbotUrdfError as exc:
                 stop_on(exc)
         return
-    import json
-
-    from ..report import github_annotations, json_report, sarif_report
-    from ._hints import phrased
 
     phrased_reports = [_with(r, tuple(phrased(d) for d in r.diagnostics)) for r in reports]
     if fmt == "json":
@@ -395,7 +389,6 @@ def _finish(
     if output is None or output == "-":
         to_stdout(data)
         return
-    from ..output import write_atomic
 
     try:
         write_atomic(output, data, inputs=inputs)
@@ -405,13 +398,11 @@ def _finish(
 
 
 def _with(report: FileReport, diagnostics: tuple[Diagnostic, ...]) -> FileReport:
-    from dataclasses import replace
-
     return replace(report, diagnostics=diagnostics)
 
 
 def _version() -> str:
-    from importlib.metadata import PackageNotFoundError, version
+    from importlib.metadata import PackageNotFoundError, version  # ~50 ms: only for --version
 
     try:
         return version("fishbot-urdf")

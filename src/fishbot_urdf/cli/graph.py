@@ -10,7 +10,9 @@ from typing import TYPE_CHECKING
 import click
 
 from ..diagnostics import escape_controls, has_errors
+from ..drawing.dot import draw
 from ..errors import FishbotUrdfError
+from ..output import refuse_inputs, write_atomic
 from ._common import (
     EXIT_INVALID,
     EXIT_OK,
@@ -147,9 +149,6 @@ def _draw_all(
 ) -> None:
     """Write each output, saying "Created file" only for files really written; none when
     one of them is an input."""
-    from ..drawing.dot import draw
-    from ..output import refuse_inputs, write_atomic
-
     for path, _ in outputs:
         if path != "-":
             refuse_inputs(path, inputs)

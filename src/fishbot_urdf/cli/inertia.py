@@ -13,7 +13,19 @@ from typing import TYPE_CHECKING, Any
 import click
 
 from ..diagnostics import escape_controls
-from ..errors import FishbotUrdfError
+from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
+from ..inertia import (
+    box_inertia,
+    cylinder_inertia,
+    fill_inertials,
+    inertial_dict,
+    mass_table,
+    sphere_inertia,
+)
+from ..model import Origin
+from ..output import write_atomic
+from ..wording import closest
+from ..write import add_inertials, inertial_xml
 from ._common import (
     EXIT_INVALID,
     EXIT_OK,
@@ -54,8 +66,6 @@ class _ShapeOrRobot(click.Group):
             return super().parse_args(ctx, args)
         if not any(a in _SHAPES for a in args) or first == "-" or not first.startswith("-"):
             if not first.startswith("-") and _looks_like_a_shape(first):
-                from ..wording import closest
-
                 guess = closest(first, _SHAPES)
                 hint = f"did you mean {guess!r}? " if guess else ""
                 raise click.UsageError(
@@ -148,8 +158,6 @@ def box(size: Vector3, mass: float, xyz: Vector3, rpy: Vector3, fmt: str) -> Non
     Example:
       fishbot inertia box --mass 0.01 --size 0.02 0.1 0.02
     """
-    from ..inertia import box_inertia
-
     _print(box_inertia(mass, *size, _origin(xyz, rpy)), fmt)
 
 
@@ -169,8 +177,6 @@ def cylinder(
     Example:
       fishbot inertia cylinder --mass 0.1 --radius 0.032 --length 0.04 --rpy 1.57079 0 0
     """
-    from ..inertia import cylinder_inertia
-
     _print(cylinder_inertia(mass, radius, length, _origin(xyz, rpy)), fmt)
 
 
@@ -184,14 +190,10 @@ def sphere(radius: float, mass: float, xyz: Vector3, rpy: Vector3, fmt: str) -> 
     Example:
       fishbot inertia sphere --mass 0.02 --radius 0.016
     """
-    from ..inertia import sphere_inertia
-
     _print(sphere_inertia(mass, radius, _origin(xyz, rpy)), fmt)
 
 
 def _origin(xyz: Vector3, rpy: Vector3) -> Any:
-    from ..model import Origin
-
     if any(abs(angle) > 2 * math.pi for angle in rpy):
         turned = " ".join(f"{math.radians(a):.6g}" for a in rpy)
         click.echo(
@@ -204,9 +206,6 @@ def _origin(xyz: Vector3, rpy: Vector3) -> Any:
 
 
 def _print(inertial: Inertial, fmt: str) -> None:
-    from ..inertia import inertial_dict
-    from ..write import inertial_xml
-
     tensor = inertial.inertia
     if not all(math.isfinite(getattr(tensor, f)) for f in ("ixx", "iyy", "izz")):
         raise click.UsageError("the moments overflow: give the sizes in metres")
@@ -311,8 +310,6 @@ def robot(
     emit_findings(result.diagnostics)
     if result.analysis is None:
         sys.exit(EXIT_INVALID)
-    from ..errors import ArgumentError, UnknownNameError
-    from ..inertia import mass_table
 
     try:
         table = mass_table(result.analysis, result.diagnostics, positions)
@@ -356,11 +353,6 @@ def _fill(
 ) -> int:
     """Write the copy with the missing inertials (never over one of ``inputs``); the exit
     status."""
-    from ..errors import ArgumentError, UnknownNameError
-    from ..inertia import fill_inertials
-    from ..output import write_atomic
-    from ..write import add_inertials
-
     assert result.analysis is not None  # (its mesh_paths find the meshes, as check found them)
     try:
         filling = fill_inertials(result.analysis, density=density, masses=masses)

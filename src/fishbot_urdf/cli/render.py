@@ -7,7 +7,11 @@ from collections.abc import Sequence
 
 import click
 
-from ..errors import FishbotUrdfError
+from ..drawing.picture import render_png
+from ..drawing.scene import build_scene
+from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
+from ..kinematics import Kinematics
+from ..output import write_atomic
 from ._common import (
     EXIT_OK,
     emit_findings,
@@ -92,12 +96,6 @@ def render(
       fishbot render arm.urdf -o arm.png --view side -j shoulder=45deg --size 1200x900
       fishbot render robot.urdf.xacro -o collision.png --collision
     """
-    from ..drawing.picture import render_png
-    from ..drawing.scene import build_scene
-    from ..errors import ArgumentError, UnknownNameError
-    from ..kinematics import Kinematics
-    from ..output import write_atomic
-
     width, height = _size(size_text)
     if file == "-" and args:
         raise click.UsageError("name:=value arguments are for a .xacro file, not standard input")

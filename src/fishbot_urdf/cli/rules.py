@@ -7,6 +7,10 @@ import sys
 
 import click
 
+from ..catalog import Family, Rule, all_rules, get
+from ..catalog.docs import explanation, markdown_explanation, markdown_table, table
+from ..errors import UnknownNameError
+from ..wording import did_you_mean
 from ._common import EXIT_USAGE, to_stdout
 
 
@@ -34,10 +38,6 @@ def rules(name: str | None, fmt: str) -> None:
       fishbot rules physics
       fishbot rules --format json
     """
-    from ..catalog import Family, Rule, all_rules, get
-    from ..errors import UnknownNameError
-    from ..wording import did_you_mean
-
     families = {f.value for f in Family}
     if name is not None and name not in families:
         try:
@@ -59,11 +59,7 @@ def rules(name: str | None, fmt: str) -> None:
         data = [r.to_dict() for r in chosen]
         text = json.dumps(data[0] if one else data, indent=2) + "\n"
     elif fmt == "markdown":
-        from ..catalog.docs import markdown_explanation, markdown_table
-
         text = markdown_explanation(chosen[0]) if one else markdown_table(chosen)
     else:
-        from ..catalog.docs import explanation, table
-
         text = explanation(chosen[0]) if one else table(chosen)
     to_stdout(text.encode("utf-8", "surrogateescape"))

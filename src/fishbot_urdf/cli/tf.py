@@ -10,10 +10,14 @@ from typing import Any
 
 import click
 
+from ..errors import ArgumentError, StructureError, UnknownNameError
+from ..kinematics import Kinematics
+from ..spatial import quaternion
 from ._common import (
     EXIT_OK,
     format_option,
     joint_option,
+    joint_positions,
     limit_options,
     package_option,
     packages_option,
@@ -59,10 +63,6 @@ def tf(
       fishbot tf arm.urdf base_link tool0 -j shoulder=90deg -j elbow=-0.5
       fishbot tf robot.urdf.xacro base_link camera_link use_sim:=true --format json
     """
-    from ..errors import ArgumentError, StructureError, UnknownNameError
-    from ..kinematics import Kinematics
-    from ._common import joint_positions
-
     if file == "-" and args:
         raise click.UsageError("name:=value arguments are for a .xacro file, not standard input")
     values = xacro_args(args)
@@ -91,8 +91,6 @@ def tf(
 
 
 def _report(matrix: list[list[float]]) -> dict[str, Any]:
-    from ..spatial import quaternion
-
     rotation = [row[:3] for row in matrix[:3]]
     roll, pitch, yaw = _euler_ypr(rotation)
     return {

@@ -11,7 +11,8 @@ from typing import Any
 
 import click
 
-from ..errors import FishbotUrdfError
+from ..drawing.viewer import Viewer
+from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
 from ._common import (
     EXIT_INVALID,
     check_input,
@@ -65,9 +66,6 @@ def view(
       fishbot view robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
       fishbot view robot.urdf.xacro use_sim:=true --port 8081 -j shoulder=45deg
     """
-    from ..drawing.viewer import Viewer
-    from ..errors import ArgumentError, UnknownNameError
-
     values = xacro_args(args)
     packages = packages_option(package_items)
     positions = joint_positions(joint_items)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import asyncio
 import errno
+import http
 import ipaddress
 import logging
 import os
@@ -43,7 +44,7 @@ class ServeError(InputError):
 
 def _viser() -> Any:
     try:
-        import viser
+        import viser  # the view extra (optional): ~540 ms to load
     except ImportError:
         raise ToolNotFoundError(
             "fishbot view needs the viser package",
@@ -129,7 +130,7 @@ def _reason(exc: BaseException) -> str:
 
 def _console() -> Any:
     """rich's console, which viser prints to (stdout); its captures are per thread."""
-    import rich
+    import rich  # comes with viser (optional)
 
     return rich.get_console()
 
@@ -177,8 +178,8 @@ def _guard(server: Any, origin: _Origin, accepts: Callable[[Any], bool], console
 async def _hook(
     hub: Any, gui: Any, origin: _Origin, accepts: Callable[[Any], bool], console: Any
 ) -> bool:
-    from viser._messages import GuiUpdateMessage
-    from websockets.asyncio.server import Server
+    from viser._messages import GuiUpdateMessage  # viser (optional)
+    from websockets.asyncio.server import Server  # comes with viser (optional)
 
     console.begin_capture()  # never ended: what viser prints on this thread goes nowhere
     serving = [
@@ -218,7 +219,6 @@ def _frames(coroutine: Any) -> list[Any]:
 
 def _checked(process_request: Any, origin: _Origin) -> Callable[[Any, Any], Any]:
     """``process_request`` behind the ``Host``/``Origin`` check (403 for a refusal)."""
-    import http
 
     def check(connection: Any, request: Any) -> Any:
         headers = request.headers

@@ -9,15 +9,21 @@ are drawn too, marked.
 from __future__ import annotations
 
 import os
+import shutil
+import signal
+import subprocess
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 from ..analysis import Analysis, of
 from ..errors import ArgumentError, ToolError, ToolNotFoundError, ToolTimeoutError
+from ..inputs import max_seconds
 from ..model import Joint, Link, Robot
+from ..output import write_atomic
 from ..spatial import urdfdom_rpy
 from .layout import JOINT_COLORS, Drawing, drawing, joint_facts, link_facts, numbers
+from .mermaid import to_mermaid
 
 __all__ = ["FORMATS", "Drawing", "draw", "drawing", "pipe_dot", "render", "to_dot"]
 
@@ -99,10 +105,6 @@ def pipe_dot(text: str, format: str, *, timeout: float | None = None) -> bytes:
         ToolTimeoutError: `dot` took longer than ``timeout``.
         ToolError: `dot` failed.
     """
-    import shutil
-    import subprocess
-
-    from ..inputs import max_seconds
 
     if timeout is None:
         timeout = max_seconds()
@@ -149,8 +151,6 @@ def pipe_dot(text: str, format: str, *, timeout: float | None = None) -> bytes:
 
 def _stop(process: Any) -> None:
     """Kill a process and what it started (its process group, on POSIX), and reap it."""
-    import signal
-
     try:
         if os.name == "posix":
             os.killpg(process.pid, signal.SIGKILL)
@@ -172,8 +172,6 @@ def draw(
             f"unknown format {format!r} (formats: {', '.join(FORMATS)})", name="format"
         )
     if format == "mmd":
-        from .mermaid import to_mermaid
-
         return to_mermaid(robot, detail=detail).encode("utf-8", "surrogateescape")
     text = to_dot(robot, detail=detail)
     if format in ("gv", "dot"):
@@ -204,8 +202,6 @@ def render(
         ToolError: `dot` failed.
         InputError: The file cannot be written.
     """
-    from ..output import write_atomic
-
     chosen = format or Path(path).suffix.lstrip(".")
     analysis = of(robot)
     data = draw(analysis, chosen, detail=detail)

@@ -28,7 +28,10 @@ from ..catalog import Rule
 from ..catalog.meshes import MESH_FORMAT, MESH_INVALID, SHAPE_NOT_DRAWN
 from ..catalog.setup import TOOL_MISSING
 from ..diagnostics import Diagnostic, Kind, Severity, Subject, sort_key
-from ..inputs import deadline
+from ..errors import FishbotUrdfError, LimitError, ShapeError, ToolNotFoundError
+from ..inputs import deadline, read_input
+from ..kinematics import Kinematics
+from ..meshfile import mesh_bounds, mesh_triangles
 from ..model import Box, Cylinder, Geometry, Link, Material, Mesh, Origin, Robot, Sphere
 from ..rules.meshes import unresolved
 from ..spatial import rpy_matrix
@@ -93,7 +96,7 @@ class Scene:
     def bounds(self) -> tuple[NDArray[Any], NDArray[Any]]:
         """The smallest and largest corner of the box around every part (or of the link
         frames, when nothing is drawn)."""
-        import numpy as np
+        import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
         points = [p.triangles.reshape(-1, 3) for p in self.parts if len(p.triangles)]
         if not points:
@@ -120,9 +123,7 @@ def build_scene(
         StructureError: The robot has no single root.
         UnknownNameError, ArgumentError: ``q`` names an unknown joint or a bad value.
     """
-    import numpy as np
-
-    from ..kinematics import Kinematics
+    import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
     analysis = of(robot, packages)
     if path is not None and path != analysis.path:
@@ -234,7 +235,7 @@ class _Loader:
             self.findings.append(finding)
 
     def triangles(self, link: Link, geometry: Geometry) -> Any:
-        import numpy as np
+        import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
         if isinstance(geometry, Box):
             return _box(np, *geometry.size)
@@ -254,8 +255,6 @@ class _Loader:
         return None
 
     def _mesh(self, np: Any, link: Link, mesh: Mesh, file: Path, scale: tuple[float, ...]) -> Any:
-        from ..errors import FishbotUrdfError, LimitError, ToolNotFoundError
-
         try:
             triangles = _read_mesh(np, file)
         except (OSError, FishbotUrdfError) as exc:
@@ -293,14 +292,11 @@ class _Loader:
 
 def _read_mesh(np: Any, file: Path) -> Any:
     """Triangles (T, 3, 3) of an STL or OBJ file (others through trimesh, if installed)."""
-    from ..errors import ShapeError, ToolNotFoundError
-    from ..meshfile import mesh_triangles
-
     kind = file.suffix.lower()
     if kind in (".stl", ".obj"):
         return mesh_triangles(file)
     try:
-        import trimesh
+        import trimesh  # the mesh extra (optional): ~600 ms to load
     except ImportError:
         raise ToolNotFoundError(
             f"reading a {kind or 'file without extension'} mesh needs the trimesh package",
@@ -325,10 +321,6 @@ def _bounds_of(np: Any, file: Path) -> tuple[Any, Any] | None:
     """The box around a mesh file's vertices without reading it as a mesh: those an STL or
     OBJ file's facts found, or a COLLADA file's position arrays (its nodes' transforms left
     out); None when no finite box is found."""
-    from ..errors import FishbotUrdfError, LimitError
-    from ..inputs import read_input
-    from ..meshfile import mesh_bounds
-
     if file.suffix.lower() in (".stl", ".obj"):
         box = mesh_bounds(file)
         return None if box is None else (np.array(box[0]), np.array(box[1]))

@@ -18,11 +18,11 @@ from ..errors import FishbotUrdfError, InputError, LimitError
 from ..inputs import Deadline, deadline, max_bytes, read_input
 from ..location import Location
 from ..packages import PackageNotFoundError, find_package
-from . import Expansion, ExpansionLimitError, XacroError
 from ._allowlist import allowed_callables, prepare_symbols
 from ._errors import SOURCE_KEY, Explaining, limited, source
 from ._files import Globbing, YamlError, load_yaml_bounded
 from ._interpreter import evaluate
+from ._result import Expansion, ExpansionLimitError, XacroError
 
 
 class _Overgrown(FishbotUrdfError):

@@ -10,12 +10,12 @@ from xml.parsers.expat import ExpatError
 
 from ..diagnostics import shown_path
 from ..errors import FishbotUrdfError, LimitError
-from ..inputs import TimeLimitError
+from ..inputs import TimeLimitError, read_input
 from ..location import Location
 from ..packages import PackageNotFoundError
 from ..wording import closest, listing
-from . import ExpansionLimitError, XacroError
 from ._bounds import UnsafeExpression
+from ._result import ExpansionLimitError, XacroError
 
 _XACRO_NS = "http://www.ros.org/wiki/xacro"
 
@@ -198,8 +198,6 @@ class Explaining:
         """Where a ``<xacro:property name=...>`` of ``name`` is written after ``where``, in
         its file or in another file read so far (one before it in the same file is in a
         scope the use cannot see)."""
-        from ..inputs import read_input
-
         pattern = re.compile(
             rb"<[\w.-]+:property\b[^>]*?\sname\s*=\s*([\"'])"
             + re.escape(name.encode("utf-8"))

@@ -48,7 +48,7 @@ __all__ = [
 def __getattr__(name: str) -> Any:
     # The mass table loads when first used: `check` needs only the formulas.
     if name in ("LinkMass", "MassTable", "inertial_dict", "mass_table"):
-        from . import _table
+        from . import _table  # (~4 ms, and `check` never needs it)
 
         return getattr(_table, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -253,8 +253,8 @@ class _Solid:
 def _solid(path: Path, scale: Vector3 | None) -> _Solid:
     """The closed trimesh mesh read from ``path``, scaled, as plain numbers."""
     try:
-        import numpy as np
-        import trimesh
+        import numpy as np  # numpy: ~190 ms to load, only where arrays are made
+        import trimesh  # the mesh extra (optional): ~600 ms to load
     except ImportError:
         raise ToolNotFoundError(
             "the inertia of a mesh needs the trimesh package",

@@ -12,6 +12,7 @@ from ..analysis import Analysis, of
 from ..diagnostics import Diagnostic, Kind, escape_controls
 from ..errors import StructureError
 from ..model import Inertial, Robot, Vector3
+from ._robot import mass_properties
 from ._solids import MassProperties, principal_moments
 
 __all__ = ["LinkMass", "MassTable", "inertial_dict", "mass_table"]
@@ -164,8 +165,6 @@ def mass_table(
         ArgumentError: ``positions`` names a joint that does not move, or a position outside
             its limits.
     """
-    from ._robot import mass_properties
-
     analysis = of(robot)
     model = analysis.robot
     concerning: dict[str, set[str]] = {}

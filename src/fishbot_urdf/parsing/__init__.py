@@ -13,6 +13,7 @@ from pathlib import Path
 
 from ..diagnostics import Diagnostic
 from ..errors import RobotError
+from ..expansion import declared_args, expand
 from ..expansion._findings import unknown_args, xacro_warning
 from ..extensions import Reference
 from ..model import Location, Robot
@@ -84,8 +85,6 @@ def read(
     if isinstance(source, bytes):
         data, name = source, path or STRING_PATH
     elif is_xacro_path(source):
-        from ..expansion import declared_args, expand
-
         expansion = expand(source, args=args, packages=packages)
         # A file name that is no UTF-8 (the banner names the file) is no XML text either.
         data = expansion.text.encode("utf-8", "replace")

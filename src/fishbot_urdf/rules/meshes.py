@@ -22,6 +22,7 @@ from ..catalog.meshes import (
 )
 from ..diagnostics import Diagnostic, Kind, Severity, Subject
 from ..errors import FishbotUrdfError, ShapeError
+from ..meshfile import EmptyMeshError, mesh_triangles
 from ..model import Box, Cylinder, Link, Mesh, Sphere
 from ..packages import PackageFinder
 
@@ -254,8 +255,6 @@ def _fault(file: Path) -> str | None:
     """What is wrong with an STL or OBJ file whose facts could not be read (looked at only
     then: a file read well pays nothing); None for a file that holds nothing (an empty
     placeholder) or cannot be read at all."""
-    from ..meshfile import EmptyMeshError, mesh_triangles  # (for a mesh found malformed)
-
     try:
         mesh_triangles(file)
     except EmptyMeshError:

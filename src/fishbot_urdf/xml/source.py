@@ -11,6 +11,7 @@ from pathlib import Path
 
 from lxml import etree
 
+from ..catalog.xml import BY_ID
 from ..diagnostics import Diagnostic, Kind, Subject
 from ..errors import XmlSyntaxError
 from ..inputs import read_input
@@ -135,7 +136,6 @@ def read_xml(
             column=column if refusal.offset is not None else None,
         ) from refusal
     locator = Locator(data, path, starts=recovered.starts, tags=recovered.tags)
-    from ..catalog.xml import BY_ID
 
     findings = []
     for recovery in recovered.recoveries:

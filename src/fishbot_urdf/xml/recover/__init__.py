@@ -52,6 +52,7 @@ from __future__ import annotations
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass
+from importlib import import_module
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
@@ -73,8 +74,6 @@ def __getattr__(name: str) -> Any:
     module = _LAZY.get(name)
     if module is None:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    from importlib import import_module
-
     return getattr(import_module(module, __name__), name)
 
 
@@ -113,6 +112,7 @@ def recover(data: bytes) -> Recovered:
     Raises:
         Refused: urdfdom refuses the file (TooDeep: nested deeper than lxml reads).
     """
+    # the reader loads with its first use (~40 ms of Unicode name patterns to compile)
     from ._messages import summary
     from ._rewrite import rewrite
     from ._strict import root

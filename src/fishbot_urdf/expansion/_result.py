@@ -1,0 +1,75 @@
+"""What an expansion gives: the expanded document, or the error that stopped it."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..errors import FishbotUrdfError
+from ..location import Location
+
+__all__ = ["Expansion", "ExpansionLimitError", "XacroError"]
+
+
+class XacroError(FishbotUrdfError):
+    """A xacro file could not be expanded.
+
+    Attributes:
+        rule: ``xacro-include`` (an include names no file), ``xacro-undefined`` (a name,
+            macro, parameter or argument that is not defined), ``xacro-namespace`` (the
+            ``xacro:`` prefix is not declared), ``xacro-syntax`` (not well-formed XML),
+            ``xacro-circular`` (properties defined by each other), or ``xacro-error``
+            (anything else xacro refuses).
+        hint: What to do, or the closest defined names.
+        calls: The macro calls that led to the error, innermost first, as
+            (macro name, where it was called).
+    """
+
+    def __init__(
+        self,
+        message: str,
+        *,
+        rule: str = "xacro-error",
+        hint: str | None = None,
+        where: Location | None = None,
+        calls: tuple[tuple[str, Location | None], ...] = (),
+    ) -> None:
+        self.rule = rule
+        self.hint = hint
+        self.calls = calls
+        for name, site in calls:
+            message += f", in macro {name} called from {_place(site)}"
+        super().__init__(
+            message,
+            path=where.path if where else None,
+            line=where.line if where else None,
+            column=where.column if where else None,
+        )
+
+
+class ExpansionLimitError(XacroError):
+    """An expansion was stopped for making more elements than the size limit allows, or for
+    taking longer than the time limit (see :mod:`fishbot_urdf.inputs`)."""
+
+
+@dataclass(frozen=True, slots=True)
+class Expansion:
+    """A xacro file expanded to URDF.
+
+    Attributes:
+        path: The input file, as named by the caller.
+        text: The URDF document, exactly as the ``xacro`` command prints it.
+        dependencies: Every other file the expansion read (includes, YAML), in the order
+            first read.
+        sources: Where each element of ``text`` was written, in document order.
+        messages: The warnings xacro gave, one per entry.
+    """
+
+    path: str
+    text: str
+    dependencies: tuple[str, ...]
+    sources: tuple[Location, ...]
+    messages: tuple[str, ...]
+
+
+def _place(site: Location | None) -> str:
+    return "?" if site is None else f"{site.path}:{site.line}"
