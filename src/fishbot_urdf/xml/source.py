@@ -11,7 +11,6 @@ from pathlib import Path
 
 from lxml import etree
 
-from ..catalog.xml import BY_ID
 from ..diagnostics import Diagnostic, Kind, Subject
 from ..errors import XmlSyntaxError
 from ..inputs import read_input
@@ -141,7 +140,7 @@ def read_xml(
     for recovery in recovered.recoveries:
         line, column = _line_column(data, recovery.offset)
         findings.append(
-            BY_ID[recovery.rule].report(
+            recovery.rule.report(
                 recovery.message,
                 Location(path, line, column),
                 path=path,

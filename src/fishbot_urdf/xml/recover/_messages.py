@@ -4,8 +4,22 @@ XML tools do with it and how to fix the file."""
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from dataclasses import dataclass
 
+from ...catalog import Rule
+from ...catalog.xml import (
+    XML_ATTRIBUTE,
+    XML_COMMENT,
+    XML_CONTROL_CHAR,
+    XML_DECLARATION,
+    XML_DEFAULT_NAMESPACE,
+    XML_ENCODING,
+    XML_ESCAPE,
+    XML_MARKUP,
+    XML_OUTSIDE_ROOT,
+    XML_UNDECLARED_PREFIX,
+)
 from ._nodes import Note
 
 # What strict tools do (measured: lxml 6.1, xacro 2.1.1 on expat, yourdfpy 0.0.60, which reads
@@ -21,13 +35,13 @@ class Recovery:
     """One rule that had to be applied to read a file as urdfdom does.
 
     Attributes:
-        rule: The rule id (one of ``fishbot_urdf.rules.xml``).
+        rule: The rule (one of ``fishbot_urdf.catalog.xml``).
         offset: Byte offset of the first place it applies, in the original file.
         message: What is wrong and what urdfdom does with it.
         hint: What strict XML tools do with it and how to fix the file.
     """
 
-    rule: str
+    rule: Rule
     offset: int
     message: str
     hint: str
@@ -35,14 +49,14 @@ class Recovery:
 
 def summary(notes: list[Note], data: bytes) -> tuple[Recovery, ...]:
     """One Recovery per rule, at its first place, saying how many places there are."""
-    by_rule: dict[str, list[Note]] = {}
+    by_rule: dict[Rule, list[Note]] = {}
     for note in sorted(notes, key=lambda n: n.offset):
         by_rule.setdefault(note.rule, []).append(note)
     found = []
     for rule, group in by_rule.items():
         message, hint = _describe(group[0], group, data)
         places = len({n.offset for n in group})
-        if places > 1 and rule != "xml-undeclared-prefix":
+        if places > 1 and rule is not XML_UNDECLARED_PREFIX:
             message += f" (and {places - 1} more place{'s' if places > 2 else ''})"
         found.append(Recovery(rule, group[0].offset, message, hint))
     return tuple(sorted(found, key=lambda r: r.offset))
@@ -57,114 +71,148 @@ def _snippet(data: bytes, offset: int, end: bytes = b">") -> str:
 
 def _describe(first: Note, group: list[Note], data: bytes) -> tuple[str, str]:
     """The message and hint of a rule's warning, from its first note."""
-    rule, detail, at = first.rule, first.detail, first.offset
-    kind, _, arg = detail.partition(":")
-    if rule == "xml-declaration":
-        written = _snippet(data, at)
-        if kind == "malformed":
-            version_only = re.fullmatch(
-                r"<\?xml\s+version\s*=\s*([\"'])[^\"']*\1(\s+encoding\s*=\s*([\"'])[\w.-]+\3)?"
-                r"(\s+standalone\s*=\s*([\"'])(yes|no)\5)?\s*\?>",
-                written,
-            )
-            strict = "lxml refuses the file (xacro's expat accepts it)" if version_only else _STRICT
-            return (
-                f"the XML declaration {written} is not valid XML 1.0 (urdfdom ignores it)",
-                f'{strict}: write <?xml version="1.0" encoding="UTF-8"?>',
-            )
-        where = "inside an element" if kind == "inside" else "after the start of the file"
-        return (
-            f"XML declaration {written} {where} (urdfdom ignores it)",
-            f"{_STRICT}: a declaration goes first in the file, once, before any blank line "
-            "or comment; move it there or delete it",
+    return _DESCRIBE[first.rule](first, group, data)
+
+
+def _declaration(first: Note, group: list[Note], data: bytes) -> tuple[str, str]:
+    kind = first.detail.partition(":")[0]
+    at = first.offset
+    written = _snippet(data, at)
+    if kind == "malformed":
+        version_only = re.fullmatch(
+            r"<\?xml\s+version\s*=\s*([\"'])[^\"']*\1(\s+encoding\s*=\s*([\"'])[\w.-]+\3)?"
+            r"(\s+standalone\s*=\s*([\"'])(yes|no)\5)?\s*\?>",
+            written,
         )
-    if rule == "xml-undeclared-prefix":
-        prefixes = sorted({n.detail.rpartition(":")[2] for n in group})
-        names = ", ".join(f"{p}:" for p in prefixes)
-        if kind == "empty":
-            return (
-                f'xmlns:{arg}="" declares no namespace; prefix {names} is used undeclared '
-                "(urdfdom ignores namespaces)",
-                f'{_STRICT}: give xmlns:{arg} a URI, e.g. xmlns:{arg}="http://example.org/{arg}"',
-            )
-        plural = "es" if len(prefixes) > 1 else ""
+        strict = "lxml refuses the file (xacro's expat accepts it)" if version_only else _STRICT
         return (
-            f"prefix{plural} {names} used without an xmlns declaration (urdfdom ignores "
-            f"namespaces: <{prefixes[0]}:...> is just an element it does not know)",
-            f"{_STRICT}: declare it on <robot>, e.g. "
-            f'xmlns:{prefixes[0]}="http://example.org/{prefixes[0]}"',
+            f"the XML declaration {written} is not valid XML 1.0 (urdfdom ignores it)",
+            f'{strict}: write <?xml version="1.0" encoding="UTF-8"?>',
         )
-    if rule == "xml-default-namespace":
+    where = "inside an element" if kind == "inside" else "after the start of the file"
+    return (
+        f"XML declaration {written} {where} (urdfdom ignores it)",
+        f"{_STRICT}: a declaration goes first in the file, once, before any blank line "
+        "or comment; move it there or delete it",
+    )
+
+
+def _undeclared_prefix(first: Note, group: list[Note], data: bytes) -> tuple[str, str]:
+    kind, _, arg = first.detail.partition(":")
+    prefixes = sorted({n.detail.rpartition(":")[2] for n in group})
+    names = ", ".join(f"{p}:" for p in prefixes)
+    if kind == "empty":
         return (
-            f'xmlns="{detail}" puts the URDF elements in a namespace (urdfdom ignores it)',
-            "lxml sees {namespace}robot, and yourdfpy finds no <link>: delete it, URDF "
-            "elements have no namespace",
+            f'xmlns:{arg}="" declares no namespace; prefix {names} is used undeclared '
+            "(urdfdom ignores namespaces)",
+            f'{_STRICT}: give xmlns:{arg} a URI, e.g. xmlns:{arg}="http://example.org/{arg}"',
         )
-    if rule == "xml-encoding":
-        return _encoding(kind, arg, data, at)
-    if rule == "xml-escape":
-        if kind == "amp" and b"<!DOCTYPE" in data and re.match(rb"&[A-Za-z_][\w.-]*;", data[at:]):
-            return (
-                f"{_snippet(data, at, b';')} is an entity the file does not define: urdfdom drops "
-                "the '&' and keeps the rest",
-                "after a DOCTYPE, lxml and xacro read it as nothing, without an error: write "
-                "&amp; for '&'",
-            )
-        return {
-            "amp": (
-                "'&' that starts no reference XML knows (&amp; &lt; &gt; &quot; &apos; &#N;): "
-                "urdfdom drops the '&' and keeps the rest (&foo; reads foo;)",
-                f"{_STRICT}: write &amp; for '&'",
-            ),
-            "lt": (
-                "'<' inside an attribute value (urdfdom keeps it)",
-                f"{_STRICT}: write &lt; for '<'",
-            ),
-            "brackets": ("']]>' in text (urdfdom keeps it)", f"{_STRICT}: write ]]&gt;"),
-            "charref": (
-                f"{_snippet(data, at, b';')} refers to a character XML forbids (urdfdom "
-                "stores it; &#0; ends the value)",
-                f"{_STRICT}: delete it",
-            ),
-        }[kind]
-    if rule == "xml-attribute":
-        if kind == "unquoted":
-            value = re.match(rb"[^\s/>]*", data[at:])
-            assert value is not None
-            return (
-                f"attribute value without quotes: {value[0].decode('utf-8', 'replace')} "
-                "(urdfdom reads it up to the next space, '/' or '>', with no references replaced)",
-                f'{_STRICT}: quote it: name="value"',
-            )
+    plural = "es" if len(prefixes) > 1 else ""
+    return (
+        f"prefix{plural} {names} used without an xmlns declaration (urdfdom ignores "
+        f"namespaces: <{prefixes[0]}:...> is just an element it does not know)",
+        f"{_STRICT}: declare it on <robot>, e.g. "
+        f'xmlns:{prefixes[0]}="http://example.org/{prefixes[0]}"',
+    )
+
+
+def _default_namespace(first: Note, group: list[Note], data: bytes) -> tuple[str, str]:
+    detail = first.detail
+    return (
+        f'xmlns="{detail}" puts the URDF elements in a namespace (urdfdom ignores it)',
+        "lxml sees {namespace}robot, and yourdfpy finds no <link>: delete it, URDF "
+        "elements have no namespace",
+    )
+
+
+def _encoding(first: Note, group: list[Note], data: bytes) -> tuple[str, str]:
+    kind, _, arg = first.detail.partition(":")
+    return _encoding_text(kind, arg, data, first.offset)
+
+
+def _escape(first: Note, group: list[Note], data: bytes) -> tuple[str, str]:
+    kind = first.detail.partition(":")[0]
+    at = first.offset
+    if kind == "amp" and b"<!DOCTYPE" in data and re.match(rb"&[A-Za-z_][\w.-]*;", data[at:]):
         return (
-            f"no white space before attribute {_snippet(data, at, b'=')} (urdfdom reads it)",
-            f"{_STRICT}: put a space between attributes",
+            f"{_snippet(data, at, b';')} is an entity the file does not define: urdfdom drops "
+            "the '&' and keeps the rest",
+            "after a DOCTYPE, lxml and xacro read it as nothing, without an error: write "
+            "&amp; for '&'",
         )
-    if rule == "xml-comment":
+    return {
+        "amp": (
+            "'&' that starts no reference XML knows (&amp; &lt; &gt; &quot; &apos; &#N;): "
+            "urdfdom drops the '&' and keeps the rest (&foo; reads foo;)",
+            f"{_STRICT}: write &amp; for '&'",
+        ),
+        "lt": (
+            "'<' inside an attribute value (urdfdom keeps it)",
+            f"{_STRICT}: write &lt; for '<'",
+        ),
+        "brackets": ("']]>' in text (urdfdom keeps it)", f"{_STRICT}: write ]]&gt;"),
+        "charref": (
+            f"{_snippet(data, at, b';')} refers to a character XML forbids (urdfdom "
+            "stores it; &#0; ends the value)",
+            f"{_STRICT}: delete it",
+        ),
+    }[kind]
+
+
+def _attribute(first: Note, group: list[Note], data: bytes) -> tuple[str, str]:
+    kind = first.detail.partition(":")[0]
+    at = first.offset
+    if kind == "unquoted":
+        value = re.match(rb"[^\s/>]*", data[at:])
+        assert value is not None
         return (
-            "'--' inside a comment (urdfdom reads a comment up to the first '-->')",
-            f"{_STRICT}: XML forbids '--' in comments; remove the extra dashes",
+            f"attribute value without quotes: {value[0].decode('utf-8', 'replace')} "
+            "(urdfdom reads it up to the next space, '/' or '>', with no references replaced)",
+            f'{_STRICT}: quote it: name="value"',
         )
-    if rule == "xml-control-char":
-        if kind == "control":
-            what = f"control character 0x{data[at]:02X} (urdfdom keeps it)"
-        elif kind == "space":
-            name = "form feed" if data[at] == 12 else "vertical tab"
-            what = f"{name} used as white space (urdfdom takes it for a space)"
-        else:
-            character = "FFFE" if data[at + 2] == 0xBE else "FFFF"
-            what = f"U+{character}, not a character (urdfdom skips it as white space or keeps it)"
-        return (what, f"{_STRICT}: XML 1.0 forbids it; delete it")
-    if rule == "xml-markup":
-        if kind == "name":
-            return (
-                f"{arg!r} is not a name XML allows (urdfdom reads it; kept here with dots "
-                "for the bad characters)",
-                f"{_STRICT}: rename it",
-            )
-        what = "malformed DOCTYPE" if kind == "doctype" else f"{_snippet(data, at)} is not XML"
-        return (f"{what} (urdfdom skips it up to its first '>')", f"{_STRICT}: delete it")
-    assert rule == "xml-outside-root", rule
+    return (
+        f"no white space before attribute {_snippet(data, at, b'=')} (urdfdom reads it)",
+        f"{_STRICT}: put a space between attributes",
+    )
+
+
+def _comment(first: Note, group: list[Note], data: bytes) -> tuple[str, str]:
+    return (
+        "'--' inside a comment (urdfdom reads a comment up to the first '-->')",
+        f"{_STRICT}: XML forbids '--' in comments; remove the extra dashes",
+    )
+
+
+def _control_char(first: Note, group: list[Note], data: bytes) -> tuple[str, str]:
+    kind = first.detail.partition(":")[0]
+    at = first.offset
+    if kind == "control":
+        what = f"control character 0x{data[at]:02X} (urdfdom keeps it)"
+    elif kind == "space":
+        name = "form feed" if data[at] == 12 else "vertical tab"
+        what = f"{name} used as white space (urdfdom takes it for a space)"
+    else:
+        character = "FFFE" if data[at + 2] == 0xBE else "FFFF"
+        what = f"U+{character}, not a character (urdfdom skips it as white space or keeps it)"
+    return (what, f"{_STRICT}: XML 1.0 forbids it; delete it")
+
+
+def _markup(first: Note, group: list[Note], data: bytes) -> tuple[str, str]:
+    kind, _, arg = first.detail.partition(":")
+    at = first.offset
+    if kind == "name":
+        return (
+            f"{arg!r} is not a name XML allows (urdfdom reads it; kept here with dots "
+            "for the bad characters)",
+            f"{_STRICT}: rename it",
+        )
+    what = "malformed DOCTYPE" if kind == "doctype" else f"{_snippet(data, at)} is not XML"
+    return (f"{what} (urdfdom skips it up to its first '>')", f"{_STRICT}: delete it")
+
+
+def _outside_root(first: Note, group: list[Note], data: bytes) -> tuple[str, str]:
+    kind = first.detail.partition(":")[0]
+    at = first.offset
     if kind == "nul":
         return (
             "NUL byte: urdfdom reads nothing after it",
@@ -183,7 +231,7 @@ def _describe(first: Note, group: list[Note], data: bytes) -> tuple[str, str]:
     )
 
 
-def _encoding(kind: str, arg: str, data: bytes, at: int) -> tuple[str, str]:
+def _encoding_text(kind: str, arg: str, data: bytes, at: int) -> tuple[str, str]:
     if kind == "invalid":
         byte = arg.rpartition(":")[2]
         char = bytes([int(byte, 16)]).decode("latin-1")
@@ -225,3 +273,17 @@ def _encoding(kind: str, arg: str, data: bytes, at: int) -> tuple[str, str]:
         "stores a single byte for it, not UTF-8",
         'declare <?xml version="1.0" encoding="UTF-8"?> first, or write the character itself',
     )
+
+
+_DESCRIBE: dict[Rule, Callable[[Note, list[Note], bytes], tuple[str, str]]] = {
+    XML_DECLARATION: _declaration,
+    XML_UNDECLARED_PREFIX: _undeclared_prefix,
+    XML_DEFAULT_NAMESPACE: _default_namespace,
+    XML_ENCODING: _encoding,
+    XML_ESCAPE: _escape,
+    XML_ATTRIBUTE: _attribute,
+    XML_COMMENT: _comment,
+    XML_CONTROL_CHAR: _control_char,
+    XML_MARKUP: _markup,
+    XML_OUTSIDE_ROOT: _outside_root,
+}

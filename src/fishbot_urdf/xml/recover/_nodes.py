@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from ...catalog import Rule
+
 # How TinyXML reads characters: UTF-8 sequences by their lead byte, or byte by byte (another
 # encoding declared: LEGACY; none declared yet: UNKNOWN).
 UTF8, LEGACY, UNKNOWN = "utf-8", "legacy", "unknown"
@@ -24,9 +26,10 @@ class TooDeep(Refused):
 
 @dataclass(slots=True)
 class Note:
-    """Something a strict XML parser refuses (or reads otherwise) at byte ``offset``."""
+    """Something a strict XML parser refuses (or reads otherwise) at byte ``offset``: the
+    rule it breaks, and what of it (``kind`` or ``kind:argument``, by rule)."""
 
-    rule: str
+    rule: Rule
     offset: int
     detail: str
 

@@ -16,6 +16,8 @@ from dataclasses import dataclass
 
 from lxml import etree
 
+from ...catalog import Rule
+from ...catalog.xml import XML_DEFAULT_NAMESPACE, XML_ENCODING, XML_MARKUP, XML_UNDECLARED_PREFIX
 from ._nodes import LEGACY, UTF8, Comment, Document, Element, Note, Other, Text
 
 # The namespace an undeclared prefix is given (one per prefix).
@@ -70,7 +72,7 @@ class _Writer:
         self.tags: dict[str, bytes] = {}
         self.plain: set[str] = set()  # names known to be valid without a prefix
 
-    def note(self, rule: str, offset: int, detail: str) -> None:
+    def note(self, rule: Rule, offset: int, detail: str) -> None:
         self.notes.append(Note(rule, offset, detail))
 
     def element(self, element: Element, scope: dict[str, str]) -> None:
@@ -83,13 +85,13 @@ class _Writer:
             value = self.decode(attribute.value.split(b"\0", 1)[0])  # urdfdom's C string
             if name == "xmlns":
                 if value:
-                    self.note("xml-default-namespace", attribute.start, value)
+                    self.note(XML_DEFAULT_NAMESPACE, attribute.start, value)
             elif name.startswith("xmlns:"):
                 prefix = name[6:]
                 if not _NCNAME.fullmatch(prefix) or prefix in ("xml", "xmlns"):
-                    self.note("xml-markup", attribute.start, f"name:{name}")
+                    self.note(XML_MARKUP, attribute.start, f"name:{name}")
                 elif not value:
-                    self.note("xml-undeclared-prefix", attribute.start, f"empty:{prefix}")
+                    self.note(XML_UNDECLARED_PREFIX, attribute.start, f"empty:{prefix}")
                 else:
                     scope[prefix] = value
                     declared.append((prefix, value))
@@ -148,7 +150,7 @@ class _Writer:
         elif _NCNAME.fullmatch(prefix) and _NCNAME.fullmatch(local) and prefix != "xmlns":
             if prefix == "xml" or prefix in scope:
                 return name
-            self.note("xml-undeclared-prefix", start, prefix)
+            self.note(XML_UNDECLARED_PREFIX, start, prefix)
             if prefix not in own:
                 uri = UNDECLARED + prefix
                 scope[prefix] = uri
@@ -158,7 +160,7 @@ class _Writer:
         written = _NOT_NAME.sub(".", name.replace(":", "."))
         if not _NCNAME.fullmatch(written):
             written = "_" + written
-        self.note("xml-markup", start, f"name:{name}")
+        self.note(XML_MARKUP, start, f"name:{name}")
         return written
 
 
@@ -177,17 +179,17 @@ def _decoder(document: Document) -> Callable[[bytes], str]:
     wide = -1 if first_wide is None else first_wide.start()
     if label and not _lxml_knows(label):
         start = next(n.start for n in document.nodes if isinstance(n, Other) and n.declaration)
-        document.notes.append(Note("xml-encoding", start, f"label:{label}"))
+        document.notes.append(Note(XML_ENCODING, start, f"label:{label}"))
     if document.mode == LEGACY and wide >= 0:
         codec = _single_byte(label)
         if bad < 0 and codec is not None:
-            document.notes.append(Note("xml-encoding", wide, f"mislabelled:{label}"))
+            document.notes.append(Note(XML_ENCODING, wide, f"mislabelled:{label}"))
         elif bad >= 0 and codec is not None:
-            document.notes.append(Note("xml-encoding", wide, f"declared:{label}"))
+            document.notes.append(Note(XML_ENCODING, wide, f"declared:{label}"))
             return lambda value: value.decode(codec)
     if bad >= 0:
         kind = "utf-8" if document.mode == UTF8 else "bytes"
-        document.notes.append(Note("xml-encoding", bad, f"invalid:{kind}:{data[bad]:02X}"))
+        document.notes.append(Note(XML_ENCODING, bad, f"invalid:{kind}:{data[bad]:02X}"))
     return _utf8_or_latin1
 
 

@@ -4,6 +4,14 @@ from __future__ import annotations
 
 import re
 
+from ...catalog.xml import (
+    XML_CONTROL_CHAR,
+    XML_DECLARATION,
+    XML_ENCODING,
+    XML_ESCAPE,
+    XML_MARKUP,
+    XML_OUTSIDE_ROOT,
+)
 from ._nodes import UNKNOWN, UTF8, Comment, Document, Element, Note, Other, Refused, Text
 
 # What a strict parser accepts where TinyXML found a reference (no DTD: five names only).
@@ -86,30 +94,30 @@ def root(document: Document) -> Element:
         after = node.start > found.start
         if isinstance(node, Element):
             if node is not found:
-                notes.append(Note("xml-outside-root", node.start, "element"))
+                notes.append(Note(XML_OUTSIDE_ROOT, node.start, "element"))
         elif isinstance(node, Comment):
             if not node.closed:
-                notes.append(Note("xml-outside-root", node.start, "comment"))
+                notes.append(Note(XML_OUTSIDE_ROOT, node.start, "comment"))
         elif isinstance(node, Text):  # CDATA, which XML allows inside an element only
-            notes.append(Note("xml-outside-root", node.start, "markup"))
+            notes.append(Note(XML_OUTSIDE_ROOT, node.start, "markup"))
         elif isinstance(node, Other):
             written = data[node.start : node.end]
             if node.declaration and _XML_TARGET.match(written):
                 if index or node.start != first:
-                    notes.append(Note("xml-declaration", node.start, "misplaced"))
+                    notes.append(Note(XML_DECLARATION, node.start, "misplaced"))
                 elif not _DECLARATION.fullmatch(written):
-                    notes.append(Note("xml-declaration", node.start, "malformed"))
+                    notes.append(Note(XML_DECLARATION, node.start, "malformed"))
             elif written.startswith(b"<!DOCTYPE") and not after and not doctype:
                 doctype = True
                 if not _DOCTYPE.fullmatch(written):
-                    notes.append(Note("xml-markup", node.start, "doctype"))
+                    notes.append(Note(XML_MARKUP, node.start, "doctype"))
             elif not _PI.fullmatch(written):
-                rule = "xml-outside-root" if after else "xml-markup"
+                rule = XML_OUTSIDE_ROOT if after else XML_MARKUP
                 notes.append(Note(rule, node.start, "markup"))
     if document.stop is not None:
-        notes.append(Note("xml-outside-root", document.stop, "text"))
+        notes.append(Note(XML_OUTSIDE_ROOT, document.stop, "text"))
     if document.nul is not None:
-        notes.append(Note("xml-outside-root", document.nul, "nul"))
+        notes.append(Note(XML_OUTSIDE_ROOT, document.nul, "nul"))
     return found
 
 
@@ -118,14 +126,14 @@ def control(data: bytes, start: int, end: int, notes: list[Note]) -> None:
     found = _CONTROL.search(data, start, end)
     if found:
         kind = "noncharacter" if found[0][0] == 0xEF else "control"
-        notes.append(Note("xml-control-char", found.start(), kind))
+        notes.append(Note(XML_CONTROL_CHAR, found.start(), kind))
 
 
 def value(data: bytes, start: int, end: int, mode: str, notes: list[Note]) -> None:
     """Note what a strict parser refuses in a quoted attribute value."""
     lt = data.find(b"<", start, end)
     if lt >= 0:
-        notes.append(Note("xml-escape", lt, "lt"))
+        notes.append(Note(XML_ESCAPE, lt, "lt"))
     references(data, start, end, mode, notes)
     control(data, start, end, notes)
 
@@ -134,7 +142,7 @@ def text(data: bytes, start: int, end: int, mode: str, notes: list[Note]) -> Non
     """Note what a strict parser refuses in text."""
     brackets = data.find(b"]]>", start, end)
     if brackets >= 0:
-        notes.append(Note("xml-escape", brackets, "brackets"))
+        notes.append(Note(XML_ESCAPE, brackets, "brackets"))
     references(data, start, end, mode, notes)
     control(data, start, end, notes)
 
@@ -145,13 +153,13 @@ def references(data: bytes, start: int, end: int, mode: str, notes: list[Note]) 
     while amp >= 0:
         found = _REFERENCE.match(data, amp, end)
         if found is None:
-            notes.append(Note("xml-escape", amp, "amp"))
+            notes.append(Note(XML_ESCAPE, amp, "amp"))
         elif not found[1]:
             code = int(found[2]) if found[2] else int(found[3], 16)
             if not _is_char(code):
-                notes.append(Note("xml-escape", amp, "charref"))
+                notes.append(Note(XML_ESCAPE, amp, "charref"))
             elif mode != UTF8 and code > (127 if mode == UNKNOWN else 255):
-                notes.append(Note("xml-encoding", amp, "charref"))  # urdfdom keeps one byte
+                notes.append(Note(XML_ENCODING, amp, "charref"))  # urdfdom keeps one byte
         amp = data.find(b"&", amp + 1, end)
 
 
@@ -159,9 +167,9 @@ def inner(data: bytes, node: Other, notes: list[Note]) -> None:
     """Note markup inside an element that TinyXML skips and a strict parser refuses."""
     written = data[node.start : node.end]
     if node.declaration and _XML_TARGET.match(written):
-        notes.append(Note("xml-declaration", node.start, "inside"))
+        notes.append(Note(XML_DECLARATION, node.start, "inside"))
     elif not _PI.fullmatch(written):
-        notes.append(Note("xml-markup", node.start, "markup"))
+        notes.append(Note(XML_MARKUP, node.start, "markup"))
 
 
 def _is_char(code: int) -> bool:

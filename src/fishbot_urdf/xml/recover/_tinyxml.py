@@ -14,6 +14,8 @@ from __future__ import annotations
 
 import re
 
+from ...catalog import Rule
+from ...catalog.xml import XML_ATTRIBUTE, XML_COMMENT, XML_CONTROL_CHAR, XML_ENCODING
 from . import _strict as strict
 from ._nodes import (
     LEGACY,
@@ -74,7 +76,7 @@ class _Reader:
     def at(self, i: int) -> int:
         return self.data[i] if i < self.end else 0
 
-    def note(self, rule: str, offset: int, detail: str) -> None:
+    def note(self, rule: Rule, offset: int, detail: str) -> None:
         self.notes.append(Note(rule, offset, detail))
 
     # -- TiXmlDocument::Parse --------------------------------------------------------------
@@ -113,17 +115,17 @@ class _Reader:
                 three = data[i : i + 3]
                 if three == _BOM:
                     if i:  # (lxml reads it as a character: in a tag, part of a name)
-                        self.note("xml-encoding", i, "bom")
+                        self.note(XML_ENCODING, i, "bom")
                     i += 3
                     continue
                 if three in _NOT_CHARACTERS:
-                    self.note("xml-control-char", i, "noncharacter")
+                    self.note(XML_CONTROL_CHAR, i, "noncharacter")
                     i += 3
                     continue
             if data[i] not in _SPACE:
                 break
             if data[i] in _ODD_SPACE:
-                self.note("xml-control-char", i, "space")
+                self.note(XML_CONTROL_CHAR, i, "space")
             i += 1
         return i
 
@@ -158,7 +160,7 @@ class _Reader:
         end = self.end if close < 0 else close
         text = self.data[i + 4 : end]
         if b"--" in text or text.endswith(b"-"):
-            self.note("xml-comment", i, "dashes")
+            self.note(XML_COMMENT, i, "dashes")
         strict.control(self.data, i + 4, end, self.notes)
         return Comment(text, i, close >= 0), end if close < 0 else close + 3
 
@@ -221,7 +223,7 @@ class _Reader:
             if any(a.name == attribute.name for a in element.attributes):
                 raise Refused("an attribute is given twice", attribute.start)
             if before == q and element.attributes:
-                self.note("xml-attribute", attribute.start, "unspaced")
+                self.note(XML_ATTRIBUTE, attribute.start, "unspaced")
             element.attributes.append(attribute)
 
     def content(self, element: Element, p: int, depth: int) -> int:
@@ -291,7 +293,7 @@ class _Reader:
                 return None
             q += 1
         if not in_declaration:
-            self.note("xml-attribute", start, "unquoted")
+            self.note(XML_ATTRIBUTE, start, "unquoted")
             strict.control(self.data, value_start, q, self.notes)
         return Attribute(name, self.data[value_start:q], start, False), q
 
