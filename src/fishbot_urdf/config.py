@@ -342,8 +342,9 @@ def _known(name: str, key: str, path: str | None, *, allow_groups: bool) -> None
         if name in families or name == _ALL:
             listed = f"a severity is set per rule, not for {name!r}"
     raise ConfigError(
-        f"{key}: no {what} {name!r} ({did_you_mean(name, known)}{listed}; "
+        f"no {what} {name!r} ({did_you_mean(name, known)}{listed}; "
         "`fishbot rules` lists the rules)",
+        key=key,
         path=path,
         line=_line_of(path, name),
     )
@@ -352,7 +353,8 @@ def _known(name: str, key: str, path: str | None, *, allow_groups: bool) -> None
 def _changeable(name: str, key: str, path: str | None) -> None:
     if any(rule.id == name and rule.fatal for rule in all_rules()):
         raise ConfigError(
-            f"{key}: rule {name!r} cannot be changed: it stops the file from being read",
+            f"rule {name!r} cannot be changed: it stops the file from being read",
+            key=key,
             path=path,
             line=_line_of(path, name),
         )

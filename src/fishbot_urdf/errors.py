@@ -158,9 +158,28 @@ class ShapeError(FishbotUrdfError, ValueError):
 
 class ConfigError(FishbotUrdfError):
     """A configuration file or option is wrong: an unknown rule or key, a value of the
-    wrong type. ``path`` and ``line`` say where, when it came from a file."""
+    wrong type. ``path`` and ``line`` say where, when it came from a file.
+
+    Attributes:
+        key: The setting at fault (``select``, ``ignore``, ``severity``), when one is.
+        problem: What is wrong with it; the message is ``key: problem``.
+    """
 
     rule = "config"
+
+    def __init__(
+        self,
+        problem: str,
+        *,
+        key: str | None = None,
+        path: str | None = None,
+        line: int | None = None,
+        column: int | None = None,
+    ) -> None:
+        self.key = key
+        self.problem = problem
+        message = problem if key is None else f"{key}: {problem}"
+        super().__init__(message, path=path, line=line, column=column)
 
 
 class FieldTypeError(FishbotUrdfError, TypeError):

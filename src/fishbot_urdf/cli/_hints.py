@@ -6,6 +6,16 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
+from ..catalog import Rule
+from ..catalog.meshes import MESH_NOT_FOUND
+from ..catalog.physics import (
+    ABOVE_GROUND,
+    BELOW_GROUND,
+    INERTIA_MISMATCH,
+    MASSLESS_LINK,
+    MISSING_INERTIAL,
+)
+from ..catalog.setup import FILL_SKIPPED
 from ..diagnostics import Diagnostic
 from ..errors import FishbotUrdfError, ToolTimeoutError
 from ..expansion import ExpansionLimitError, XacroError
@@ -82,15 +92,16 @@ def _package(data: Any) -> str | None:
     return None if package is None else f"give its folder with --package {package}=PATH"
 
 
-_EXTRA: dict[str, Callable[[Any], str | None]] = {
-    "inertia-mismatch": _shape_command,
-    "below-ground": _tolerance,
-    "above-ground": _tolerance,
-    "missing-inertial": _fill,
-    "massless-link": _moments,
-    "fill-skipped": _fill_skipped,
-    "mesh-not-found": _package,
+_BY_RULE: dict[Rule, Callable[[Any], str | None]] = {
+    INERTIA_MISMATCH: _shape_command,
+    BELOW_GROUND: _tolerance,
+    ABOVE_GROUND: _tolerance,
+    MISSING_INERTIAL: _fill,
+    MASSLESS_LINK: _moments,
+    FILL_SKIPPED: _fill_skipped,
+    MESH_NOT_FOUND: _package,
 }
+_EXTRA = {rule.id: words for rule, words in _BY_RULE.items()}
 
 
 def error_hint(exc: FishbotUrdfError) -> tuple[str, str | None] | None:

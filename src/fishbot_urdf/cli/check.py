@@ -15,7 +15,7 @@ import click
 
 from ..config import Config, check_selectors, check_severities, find_config, load_config
 from ..diagnostics import Severity, shown_path
-from ..errors import FishbotUrdfError
+from ..errors import ConfigError, FishbotUrdfError
 from ..output import AtomicFile, write_atomic
 from ..packages import PackageFinder
 from ..report import github_annotations, json_report, sarif_report
@@ -63,8 +63,8 @@ class _Rules(click.ParamType):  # type: ignore[type-arg]
         names = tuple(part.strip() for part in str(value).split(",") if part.strip())
         try:
             check_selectors(self.key, names)
-        except FishbotUrdfError as exc:
-            self.fail(exc.message.removeprefix(f"{self.key}: "), param, ctx)
+        except ConfigError as exc:
+            self.fail(exc.problem, param, ctx)
         return names
 
 
@@ -83,8 +83,8 @@ class _Severity(click.ParamType):  # type: ignore[type-arg]
             self.fail(f"{value!r} is not RULE=error|warning|note", param, ctx)
         try:
             check_severities({rule: level})
-        except FishbotUrdfError as exc:
-            self.fail(exc.message.removeprefix("severity: "), param, ctx)
+        except ConfigError as exc:
+            self.fail(exc.problem, param, ctx)
         return rule, level
 
 
