@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field, replace
-from itertools import chain
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -25,15 +24,8 @@ from .diagnostics import (
 from .model import Robot
 from .packages import PackageFinder
 from .parsing import is_xacro_path, read
-from .rules.joints import REPORTS as JOINT_RULES
-from .rules.joints import joints
-from .rules.meshes import REPORTS as MESH_RULES
-from .rules.meshes import meshes
-from .rules.physics import GROUND_TOLERANCE, physics
-from .rules.physics import REPORTS as PHYSICS_RULES
-from .rules.references import REPORTS as REFERENCE_RULES
-from .rules.references import references
-from .rules.structure import structure
+from .rules import CHECKS, Settings
+from .rules.physics import GROUND_TOLERANCE
 from .suppress import apply_suppressions, suppressions
 from .validation import values
 from .validation._readable import finite, readable
@@ -173,7 +165,6 @@ def _rule_findings(
     config: Config,
     packages: Mapping[str, str | Path] | PackageFinder | None,
 ) -> Iterator[Diagnostic]:
-    yield from structure(analysis)
     # A link or joint whose values could not be read has no trustworthy numbers: findings
     # about them would only repeat the fault (a mass of "1kg" read as none is no "massless
     # link", an effort limit left out is no "zero effort").
@@ -182,23 +173,17 @@ def _rule_findings(
         if d.is_error and d.subject is not None and d.subject.kind in (Kind.LINK, Kind.JOINT):
             unread.setdefault(d.subject, set()).add(d.rule)
     mm = config.ground_tolerance
-    tolerance = GROUND_TOLERANCE if mm is None else mm / 1000.0
-    # Each family's check runs only when one of its rules is selected (--ignore meshes
-    # reads no mesh file).
-    found: list[Iterable[Diagnostic]] = []
-    if _selected(JOINT_RULES, config):
-        found.append(joints(analysis))
-    if _selected(REFERENCE_RULES, config):
-        found.append(references(analysis))
-    if _selected(MESH_RULES, config):
-        found.append(meshes(analysis, packages))
-    if _selected(PHYSICS_RULES, config):
-        found.append(physics(analysis, ground_tolerance=tolerance))
-    for finding in chain.from_iterable(found):
-        causes = unread.get(finding.subject) if finding.subject is not None else None
-        if causes:
-            finding = replace(finding, data={**finding.data, FOLLOWS: sorted(causes)})
-        yield finding
+    settings = Settings(packages, GROUND_TOLERANCE if mm is None else mm / 1000.0)
+    # A check runs only when one of its rules is selected (--ignore meshes reads no mesh file).
+    for check in CHECKS:
+        if not _selected(check.reports, config):
+            continue
+        for finding in check.run(analysis, settings):
+            subject = finding.subject
+            causes = unread.get(subject) if check.uses_values and subject is not None else None
+            if causes:
+                finding = replace(finding, data={**finding.data, FOLLOWS: sorted(causes)})
+            yield finding
 
 
 def _selected(reports: Iterable[Rule], config: Config) -> bool:

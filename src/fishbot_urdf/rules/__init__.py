@@ -1,12 +1,83 @@
-"""The checks: one module per family of rules, each reporting the rules of the catalogue
-(`fishbot_urdf.catalog`) that it lists in its ``REPORTS``.
+"""The checks: one module per family of rules, each registered here against the rules of the
+catalogue (`fishbot_urdf.catalog`) it reports, so that a check runs only when one of its
+rules is selected (``--select structure`` opens no mesh file).
 
-The rule's data (``Rule``, ``all_rules``, ``get``, ``ids``) is the catalogue's, and kept here
+The rules' data (``Rule``, ``all_rules``, ``get``, ``ids``) is the catalogue's, and kept here
 under its former names.
 """
 
 from __future__ import annotations
 
-from ..catalog import Consumer, Family, Rule, all_rules, get, ids
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
 
-__all__ = ["Consumer", "Family", "Rule", "all_rules", "get", "ids"]
+from ..analysis import Analysis
+from ..catalog import Consumer, Family, Rule, all_rules, get, ids
+from ..diagnostics import Diagnostic
+from ..packages import PackageFinder
+from . import joints, meshes, physics, references, structure
+
+__all__ = [
+    "CHECKS",
+    "Check",
+    "Consumer",
+    "Family",
+    "Rule",
+    "Settings",
+    "all_rules",
+    "get",
+    "ids",
+]
+
+
+@dataclass(frozen=True, slots=True)
+class Settings:
+    """What a check may need besides the robot.
+
+    Attributes:
+        packages: Where ``package://`` names are looked up (folders by package name, or a
+            `PackageFinder` that keeps its answers); None: the analysis's own.
+        ground_tolerance: How far (m) the lowest collision point may be from z = 0.
+    """
+
+    packages: Mapping[str, str | Path] | PackageFinder | None = None
+    ground_tolerance: float = physics.GROUND_TOLERANCE
+
+
+@dataclass(frozen=True, slots=True)
+class Check:
+    """One check over an analysed robot, and every rule it may report.
+
+    Attributes:
+        name: The check's name (its module's).
+        reports: Every rule it may report: it runs only when one of them is selected.
+        run: The check.
+        uses_values: Whether it judges the numbers of links and joints: its findings about
+            one whose values could not be read follow from that fault (names and the tree's
+            shape are read even then).
+    """
+
+    name: str
+    reports: tuple[Rule, ...]
+    run: Callable[[Analysis, Settings], Iterable[Diagnostic]]
+    uses_values: bool = True
+
+
+CHECKS: tuple[Check, ...] = (
+    Check(
+        "structure",
+        structure.REPORTS,
+        lambda analysis, _: structure.structure(analysis),
+        uses_values=False,
+    ),
+    Check("joints", joints.REPORTS, lambda analysis, _: joints.joints(analysis)),
+    Check("references", references.REPORTS, lambda analysis, _: references.references(analysis)),
+    Check("meshes", meshes.REPORTS, lambda analysis, s: meshes.meshes(analysis, s.packages)),
+    Check(
+        "physics",
+        physics.REPORTS,
+        lambda analysis, s: physics.physics(analysis, ground_tolerance=s.ground_tolerance),
+    ),
+)
+"""Every check, in the order its findings come."""

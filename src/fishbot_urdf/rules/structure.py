@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator
 
 from ..analysis import Analysis
+from ..catalog import Rule
 from ..catalog.structure import (
     CYCLE,
     DUPLICATE_JOINT,
@@ -27,7 +28,7 @@ from ..diagnostics import FOLLOWS, Diagnostic, Kind, Subject, subject
 from ..model import Joint, Location, Robot
 from ..wording import did_you_mean, listing
 
-__all__ = ["structure"]
+__all__ = ["REPORTS", "structure"]
 
 
 def structure(analysis: Analysis) -> Iterator[Diagnostic]:
@@ -288,3 +289,24 @@ def _tree(analysis: Analysis) -> Iterator[Diagnostic]:
                     subject=Subject(Kind.LINK, link.name),
                     hint="it hangs below a joint loop",
                 )
+
+
+REPORTS: tuple[Rule, ...] = (
+    CYCLE,
+    DUPLICATE_JOINT,
+    DUPLICATE_LINK,
+    DUPLICATE_MATERIAL,
+    JOINT_SELF_LOOP,
+    LIMIT_RANGE,
+    MISSING_LIMIT,
+    MULTIPLE_PARENTS,
+    MULTIPLE_ROOTS,
+    NEGATIVE_LIMIT,
+    NO_LINKS,
+    NO_ROOT,
+    UNDEFINED_LINK,
+    UNDEFINED_MIMIC,
+    UNREACHABLE_LINK,
+    ZERO_AXIS,
+)
+"""Every rule this module's check may report: the check runs only when one is selected."""
