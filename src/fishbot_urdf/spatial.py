@@ -8,7 +8,16 @@ from typing import Any
 
 from .model import ZERO3, Origin, Vector3
 
-__all__ = ["IDENTITY", "Matrix3", "Pose", "eigenvalues", "eigh", "rpy_matrix", "urdfdom_rpy"]
+__all__ = [
+    "IDENTITY",
+    "Matrix3",
+    "Pose",
+    "eigenvalues",
+    "eigh",
+    "euler_ypr",
+    "rpy_matrix",
+    "urdfdom_rpy",
+]
 
 Matrix3 = tuple[Vector3, Vector3, Vector3]
 
@@ -250,3 +259,20 @@ def urdfdom_rpy(rpy: Vector3) -> Vector3:
         math.asin(sarg),
         math.atan2(2 * (x * y + w * z), sqw + sqx - sqy - sqz),
     )
+
+
+def euler_ypr(m: list[list[float]]) -> tuple[float, float, float]:
+    """Roll, pitch, yaw (R = Rz(yaw) Ry(pitch) Rx(roll)), pitch in [-pi/2, pi/2], as tf2's
+    Matrix3x3::getEulerYPR gives them (its -0.0 pitch included)."""
+    if abs(m[2][0]) >= 1.0:
+        yaw = 0.0
+        if m[2][0] < 0:
+            delta = math.atan2(m[0][1], m[0][2])
+            return delta, math.pi / 2, yaw
+        delta = math.atan2(-m[0][1], -m[0][2])
+        return delta, -math.pi / 2, yaw
+    pitch = -math.asin(m[2][0])
+    c = math.cos(pitch)
+    roll = math.atan2(m[2][1] / c, m[2][2] / c)
+    yaw = math.atan2(m[1][0] / c, m[0][0] / c)
+    return roll, pitch, yaw

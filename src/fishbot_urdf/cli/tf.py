@@ -12,7 +12,7 @@ import click
 
 from ..errors import ArgumentError, StructureError, UnknownNameError
 from ..kinematics import Kinematics
-from ..spatial import quaternion
+from ..spatial import euler_ypr, quaternion
 from ._common import (
     EXIT_OK,
     format_option,
@@ -92,7 +92,7 @@ def tf(
 
 def _report(matrix: list[list[float]]) -> dict[str, Any]:
     rotation = [row[:3] for row in matrix[:3]]
-    roll, pitch, yaw = _euler_ypr(rotation)
+    roll, pitch, yaw = euler_ypr(rotation)
     return {
         "translation": [matrix[0][3], matrix[1][3], matrix[2][3]],
         "quaternion_xyzw": list(quaternion(rotation)),
@@ -100,23 +100,6 @@ def _report(matrix: list[list[float]]) -> dict[str, Any]:
         "rpy_degrees": [math.degrees(roll), math.degrees(pitch), math.degrees(yaw)],
         "matrix": matrix,
     }
-
-
-def _euler_ypr(m: list[list[float]]) -> tuple[float, float, float]:
-    """Roll, pitch, yaw (R = Rz(yaw) Ry(pitch) Rx(roll)), pitch in [-pi/2, pi/2], as tf2's
-    Matrix3x3::getEulerYPR gives them (its -0.0 pitch included)."""
-    if abs(m[2][0]) >= 1.0:
-        yaw = 0.0
-        if m[2][0] < 0:
-            delta = math.atan2(m[0][1], m[0][2])
-            return delta, math.pi / 2, yaw
-        delta = math.atan2(-m[0][1], -m[0][2])
-        return delta, -math.pi / 2, yaw
-    pitch = -math.asin(m[2][0])
-    c = math.cos(pitch)
-    roll = math.atan2(m[2][1] / c, m[2][2] / c)
-    yaw = math.atan2(m[1][0] / c, m[0][0] / c)
-    return roll, pitch, yaw
 
 
 def _tf2_echo(report: dict[str, Any]) -> str:
