@@ -142,6 +142,7 @@ def _slow_check(monkeypatch: pytest.MonkeyPatch, seconds: float) -> None:
     from fishbot_urdf.inputs import deadline
 
     checking = importlib.import_module("fishbot_urdf.lint")
+    commands = importlib.import_module("fishbot_urdf.cli._common")  # where the CLI calls it
 
     real = checking.check_file
 
@@ -151,6 +152,7 @@ def _slow_check(monkeypatch: pytest.MonkeyPatch, seconds: float) -> None:
         return real(*args, **options)  # type: ignore[arg-type]
 
     monkeypatch.setattr(checking, "check_file", slow)
+    monkeypatch.setattr(commands, "check_file", slow)
 
 
 def test_each_file_has_the_whole_time_limit(monkeypatch: pytest.MonkeyPatch) -> None:
