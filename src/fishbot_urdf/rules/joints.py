@@ -6,7 +6,7 @@ import math
 from collections.abc import Iterator
 
 from ..analysis import Analysis
-from ..diagnostics import Diagnostic, Kind, Severity, Subject, subject
+from ..diagnostics import Diagnostic, Kind, Severity, Subject
 from ..model import Cylinder, Joint, JointType, Link, Origin, Vector3
 from . import Consumer, Family, Rule
 
@@ -274,7 +274,7 @@ def _named(joint: Joint) -> str:
 
 
 def _subject(joint: Joint) -> Subject:
-    return subject(Kind.JOINT, joint.name)
+    return Subject(Kind.JOINT, joint.name)
 
 
 def _mimic(analysis: Analysis, joint: Joint) -> Iterator[Diagnostic]:

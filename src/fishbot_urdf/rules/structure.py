@@ -13,7 +13,6 @@ from ..diagnostics import (
     Subject,
     did_you_mean,
     listing,
-    subject,
 )
 from ..model import Joint, Location, Robot
 from . import Consumer, Family, Rule
@@ -625,7 +624,7 @@ def _joints(analysis: Analysis) -> Iterator[Diagnostic]:
     link_names = analysis.links.keys()
     joint_names = analysis.joints.keys()
     for joint in robot.joints:
-        owner = subject(Kind.JOINT, joint.name)
+        owner = Subject(Kind.JOINT, joint.name)
         parent, child = joint.parent, joint.child
         ends: tuple[tuple[str, str, Location | None], ...] = ()  # none undefined, nearly always
         if (parent and parent not in link_names) or (child and child not in link_names):

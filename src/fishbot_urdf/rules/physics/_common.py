@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ...diagnostics import Kind, Severity, Subject, subject
+from ...diagnostics import Kind, Severity, Subject
 from ...model import Link, Location
 from .. import Consumer, Family, Rule
 
@@ -50,7 +50,7 @@ def place(link: Link, where: Location | None) -> Location | None:
 
 
 def link_subject(link: Link) -> Subject:
-    return subject(Kind.LINK, link.name)
+    return Subject(Kind.LINK, link.name)
 
 
 _SIMULATORS = (Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE, Consumer.PYBULLET)
