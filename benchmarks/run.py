@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import argparse
 import compileall
+import contextlib
 import os
 import shutil
 import statistics
@@ -411,10 +412,12 @@ def _check_seconds(path: Path, repeat: int) -> float:
     """Best seconds of ``repeat`` in-process checks of ``path``, no mesh facts kept."""
     from fishbot_urdf import meshfile
     from fishbot_urdf.check import check_file
+    from fishbot_urdf.errors import FishbotUrdfError
 
     def run() -> None:
         meshfile._KNOWN.clear()  # each check reads its meshes, as one process per file does
-        check_file(path)
+        with contextlib.suppress(FishbotUrdfError):  # a file that is no robot fails as fast
+            check_file(path)
 
     return best(run, repeat)
 
@@ -449,6 +452,7 @@ def _mesh_facts(files: Sequence[Path]) -> tuple[list[Path], float, float]:
     of each: their facts (none kept from one pass to the next), and their bytes read."""
     from fishbot_urdf import meshfile
     from fishbot_urdf.check import check_file
+    from fishbot_urdf.errors import FishbotUrdfError
 
     asked: list[str] = []
     real = meshfile.mesh_facts
@@ -460,7 +464,8 @@ def _mesh_facts(files: Sequence[Path]) -> tuple[list[Path], float, float]:
     meshfile.mesh_facts = facts  # type: ignore[assignment]
     try:
         for path in files:
-            check_file(path)
+            with contextlib.suppress(FishbotUrdfError):
+                check_file(path)
     finally:
         meshfile.mesh_facts = real  # type: ignore[assignment]
     meshes = [Path(p) for p in dict.fromkeys(asked) if Path(p).suffix.lower() in (".stl", ".obj")]
