@@ -2,7 +2,7 @@
 run. Run by hand, in the venv fishbot-urdf is installed in (`pip install -e ".[test]"`), with
 check_urdf on PATH (liburdfdom-tools):
 
-    python benchmarks/run.py [--runs N] [--only WORD]
+    python benchmarks/run.py [--runs N] [--only WORD] [--pypi-corpus CACHE]
 
 It prints one Markdown table for the README: each measure, fishbot's figure, the floor it is
 measured against, their ratio and the goal. Whole processes are timed alternately, ours then
@@ -11,12 +11,21 @@ figures are the best of several passes. Robots: robots/fishbot's first_robot.urd
 every URDF the test dependencies ship (example-robot-data, hpp-environments,
 cookie-description), and generated chains and trees (robots.py). Peak memory is the
 process's maximum resident set, as the kernel counts it.
+
+With --pypi-corpus CACHE (the cache of pypi_corpus.py, filled by it), the robots people have:
+every URDF file of the pinned PyPI packages, meshes installed as the packages ship them.
+Measured there: one `fishbot check` over every file against one check_urdf per file; each
+file's check against the same file's with its meshes unavailable (the file alone in a
+folder of its own: every rule runs, no mesh is found), in process, the worst ratio; and the
+mesh facts of every STL and OBJ file those robots name against reading the same files'
+bytes, the floor under any reader.
 """
 
 from __future__ import annotations
 
 import argparse
 import compileall
+import contextlib
 import os
 import shutil
 import statistics
@@ -92,9 +101,20 @@ def pair(
 
 
 def per_file(tool: str, files: Sequence[Path]) -> list[str]:
-    """A command line that runs ``tool`` once per file (as a shell loop, one process)."""
-    quoted = " ".join(f"'{f}'" for f in files)
-    return ["sh", "-c", f'for f in {quoted}; do "{tool}" "$f"; done']
+    """A command line that runs ``tool`` once per file (as a shell loop, one process; the
+    files are its arguments, as a script of them could exceed the kernel's limit)."""
+    return ["sh", "-c", 'for f do "$0" "$f"; done', tool, *map(str, files)]
+
+
+def pypi_corpus(cache: Path) -> list[Path]:
+    """Every URDF file of the packages pypi_corpus.py pins, from its cache."""
+    import pypi_corpus as pins
+
+    found = []
+    for pin in pins.PINS:
+        root = pins.extract(pins.download(pin, cache), cache)
+        found += [root / path for path in pins.robot_files(root, ".urdf")]
+    return found
 
 
 def corpus() -> list[Path]:
@@ -133,7 +153,7 @@ def _mib(size: float) -> str:
     return f"{size / 2**20:.0f} MiB"
 
 
-def rows(runs: int, folder: Path, only: str | None) -> Iterator[Row]:
+def rows(runs: int, folder: Path, only: str | None, cache: Path | None = None) -> Iterator[Row]:
     """Measure every goal (those whose label holds ``only``, if given)."""
     from robots import robot
 
@@ -217,6 +237,9 @@ def rows(runs: int, folder: Path, only: str | None) -> Iterator[Row]:
         )
         yield Row(label, _s(mine), _s(floor), f"{mine / floor:.2f}x", "")
 
+    if cache is not None:
+        yield from _pypi_rows(cache, folder, runs, wanted, fishbot, check_urdf)
+
     generated: dict[str, Path] = {}
 
     def write(kind: str, size: int) -> Path:
@@ -298,11 +321,10 @@ def _in_process(files: Sequence[Path]) -> tuple[float, float, float, float, floa
     from lxml import etree
 
     import fishbot_urdf
-    from fishbot_urdf.model import Location, Origin, builder
+    from fishbot_urdf.model import Location, Origin
     from fishbot_urdf.parsing.values import to_doubles
     from fishbot_urdf.xml.locator import Locator
 
-    new_origin = builder(Origin)
     zero = (0.0, 0.0, 0.0)
 
     def floor() -> None:
@@ -314,7 +336,7 @@ def _in_process(files: Sequence[Path]) -> tuple[float, float, float, float, floa
                 for key, value in element.items():
                     if key in _NUMERIC:
                         to_doubles(value.split())
-                new_origin(zero, zero, Location(name, 1, 1))
+                Origin(zero, zero, Location(name, 1, 1))
 
     def parse() -> None:
         for path in files:
@@ -344,10 +366,135 @@ def _in_process(files: Sequence[Path]) -> tuple[float, float, float, float, floa
     return best[0], best[1], best[2], best[3], best[4]
 
 
+def _pypi_rows(
+    cache: Path,
+    folder: Path,
+    runs: int,
+    wanted: Callable[[str], bool],
+    fishbot: list[str],
+    check_urdf: str,
+) -> Iterator[Row]:
+    files = pypi_corpus(cache)
+    size = sum(f.stat().st_size for f in files) / 1e6
+    label = (
+        f"PyPI corpus: one `fishbot check` over its {len(files)} URDF files ({size:.0f} MB, "
+        "meshes installed) vs one check_urdf per file"
+    )
+    if wanted(label):
+        command = [*fishbot, "check", *map(str, files)]
+        mine, floor = pair(command, per_file(check_urdf, files), max(3, runs // 4))
+        yield Row(label, _s(mine), _s(floor), f"{mine / floor:.2f}x", "< 1x (faster)")
+    label = "PyPI corpus: the same in one process (`--jobs 1`)"
+    if wanted(label):
+        command = [*fishbot, "check", "--jobs", "1", *map(str, files)]
+        mine, floor = pair(command, per_file(check_urdf, files), max(3, runs // 4))
+        yield Row(label, _s(mine), _s(floor), f"{mine / floor:.2f}x", "")
+    label_worst = "PyPI corpus, in process: the file whose check its meshes slow most"
+    label_all = "PyPI corpus, in process: every file's check, with its meshes vs without"
+    if wanted(label_worst) or wanted(label_all):
+        worst, with_meshes, without = _mesh_ratios(files, folder)
+        if wanted(label_all):
+            ratio = f"{with_meshes / without:.2f}x"
+            yield Row(label_all, _s(with_meshes), _s(without), ratio, "")
+        if wanted(label_worst):
+            name, mine, floor = worst
+            label_worst += f" ({'/'.join(Path(name).parts[-2:])})"
+            yield Row(label_worst, _ms(mine), _ms(floor), f"{mine / floor:.2f}x", "<= 2x")
+    label = "PyPI corpus: the facts of the STL and OBJ files its robots name vs reading them"
+    if wanted(label):
+        meshes, facts, read = _mesh_facts(files)
+        megabytes = sum(p.stat().st_size for p in meshes) / 1e6
+        label += f" ({len(meshes)} files, {megabytes:.0f} MB)"
+        yield Row(label, _s(facts), _s(read), f"{facts / read:.1f}x", "<= 2x")
+
+
+def _check_seconds(path: Path, repeat: int) -> float:
+    """Best seconds of ``repeat`` in-process checks of ``path``, no mesh facts kept."""
+    from fishbot_urdf.check import check_file
+
+    from fishbot_urdf import meshfile
+    from fishbot_urdf.errors import FishbotUrdfError
+
+    def run() -> None:
+        meshfile._KNOWN.clear()  # each check reads its meshes, as one process per file does
+        with contextlib.suppress(FishbotUrdfError):  # a file that is no robot fails as fast
+            check_file(path)
+
+    return best(run, repeat)
+
+
+def _mesh_ratios(
+    files: Sequence[Path], folder: Path
+) -> tuple[tuple[str, float, float], float, float]:
+    """Each file checked where it is (meshes found) and alone in a folder of its own (none
+    found), in process: the file with the largest ratio and its two times, and the sum of
+    each. Every file is timed once; the twenty worst ratios again, best of five."""
+    alone = folder / "alone"
+    alone.mkdir(exist_ok=True)
+
+    def times(path: Path, repeat: int) -> tuple[float, float]:
+        copy = alone / path.name
+        shutil.copyfile(path, copy)
+        try:
+            return _check_seconds(path, repeat), _check_seconds(copy, repeat)
+        finally:
+            copy.unlink()
+
+    measured = {path: times(path, 1) for path in files}
+    total = (sum(t[0] for t in measured.values()), sum(t[1] for t in measured.values()))
+    worst = sorted(files, key=lambda p: measured[p][0] / measured[p][1])[-20:]
+    again = {path: times(path, 5) for path in worst}
+    name = max(again, key=lambda p: again[p][0] / again[p][1])
+    return (str(name), *again[name]), *total
+
+
+def _mesh_facts(files: Sequence[Path]) -> tuple[list[Path], float, float]:
+    """The STL and OBJ files the robots' checks read, and the best seconds of three passes
+    of each: their facts (none kept from one pass to the next), and their bytes read."""
+    from fishbot_urdf.check import check_file
+
+    from fishbot_urdf import meshfile
+    from fishbot_urdf.errors import FishbotUrdfError
+
+    asked: list[str] = []
+    real = meshfile.mesh_facts
+
+    def facts(path: str | Path) -> meshfile.MeshFacts | None:
+        asked.append(os.path.abspath(path))
+        return real(path)
+
+    meshfile.mesh_facts = facts  # type: ignore[assignment]
+    try:
+        for path in files:
+            with contextlib.suppress(FishbotUrdfError):
+                check_file(path)
+    finally:
+        meshfile.mesh_facts = real  # type: ignore[assignment]
+    meshes = [Path(p) for p in dict.fromkeys(asked) if Path(p).suffix.lower() in (".stl", ".obj")]
+    meshes = [p for p in meshes if p.is_file()]
+
+    def read_facts() -> None:
+        meshfile._KNOWN.clear()
+        for path in meshes:
+            real(path)
+
+    def read_bytes() -> None:
+        for path in meshes:
+            path.read_bytes()
+
+    return meshes, best(read_facts, 3), best(read_bytes, 3)
+
+
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--runs", type=int, default=21, help="runs per start-up measure")
     parser.add_argument("--only", metavar="WORD", help="only the measures whose label has WORD")
+    parser.add_argument(
+        "--pypi-corpus",
+        metavar="CACHE",
+        type=Path,
+        help="measure the robots of pypi_corpus.py's cache too (filled by it)",
+    )
     options = parser.parse_args(argv)
     # Bytecode written for every module first, as a first run writes it (unless
     # PYTHONDONTWRITEBYTECODE is set: then each process would compile what changed anew).
@@ -355,7 +502,7 @@ def main(argv: list[str] | None = None) -> None:
     print("| measure | fishbot | floor | ratio | goal |")
     print("| --- | ---: | ---: | ---: | ---: |")
     with tempfile.TemporaryDirectory() as folder:
-        for row in rows(options.runs, Path(folder), options.only):
+        for row in rows(options.runs, Path(folder), options.only, options.pypi_corpus):
             print(f"| {row.measure} | {row.ours} | {row.floor} | {row.ratio} | {row.goal} |")
             sys.stdout.flush()
     print(f"\nMachine: {os.cpu_count()} cores, Python {sys.version.split()[0]}.")

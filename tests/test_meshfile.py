@@ -12,7 +12,13 @@ from conftest import binary_stl, box_stl
 
 from fishbot_urdf.errors import ShapeError
 from fishbot_urdf.inputs import TimeLimitError, time_limit
-from fishbot_urdf.meshfile import MeshFacts, mesh_bounds, mesh_facts, mesh_triangles
+from fishbot_urdf.meshfile import (
+    MeshFacts,
+    mesh_bounds,
+    mesh_closed,
+    mesh_facts,
+    mesh_triangles,
+)
 
 
 def _trimesh_facts(path: Path) -> MeshFacts:
@@ -206,3 +212,101 @@ def test_a_binary_stl_with_a_number_that_is_not_finite_has_no_facts(tmp_path: Pa
     assert mesh_facts(path) is None
     with pytest.raises(ShapeError, match="not a finite number"):
         mesh_triangles(path)
+
+
+# -- closedness, and the OBJ reader's two ways to one answer --
+
+
+def test_closed_is_trimeshs_watertight(tmp_path: Path) -> None:
+    box = trimesh.creation.box((1.0, 2.0, 3.0))
+    opened = trimesh.Trimesh(box.vertices, box.faces[:-1])  # one triangle short
+    cylinder = trimesh.creation.cylinder(radius=0.3, height=1.2, sections=24)
+    for name, mesh in (("box", box), ("open", opened), ("cylinder", cylinder)):
+        for kind in ("stl", "obj"):
+            path = tmp_path / f"{name}.{kind}"
+            mesh.export(path)
+            facts = mesh_facts(path)
+            assert facts is not None
+            assert facts.closed is mesh.is_watertight, path.name
+    assert box.is_watertight and not opened.is_watertight
+
+
+def test_closed_welds_corners_at_one_place_and_reads_each_file_once(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from fishbot_urdf import meshfile
+
+    # A tetrahedron whose corner (0, 0, 0) is written once as -0.0: one vertex all the same.
+    a, b, c, d = (0.0, -0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)
+    a0 = (0.0, 0.0, 0.0)
+    path = tmp_path / "tetra.stl"
+    path.write_bytes(binary_stl([(*a, *c, *b), (*a0, *b, *d), (*a0, *d, *c), (*b, *c, *d)]))
+    reads: list[str] = []
+    real = meshfile.mesh_triangles
+    monkeypatch.setattr(meshfile, "mesh_triangles", lambda p: reads.append(str(p)) or real(p))
+    assert mesh_closed(path) is True
+    assert mesh_closed(path) is True
+    assert reads == [str(path)]
+    (tmp_path / "bad.obj").write_bytes(b"v 0 0 0\nf 1 2 3\n")
+    assert mesh_closed(tmp_path / "bad.obj") is None
+    assert mesh_closed(tmp_path / "missing.stl") is None
+    assert MeshFacts(1, (0, 0, 0), (1, 1, 1)).closed is None  # made here: no file to read
+
+
+def test_closed_survives_a_hash_shared_by_two_places(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import numpy as np
+
+    from fishbot_urdf import meshfile
+
+    (tmp_path / "box.stl").write_bytes(box_stl(1, 2, 3))
+    triangles = mesh_triangles(tmp_path / "box.stl")
+    real = np.unique
+
+    def colliding(values: object, *args: object, **kwargs: object) -> object:
+        if not kwargs.get("axis") and isinstance(values, np.ndarray) and values.ndim == 1:
+            values = values & np.uint64(1)  # every place shares one of two hashes
+        return real(values, *args, **kwargs)
+
+    monkeypatch.setattr(np, "unique", colliding)
+    assert meshfile._closed(triangles) is True
+    assert meshfile._closed(triangles[:-1]) is False
+
+
+_CUBE_OBJ = (
+    b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+    b"f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n"
+)
+
+
+@pytest.mark.parametrize(
+    ("data", "faces", "high"),
+    [
+        (_CUBE_OBJ, 6, (1.0, 1.0, 1.0)),  # numpy's reader
+        (_CUBE_OBJ.replace(b"\n", b"\r\n"), 6, (1.0, 1.0, 1.0)),
+        (b"# c\nvn 0 0 1\nv 1 2 3 0.5 0.5 0.5\no x\nv -1 0 0\nf 1 2 1\n", 1, (1.0, 2.0, 3.0)),
+        (b"  v 1 2 3\nv -1 0 0\n\tf 1 2 1\nf 2 1 2\n", 2, (1.0, 2.0, 3.0)),  # indented
+        (b"v\t1 2 3\nv -1 0 0\nf\t1 2 1\n", 1, (1.0, 2.0, 3.0)),  # tabs
+        (b"v 1 2\nv 1 2 3\nv -1 0 0\nf 1 2 3\n", 1, (1.0, 2.0, 3.0)),  # a short line
+        (b"v 1_0 2 3\nv -1 0 0\nf 1 2 3\n", 1, (10.0, 2.0, 3.0)),  # Python's number
+        (b"v 1 x 3\nv -1 0 0\nf 1 2 3\n", 1, (1.0, 0.0, 3.0)),  # a word left out
+        (b"v 1 2 3\rv 5 5 5\rf 1 2 3\n", 0, (1.0, 2.0, 3.0)),  # old Mac line ends: one line
+        (b"v 1 2 3\nv 2 inf 0\nv 0 0 0\nf 1 2 3\n", 1, None),  # not finite: no box
+    ],
+)
+def test_an_obj_is_read_as_the_patterns_read_it(
+    tmp_path: Path, data: bytes, faces: int, high: tuple[float, float, float] | None
+) -> None:
+    from fishbot_urdf import meshfile
+
+    path = tmp_path / "part.obj"
+    path.write_bytes(data)
+    facts = mesh_facts(path)
+    vertices = meshfile._OBJ_VERTEX.findall(data)
+    assert facts == meshfile._bounds(vertices, len(meshfile._OBJ_FACE.findall(data)))
+    if high is None:
+        assert facts is None
+    else:
+        assert facts is not None
+        assert (facts.faces, facts.high) == (faces, high)

@@ -4,7 +4,6 @@ directly in the bytes."""
 from __future__ import annotations
 
 import dataclasses
-import threading
 from pathlib import Path
 from typing import Any
 
@@ -72,45 +71,24 @@ def _outcome(path: Path) -> object:
     return robot, places, parsed.diagnostics, parsed.references
 
 
-def _by_element(monkeypatch: pytest.MonkeyPatch) -> None:
-    """Big files read by lxml's stream an element at a time, not cut in pieces."""
-    monkeypatch.setattr(xmlstream.Pieces, "cut", classmethod(lambda cls, data: None))
+def _streamed(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Every file read by lxml's stream an element at a time, however small."""
+    monkeypatch.setattr(xmlsource, "STREAM_FROM", 0)
 
 
-# How a big file may be streamed: in pieces (of a few bytes: every link and joint a piece of
-# its own; or of an eighth of the file, their places found in a thread), or by element.
-_STREAMS = ["small pieces", "pieces alongside", "elements"]
-
-
-def _stream_by(how: str, monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(xmlsource, "STREAM_FROM", 0)  # every file streamed
-    if how == "small pieces":
-        monkeypatch.setattr(xmlstream, "PIECE", 1)
-    elif how == "pieces alongside":
-        monkeypatch.setattr(locator, "LOCATE_ALONGSIDE_FROM", 0)
-    else:
-        _by_element(monkeypatch)
-
-
-@pytest.mark.parametrize("how", _STREAMS)
 @pytest.mark.parametrize("path", _FILES, ids=lambda p: str(p.relative_to(_DATA)))
 def test_a_streamed_file_reads_as_the_whole_file(
-    path: Path, how: str, monkeypatch: pytest.MonkeyPatch
+    path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     whole = _outcome(path)
     places = _every_place(whole[0])
-    _stream_by(how, monkeypatch)
+    _streamed(monkeypatch)
     streamed = _outcome(path)
     assert streamed == whole
     assert _every_place(streamed[0]) == places
 
 
-@pytest.mark.parametrize("how", _STREAMS)
-def test_a_stream_drops_what_it_handed_out_and_never_holds_the_whole_tree(
-    how: str, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    if how == "elements":
-        _by_element(monkeypatch)
+def test_a_stream_drops_what_it_handed_out_and_never_holds_the_whole_tree() -> None:
     count = 10_000  # about 0.4 MB of XML
     links = "".join(f'<link name="l{i}"><visual/></link><!-- {i} -->' for i in range(count))
     document = xmlsource.read_xml(f'<robot name="r">{links}</robot>'.encode(), stream=True)
@@ -122,13 +100,10 @@ def test_a_stream_drops_what_it_handed_out_and_never_holds_the_whole_tree(
         held = max(held, sum(isinstance(node.tag, str) for node in child.getparent()))
     document.finish()
     assert seen == [f"l{i}" for i in range(count)]
-    assert held < count / 4  # what lxml read ahead, or a piece: not the whole tree
+    assert held < count / 4  # what lxml read ahead: not the whole tree
 
 
-def test_a_stream_by_element_drops_each_element_once_the_next_is_asked_for(
-    monkeypatch: pytest.MonkeyPatch,
-) -> None:
-    _by_element(monkeypatch)
+def test_a_stream_by_element_drops_each_element_once_the_next_is_asked_for() -> None:
     links = "".join(f'<link name="l{i}"/><!-- {i} -->' for i in range(100))
     document = xmlsource.read_xml(f'<robot name="r">{links}</robot>'.encode(), stream=True)
     for child in document.children():
@@ -145,10 +120,7 @@ _BROKEN_LATER = [
 
 
 @pytest.mark.parametrize("tail", _BROKEN_LATER)
-def test_a_stream_by_element_that_breaks_later_is_unstreamable(
-    tail: str, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    _by_element(monkeypatch)
+def test_a_stream_by_element_that_breaks_later_is_unstreamable(tail: str) -> None:
     data = f"<robot name='r'><link name='a'/>{tail}".encode()
     document = xmlsource.read_xml(data, stream=True)
     with pytest.raises(xmlstream.Unstreamable):
@@ -156,15 +128,14 @@ def test_a_stream_by_element_that_breaks_later_is_unstreamable(
         document.finish()
 
 
-@pytest.mark.parametrize("how", _STREAMS)
 @pytest.mark.parametrize("tail", [*_BROKEN_LATER, "<link name='b'/></robot><!-- end -->"])
 def test_a_stream_that_breaks_later_reads_as_the_whole_file(
-    tail: str, how: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+    tail: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     path = tmp_path / "robot.urdf"
     path.write_text(f"<robot name='r'><link name='a'/><joint name='j'/>{tail}")
     whole = _outcome(path)
-    _stream_by(how, monkeypatch)
+    _streamed(monkeypatch)
     assert _outcome(path) == whole
 
 
@@ -222,83 +193,6 @@ def test_the_quick_look_for_raw_white_space_agrees_with_the_pattern(text: str) -
 def test_raw_white_space_in_a_value_is_found_and_none_elsewhere(value: str, raw: bool) -> None:
     data = f'<robot name="r">\n\t<link name="a">\n<origin xyz="{value}"/>\n'
     assert locator._has_raw_whitespace(data.encode()) is raw
-
-
-@pytest.mark.parametrize("path", _FILES + _XACRO, ids=lambda p: str(p.relative_to(_DATA)))
-def test_places_found_while_lxml_parses_are_the_places_found_after(
-    path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    monkeypatch.setattr(locator, "LOCATE_ALONGSIDE_FROM", 1 << 40)  # never alongside
-    after = _outcome(path)
-    monkeypatch.setattr(locator, "LOCATE_ALONGSIDE_FROM", 0)  # always
-    alongside = _outcome(path)
-    assert alongside == after
-    assert _every_place(alongside[0]) == _every_place(after[0])
-
-
-def test_a_locator_that_fails_alongside_is_made_again_in_the_caller(
-    monkeypatch: pytest.MonkeyPatch, capfd: pytest.CaptureFixture[str]
-) -> None:
-    path = _DATA / "valid" / "all_elements.urdf"
-    expected = _outcome(path)
-    real = Locator.locations
-    failed: list[str] = []
-
-    def only_in_the_caller(self: Locator) -> object:
-        if threading.current_thread() is not threading.main_thread():
-            failed.append(threading.current_thread().name)
-            raise MemoryError
-        return real(self)
-
-    monkeypatch.setattr(Locator, "locations", only_in_the_caller)
-    monkeypatch.setattr(locator, "LOCATE_ALONGSIDE_FROM", 0)
-    assert _outcome(path) == expected
-    assert failed == ["fishbot-locate"]
-    assert capfd.readouterr() == ("", "")  # nothing said about it
-
-
-def test_a_piece_cut_inside_an_element_is_joined_to_the_next(
-    monkeypatch: pytest.MonkeyPatch,
-) -> None:
-    monkeypatch.setattr(xmlstream, "PIECE", 1)  # a cut after every </link> and </joint>
-    control = "".join(
-        f'<joint name="j{i}"><state_interface name="position"/></joint>' for i in range(3)
-    )
-    data = (
-        '<robot name="r"><link name="a"/><link name="b"></link>'
-        '<joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>'
-        '<transmission name="t"><joint name="j"><hardwareInterface>x</hardwareInterface></joint>'
-        f"</transmission><ros2_control name='c' type='system'>{control}</ros2_control></robot>"
-    ).encode()
-    pieces = xmlstream.Pieces.cut(data)
-    assert pieces is not None
-    assert len(pieces._bounds) == 8  # the root's start tag, 6 cuts (4 inside elements), the end
-    document = xmlsource.read_xml(data, stream=True)
-    handed = [(child.tag, child.get("name")) for child in document.children()]
-    document.finish()  # no Unstreamable: each piece cut inside an element was joined on
-    assert handed == [(child.tag, child.get("name")) for child in etree.fromstring(data)]
-
-
-def test_a_piece_broken_before_its_end_is_not_joined_to_the_next(
-    monkeypatch: pytest.MonkeyPatch,
-) -> None:
-    monkeypatch.setattr(xmlstream, "PIECE", 1)  # a piece for every link
-    links = [f"\n<link name='l{i}'>\n<visual/>\n</link>" for i in range(8)]
-    links[4] = "\n<link name='l4'>\n<visual broken=yes/>\n</link>"  # an attribute unquoted
-    data = f"<robot name='r'>{''.join(links)}\n</robot>".encode()
-    parsed: list[bytes] = []
-    real = xmlstream.parse
-
-    def counting(piece: bytes, *args: Any) -> Any:
-        parsed.append(piece)
-        return real(piece, *args)
-
-    monkeypatch.setattr(xmlstream, "parse", counting)
-    document = xmlsource.read_xml(data, stream=True)
-    with pytest.raises(xmlstream.Unstreamable):
-        list(document.children())
-    assert len(parsed) == 6  # the root, four whole links, the broken one: none joined on
-    assert b"broken" in parsed[-1]
 
 
 @pytest.mark.parametrize("opening", [b"<!--", b"<![CDATA[", b"<?", b"<!DOCTYPE [", b"<!DOCTYPE r"])

@@ -10,8 +10,6 @@ from enum import Enum
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
-from .constructors import builder
-
 if TYPE_CHECKING:
     from .errors import FishbotUrdfError
     from .model import Location
@@ -147,12 +145,6 @@ def _unpickled(*values: Any) -> Diagnostic:
     return Diagnostic(rule, severity, message, path, line, column, hint, subject, facts)
 
 
-# Every field given in order, set directly: twice as fast as the classes' own constructors,
-# for the subjects of every link and joint and the findings of a big robot.
-subject = builder(Subject)
-_new_diagnostic = builder(Diagnostic)
-
-
 def diagnostic(
     rule: str,
     severity: Severity,
@@ -171,7 +163,7 @@ def diagnostic(
     facts = _NO_DATA if not data else MappingProxyType(dict(data))
     if where is not None:
         path, line, column = where.path, where.line, where.column
-    return _new_diagnostic(rule, severity, message, path, line, column, hint, subject, facts)
+    return Diagnostic(rule, severity, message, path, line, column, hint, subject, facts)
 
 
 def from_error(exc: FishbotUrdfError, path: str = "<input>") -> Diagnostic:

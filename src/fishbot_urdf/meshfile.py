@@ -1,10 +1,11 @@
-"""What a mesh file holds: its face count and its extent, and its triangles, read strictly.
+"""What a mesh file holds: its face count, its extent and whether it is closed, and its
+triangles, read strictly.
 
 The facts are enough to tell a mesh exported in millimetres, or a collision mesh too fine for
 a simulator, without trimesh: `check` reads STL (binary and ASCII) and OBJ this way, every
 vertex looked at in numpy (the count of a binary STL is in its header). A file's facts are
-read once per process while its size and time of change stay the same. COLLADA files carry
-their own unit and are not read here.
+read once per process while its size and time of change stay the same. Whether a mesh is
+closed is read only when asked. COLLADA files carry their own unit and are not read here.
 
 The triangles (:func:`mesh_triangles`, for drawing) are read only from a well-formed file: a
 binary STL as long as its header says, numbers that are numbers and finite, OBJ faces whose
@@ -20,7 +21,7 @@ import os
 import re
 import struct
 import threading
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -31,7 +32,14 @@ from .model import Vector3
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
-__all__ = ["EmptyMeshError", "MeshFacts", "mesh_bounds", "mesh_facts", "mesh_triangles"]
+__all__ = [
+    "EmptyMeshError",
+    "MeshFacts",
+    "mesh_bounds",
+    "mesh_closed",
+    "mesh_facts",
+    "mesh_triangles",
+]
 
 
 class EmptyMeshError(ShapeError):
@@ -40,6 +48,15 @@ class EmptyMeshError(ShapeError):
 
 _RECORD = [("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attribute", "<u2")]
 """One triangle of a binary STL file: 50 bytes."""
+# The same record as nine coordinates of their own (x of the first corner, y, z, x of the
+# second, ...): a minimum over one of them is a plain loop over the file, where one over the
+# corners block goes a row of three at a time, twelve times slower.
+_COORDINATES = {
+    "names": [f"{axis}{corner}" for corner in range(3) for axis in "xyz"],
+    "formats": ["<f4"] * 9,
+    "offsets": [12 + 4 * index for index in range(9)],
+    "itemsize": 50,
+}
 _KNOWN_MOST = 4096  # the most files whose facts are kept
 _STEP = 4096  # vertices or faces read between two looks at the deadline
 _ASCII_VERTEX = re.compile(rb"vertex\s+(\S+)\s+(\S+)\s+(\S+)")
@@ -47,6 +64,9 @@ _OBJ_VERTEX = re.compile(rb"^[ \t]*v[ \t]+(\S+)[ \t]+(\S+)[ \t]+(\S+)", re.MULTI
 _OBJ_VERTEX_LINE = re.compile(rb"^[ \t]*v[ \t]", re.MULTILINE)
 _OBJ_FACE = re.compile(rb"^[ \t]*f[ \t]", re.MULTILINE)
 _OBJ_FACE_LINE = re.compile(rb"^[ \t]*f[ \t]+([^\r\n]*)", re.MULTILINE)
+# The bytes of the vertex lines numpy's reader takes as the patterns above do: numbers
+# written plainly, spaces and tabs, line ends.
+_PLAIN_VERTICES = b"v0123456789+-.eE \t\r\n"
 
 
 @dataclass(frozen=True, slots=True)
@@ -57,16 +77,26 @@ class MeshFacts:
         faces: Triangles (STL) or polygons (OBJ).
         low: The smallest x, y, z of its vertices.
         high: The largest.
+        path: The file they were read from (None for facts made otherwise); `closed`
+            reads it.
     """
 
     faces: int
     low: Vector3
     high: Vector3
+    path: str | None = field(default=None, compare=False, repr=False)
 
     def extent(self, scale: Vector3 | None = None) -> float:
         """The largest side of the box around the vertices, after ``scale``."""
         factors = scale or (1.0, 1.0, 1.0)
         return max(abs((h - lo) * f) for lo, h, f in zip(self.low, self.high, factors, strict=True))
+
+    @property
+    def closed(self) -> bool | None:
+        """Whether every edge of the mesh is shared by exactly two of its triangles (see
+        :func:`mesh_closed`): read from the file when first asked, not with the other
+        facts (it costs several times their reading). None when the file cannot be read."""
+        return None if self.path is None else mesh_closed(self.path)
 
 
 def mesh_facts(path: str | Path) -> MeshFacts | None:
@@ -79,11 +109,9 @@ def mesh_facts(path: str | Path) -> MeshFacts | None:
     kind = Path(path).suffix.lower()
     if kind not in (".stl", ".obj"):
         return None
-    try:
-        status = os.stat(path)
-    except (OSError, ValueError):
+    key = _key(path)
+    if key is None:
         return None
-    key = (os.path.abspath(path), status.st_ino, status.st_size, status.st_mtime_ns)
     with _KNOWN_LOCK:
         if key in _KNOWN:
             return _KNOWN[key]
@@ -92,6 +120,8 @@ def mesh_facts(path: str | Path) -> MeshFacts | None:
     except (InputError, OSError):
         return None  # (not kept: the size limit in force may differ next time)
     facts = _read_facts(kind, data)
+    if facts is not None:
+        facts = replace(facts, path=key[0])
     with _KNOWN_LOCK:
         if len(_KNOWN) >= _KNOWN_MOST:
             _KNOWN.clear()
@@ -99,18 +129,118 @@ def mesh_facts(path: str | Path) -> MeshFacts | None:
     return facts
 
 
+def mesh_closed(path: str | Path) -> bool | None:
+    """Whether every edge of an STL or OBJ file's mesh is shared by exactly two of its
+    triangles, corners at the same place taken as one vertex (a mesh that encloses a
+    volume, as a mass computed from it needs); None when the file is not well formed
+    (:func:`mesh_triangles` says why) or cannot be read. Kept, as the facts are, while the
+    file's size and time of change stay the same.
+
+    Raises:
+        TimeLimitError: Reading went past the deadline in force.
+    """
+    key = _key(path)
+    if key is None:
+        return None
+    with _KNOWN_LOCK:
+        if key in _CLOSED:
+            return _CLOSED[key]
+    try:
+        triangles = mesh_triangles(path)
+    except (ShapeError, InputError):
+        return None
+    closed = _closed(triangles)
+    with _KNOWN_LOCK:
+        if len(_CLOSED) >= _KNOWN_MOST:
+            _CLOSED.clear()
+        _CLOSED[key] = closed
+    return closed
+
+
+def _key(path: str | Path) -> tuple[str, int, int, int] | None:
+    """What a file's facts are kept by: its path, and its inode, size and time of change."""
+    try:
+        status = os.stat(path)
+    except (OSError, ValueError):
+        return None
+    return (os.path.abspath(path), status.st_ino, status.st_size, status.st_mtime_ns)
+
+
 _KNOWN: dict[tuple[str, int, int, int], MeshFacts | None] = {}
+_CLOSED: dict[tuple[str, int, int, int], bool] = {}
 _KNOWN_LOCK = threading.Lock()
+
+
+def _closed(triangles: NDArray[Any]) -> bool:
+    """Whether every edge of ``triangles`` (T, 3, 3) is shared by exactly two of them."""
+    import numpy as np
+
+    corners = np.ascontiguousarray(triangles.reshape(-1, 3) + 0.0)  # (-0.0 is 0.0)
+    # Equal corners welded into one vertex: sorted by a hash of their bits, then the hash's
+    # groups checked to hold one place each (sorting the places themselves is slower).
+    bits = corners.view(np.uint64)
+    hashed = (bits[:, 0] * np.uint64(0x9E3779B97F4A7C15)) ^ (
+        bits[:, 1] * np.uint64(0xC2B2AE3D27D4EB4F)
+    )
+    hashed ^= bits[:, 2]
+    _, first, vertex = np.unique(hashed, return_index=True, return_inverse=True)
+    if not np.array_equal(corners[first[vertex]], corners):  # two places, one hash
+        _, vertex = np.unique(corners, axis=0, return_inverse=True)
+    vertex = vertex.reshape(-1, 3).astype(np.int64)
+    ends = np.stack([vertex, np.roll(vertex, -1, axis=1)])
+    edges = np.sort(
+        np.minimum(ends[0], ends[1]).ravel() << 32 | np.maximum(ends[0], ends[1]).ravel()
+    )
+    if len(edges) % 2:
+        return False
+    # Sorted, each edge twice: the pairs (0, 1), (2, 3), ... equal, and no pair equal to
+    # the next.
+    return bool((edges[0::2] == edges[1::2]).all() and (edges[1:-1:2] != edges[2::2]).all())
 
 
 def _read_facts(kind: str, data: bytes) -> MeshFacts | None:
     if kind == ".obj":
-        return _bounds(_OBJ_VERTEX.findall(data), len(_OBJ_FACE.findall(data)))
+        return _obj_facts(data)
     count = _binary_count(data)
     if count is not None:
         return _binary_stl(data, count)
     vertices = _ASCII_VERTEX.findall(data)
     return _bounds(vertices, len(vertices) // 3)
+
+
+def _obj_facts(data: bytes) -> MeshFacts | None:
+    """An OBJ file's facts: its lines told apart by their first two bytes in numpy, its
+    vertex lines read by numpy's reader; by the patterns (ten times slower) when a line
+    starts with white space, or a vertex line holds more than plain numbers."""
+    import numpy as np
+
+    padded = b"\n" + data + b"\n\n"  # every line after a line end, two bytes past the last
+    text = np.frombuffer(padded, np.uint8)
+    starts = np.flatnonzero(text[:-2] == ord("\n")) + 1
+    first, second = text[starts], text[starts + 1]
+    blank, tab = (first == ord(" ")) | (first == ord("\t")), second == ord("\t")
+    vertex, face = first == ord("v"), first == ord("f")
+    if blank.any() or ((vertex | face) & tab).any():
+        return _bounds(_OBJ_VERTEX.findall(data), len(_OBJ_FACE.findall(data)))
+    faces = int((face & (second == ord(" "))).sum())
+    vertex &= second == ord(" ")
+    # Each run of vertex lines, from the start of its first to that of the line after it.
+    edges = np.flatnonzero(np.diff(vertex.view(np.int8), prepend=0, append=0))
+    bounds = np.append(starts, len(padded) - 1)[edges].tolist()
+    lines = b"".join(padded[bounds[i] : bounds[i + 1]] for i in range(0, len(bounds), 2))
+    if not lines:
+        return None
+    if lines.translate(None, _PLAIN_VERTICES) or lines.count(b"\r") != lines.count(b"\r\n"):
+        return _bounds(_OBJ_VERTEX.findall(data), faces)
+    import io
+
+    try:
+        numbers = np.loadtxt(io.BytesIO(lines), usecols=(1, 2, 3), comments=None, ndmin=2)
+    except ValueError:  # a line of fewer than three numbers, or a word that is none
+        return _bounds(_OBJ_VERTEX.findall(data), faces)
+    if not np.isfinite(numbers).all():
+        return _bounds(_OBJ_VERTEX.findall(data), faces)
+    return _facts(faces, numbers.min(axis=0).tolist(), numbers.max(axis=0).tolist())
 
 
 def mesh_bounds(path: str | Path) -> tuple[Vector3, Vector3] | None:
@@ -144,14 +274,17 @@ def _binary_count(data: bytes) -> int | None:
 
 def _binary_stl(data: bytes, count: int) -> MeshFacts | None:
     """Every corner of every triangle, looked at in numpy (a file of a million triangles
-    in about 20 ms; a loop over them in Python took a second)."""
+    in a few milliseconds; a loop over them in Python took a second)."""
     if count == 0:
         return None
     import numpy as np
 
-    corners = np.frombuffer(data, np.dtype(_RECORD), count, 84)["corners"]
-    lows = corners.min(axis=(0, 1)).tolist()
-    highs = corners.max(axis=(0, 1)).tolist()
+    records: Any = np.frombuffer(data, np.dtype(_COORDINATES), count, 84)  # type: ignore[call-overload]
+    lows, highs = [], []
+    for axis in "xyz":
+        values = np.concatenate([records[f"{axis}{corner}"] for corner in range(3)])
+        lows.append(float(values.min()))
+        highs.append(float(values.max()))
     return _facts(count, lows, highs)
 
 

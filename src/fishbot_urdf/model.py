@@ -5,7 +5,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from enum import Enum
 
-from .constructors import builder as builder
 from .errors import UnknownNameError
 from .location import Location as Location
 

@@ -110,8 +110,8 @@ def main(argv: Sequence[str] | None = None) -> NoReturn:
 
     Exit status: 0 ok, 1 the robot has errors, 2 usage, configuration or I/O problem, 130
     interrupted (Ctrl-C), 143 terminated (SIGTERM). With no ``argv`` (the command line is the
-    process's own), the process ends once its output is flushed, without taking apart the
-    objects the command built; given ``argv``, it raises SystemExit as usual.
+    process's own), its output is flushed before SystemExit is raised, so that output that
+    cannot be written is said in one line; given ``argv``, it raises SystemExit as usual.
     """
     # A command builds one robot's objects and ends: the cycle collector's passes over them
     # find nothing, as the model holds no cycles, and cost a big robot's check 4% of its time
@@ -124,9 +124,6 @@ def main(argv: Sequence[str] | None = None) -> NoReturn:
         _run(argv)
     except SystemExit as done:
         if argv is None:
-            # Freeing a robot object by object takes time its size makes long (0.2 s for
-            # 100,000 links, and more for the collector's first pass over them once it is
-            # on again): the process's end frees it all at once.
             _end_process(done.code)
         raise
     finally:
@@ -164,7 +161,9 @@ def _run(argv: Sequence[str] | None) -> NoReturn:
 
 
 def _end_process(code: object) -> NoReturn:
-    """End the process as Python would on SystemExit(code), without its clean-up."""
+    """Raise SystemExit as Python would end on SystemExit(code), once the output is
+    flushed: output that cannot be written (a full disk) is one line and status 2, a reader
+    that has gone is no error, and the flush at the interpreter's end finds nothing to say."""
     if code is None:
         status = 0
     elif isinstance(code, int):
@@ -175,17 +174,24 @@ def _end_process(code: object) -> NoReturn:
     try:
         sys.stdout.flush()
     except BrokenPipeError:
-        pass  # the reader has gone: nothing more to say
+        _unwritten()  # the reader has gone: nothing more to say
     except OSError as exc:  # a full disk
         from ._common import EXIT_USAGE, report_unwritten
 
         report_unwritten(exc)
         status = max(status, EXIT_USAGE)
+        _unwritten()
     except ValueError:
         pass  # closed by the command itself
     with contextlib.suppress(OSError, ValueError):
         sys.stderr.flush()
-    os._exit(status)
+    raise SystemExit(status)
+
+
+def _unwritten() -> None:
+    """What standard output still holds goes nowhere (not to fail again at the end)."""
+    with contextlib.suppress(OSError, ValueError):
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
 
 
 def _quiet_exit(status: int) -> NoReturn:

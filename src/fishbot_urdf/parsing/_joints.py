@@ -7,7 +7,7 @@ from collections.abc import Callable
 from lxml import etree
 
 from ..catalog.reading import DUPLICATE_ELEMENT, JOINT_TYPE, MISSING_ATTRIBUTE, MISSING_ELEMENT
-from ..diagnostics import Kind, Severity, subject
+from ..diagnostics import Kind, Severity, Subject
 from ..model import (
     DEFAULT_AXIS,
     ZERO3,
@@ -20,7 +20,6 @@ from ..model import (
     Mimic,
     Origin,
     SafetyController,
-    builder,
 )
 from ._base import Owner
 from ._links import LinkReader
@@ -28,9 +27,6 @@ from .values import plain_numbers
 
 _TYPES = {t.value: t for t in JointType}
 _NO_ORIGIN = Origin()
-# As in _links: the model's constructors, every field given in order, twice as fast.
-_new_joint = builder(Joint)
-_new_limit = builder(Limit)
 
 
 class JointReader(LinkReader):
@@ -59,7 +55,7 @@ class JointReader(LinkReader):
 
     def joint(self, el: etree._Element, at: Location) -> Joint:
         name = self.text(el, at, "name", "joint") or ""
-        owner = self.subject = subject(Kind.JOINT, name)
+        owner = self.subject = Subject(Kind.JOINT, name)
         joint_type = self.joint_type(el, at, owner)
         parts: dict[str, object] = {}  # what each child URDF defines gave, by tag
         extras: list[str] = []
@@ -94,7 +90,7 @@ class JointReader(LinkReader):
                 found = ("", None)
             ends.append(found)  # type: ignore[arg-type]
         (parent, parent_at), (child_name, child_at) = ends
-        return _new_joint(
+        return Joint(
             name,
             joint_type,
             parent,
@@ -137,8 +133,8 @@ class JointReader(LinkReader):
         )
         if plain is not None:
             effort, velocity, lower, upper = plain
-            return _new_limit(effort, velocity, lower, upper, at)
-        return _new_limit(
+            return Limit(effort, velocity, lower, upper, at)
+        return Limit(
             self.number(el, at, "effort", owner, required=True),
             self.number(el, at, "velocity", owner, required=True),
             self.number(el, at, "lower", owner),

@@ -11,7 +11,7 @@ from ..catalog.reading import (
     MISSING_ELEMENT,
     UNKNOWN_GEOMETRY,
 )
-from ..diagnostics import Kind, Subject, subject
+from ..diagnostics import Kind, Subject
 from ..model import (
     ZERO3,
     Box,
@@ -27,7 +27,6 @@ from ..model import (
     Origin,
     Sphere,
     Visual,
-    builder,
 )
 from ._base import Owner, ReaderBase, xml_text
 from .values import plain_numbers
@@ -35,24 +34,12 @@ from .values import plain_numbers
 _SHAPES = "<box>, <cylinder>, <sphere> or <mesh>"
 _NO_ORIGIN = Origin()  # frozen: one for every element that has no <origin>
 
-# The constructors of the model's classes, every field given in order: twice as fast as the
-# classes' own (a big robot is hundreds of thousands of these).
-_new_origin = builder(Origin)
-_new_box = builder(Box)
-_new_inertia = builder(Inertia)
-_new_inertial = builder(Inertial)
-_new_visual = builder(Visual)
-_new_collision = builder(Collision)
-_new_link = builder(Link)
-
 
 class LinkReader(ReaderBase):
     """Builds Link, Inertial, Visual, Collision, Geometry, Origin and Material."""
 
     def origin(self, el: etree._Element, at: Location, owner: Owner) -> Origin:
-        return _new_origin(
-            self.vector3(el, at, "xyz", owner), self.vector3(el, at, "rpy", owner), at
-        )
+        return Origin(self.vector3(el, at, "xyz", owner), self.vector3(el, at, "rpy", owner), at)
 
     def material(self, el: etree._Element, at: Location, owner: Owner) -> Material:
         name = el.get("name")
@@ -89,7 +76,7 @@ class LinkReader(ReaderBase):
 
     def link(self, el: etree._Element, at: Location) -> Link:
         name = self.text(el, at, "name", "link") or ""
-        owner = self.subject = subject(Kind.LINK, name)
+        owner = self.subject = Subject(Kind.LINK, name)
         inertial: Inertial | None = None
         visuals: list[Visual] = []
         collisions: list[Collision] = []
@@ -112,7 +99,7 @@ class LinkReader(ReaderBase):
                 extras.append(xml_text(child))
             elif isinstance(tag, str):
                 extras.append(self.extra(child))
-        return _new_link(name, inertial, tuple(visuals), tuple(collisions), tuple(extras), at)
+        return Link(name, inertial, tuple(visuals), tuple(collisions), tuple(extras), at)
 
     def inertial(self, el: etree._Element, at: Location, owner: Owner) -> Inertial:
         origin = _NO_ORIGIN
@@ -134,10 +121,10 @@ class LinkReader(ReaderBase):
                 )
                 if plain is not None:
                     ixx, ixy, ixz, iyy, iyz, izz = plain
-                    inertia = _new_inertia(ixx, ixy, ixz, iyy, iyz, izz, c_at)
+                    inertia = Inertia(ixx, ixy, ixz, iyy, iyz, izz, c_at)
                     continue
                 number = self.number
-                inertia = _new_inertia(
+                inertia = Inertia(
                     number(child, c_at, "ixx", owner, required=True),
                     number(child, c_at, "ixy", owner, required=True),
                     number(child, c_at, "ixz", owner, required=True),
@@ -164,7 +151,7 @@ class LinkReader(ReaderBase):
                 at,
                 'write <inertia ixx=".." ixy="0" ixz="0" iyy=".." iyz="0" izz=".."/>',
             )
-        return _new_inertial(mass, inertia or Inertia(), origin, at)
+        return Inertial(mass, inertia or Inertia(), origin, at)
 
     def _shape_parts(
         self, el: etree._Element, at: Location, owner: Owner, visual: bool
@@ -212,11 +199,11 @@ class LinkReader(ReaderBase):
 
     def visual(self, el: etree._Element, at: Location, owner: Owner) -> Visual:
         origin, geometry, material = self._shape_parts(el, at, owner, True)
-        return _new_visual(geometry, origin, material, el.get("name"), at)
+        return Visual(geometry, origin, material, el.get("name"), at)
 
     def collision(self, el: etree._Element, at: Location, owner: Owner) -> Collision:
         origin, geometry, _ = self._shape_parts(el, at, owner, False)
-        return _new_collision(geometry, origin, el.get("name"), at)
+        return Collision(geometry, origin, el.get("name"), at)
 
     def geometry(self, el: etree._Element, at: Location, owner: Owner) -> Geometry | None:
         shape: Geometry | None = None
@@ -250,7 +237,7 @@ class LinkReader(ReaderBase):
     def shape(self, el: etree._Element, at: Location, owner: Owner) -> Geometry | None:
         tag = el.tag
         if tag == "box":
-            return _new_box(self.vector3(el, at, "size", owner, required=True), at)
+            return Box(self.vector3(el, at, "size", owner, required=True), at)
         if tag == "cylinder":
             radius = self.number(el, at, "radius", owner, required=True)
             return Cylinder(radius, self.number(el, at, "length", owner, required=True), at)

@@ -16,7 +16,7 @@ from ..catalog.joints import (
     WIDE_LIMIT,
     ZERO_LIMIT,
 )
-from ..diagnostics import Diagnostic, Kind, Subject, subject
+from ..diagnostics import Diagnostic, Kind, Subject
 from ..model import Cylinder, Joint, JointType, Link, Origin, Vector3
 
 __all__ = ["REPORTS", "joints"]
@@ -127,7 +127,7 @@ def _named(joint: Joint) -> str:
 
 
 def _subject(joint: Joint) -> Subject:
-    return subject(Kind.JOINT, joint.name)
+    return Subject(Kind.JOINT, joint.name)
 
 
 def _mimic(analysis: Analysis, joint: Joint) -> Iterator[Diagnostic]:

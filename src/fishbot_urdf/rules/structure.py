@@ -24,7 +24,7 @@ from ..catalog.structure import (
     UNREACHABLE_LINK,
     ZERO_AXIS,
 )
-from ..diagnostics import FOLLOWS, Diagnostic, Kind, Subject, subject
+from ..diagnostics import FOLLOWS, Diagnostic, Kind, Subject
 from ..model import Joint, Location, Robot
 from ..wording import did_you_mean, listing
 
@@ -99,7 +99,7 @@ def _joints(analysis: Analysis) -> Iterator[Diagnostic]:
     link_names = analysis.links.keys()
     joint_names = analysis.joints.keys()
     for joint in robot.joints:
-        owner = subject(Kind.JOINT, joint.name)
+        owner = Subject(Kind.JOINT, joint.name)
         parent, child = joint.parent, joint.child
         ends: tuple[tuple[str, str, Location | None], ...] = ()  # none undefined, nearly always
         if (parent and parent not in link_names) or (child and child not in link_names):

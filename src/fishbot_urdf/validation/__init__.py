@@ -17,8 +17,7 @@ and never keeps a character XML cannot hold. A Robot built in Python may hold an
 `fishbot_urdf.check` and `fishbot_urdf.to_urdf` call `values` first; the model's classes
 check nothing when they are made. A check in ``__post_init__`` doubles the cost of making an
 Origin (0.60 -> 1.21 us), and would run for every object the reader makes, on values it has
-checked already, unless the reader kept its quick constructors (`fishbot_urdf.constructors`),
-which skip ``__init__``, and a model built with them went unchecked. Here the cost is paid
+checked already. Here the cost is paid
 once per call: a quick test of all links and joints at once (`._plain`) passes
 a read robot, and only a robot that fails it is walked field by field. Read 10,000-link tree
 (best of 12): check 461 -> 527 ms, to_urdf 848 -> 908 ms; `check_file` and the command line

@@ -4,56 +4,13 @@ a start tag ends, and no column), found by one scan of the file's bytes."""
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Mapping, Sequence
-from typing import TYPE_CHECKING, Generic, NamedTuple, TypeVar
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING
 
 from ..location import Location
 
 if TYPE_CHECKING:
     from lxml import etree
-
-_T = TypeVar("_T")
-
-
-LOCATE_ALONGSIDE_FROM = 512 * 2**10
-"""Files at least this big (bytes) are scanned for their elements' places while lxml parses
-them, in a thread of their own: lxml lets go of the interpreter while it parses. (Below, the
-thread's start and the interpreter's hand-over cost about what it saves: a 600 KB robot reads
-in 0.92 of the time, real robots of 60 to 200 KB in 1.05.)"""
-
-
-class Alongside(Generic[_T]):
-    """Work on a file's places done in a thread of its own while lxml parses the file (lxml
-    lets go of the interpreter while it parses), when the file is big enough for the thread
-    to pay; done in the caller when it is not, or when it failed in the thread."""
-
-    __slots__ = ("_done", "_thread", "_work")
-
-    def __init__(self, work: Callable[[], _T], size: int) -> None:
-        self._work = work
-        self._done: list[_T] = []
-        self._thread = None
-        if size >= LOCATE_ALONGSIDE_FROM:
-            import threading
-
-            self._thread = threading.Thread(target=self._run, name="fishbot-locate", daemon=True)
-            self._thread.start()
-
-    def _run(self) -> None:
-        try:
-            done = self._work()
-        except Exception:  # done again in the caller, which then raises
-            return
-        self._done.append(done)
-
-    def join(self) -> None:
-        """Wait for the thread, if there is one."""
-        if self._thread is not None:
-            self._thread.join()
-
-    def result(self) -> _T:
-        """What the work gave, once joined (done here if there was no thread, or it failed)."""
-        return self._done[0] if self._done else self._work()
 
 
 def located(data: bytes, path: str, origins: Sequence[Location] | None) -> Locator:
@@ -129,25 +86,14 @@ def _width(data: bytes, start: int, end: int, ascii_only: bool) -> int:
     return len(data[start:end].decode("utf-8", "replace"))
 
 
-_TOP = (1, 0, 0, 0)  # where counting starts: line 1 from offset 0, no character counted
-
-
-def _locations(
-    data: bytes,
-    path: str,
-    starts: Sequence[int],
-    ascii_only: bool,
-    counted: tuple[int, int, int, int] = _TOP,
-) -> tuple[list[Location], tuple[int, int, int, int]]:
+def _locations(data: bytes, path: str, starts: Sequence[int], ascii_only: bool) -> list[Location]:
     """1-based line and column (in characters) of every offset of ``starts`` (increasing),
     in one pass: each stretch of ``data`` between two offsets is looked at once, so a long
-    one-line file stays linear. ``counted`` carries the count on from where an earlier call
-    ended (its line, where that starts, its last offset, the characters counted on the
-    line), for a file located a stretch at a time; the count at the end is returned too."""
+    one-line file stays linear."""
     new = tuple.__new__  # a Location without the NamedTuple's Python-level __new__
     count, rfind = data.count, data.rfind
     found: list[Location] = []
-    line, line_start, previous, chars = counted
+    line, line_start, previous, chars = 1, 0, 0, 0
     for offset in starts:
         newlines = count(b"\n", previous, offset)
         if newlines:
@@ -161,15 +107,7 @@ def _locations(
             column = chars + 1
         previous = offset
         found.append(new(Location, (path, line, column)))
-    return found, (line, line_start, previous, chars)
-
-
-class Stretch(NamedTuple):
-    """A stretch of a file as a growing `Locator` scanned it."""
-
-    starts: list[int]  # the offset of each start tag
-    places: list[Location]  # the place of each
-    counted: tuple[int, int, int, int]  # the line count where the stretch ends (_locations)
+    return found
 
 
 class Locator:
@@ -186,7 +124,6 @@ class Locator:
 
     __slots__ = (
         "_ascii",
-        "_counted",
         "_data",
         "_exact",
         "_index",
@@ -215,7 +152,6 @@ class Locator:
         self._data = data
         self._ascii = data.isascii()
         self.path = path
-        self._counted = _TOP  # where the places found so far end (see `growing`)
         if starts is not None:
             self._starts = list(starts)
         else:
@@ -237,30 +173,6 @@ class Locator:
         self.raw_whitespace = _has_raw_whitespace(data)
         self.rewind()
 
-    @classmethod
-    def growing(cls, data: bytes, path: str) -> Locator:
-        """A locator of ``data`` (with no DOCTYPE) that knows no start tag yet: each stretch of
-        the file is scanned (`stretch`) and its places added (`add`), in order, before its
-        elements are located."""
-        locator = cls(data, path, starts=())
-        locator._exact = data.find(b"<!DOCTYPE") < 0
-        locator._locations = []
-        return locator
-
-    def stretch(self, start: int, end: int) -> Stretch:
-        """The start tags of ``data[start:end]``, the stretch after those added, and their
-        places. Nothing is added: this may run in a thread while the stretch is parsed."""
-        found = _start_tags(self._data, start, end)
-        return Stretch(found, *_locations(self._data, self.path, found, self._ascii, self._counted))
-
-    def add(self, stretch: Stretch) -> None:
-        """Add the places of a stretch found by `stretch` (a locator made by `growing`)."""
-        places = self._locations
-        assert isinstance(places, list), "not a growing locator"
-        self._starts.extend(stretch.starts)
-        places.extend(stretch.places)
-        self._counted = stretch.counted
-
     def rewind(self) -> None:
         """Start again from the top of the document."""
         self._index = 0  # next entry of _starts to hand out
@@ -269,7 +181,7 @@ class Locator:
     def locations(self) -> Sequence[Location]:
         """The location of every start tag, in one pass (made on first use)."""
         if self._locations is None:
-            self._locations = _locations(self._data, self.path, self._starts, self._ascii)[0]
+            self._locations = _locations(self._data, self.path, self._starts, self._ascii)
         return self._locations
 
     def locate(self, element: etree._Element) -> Location:

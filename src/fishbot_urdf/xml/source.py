@@ -6,7 +6,6 @@ from __future__ import annotations
 import re
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
-from functools import partial
 from pathlib import Path
 
 from lxml import etree
@@ -16,12 +15,11 @@ from ..errors import XmlSyntaxError
 from ..inputs import read_input
 from ..location import Location
 from . import recover
-from .locator import Alongside, Locator, located
+from .locator import Locator, located
 from .stream import (
     SAFE,
     STREAM_FROM,
     ElementStream,
-    Pieces,
     Unstreamable,
     parse,
 )
@@ -60,7 +58,7 @@ class XmlDocument:
     root: etree._Element
     locator: Locator
     recoveries: tuple[Diagnostic, ...]
-    _stream: ElementStream | Pieces | None = None
+    _stream: ElementStream | None = None
 
     def children(self) -> Iterator[etree._Element]:
         """What the root holds (comments and processing instructions too, unless streamed),
@@ -109,16 +107,13 @@ def read_xml(
         if streamed is not None:
             return streamed
     strict: XmlSyntaxError | None = None
-    alongside = Alongside(partial(located, data, path, origins), len(data))
     try:
         root = parse(data, path)
     except XmlSyntaxError as error:
         strict = error
-    finally:
-        alongside.join()  # (no thread is left running, whatever happens)
     # (where the root's start tag ends: a DOCTYPE comes before)
     if strict is None and not recover.needed(data, _line_end(data, root.sourceline)):
-        return XmlDocument(root, alongside.result(), ())
+        return XmlDocument(root, located(data, path, origins), ())
     try:
         recovered = recover.recover(data)
         root = parse(recovered.data, path)
@@ -152,16 +147,8 @@ def read_xml(
 
 
 def _streamed(data: bytes, path: str, origins: Sequence[Location] | None) -> XmlDocument | None:
-    """``data`` read a piece or an element at a time; None if it is to be read whole (it is
-    not clean XML, or urdfdom reads it otherwise)."""
-    pieces = Pieces.cut(data) if origins is None else None
-    if pieces is not None:
-        if recover.needed(data, pieces.head_end):
-            return None
-        try:
-            return XmlDocument(pieces.start(path), pieces.locator, (), pieces)
-        except Unstreamable:
-            return None
+    """``data`` read an element at a time; None if it is to be read whole (it is not clean
+    XML, or urdfdom reads it otherwise)."""
     try:
         stream = ElementStream(data)
     except Unstreamable:

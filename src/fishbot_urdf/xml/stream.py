@@ -1,5 +1,5 @@
-"""lxml's safe parse, and a big file read a part at a time: in pieces cut after the end tags
-of links and joints, or an element of <robot> at a time."""
+"""lxml's safe parse, and a big file read a part at a time: an element of <robot> at a
+time."""
 
 from __future__ import annotations
 
@@ -7,13 +7,11 @@ import io
 import itertools
 import re
 from collections.abc import Iterator
-from functools import partial
 from typing import Any
 
 from lxml import etree
 
 from ..errors import XmlSyntaxError
-from .locator import MARKUP, Alongside, Locator
 
 # No entity expansion, no DTD loading, no network, libxml2's size and depth guards on.
 SAFE: dict[str, Any] = {
@@ -127,139 +125,3 @@ class ElementStream:
         # the 200,000 elements of the 100,000-link tree's robot).
         if self._parser.error_log.filter_from_errors():
             raise Unstreamable
-
-
-PIECE = 4 * 2**20
-"""The most bytes of a big file's robot parsed at once (see `Pieces`)."""
-
-
-# The root's start tag (a self-closing root holds nothing to cut).
-_ROOT_TAG = re.compile(rb"<([^\s/>]+)(?:\s+[^\s=/>]+\s*=\s*(?:\"[^\"]*\"|'[^']*'))*\s*>")
-# Where a piece may end: after the end tag of an element <robot> holds.
-_CUT = re.compile(rb"</(?:link|joint)>")
-_JOINS = 8  # pieces joined on to one that lxml refused before the file is read otherwise
-
-
-class Pieces:
-    """A big file's robot read a piece at a time. The root is read first, holding nothing;
-    then each piece of what it holds, cut just after the end tag of a link or joint, is
-    parsed whole inside a copy of the root's start tag (lxml lets go of the interpreter while
-    it parses), while a thread finds the piece's start tags and their places. Only one
-    piece's tree is held at once.
-
-    A piece that lxml refuses at its end tag was cut inside an element, and the next piece
-    is joined on (a few times); one it refuses before that, or the last, raises
-    Unstreamable: the file is not clean XML, and is then read whole.
-    """
-
-    __slots__ = ("_bounds", "_close", "_data", "_next", "locator")
-
-    def __init__(self, data: bytes, bounds: list[int], close: bytes) -> None:
-        self._data = data
-        self._bounds = bounds  # where the root's start tag ends, each piece ends, the file ends
-        self._close = close  # the root's end tag
-        self._next = 0  # the next piece to parse
-        self.locator: Locator
-
-    @property
-    def head_end(self) -> int:
-        """Where the root's start tag ends."""
-        return self._bounds[0]
-
-    @classmethod
-    def cut(cls, data: bytes) -> Pieces | None:
-        """Where to cut ``data`` (None: it cannot be cut, and is to be read otherwise)."""
-        first = MARKUP.search(data)
-        while first is not None and not first.lastindex:  # the prolog's comments, ...
-            first = MARKUP.search(data, first.end())
-        head = None if first is None else _ROOT_TAG.match(data, first.start())
-        if head is None or data.find(b"<!DOCTYPE", 0, head.start()) >= 0:
-            return None
-        close = b"</" + head[1]
-        last = data.rfind(close)
-        if last < head.end():
-            return None
-        size = min(PIECE, max(len(data) // 8, 1))
-        bounds = [head.end()]
-        near = max(size, 2**16)
-        while last - bounds[-1] > size:
-            end = _cut(data, bounds[-1] + size, near, last)
-            if end is None:
-                if last - bounds[-1] > size + near:
-                    return None  # nowhere to cut near: read it an element at a time
-                break  # the rest is the last piece
-            bounds.append(end)
-        bounds.append(len(data))
-        return cls(data, bounds, close + b">")
-
-    def start(self, path: str) -> etree._Element:
-        """Read the root, holding nothing yet.
-
-        Raises:
-            Unstreamable: lxml refuses it.
-        """
-        self.locator = locator = Locator.growing(self._data, path)
-        head_end = self.head_end
-        locator.add(locator.stretch(0, head_end))
-        return _parse_piece(self._data[:head_end] + self._close, path)
-
-    def __iter__(self) -> Iterator[etree._Element]:
-        """What <robot> holds, piece after piece (each parsed once the last is handed out).
-
-        Raises:
-            Unstreamable: lxml refuses a piece.
-        """
-        while self._next < len(self._bounds) - 1:
-            yield from self._parse_next()
-
-    def finish(self) -> None:
-        """Parse what was not asked for, to learn whether it is XML.
-
-        Raises:
-            Unstreamable: It is not clean XML.
-        """
-        for _ in self:
-            pass
-
-    def _parse_next(self) -> etree._Element:
-        data, bounds, index, locator = self._data, self._bounds, self._next, self.locator
-        head = data[: bounds[0]]
-        joined = 0
-        while True:
-            start, end = bounds[index], bounds[index + 1]
-            piece = (
-                head + data[start:] if end == len(data) else head + data[start:end] + self._close
-            )
-            located = Alongside(partial(locator.stretch, start, end), end - start)
-            try:
-                root = parse(piece, locator.path)
-            except XmlSyntaxError as exc:
-                # Cut inside an element (after a <joint> of <ros2_control>, say), which lxml
-                # finds at the piece's end tag: try again with the next piece joined on, a
-                # few times. A fault before that end is the file's own: read it otherwise.
-                inside = exc.line is not None and exc.line <= piece.count(b"\n")
-                if inside or end == len(data) or joined == _JOINS:
-                    raise Unstreamable from exc
-                del bounds[index + 1]
-                joined += 1
-                continue
-            finally:
-                located.join()  # (no thread is left running, whatever happens)
-            locator.add(located.result())
-            self._next = index + 1
-            return root
-
-
-def _parse_piece(piece: bytes, path: str) -> etree._Element:
-    try:
-        return parse(piece, path)
-    except XmlSyntaxError as exc:
-        raise Unstreamable from exc
-
-
-def _cut(data: bytes, target: int, near: int, last: int) -> int | None:
-    """Where a piece may end: just after the first end tag of a link or joint from ``target``
-    on, at most ``near`` bytes further and before ``last`` (None if there is none). It may be
-    inside another element: lxml then refuses the piece (see `Pieces`)."""
-    found = _CUT.search(data, target, min(last, target + near))
-    return None if found is None else found.end()

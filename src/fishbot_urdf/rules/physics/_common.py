@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ...diagnostics import Kind, Subject, subject
+from ...diagnostics import Kind, Subject
 from ...model import Link, Location
 
 # MuJoCo refuses a moving body whose mass or a principal moment is below this (mjMINVAL).
@@ -49,4 +49,4 @@ def place(link: Link, where: Location | None) -> Location | None:
 
 
 def link_subject(link: Link) -> Subject:
-    return subject(Kind.LINK, link.name)
+    return Subject(Kind.LINK, link.name)
