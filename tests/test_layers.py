@@ -79,6 +79,7 @@ LAZY_HERE = {
     },
     "src/fishbot_urdf/expansion/__init__.py": {"._engine"},
     "src/fishbot_urdf/inertia/__init__.py": {"."},
+    "src/fishbot_urdf/cli/__init__.py": {"._common"},
 }
 
 

@@ -17,6 +17,7 @@ is wrong and where, never a foreign exception. Both readers check the deadline i
 from __future__ import annotations
 
 import bisect
+import io
 import os
 import re
 import struct
@@ -232,7 +233,6 @@ def _obj_facts(data: bytes) -> MeshFacts | None:
         return None
     if lines.translate(None, _PLAIN_VERTICES) or lines.count(b"\r") != lines.count(b"\r\n"):
         return _bounds(_OBJ_VERTEX.findall(data), faces)
-    import io
 
     try:
         numbers = np.loadtxt(io.BytesIO(lines), usecols=(1, 2, 3), comments=None, ndmin=2)

@@ -11,12 +11,15 @@ import contextlib
 import gc
 import importlib
 import os
+import signal
 import sys
 import threading
 from collections.abc import Sequence
 from typing import NoReturn
 
 import click
+
+from ..diagnostics import escape_controls
 
 __all__ = ["cli", "main"]
 
@@ -131,8 +134,6 @@ def main(argv: Sequence[str] | None = None) -> NoReturn:
 
 
 def _run(argv: Sequence[str] | None) -> NoReturn:
-    import signal
-
     for name in ("stdout", "stderr"):  # closed by the caller (`>&-`): output goes nowhere
         if getattr(sys, name) is None:
             setattr(sys, name, open(os.devnull, "w", encoding="utf-8"))  # noqa: SIM115
@@ -149,8 +150,6 @@ def _run(argv: Sequence[str] | None) -> NoReturn:
     except _Terminated:
         _quiet_exit(EXIT_TERMINATED)
     except click.ClickException as exc:
-        from ..diagnostics import escape_controls
-
         # One line, whatever a name in it holds (click declares the message final).
         exc.message = escape_controls(exc.message)  # type: ignore[misc]
         exc.show()
@@ -176,7 +175,7 @@ def _end_process(code: object) -> NoReturn:
     except BrokenPipeError:
         _unwritten()  # the reader has gone: nothing more to say
     except OSError as exc:  # a full disk
-        from ._common import EXIT_USAGE, report_unwritten
+        from ._common import EXIT_USAGE, report_unwritten  # (see _quiet_exit)
 
         report_unwritten(exc)
         status = max(status, EXIT_USAGE)
@@ -195,6 +194,7 @@ def _unwritten() -> None:
 
 
 def _quiet_exit(status: int) -> NoReturn:
+    # what the commands share loads with the first that runs: `fishbot --help` needs none
     from ._common import stop_quietly
 
     stop_quietly(status)

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import contextlib
 import os
+import pickle
+import selectors
 import signal
 import struct
 import sys
@@ -13,7 +15,14 @@ from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, NoReturn
 
+from ..diagnostics import escape_line_controls as shown
+from ..diagnostics import has_errors
 from ..errors import FishbotUrdfError
+from ..graph import tree_text
+from ..inputs import max_seconds, time_limit
+from ..packages import recording_manifests
+from ..parsing import is_xacro_path
+from ..report import FileReport
 from ._common import EXIT_INVALID, EXIT_OK, check_input, fail, read_files, status_of
 
 if TYPE_CHECKING:
@@ -89,7 +98,6 @@ def outcomes(
         for name, config in zip(names, configs, strict=True):
             yield outcome(name, config, run)
         return
-    from .. import check  # noqa: F401  (imported once, here, rather than in every process)
 
     sys.stdout.flush()  # (nothing buffered is copied into the processes)
     sys.stderr.flush()
@@ -119,8 +127,6 @@ class _Workers:
     def __init__(
         self, names: Sequence[str], configs: Sequence[Config], run: Run, jobs: int
     ) -> None:
-        import selectors
-
         self._count = len(names)
         self._next = 0  # the next file to give out
         self._done: dict[int, Outcome | None] = {}
@@ -192,8 +198,6 @@ class _Workers:
             os.write(child.tasks, _INDEX.pack(index))
 
     def _receive(self, results: int) -> None:
-        import pickle
-
         child = self._children[results]
         data = os.read(results, 1 << 16)
         if not data:  # it has ended or died: what it was given and did not send, here
@@ -234,8 +238,6 @@ def _serve(
     """Check the files whose indexes come through ``tasks`` and send each outcome through
     ``results``, with its tree as text; None for a file the main process checks (standard
     input, a big file, or one that raised)."""
-    import pickle
-
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the main process's to handle
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     status = 0
@@ -273,9 +275,6 @@ def _away(name: str, config: Config, run: Run) -> Outcome | None:
 def outcome(name: str, config: Config, run: Run) -> Outcome:
     """Check one file (``-``: standard input), within a time limit of its own: as long as
     the command's (``--timeout``), from now."""
-    from ..inputs import max_seconds, time_limit
-    from ..packages import recording_manifests
-
     with time_limit(max_seconds()), recording_manifests() as manifests:
         try:
             result = check_input(name, run.args, run.finder, config)
@@ -302,13 +301,10 @@ def outcome(name: str, config: Config, run: Run) -> Outcome:
 def tree_chunks(result: CheckResult) -> Iterable[str]:
     """check_urdf's output, whenever the tree can be printed (errors or not: a script
     reading it keeps working, and the exit status tells the rest)."""
-    from ..graph import tree_text
-
     topo = result.topology
     if result.analysis is None or topo is None or topo.root is None or topo.loop_from_root:
         return ()
     robot = result.analysis.robot
-    from ..diagnostics import escape_line_controls as shown
 
     if all(shown(name) == name for name in (robot.name, *(k.name for k in robot.links))):
         return tree_text(result.analysis)
@@ -327,8 +323,6 @@ def _can_fork() -> bool:
 
 
 def _report(result: CheckResult, config: Config, failed: bool) -> FileReport:
-    from ..report import FileReport
-
     robot, topo = result.robot, result.topology
     return FileReport(
         path=result.path,
@@ -344,15 +338,11 @@ def _report(result: CheckResult, config: Config, failed: bool) -> FileReport:
 
 
 def _failure(exc: FishbotUrdfError, config: Config) -> FileReport:
-    from ..report import FileReport
-
     finding = fail(exc)
     return FileReport(path=finding.path, ok=False, diagnostics=(finding,), config=config.path)
 
 
 def _skipped(result: CheckResult, config: Config) -> FileReport:
-    from ..report import FileReport
-
     return FileReport(
         path=result.path,
         ok=True,
@@ -364,8 +354,6 @@ def _skipped(result: CheckResult, config: Config) -> FileReport:
 
 def _is_include(result: CheckResult) -> bool:
     """A xacro file that defines no robot: macros, properties, materials for others."""
-    from ..parsing import is_xacro_path
-
     robot = result.robot
     return (
         robot is not None
@@ -378,6 +366,4 @@ def _is_include(result: CheckResult) -> bool:
 
 def _failed(result: CheckResult, config: Config) -> bool:
     """Whether the file fails the check: no robot, or errors (warnings too, when strict)."""
-    from ..diagnostics import has_errors
-
     return result.robot is None or has_errors(result.diagnostics, strict=config.strict)
