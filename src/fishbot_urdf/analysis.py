@@ -2,8 +2,8 @@
 
 An `Analysis` holds the robot with its topology, its links and joints by name, each link's
 parent joint, the joint loops, the rigid bodies simulators make of links welded by fixed
-joints, and the links' poses, computed on first use. Build it with `analyse` and pass it
-on; functions that take a robot take an analysis too.
+joints, the kinematic plan and the links' poses, computed on first use. Build it with
+`analyse` and pass it on; functions that take a robot take an analysis too.
 """
 
 from __future__ import annotations
@@ -11,13 +11,16 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 from .extensions import Reference
 from .graph import Topology, root, topology
 from .inputs import deadline
 from .model import Joint, JointType, Link, Robot
 from .spatial import Pose
+
+if TYPE_CHECKING:
+    from .kinematics._plan import Plan
 
 __all__ = ["Analysis", "Body", "analyse", "of"]
 
@@ -90,6 +93,15 @@ class Analysis:
         from .extensions import from_robot
 
         return from_robot(self.robot)
+
+    @cached_property
+    def plan(self) -> Plan:
+        """The kinematic plan: link order, parents, joint origins and axes, the
+        configuration's columns and the mimic joints' drivers, read by both evaluators."""
+        # kinematics imports this module (it takes an Analysis): its plan loads when asked.
+        from .kinematics._plan import build
+
+        return build(self.robot, self.topology, self.parent_joint, self.joints)
 
     @cached_property
     def zero_poses(self) -> Mapping[str, Pose]:
