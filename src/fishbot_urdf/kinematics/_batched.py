@@ -250,7 +250,8 @@ def _constants(np: Any, step: Step) -> _Constants:
     plane = None if step.plane is None else np.array(step.plane, dtype=float).T
     aligned = None
     for i in range(3):
-        if abs(axis[i]) == 1.0:
+        # 1e-9 1 0 has a y of 1.0 once made of length 1: the other two must be 0 as well
+        if abs(axis[i]) == 1.0 and not axis[(i + 1) % 3] and not axis[(i + 2) % 3]:
             aligned = (i, float(axis[i]))
     offsets = tuple((i, float(v)) for i, v in enumerate(xyz) if v != 0.0)
     turned = bool(np.any(rotation != np.eye(3)))
