@@ -7,7 +7,7 @@ from collections.abc import Iterator
 
 from ..analysis import Analysis
 from ..diagnostics import Diagnostic, Kind, Severity, Subject, subject
-from ..model import Cylinder, Joint, JointType, Link, Origin, Vector3
+from ..model import Cylinder, Joint, JointType, Link, Mimic, Origin, Vector3
 from . import Consumer, Family, Rule
 
 __all__ = ["REPORTS", "joints"]
@@ -173,6 +173,46 @@ MIMIC_CHAIN = Rule(
     consumers=_ALL,
 )
 
+MIMIC_FIXED = Rule(
+    "mimic-fixed",
+    W,
+    Family.JOINTS,
+    summary="A fixed joint has a <mimic>, or a joint mimics a fixed joint.",
+    explanation="A fixed joint never moves: a `<mimic>` on it moves nothing, and a joint that "
+    "mimics it follows a joint that has no position. check_urdf accepts both, and "
+    "robot_state_publisher publishes a fixed joint once, as a static transform, whatever it "
+    "mimics. A joint that mimics a fixed joint is where programs part: joint_state_publisher "
+    "leaves fixed joints out and fails with a KeyError when it publishes the follower; "
+    "pinocchio, asked to read mimics, refuses the file (the mimicked joint is not in its "
+    "kinematic tree) and otherwise moves the joint on its own; fishbot's kinematics hold it at "
+    "its offset. A robot reduced by turning joints fixed often keeps their mimics. Delete the "
+    "`<mimic>` of a fixed joint; point a follower at the joint that really drives it, or make "
+    "it fixed too.",
+    bad="""\
+<robot name="gripper">
+  <link name="palm"/><link name="left"/><link name="right"/>
+  <joint name="left_joint" type="fixed">
+    <parent link="palm"/><child link="left"/>
+  </joint>
+  <joint name="right_joint" type="continuous">
+    <parent link="palm"/><child link="right"/><mimic joint="left_joint" multiplier="-1"/>
+  </joint>
+</robot>
+""",
+    good="""\
+<robot name="gripper">
+  <link name="palm"/><link name="left"/><link name="right"/>
+  <joint name="left_joint" type="continuous">
+    <parent link="palm"/><child link="left"/>
+  </joint>
+  <joint name="right_joint" type="continuous">
+    <parent link="palm"/><child link="right"/><mimic joint="left_joint" multiplier="-1"/>
+  </joint>
+</robot>
+""",
+    consumers=(Consumer.URDFDOM,),
+)
+
 _MOVING = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)
 
 
@@ -199,6 +239,8 @@ def _joint(analysis: Analysis, joint: Joint) -> Iterator[Diagnostic]:
     path = analysis.path
     if _beyond_a_turn(joint.origin.rpy):
         yield _rpy(analysis, _named(joint), joint.origin, _subject(joint))
+    if joint.mimic is not None:
+        yield from _mimic_fixed(analysis, joint, joint.mimic)
     if joint.type not in _MOVING and joint.type is not JointType.PLANAR:
         return
     x, y, z = joint.axis
@@ -291,7 +333,13 @@ def _mimic(analysis: Analysis, joint: Joint) -> Iterator[Diagnostic]:
             subject=subject,
             hint="make it a fixed joint, or give the multiplier its real value",
         )
-    if target is not None and target.mimic is not None and target is not joint:
+    # A chain through a fixed joint ends there (mimic-fixed says so).
+    if (
+        target is not None
+        and target.mimic is not None
+        and target is not joint
+        and target.type is not JointType.FIXED
+    ):
         first = target.mimic.joint
         yield MIMIC_CHAIN.report(
             f"{named} mimics {mimic.joint!r}, which mimics {first!r} in turn",
@@ -300,6 +348,29 @@ def _mimic(analysis: Analysis, joint: Joint) -> Iterator[Diagnostic]:
             subject=subject,
             hint=f"mimic {first!r} directly, with the multipliers and offsets combined",
         )
+
+
+def _mimic_fixed(analysis: Analysis, joint: Joint, mimic: Mimic) -> Iterator[Diagnostic]:
+    """A fixed joint with a mimic, or a joint that mimics a fixed joint."""
+    leader = analysis.joints.get(mimic.joint)
+    if joint.type is JointType.FIXED:
+        message = f"{_named(joint)} is fixed, but mimics {mimic.joint!r}: it never moves"
+        hint = "delete its <mimic>, or give it the type of a joint that moves"
+    elif leader is not None and leader.type is JointType.FIXED and leader is not joint:
+        message = (
+            f"{_named(joint)} mimics {mimic.joint!r}, a fixed joint, which has no position: "
+            f"it stays at its offset {mimic.offset:g}"
+        )
+        hint = f"mimic the joint that drives it, or make {joint.name!r} fixed"
+    else:
+        return
+    yield MIMIC_FIXED.report(
+        message,
+        mimic.source or joint.source,
+        path=analysis.path,
+        subject=_subject(joint),
+        hint=hint,
+    )
 
 
 def _wheel(analysis: Analysis, joint: Joint, length: float) -> Iterator[Diagnostic]:
@@ -369,6 +440,7 @@ def _vector(values: Vector3) -> str:
 REPORTS: tuple[Rule, ...] = (
     AXIS_LENGTH,
     MIMIC_CHAIN,
+    MIMIC_FIXED,
     RPY_DEGREES,
     VELOCITY_DEGREES,
     WHEEL_AXIS,
