@@ -193,9 +193,10 @@ def _plane(n: Vector3) -> tuple[Vector3, Vector3]:
     vx, vy, c = -n[1], n[0], n[2]  # v = z x n (its z is 0), c = z . n
     if math.sqrt(vx * vx + vy * vy) < 1e-12:  # n is z, -z (half a turn about x), or 0 0 0
         return ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0)) if c > 0 else ((1.0, 0.0, 0.0), (0.0, -1.0, 0.0))
-    k = 1.0 / (1.0 + c)
+    s = vx * vx + vy * vy  # |v|^2 = 1 - c^2
+    # 1 / (1 + c), which near c = -1 (n close to -z) is (1 - c) / |v|^2 without cancelling
+    k = 1.0 / (1.0 + c) if c >= 0 else (1.0 - c) / s
     # K^2 = v v^T - |v|^2 I, and v has no z: the columns of R for x and y
-    s = vx * vx + vy * vy
     return (
         (1.0 + k * (vx * vx - s), k * vx * vy, -vy),
         (k * vx * vy, 1.0 + k * (vy * vy - s), vx),
