@@ -79,7 +79,8 @@ def _plane(axis: np.ndarray | None) -> np.ndarray:
         turn = np.eye(3) if axis is not None and axis[2] > 0 else _rx(math.pi).round()
     else:
         about = np.cross(z, axis)
-        turn = _about(about / np.linalg.norm(about), math.acos(max(-1.0, min(1.0, axis[2]))))
+        sine = float(np.linalg.norm(about))  # atan2, not acos: near z acos loses half the digits
+        turn = _about(about / sine, math.atan2(sine, float(axis[2])))
     return turn[:, :2]
 
 
