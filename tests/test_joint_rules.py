@@ -152,3 +152,35 @@ def test_mimic_chains_and_a_zero_multiplier() -> None:
         ("mimic-chain", "joint 'c' mimics 'b' with multiplier 0: it never moves"),
         ("mimic-chain", "joint 'c' mimics 'b', which mimics 'a' in turn"),
     ]
+
+
+def test_a_mimic_on_or_of_a_fixed_joint() -> None:
+    lead = Joint("lead", JointType.REVOLUTE, "base", "l1", limit=Limit(1.0, 1.0, -1.0, 1.0))
+    weld = Joint("weld", JointType.FIXED, "base", "l2", mimic=Mimic("lead", 2.0))
+    follower = Joint("follower", JointType.CONTINUOUS, "l2", "l3", mimic=Mimic("weld", 1.0, 0.5))
+    assert _rules(lead, weld, follower) == [
+        ("mimic-fixed", "joint 'weld' is fixed, but mimics 'lead': it never moves"),
+        (
+            "mimic-fixed",
+            "joint 'follower' mimics 'weld', a fixed joint, which has no position: it stays at "
+            "its offset 0.5",
+        ),
+    ]
+    # What the kinematics do with them: the fixed joint stays put, the follower at 0.5 rad.
+    poses = fishbot_urdf.link_poses(
+        Robot(
+            "r",
+            links=tuple(Link(n) for n in ("base", "l1", "l2", "l3")),
+            joints=(lead, weld, follower),
+        ),
+        {"lead": 0.7},
+    )
+    assert poses["l2"].rotation == ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+    # about x (the default axis) by 0.5: y turns onto (0, cos 0.5, sin 0.5)
+    assert [row[1] for row in poses["l3"].rotation] == pytest.approx(
+        [0.0, math.cos(0.5), math.sin(0.5)], abs=1e-15
+    )
+    # A mimic of a moving joint, and a fixed joint without one, are no finding.
+    plain = Joint("plain", JointType.FIXED, "base", "l4")
+    moving = Joint("moving", JointType.CONTINUOUS, "base", "l5", mimic=Mimic("lead"))
+    assert _rules(lead, plain, moving) == []

@@ -174,7 +174,7 @@ _KNOWN_LOCK = threading.Lock()
 
 def _closed(triangles: NDArray[Any]) -> bool:
     """Whether every edge of ``triangles`` (T, 3, 3) is shared by exactly two of them."""
-    import numpy as np
+    import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
     corners = np.ascontiguousarray(triangles.reshape(-1, 3) + 0.0)  # (-0.0 is 0.0)
     # Equal corners welded into one vertex: sorted by a hash of their bits, then the hash's
@@ -213,7 +213,7 @@ def _obj_facts(data: bytes) -> MeshFacts | None:
     """An OBJ file's facts: its lines told apart by their first two bytes in numpy, its
     vertex lines read by numpy's reader; by the patterns (ten times slower) when a line
     starts with white space, or a vertex line holds more than plain numbers."""
-    import numpy as np
+    import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
     padded = b"\n" + data + b"\n\n"  # every line after a line end, two bytes past the last
     text = np.frombuffer(padded, np.uint8)
@@ -277,7 +277,7 @@ def _binary_stl(data: bytes, count: int) -> MeshFacts | None:
     in a few milliseconds; a loop over them in Python took a second)."""
     if count == 0:
         return None
-    import numpy as np
+    import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
     records: Any = np.frombuffer(data, np.dtype(_COORDINATES), count, 84)  # type: ignore[call-overload]
     lows, highs = [], []
@@ -290,7 +290,7 @@ def _binary_stl(data: bytes, count: int) -> MeshFacts | None:
 
 def _bounds(vertices: list[tuple[bytes, bytes, bytes]], faces: int) -> MeshFacts | None:
     if vertices:
-        import numpy as np
+        import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
         try:  # every number read at once; a word that is none, one by one below
             numbers = np.array(vertices).astype(float)
@@ -341,7 +341,7 @@ def mesh_triangles(path: str | Path) -> NDArray[Any]:
     data = read_input(path)
     if not data.strip():
         raise EmptyMeshError("the file is empty", path=name)
-    import numpy as np
+    import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
     triangles: NDArray[Any] = _obj(np, data, name) if kind == ".obj" else _stl(np, data, name)
     if not len(triangles):

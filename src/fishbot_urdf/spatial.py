@@ -42,7 +42,7 @@ def rpy_matrix(rpy: Vector3) -> Matrix3:
 
 def axis_angle(axis: Vector3, angle: float) -> Matrix3:
     """The rotation by ``angle`` (radians) about ``axis`` (normalised here; Rodrigues)."""
-    norm = math.sqrt(dot(axis, axis))
+    norm = math.hypot(*axis)
     if norm == 0.0 or angle == 0.0:
         return IDENTITY
     x, y, z = (a / norm for a in axis)

@@ -2,8 +2,9 @@
 
 An `Analysis` holds the robot with its topology, its links and joints by name, each link's
 parent joint, the joint loops, the rigid bodies simulators make of links welded by fixed
-joints, the links' poses and the files its meshes name, computed on first use. Build it
-with `analyse` and pass it on; functions that take a robot take an analysis too.
+joints, the kinematic plan, the links' poses and the files its meshes name, computed on
+first use. Build it with `analyse` and pass it on; functions that take a robot take an
+analysis too.
 """
 
 from __future__ import annotations
@@ -20,6 +21,8 @@ from ..model import Joint, JointType, Link, Robot
 from ..packages import PackageFinder
 from ..spatial import Pose
 from .meshpaths import MeshPaths
+from .plan import Plan, build
+from .poses import place
 from .topology import Topology, single_root, topology
 
 __all__ = ["Analysis", "Body", "analyse", "of"]
@@ -102,11 +105,16 @@ class Analysis:
         return MeshPaths(self.path, self.packages or PackageFinder())
 
     @cached_property
+    def plan(self) -> Plan:
+        """The kinematic plan: link order, parents, joint origins and axes, the
+        configuration's columns and the mimic joints' drivers, read by both evaluators."""
+        return build(self.robot, self.topology, self.parent_joint, self.joints)
+
+    @cached_property
     def zero_poses(self) -> Mapping[str, Pose]:
         """Every reached link's pose in its root's frame, every joint at zero."""
-        from ..kinematics import link_poses
-
-        return link_poses(self)
+        plan = self.plan
+        return dict(zip(plan.links, place(plan, [0.0] * len(plan.variables)), strict=True))
 
 
 def analyse(

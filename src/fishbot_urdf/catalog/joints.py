@@ -164,3 +164,42 @@ MIMIC_CHAIN = Rule(
 """,
     consumers=_ALL,
 )
+MIMIC_FIXED = Rule(
+    "mimic-fixed",
+    W,
+    Family.JOINTS,
+    summary="A fixed joint has a <mimic>, or a joint mimics a fixed joint.",
+    explanation="A fixed joint never moves: a `<mimic>` on it moves nothing, and a joint that "
+    "mimics it follows a joint that has no position. check_urdf accepts both, and "
+    "robot_state_publisher publishes a fixed joint once, as a static transform, whatever it "
+    "mimics. A joint that mimics a fixed joint is where programs part: joint_state_publisher "
+    "leaves fixed joints out and fails with a KeyError when it publishes the follower; "
+    "pinocchio, asked to read mimics, refuses the file (the mimicked joint is not in its "
+    "kinematic tree) and otherwise moves the joint on its own; fishbot's kinematics hold it at "
+    "its offset. A robot reduced by turning joints fixed often keeps their mimics. Delete the "
+    "`<mimic>` of a fixed joint; point a follower at the joint that really drives it, or make "
+    "it fixed too.",
+    bad="""\
+<robot name="gripper">
+  <link name="palm"/><link name="left"/><link name="right"/>
+  <joint name="left_joint" type="fixed">
+    <parent link="palm"/><child link="left"/>
+  </joint>
+  <joint name="right_joint" type="continuous">
+    <parent link="palm"/><child link="right"/><mimic joint="left_joint" multiplier="-1"/>
+  </joint>
+</robot>
+""",
+    good="""\
+<robot name="gripper">
+  <link name="palm"/><link name="left"/><link name="right"/>
+  <joint name="left_joint" type="continuous">
+    <parent link="palm"/><child link="left"/>
+  </joint>
+  <joint name="right_joint" type="continuous">
+    <parent link="palm"/><child link="right"/><mimic joint="left_joint" multiplier="-1"/>
+  </joint>
+</robot>
+""",
+    consumers=(Consumer.URDFDOM,),
+)

@@ -1,20 +1,12 @@
 """Forward kinematics in numpy, for many configurations at once.
 
-A `Kinematics` is built once per robot: the links in an order that puts every parent before
-its children (found without recursion, so a 10 000-link chain is fine), and per joint the
-constant matrices its motion needs. Evaluating it for a batch of configurations is then one
-small numpy step per link, over the whole batch.
-
-Configuration vectors hold one number per *variable*, in `Kinematics.variables` order: the
-moving joints in file order, mimic joints left out (they follow their leader), with
-
-- revolute, continuous: the angle (rad) about the axis;
-- prismatic: the distance (m) along the axis;
-- planar: ``x``, ``y`` (m) along two directions of the plane normal to the axis, then
-  ``yaw`` (rad) about the axis; for the axis ``0 0 1`` the directions are x and y, for
-  another axis they are x and y turned by the shortest rotation from z to it;
-- floating: ``x``, ``y``, ``z`` (m), then ``roll``, ``pitch``, ``yaw`` (rad, as in an
-  ``<origin rpy>``).
+A `Kinematics` evaluates the robot's kinematic plan (`fishbot_urdf.analysis.plan`: the
+links, parents before children, and per joint its origin, axis and configuration column),
+with per joint the constant matrices its motion needs. Evaluating it for a batch of
+configurations is then one small numpy step per link, over the whole batch. Configuration
+vectors are the plan's: one number per variable, in `Kinematics.variables` order (see
+`fishbot_urdf.analysis.plan` for planar and floating joints, and for mimic joints, which
+follow their driver's variable).
 
 numpy is imported when a `Kinematics` is built, not with this module.
 """
@@ -27,36 +19,17 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from ..analysis import Analysis, of
-from ..errors import ArgumentError, UnknownNameError
+from ..analysis.plan import PARTS, Step
+from ..errors import ArgumentError, StructureError, UnknownNameError
 from ..graph import root
-from ..model import Joint, JointType, Robot
-from ..spatial import rpy_matrix
-from ._mimic import follows
+from ..model import JointType, Robot
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
 __all__ = ["Kinematics", "forward_kinematics", "jacobian", "transform"]
 
-_ONE = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)
-_PARTS = {
-    JointType.PLANAR: ("x", "y", "yaw"),
-    JointType.FLOATING: ("x", "y", "z", "roll", "pitch", "yaw"),
-}
 Configuration = Any  # an array of shape (n,) or (B, n), or a mapping of names to values
-
-
-@dataclass(frozen=True, slots=True)
-class _Step:
-    """How one link is placed from its parent (``parent`` -1: the root)."""
-
-    link: int
-    parent: int
-    joint: Joint | None
-    kind: JointType
-    column: int  # its first variable, or its leader's for a mimic (-1: none)
-    multiplier: float
-    offset: float
 
 
 class Kinematics:
@@ -75,49 +48,21 @@ class Kinematics:
         """Raises:
         StructureError: The robot has no root or several, or a joint loop below its root.
         """
-        import numpy as np
+        import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
         analysis = of(robot)
         self.analysis = analysis
         self.root = root(analysis)
         if analysis.topology.loop_from_root:
-            from ..errors import StructureError
-
             raise StructureError(f"robot {analysis.robot.name!r} has a joint loop below its root")
-        owners = [
-            j
-            for j in analysis.robot.joints
-            if analysis.parent_joint.get(j.child) is j
-            and (j.type in _PARTS or (j.type in _ONE and follows(analysis.joints, j) is None))
-        ]
-        variables: list[str] = []
-        first: dict[str, int] = {}
-        for joint in owners:
-            first[joint.name] = len(variables)
-            parts = _PARTS.get(joint.type)
-            variables.extend([f"{joint.name}.{p}" for p in parts] if parts else [joint.name])
-        self.joints: tuple[str, ...] = tuple(j.name for j in owners)
-        self.variables: tuple[str, ...] = tuple(variables)
-        self._first = first
-        index = {self.root: 0}
-        order = [self.root]
-        steps: list[_Step] = []
-        children = analysis.topology.children
-        pending = [self.root]
-        while pending:  # depth first, without recursion
-            name = pending.pop()
-            for joint in children[name]:
-                child = joint.child
-                if child in index or analysis.parent_joint.get(child) is not joint:
-                    continue
-                index[child] = len(order)
-                order.append(child)
-                pending.append(child)
-                steps.append(self._step(analysis, joint, index[name], index[child]))
-        self.links: tuple[str, ...] = tuple(order)
-        self._index = index
-        self._steps = steps
-        self._constants = [_constants(np, s.joint) for s in steps]
+        plan = analysis.plan
+        self.joints: tuple[str, ...] = plan.joints
+        self.variables: tuple[str, ...] = plan.variables
+        self.links: tuple[str, ...] = plan.links
+        self._index = plan.index
+        self._steps = steps = plan.steps
+        variables = plan.variables
+        self._constants = [_constants(np, s) for s in steps]
         # Origins turned about their joint's axis add to the joint's angle.
         self._phases = np.zeros((len(variables), 1))
         for step, constants in zip(steps, self._constants, strict=True):
@@ -126,18 +71,6 @@ class Kinematics:
         self._phased = bool(np.any(self._phases))
 
     # -- configurations ------------------------------------------------------------------
-    def _step(self, analysis: Analysis, joint: Joint, parent: int, link: int) -> _Step:
-        if joint.type in _PARTS:
-            return _Step(link, parent, joint, joint.type, self._first[joint.name], 1.0, 0.0)
-        if joint.type not in _ONE:
-            return _Step(link, parent, joint, JointType.FIXED, -1, 0.0, 0.0)
-        source = follows(analysis.joints, joint)
-        if source is None:
-            return _Step(link, parent, joint, joint.type, self._first[joint.name], 1.0, 0.0)
-        # held at its offset (column -1) when its chain ends at a joint of no one position
-        column = -1 if source.leader is None else self._first.get(source.leader, -1)
-        return _Step(link, parent, joint, joint.type, column, source.multiplier, source.offset)
-
     def configuration(self, positions: Mapping[str, float] | None = None) -> NDArray[Any]:
         """The configuration vector of ``positions`` (by variable name; the rest are 0).
 
@@ -145,7 +78,7 @@ class Kinematics:
             UnknownNameError: A name is no variable (the error names the closest).
             ArgumentError: A value is not finite, or outside a joint's limits.
         """
-        import numpy as np
+        import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
         q = np.zeros(len(self.variables))
         where = {name: i for i, name in enumerate(self.variables)}
@@ -173,7 +106,7 @@ class Kinematics:
         return q
 
     def _batch(self, q: Configuration) -> tuple[NDArray[Any], bool]:
-        import numpy as np
+        import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
         if isinstance(q, Mapping):
             q = self.configuration(q)
@@ -193,7 +126,7 @@ class Kinematics:
         entry (i, j) of link l's pose in configuration b. With the batch last each step
         works on contiguous rows of B numbers, and with the poses transposed a constant
         rotation applies from the left, as one matrix product over the whole batch."""
-        import numpy as np
+        import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
         batch = q.shape[0]
         poses = np.empty((len(self.links), 4, 4, batch))  # every step writes its link
@@ -209,7 +142,7 @@ class Kinematics:
 
     def _frames(self, q: NDArray[Any]) -> tuple[NDArray[Any], NDArray[Any]]:
         """Rotations (B, L, 3, 3) and positions (B, L, 3) of every link in the root frame."""
-        import numpy as np
+        import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
         poses = self._poses(q)
         rotations = np.moveaxis(poses[:, :3, :3], -1, 0).swapaxes(-1, -2)
@@ -219,7 +152,7 @@ class Kinematics:
         """Every link's 4x4 pose in the root frame: shape (L, 4, 4) for one configuration
         (an array of shape (n,), or a mapping of variable names to values), (B, L, 4, 4)
         for a batch (B, n). Links are in ``links`` order."""
-        import numpy as np
+        import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
         array, single = self._batch(q)
         # A view of the transposed, batch-last array, as (B, L, 4, 4) poses: no copy.
@@ -245,7 +178,7 @@ class Kinematics:
         Raises:
             UnknownNameError: A frame is no link reached from the root.
         """
-        import numpy as np
+        import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
         a, b = self.link_index(frame_from), self.link_index(frame_to)
         array, single = self._batch(q)
@@ -269,7 +202,7 @@ class Kinematics:
         Raises:
             UnknownNameError: ``frame`` is no link reached from the root.
         """
-        import numpy as np
+        import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
         target = self.link_index(frame)
         array, single = self._batch(q)
@@ -308,25 +241,21 @@ class _Constants:
     phase: float  # an origin turned about the joint's own axis: the angle added to its own
 
 
-def _constants(np: Any, joint: Joint | None) -> _Constants:
-    if joint is None:
-        eye = np.eye(3)
-        return _Constants(eye, np.zeros(3), np.zeros(3), eye, eye, None, False, (), None, 0.0)
-    rotation = np.array(rpy_matrix(joint.origin.rpy), dtype=float)
-    xyz = np.array(joint.origin.xyz, dtype=float)
-    axis = np.array(joint.axis, dtype=float)
-    norm = float(np.linalg.norm(axis))
-    axis = axis / norm if norm > 0 else axis
+def _constants(np: Any, step: Step) -> _Constants:
+    rotation = np.array(step.origin.rotation, dtype=float)
+    xyz = np.array(step.origin.translation, dtype=float)
+    axis = np.array(step.axis, dtype=float)  # of length 1, or 0 0 0
     skew = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
-    plane = _plane(np, axis) if joint.type is JointType.PLANAR else None
+    plane = None if step.plane is None else np.array(step.plane, dtype=float).T
     aligned = None
     for i in range(3):
-        if abs(axis[i]) == 1.0:
+        # 1e-9 1 0 has a y of 1.0 once made of length 1: the other two must be 0 as well
+        if abs(axis[i]) == 1.0 and not axis[(i + 1) % 3] and not axis[(i + 2) % 3]:
             aligned = (i, float(axis[i]))
     offsets = tuple((i, float(v)) for i, v in enumerate(xyz) if v != 0.0)
     turned = bool(np.any(rotation != np.eye(3)))
     phase = 0.0
-    revolving = joint.type in (JointType.REVOLUTE, JointType.CONTINUOUS)
+    revolving = step.kind in (JointType.REVOLUTE, JointType.CONTINUOUS)
     if turned and revolving and aligned is not None:
         # R_o = Rot(axis, phase) when R_o keeps the axis: then R_o Rot(axis, q) is
         # Rot(axis, q + phase), and the origin's rotation costs nothing.
@@ -344,7 +273,7 @@ def _constants(np: Any, joint: Joint | None) -> _Constants:
 
 def _place(
     np: Any,
-    step: _Step,
+    step: Step,
     constants: _Constants,
     poses: Any,
     columns: Any,
@@ -366,7 +295,7 @@ def _place(
     kind = step.kind
     if kind is JointType.FIXED:
         return
-    if kind in _PARTS:
+    if kind in PARTS:
         _place_many(np, step, constants, rotation, position, columns)
         return
     plain = _plain(step)
@@ -403,13 +332,13 @@ def _place(
     rotation[...] = joint_r.reshape(rotation.shape) * c + crossed * s + along * (1.0 - c)
 
 
-def _plain(step: _Step) -> bool:
+def _plain(step: Step) -> bool:
     """The step's joint owns its variable (no mimic's multiplier or offset)."""
     return step.column >= 0 and step.multiplier == 1.0 and step.offset == 0.0
 
 
 def _place_many(
-    np: Any, step: _Step, constants: _Constants, rotation: Any, position: Any, columns: Any
+    np: Any, step: Step, constants: _Constants, rotation: Any, position: Any, columns: Any
 ) -> None:
     """Planar and floating joints: several variables each (rotation and position are the
     link's transposed rotation and its position, as `_place` keeps them)."""
@@ -419,6 +348,8 @@ def _place_many(
         shift = constants.plane @ columns[c : c + 2]  # (3, B) in the joint frame
         angle = columns[c + 2]
         s, co = np.sin(angle), np.cos(angle)
+        if not constants.axis.any():  # an axis 0 0 0 turns nothing (Rodrigues would scale)
+            s, co = np.zeros_like(angle), np.ones_like(angle)
         local = (
             np.eye(3)[:, :, None] * co
             + constants.cross[:, :, None] * s
@@ -429,19 +360,6 @@ def _place_many(
         local = np.moveaxis(_rpy(np, columns[c + 3 : c + 6].T), 0, -1)
     position += np.einsum("kib,kb->ib", joint_r, shift)
     np.einsum("kib,kjb->ijb", local, joint_r, out=rotation)
-
-
-def _plane(np: Any, n: Any) -> Any:
-    """x and y turned by the shortest rotation from z to ``n`` (as columns)."""
-    z = np.array([0.0, 0.0, 1.0])
-    v = np.cross(z, n)
-    c = float(z @ n)
-    if np.linalg.norm(v) < 1e-12:
-        turn = np.eye(3) if c > 0 else np.diag([1.0, -1.0, -1.0])
-    else:
-        k = np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
-        turn = np.eye(3) + k + k @ k / (1.0 + c)
-    return turn[:, :2]
 
 
 def _rpy(np: Any, angles: Any) -> Any:
@@ -463,7 +381,7 @@ def _rpy(np: Any, angles: Any) -> Any:
 
 def _columns(
     np: Any,
-    step: _Step,
+    step: Step,
     constants: _Constants,
     result: Any,
     joint_r: Any,

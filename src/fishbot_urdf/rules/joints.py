@@ -10,6 +10,7 @@ from ..catalog import Rule
 from ..catalog.joints import (
     AXIS_LENGTH,
     MIMIC_CHAIN,
+    MIMIC_FIXED,
     RPY_DEGREES,
     VELOCITY_DEGREES,
     WHEEL_AXIS,
@@ -17,7 +18,7 @@ from ..catalog.joints import (
     ZERO_LIMIT,
 )
 from ..diagnostics import Diagnostic, Kind, Subject
-from ..model import Cylinder, Joint, JointType, Link, Origin, Vector3
+from ..model import Cylinder, Joint, JointType, Link, Mimic, Origin, Vector3
 
 __all__ = ["REPORTS", "joints"]
 
@@ -52,6 +53,8 @@ def _joint(analysis: Analysis, joint: Joint) -> Iterator[Diagnostic]:
     path = analysis.path
     if _beyond_a_turn(joint.origin.rpy):
         yield _rpy(analysis, _named(joint), joint.origin, _subject(joint))
+    if joint.mimic is not None:
+        yield from _mimic_fixed(analysis, joint, joint.mimic)
     if joint.type not in _MOVING and joint.type is not JointType.PLANAR:
         return
     x, y, z = joint.axis
@@ -144,7 +147,13 @@ def _mimic(analysis: Analysis, joint: Joint) -> Iterator[Diagnostic]:
             subject=subject,
             hint="make it a fixed joint, or give the multiplier its real value",
         )
-    if target is not None and target.mimic is not None and target is not joint:
+    # A chain through a fixed joint ends there (mimic-fixed says so).
+    if (
+        target is not None
+        and target.mimic is not None
+        and target is not joint
+        and target.type is not JointType.FIXED
+    ):
         first = target.mimic.joint
         yield MIMIC_CHAIN.report(
             f"{named} mimics {mimic.joint!r}, which mimics {first!r} in turn",
@@ -153,6 +162,29 @@ def _mimic(analysis: Analysis, joint: Joint) -> Iterator[Diagnostic]:
             subject=subject,
             hint=f"mimic {first!r} directly, with the multipliers and offsets combined",
         )
+
+
+def _mimic_fixed(analysis: Analysis, joint: Joint, mimic: Mimic) -> Iterator[Diagnostic]:
+    """A fixed joint with a mimic, or a joint that mimics a fixed joint."""
+    leader = analysis.joints.get(mimic.joint)
+    if joint.type is JointType.FIXED:
+        message = f"{_named(joint)} is fixed, but mimics {mimic.joint!r}: it never moves"
+        hint = "delete its <mimic>, or give it the type of a joint that moves"
+    elif leader is not None and leader.type is JointType.FIXED and leader is not joint:
+        message = (
+            f"{_named(joint)} mimics {mimic.joint!r}, a fixed joint, which has no position: "
+            f"it stays at its offset {mimic.offset:g}"
+        )
+        hint = f"mimic the joint that drives it, or make {joint.name!r} fixed"
+    else:
+        return
+    yield MIMIC_FIXED.report(
+        message,
+        mimic.source or joint.source,
+        path=analysis.path,
+        subject=_subject(joint),
+        hint=hint,
+    )
 
 
 def _wheel(analysis: Analysis, joint: Joint, length: float) -> Iterator[Diagnostic]:
@@ -222,6 +254,7 @@ def _vector(values: Vector3) -> str:
 REPORTS: tuple[Rule, ...] = (
     AXIS_LENGTH,
     MIMIC_CHAIN,
+    MIMIC_FIXED,
     RPY_DEGREES,
     VELOCITY_DEGREES,
     WHEEL_AXIS,

@@ -53,18 +53,13 @@ def ground(analysis: Analysis, tolerance: float) -> Iterator[Diagnostic]:
     if root.name == "world":
         return  # Gazebo's name for the world itself: the robot is mounted, not standing
     # Only links the root holds through fixed joints and wheel axles: an arm's height at
-    # the zero configuration says nothing about the ground.
+    # the zero configuration says nothing about the ground. The plan puts parents first.
+    plan = analysis.plan
+    links = plan.links
     held = {root.name}
-    joints = [j for j in robot.joints if j.type in _STANDING]
-    below: dict[str, list[str]] = {}
-    for joint in joints:
-        below.setdefault(joint.parent, []).append(joint.child)
-    stack = [root.name]
-    while stack:
-        for child in below.get(stack.pop(), ()):
-            if child not in held:
-                held.add(child)
-                stack.append(child)
+    for step in plan.steps:
+        if step.joint.type in _STANDING and links[step.parent] in held:
+            held.add(links[step.link])
     # At the zero configuration a wheel's axle does not move it: the robot's own poses.
     poses = analysis.zero_poses
     spans: list[tuple[float, float, Link, Collision]] = []
@@ -75,12 +70,8 @@ def ground(analysis: Analysis, tolerance: float) -> Iterator[Diagnostic]:
         if link.name not in held or link is root:
             unknown = unknown or (link.name not in held and bool(link.collisions))
             continue
-        pose = poses.get(link.name)
-        if pose is None:  # held by a joint the tree does not place (one without a parent)
-            unknown = unknown or bool(link.collisions)
-            continue
         for collision in link.collisions:
-            span = _extent(collision, pose)
+            span = _extent(collision, poses[link.name])
             if span is None:
                 unknown = True
             else:
