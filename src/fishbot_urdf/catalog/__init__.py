@@ -11,13 +11,13 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from functools import cache
-from types import MappingProxyType
+from types import MappingProxyType, ModuleType
 
 from ..errors import UnknownNameError
 from . import joints, meshes, physics, reading, references, setup, structure, xacro, xml
 from ._rule import Consumer, Family, Rule
 
-__all__ = ["Consumer", "Family", "Rule", "all_rules", "get", "ids"]
+__all__ = ["Consumer", "Family", "Rule", "all_rules", "get", "ids", "rules_in"]
 
 
 def all_rules() -> tuple[Rule, ...]:
@@ -49,11 +49,17 @@ def _registry() -> Mapping[str, Rule]:
     return MappingProxyType(_collect())
 
 
+def rules_in(module: ModuleType) -> tuple[Rule, ...]:
+    """The rules a module of the catalogue defines (``rules_in(catalog.meshes)``), in the
+    order it defines them."""
+    return tuple(r for r in vars(module).values() if isinstance(r, Rule))
+
+
 def _collect() -> dict[str, Rule]:
     found: dict[str, Rule] = {}
     order = list(Family)
     modules = (xml, reading, structure, joints, references, meshes, physics, xacro, setup)
-    rules = [r for module in modules for r in vars(module).values() if isinstance(r, Rule)]
+    rules = [r for module in modules for r in rules_in(module)]
     for rule in sorted(rules, key=lambda r: (order.index(r.family), r.id)):
         if rule.id in found and found[rule.id] is not rule:
             raise AssertionError(f"two rules are named {rule.id!r}")

@@ -5,8 +5,9 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
+from .. import catalog
 from ..analysis import Analysis
-from ..catalog import Rule
+from ..catalog import Rule, rules_in
 from ..catalog.joints import (
     AXIS_LENGTH,
     MIMIC_CHAIN,
@@ -251,14 +252,5 @@ def _vector(values: Vector3) -> str:
     return " ".join(f"{v:g}" for v in values)
 
 
-REPORTS: tuple[Rule, ...] = (
-    AXIS_LENGTH,
-    MIMIC_CHAIN,
-    MIMIC_FIXED,
-    RPY_DEGREES,
-    VELOCITY_DEGREES,
-    WHEEL_AXIS,
-    WIDE_LIMIT,
-    ZERO_LIMIT,
-)
+REPORTS: tuple[Rule, ...] = rules_in(catalog.joints)
 """Every rule this module's check may report: the check runs only when one is selected."""

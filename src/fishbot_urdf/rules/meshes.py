@@ -8,9 +8,10 @@ import os
 from collections.abc import Iterable, Iterator, Mapping
 from pathlib import Path
 
+from .. import catalog
 from ..analysis import Analysis, of
 from ..analysis.meshpaths import MeshPath, State, robot_meshes
-from ..catalog import Rule
+from ..catalog import Rule, rules_in
 from ..catalog.meshes import (
     MESH_CASE,
     MESH_FACES,
@@ -266,13 +267,5 @@ def _fault(file: Path) -> str | None:
     return None
 
 
-REPORTS: tuple[Rule, ...] = (
-    MESH_CASE,
-    MESH_FACES,
-    MESH_FORMAT,
-    MESH_INVALID,
-    MESH_NOT_FOUND,
-    MESH_UNITS,
-    MESH_URI,
-)
+REPORTS: tuple[Rule, ...] = rules_in(catalog.meshes)
 """Every rule this module's check may report: the check runs only when one is selected."""

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
 
+from .. import catalog
 from ..analysis import Analysis
-from ..catalog import Rule
+from ..catalog import Rule, rules_in
 from ..catalog.structure import (
     CYCLE,
     DUPLICATE_JOINT,
@@ -291,22 +292,5 @@ def _tree(analysis: Analysis) -> Iterator[Diagnostic]:
                 )
 
 
-REPORTS: tuple[Rule, ...] = (
-    CYCLE,
-    DUPLICATE_JOINT,
-    DUPLICATE_LINK,
-    DUPLICATE_MATERIAL,
-    JOINT_SELF_LOOP,
-    LIMIT_RANGE,
-    MISSING_LIMIT,
-    MULTIPLE_PARENTS,
-    MULTIPLE_ROOTS,
-    NEGATIVE_LIMIT,
-    NO_LINKS,
-    NO_ROOT,
-    UNDEFINED_LINK,
-    UNDEFINED_MIMIC,
-    UNREACHABLE_LINK,
-    ZERO_AXIS,
-)
+REPORTS: tuple[Rule, ...] = rules_in(catalog.structure)
 """Every rule this module's check may report: the check runs only when one is selected."""
