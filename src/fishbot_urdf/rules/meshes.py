@@ -267,5 +267,8 @@ def _fault(file: Path) -> str | None:
     return None
 
 
-REPORTS: tuple[Rule, ...] = rules_in(catalog.meshes)
+# (shape-not-drawn is render's and view's finding: the check never draws)
+REPORTS: tuple[Rule, ...] = tuple(
+    r for r in rules_in(catalog.meshes) if r is not catalog.meshes.SHAPE_NOT_DRAWN
+)
 """Every rule this module's check may report: the check runs only when one is selected."""
