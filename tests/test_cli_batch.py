@@ -142,7 +142,7 @@ def _slow_check(monkeypatch: pytest.MonkeyPatch, seconds: float) -> None:
     from fishbot_urdf.inputs import deadline
 
     checking = importlib.import_module("fishbot_urdf.lint")
-    commands = importlib.import_module("fishbot_urdf.cli._common")  # where the CLI calls it
+    commands = importlib.import_module("fishbot_urdf.cli._checking")  # where the CLI calls it
 
     real = checking.check_file
 

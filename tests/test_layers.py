@@ -82,6 +82,7 @@ LAZY_HERE = {
     "src/fishbot_urdf/expansion/__init__.py": {"._engine"},
     "src/fishbot_urdf/inertia/__init__.py": {"."},
     "src/fishbot_urdf/cli/__init__.py": {"._common"},
+    "src/fishbot_urdf/cli/expand.py": {"..analysis", "..parsing"},
 }
 
 

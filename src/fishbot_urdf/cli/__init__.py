@@ -113,8 +113,8 @@ def main(argv: Sequence[str] | None = None) -> NoReturn:
 
     Exit status: 0 ok, 1 the robot has errors, 2 usage, configuration or I/O problem, 130
     interrupted (Ctrl-C), 143 terminated (SIGTERM). With no ``argv`` (the command line is the
-    process's own), its output is flushed before SystemExit is raised, so that output that
-    cannot be written is said in one line; given ``argv``, it raises SystemExit as usual.
+    process's own), the process ends once its output is flushed, without taking apart the
+    objects the command built; given ``argv``, it raises SystemExit as usual.
     """
     # A command builds one robot's objects and ends: the cycle collector's passes over them
     # find nothing, as the model holds no cycles, and cost a big robot's check 4% of its time
@@ -127,6 +127,10 @@ def main(argv: Sequence[str] | None = None) -> NoReturn:
         _run(argv)
     except SystemExit as done:
         if argv is None:
+            # Python's own end takes apart every module and object one by one: for
+            # `fishbot check first_robot.urdf` that was 1.40x the time of the same command
+            # ending here (1.15x against 1.40x the previous release's, median of 15 pairs),
+            # and 1.36x against 1.16x for the 10,000-link tree. Output is flushed first.
             _end_process(done.code)
         raise
     finally:
@@ -160,9 +164,9 @@ def _run(argv: Sequence[str] | None) -> NoReturn:
 
 
 def _end_process(code: object) -> NoReturn:
-    """Raise SystemExit as Python would end on SystemExit(code), once the output is
-    flushed: output that cannot be written (a full disk) is one line and status 2, a reader
-    that has gone is no error, and the flush at the interpreter's end finds nothing to say."""
+    """End the process as Python would on SystemExit(code), without its clean-up, once the
+    output is flushed: output that cannot be written (a full disk) is one line and status 2,
+    and a reader that has gone is no error."""
     if code is None:
         status = 0
     elif isinstance(code, int):
@@ -184,7 +188,7 @@ def _end_process(code: object) -> NoReturn:
         pass  # closed by the command itself
     with contextlib.suppress(OSError, ValueError):
         sys.stderr.flush()
-    raise SystemExit(status)
+    os._exit(status)
 
 
 def _unwritten() -> None:

@@ -23,7 +23,8 @@ from ..inputs import max_seconds, time_limit
 from ..packages import recording_manifests
 from ..parsing import is_xacro_path
 from ..report import FileReport
-from ._common import EXIT_INVALID, EXIT_OK, check_input, fail, read_files, status_of
+from ._checking import check_input, read_files
+from ._common import EXIT_INVALID, EXIT_OK, fail, status_of
 
 if TYPE_CHECKING:
     from ..config import Config

@@ -13,8 +13,6 @@ from typing import IO, TYPE_CHECKING, Any, NoReturn, TypeVar
 
 import click
 
-from ..catalog import all_rules
-from ..config import Config, find_config, load_config
 from ..diagnostics import Diagnostic, Severity, escape_controls, from_error
 from ..errors import ConfigError, FishbotUrdfError, InputError, LimitError, ToolError
 from ..expansion import ExpansionLimitError, parse_args
@@ -26,16 +24,11 @@ from ..inputs import (
     time_limit,
     trusting_expressions,
 )
-from ..lint import check_file
 from ..packages import PackageNotFoundError, recording_manifests
-from ..rules import Family
 from ._hints import command_hint, error_hint
 
 if TYPE_CHECKING:
-    from ..config import Config
-    from ..lint import CheckResult
-    from ..output import Source
-    from ..packages import PackageFinder
+    pass
 
 EXIT_OK, EXIT_INVALID, EXIT_USAGE = 0, 1, 2
 
@@ -147,52 +140,10 @@ def xacro_args(items: Sequence[str]) -> dict[str, str]:
         raise click.BadParameter(escape_controls(exc.message), param_hint="ARGS") from None
 
 
-def check_input(
-    name: str,
-    args: dict[str, str],
-    packages: dict[str, str] | PackageFinder,
-    config: Config | None = None,
-) -> CheckResult:
-    """Read and check FILE (- is standard input, read as URDF)."""
-    if name == "-":
-        return check_file(stdin_urdf(), path="<stdin>", packages=packages, config=config)
-    return check_file(name, args=args, packages=packages, config=config)
-
-
-STDIN = 0
-"""Standard input's file descriptor: an input that is a file when stdin is one (`fishbot
-check - -o robot.urdf < robot.urdf` is refused)."""
-
-
-def read_files(name: str, result: CheckResult | None, config: Config | None) -> list[Source]:
-    """What a command read for FILE ``name``, never to be written over: the file (standard
-    input for -, when that is a file), every file its reading read (includes, YAML), the
-    mesh files it names that are there (as its analysis found them), and the configuration
-    file. The package.xml files read on the way are `manifests_read`'s."""
-    found: list[Source] = [STDIN] if name == "-" else [name]
-    if result is not None:
-        found.extend(result.files)
-        if result.analysis is not None:
-            found.extend(map(str, result.analysis.mesh_paths.found(result.analysis.robot)))
-    if config is not None and config.path is not None:
-        found.append(config.path)
-    return found
-
-
 def manifests_read() -> list[str]:
     """Every package.xml that the command reads from now on to find a package (for
     ``$(find)`` and ``package://``), added to the list as they are read: inputs too."""
     return click.get_current_context().with_resource(recording_manifests())
-
-
-def nearest_config(file: str) -> Config:
-    """The configuration of the nearest fishbot.toml or pyproject.toml above ``file`` (the
-    current folder for -), or the default; a wrong one stops the command."""
-    found = find_config("." if file == "-" else file)
-    try:
-        return Config() if found is None else load_config(found)
-    except FishbotUrdfError as exc:
-        stop_on(exc)
 
 
 def stdin_urdf() -> bytes:
@@ -278,47 +229,6 @@ def package_option() -> Callable[[Wrapped], Wrapped]:
     return click.option(
         "--package", "package_items", multiple=True, metavar="NAME=PATH", help=PACKAGE_HELP
     )
-
-
-def posing_errors(diagnostics: Iterable[Diagnostic]) -> list[Diagnostic]:
-    """The errors that leave a robot's shape or tree in doubt (reading, URDF and structure
-    rules): `tf`, `render` and `view` stop on them; physics and mesh findings are
-    `check`'s."""
-    ids = {rule.id for rule in all_rules() if rule.family.value in _SHAPING}
-    return [d for d in diagnostics if d.is_error and d.rule in ids]
-
-
-_SHAPING = ("xml", "urdf", "structure", "xacro")  # the families of `posing_errors`
-
-
-def posing(config: Config) -> Config:
-    """``config`` with only the rules `posing_errors` looks at: a command that poses the
-    robot runs no other check (and opens no mesh file to check it)."""
-    return config.updated(ignore=[f.value for f in Family if f.value not in _SHAPING])
-
-
-def posable_input(
-    name: str,
-    args: dict[str, str],
-    packages: dict[str, str],
-    refusal: str | None = None,
-    *,
-    config: Config | None = None,
-) -> CheckResult:
-    """FILE read and checked (with ``config``, else the nearest configuration, narrowed to
-    the rules of `posing_errors`), for a command that poses the robot (tf, render): a robot
-    whose shape or tree is in doubt stops it with its errors (and ``refusal``), exit 1."""
-    try:
-        result = check_input(name, args, packages, posing(config or nearest_config(name)))
-    except FishbotUrdfError as exc:
-        stop_on(exc)
-    blocking = posing_errors(result.diagnostics)
-    if result.analysis is None or blocking:
-        emit_findings(blocking)
-        if refusal:
-            click.echo(refusal, err=True)
-        sys.exit(EXIT_INVALID)
-    return result
 
 
 def joint_option() -> Callable[[Wrapped], Wrapped]:

@@ -20,10 +20,10 @@ from ..output import AtomicFile, write_atomic
 from ..packages import PackageFinder
 from ..report import github_annotations, json_report, sarif_report
 from ._batch import Run, outcomes, tree_chunks
+from ._checking import STDIN
 from ._common import (
     EXIT_OK,
     EXIT_USAGE,
-    STDIN,
     Number,
     emit_findings,
     fail,

@@ -14,13 +14,11 @@ if TYPE_CHECKING:
     from ..expansion import Expansion
 from dataclasses import replace
 
-from ..analysis import analyse
 from ..diagnostics import Severity
 from ..expansion import declared_args
 from ..expansion import expand as run
 from ..expansion._findings import unknown_args, xacro_warning
 from ..output import write_atomic
-from ..parsing import read
 from ._common import (
     EXIT_INVALID,
     EXIT_OK,
@@ -112,6 +110,10 @@ def expand(
 def _mesh_files(expansion: Expansion, packages: dict[str, str]) -> list[str]:
     """The mesh files the expanded robot names that are there, read as far as it reads, and
     found as every command finds them (`fishbot_urdf.analysis.meshpaths`)."""
+    # lxml, the model and the reader load only when -o writes a file (`expand` needs none)
+    from ..analysis import analyse
+    from ..parsing import read
+
     try:
         robot = read(expansion.text.encode("utf-8", "replace"), path=expansion.path).robot
     except FishbotUrdfError:

@@ -13,17 +13,15 @@ from ..diagnostics import escape_controls, has_errors
 from ..drawing.dot import draw
 from ..errors import FishbotUrdfError
 from ..output import refuse_inputs, write_atomic
+from ._checking import check_input, nearest_config, read_files
 from ._common import (
     EXIT_INVALID,
     EXIT_OK,
-    check_input,
     emit_findings,
     limit_options,
     manifests_read,
-    nearest_config,
     package_option,
     packages_option,
-    read_files,
     stop_on,
     to_stdout,
     xacro_args,

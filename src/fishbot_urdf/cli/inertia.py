@@ -26,13 +26,13 @@ from ..model import Origin
 from ..output import write_atomic
 from ..wording import closest
 from ..write import add_inertials, inertial_xml
+from ._checking import check_input, nearest_config, read_files
 from ._common import (
     EXIT_INVALID,
     EXIT_OK,
     EXIT_USAGE,
     Number,
     Wrapped,
-    check_input,
     emit_findings,
     fail,
     format_option,
@@ -40,10 +40,8 @@ from ._common import (
     joint_positions,
     limit_options,
     manifests_read,
-    nearest_config,
     package_option,
     packages_option,
-    read_files,
     stop_on,
     to_stdout,
     xacro_args,

@@ -12,6 +12,7 @@ from ..drawing.scene import build_scene
 from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
 from ..kinematics import Kinematics
 from ..output import write_atomic
+from ._checking import nearest_config, posable_input, read_files
 from ._common import (
     EXIT_OK,
     emit_findings,
@@ -19,11 +20,8 @@ from ._common import (
     joint_positions,
     limit_options,
     manifests_read,
-    nearest_config,
     package_option,
     packages_option,
-    posable_input,
-    read_files,
     stop_on,
     to_stdout,
     xacro_args,

@@ -13,6 +13,7 @@ import click
 from ..errors import ArgumentError, StructureError, UnknownNameError
 from ..kinematics import Kinematics
 from ..spatial import euler_ypr, quaternion
+from ._checking import posable_input
 from ._common import (
     EXIT_OK,
     format_option,
@@ -21,7 +22,6 @@ from ._common import (
     limit_options,
     package_option,
     packages_option,
-    posable_input,
     stop_on,
     to_stdout,
     xacro_args,

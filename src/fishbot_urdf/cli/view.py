@@ -13,18 +13,15 @@ import click
 
 from ..drawing.viewer import Viewer
 from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
+from ._checking import check_input, nearest_config, posing, posing_errors
 from ._common import (
     EXIT_INVALID,
-    check_input,
     emit_findings,
     joint_option,
     joint_positions,
     limit_options,
-    nearest_config,
     package_option,
     packages_option,
-    posing,
-    posing_errors,
     stop_on,
     xacro_args,
 )
