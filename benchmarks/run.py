@@ -410,10 +410,9 @@ def _pypi_rows(
 
 def _check_seconds(path: Path, repeat: int) -> float:
     """Best seconds of ``repeat`` in-process checks of ``path``, no mesh facts kept."""
-    from fishbot_urdf.check import check_file
-
     from fishbot_urdf import meshfile
     from fishbot_urdf.errors import FishbotUrdfError
+    from fishbot_urdf.lint import check_file
 
     def run() -> None:
         meshfile._KNOWN.clear()  # each check reads its meshes, as one process per file does
@@ -451,10 +450,10 @@ def _mesh_ratios(
 def _mesh_facts(files: Sequence[Path]) -> tuple[list[Path], float, float]:
     """The STL and OBJ files the robots' checks read, and the best seconds of three passes
     of each: their facts (none kept from one pass to the next), and their bytes read."""
-    from fishbot_urdf.check import check_file
-
     from fishbot_urdf import meshfile
+    from fishbot_urdf.analysis import meshpaths
     from fishbot_urdf.errors import FishbotUrdfError
+    from fishbot_urdf.lint import check_file
 
     asked: list[str] = []
     real = meshfile.mesh_facts
@@ -463,13 +462,13 @@ def _mesh_facts(files: Sequence[Path]) -> tuple[list[Path], float, float]:
         asked.append(os.path.abspath(path))
         return real(path)
 
-    meshfile.mesh_facts = facts  # type: ignore[assignment]
+    meshpaths.mesh_facts = facts  # type: ignore[assignment]  # (where the analysis asks)
     try:
         for path in files:
             with contextlib.suppress(FishbotUrdfError):
                 check_file(path)
     finally:
-        meshfile.mesh_facts = real  # type: ignore[assignment]
+        meshpaths.mesh_facts = real  # type: ignore[assignment]
     meshes = [Path(p) for p in dict.fromkeys(asked) if Path(p).suffix.lower() in (".stl", ".obj")]
     meshes = [p for p in meshes if p.is_file()]
 
