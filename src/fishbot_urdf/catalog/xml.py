@@ -6,9 +6,6 @@ does, and each rule it applied is one warning per file (at the first place).
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from types import MappingProxyType
-
 from ..diagnostics import Severity
 from ._rule import Consumer, Family, Rule
 
@@ -272,22 +269,3 @@ exported by the CAD plugin
 """,
     consumers=_STRICT,
 )
-
-BY_ID: Mapping[str, Rule] = MappingProxyType(
-    {
-        rule.id: rule
-        for rule in (
-            XML_DECLARATION,
-            XML_UNDECLARED_PREFIX,
-            XML_DEFAULT_NAMESPACE,
-            XML_ENCODING,
-            XML_ESCAPE,
-            XML_ATTRIBUTE,
-            XML_COMMENT,
-            XML_CONTROL_CHAR,
-            XML_MARKUP,
-            XML_OUTSIDE_ROOT,
-        )
-    }
-)
-"""The rules of the XML recoveries, by id."""
