@@ -132,6 +132,10 @@ def test_findings_pickle_with_their_facts() -> None:
     assert copies == findings
     assert [dict(d.data) for d in copies] == [dict(d.data) for d in findings]
     assert all(type(c.data) is type(d.data) for c, d in zip(copies, findings, strict=True))
+    # A finding made in a worker process keeps its rule: the same object as here.
+    assert any(d.definition is not None for d in findings)
+    assert all(c.definition is d.definition for c, d in zip(copies, findings, strict=True))
+    assert [c.follows for c in copies] == [d.follows for d in findings]
 
 
 def _slow_check(monkeypatch: pytest.MonkeyPatch, seconds: float) -> None:

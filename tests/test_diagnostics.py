@@ -2,9 +2,21 @@
 
 from __future__ import annotations
 
+import json
+
 import pytest
 
-from fishbot_urdf.diagnostics import Severity, diagnostic, escape_controls
+from fishbot_urdf import Config, check_file
+from fishbot_urdf.catalog import get
+from fishbot_urdf.catalog.physics import CollisionFacts
+from fishbot_urdf.cli._hints import command_hint
+from fishbot_urdf.diagnostics import (
+    Diagnostic,
+    Severity,
+    diagnostic,
+    escape_controls,
+    without_consequences,
+)
 
 
 @pytest.mark.parametrize(
@@ -45,3 +57,66 @@ def test_a_finding_is_one_line_whatever_its_path_and_message() -> None:
         "(a\\rb) [io]"
     )
     assert finding.message.count("\n") == 1  # the finding itself keeps its text
+
+
+def _checked(text: str, config: Config | None = None) -> list[Diagnostic]:
+    return list(check_file(text.encode(), path="r.urdf", config=config).diagnostics)
+
+
+_MISMATCH = """<robot name="r">
+  <link name="base"/>
+  <link name="wheel">
+    <inertial><mass value="2"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
+    <collision><origin xyz="0 0 0.1" rpy="0 0 0"/>
+      <geometry><cylinder radius="0.05" length="0.02"/></geometry></collision>
+  </link>
+  <joint name="j" type="continuous"><parent link="base"/><child link="wheel"/>
+    <axis xyz="0 1 0"/></joint>
+</robot>"""
+
+
+def test_every_finding_of_a_check_carries_its_catalogued_rule() -> None:
+    findings = _checked(_MISMATCH.replace('link="base"/><child', 'link="bse"/><child'))
+    assert {d.rule for d in findings} >= {"undefined-link", "inertia-mismatch"}
+    for finding in findings:
+        assert finding.definition is get(finding.rule)
+
+
+def test_facts_are_typed_and_read_as_the_mapping_they_were() -> None:
+    (mismatch,) = [d for d in _checked(_MISMATCH) if d.rule == "inertia-mismatch"]
+    facts = mismatch.data
+    assert isinstance(facts, CollisionFacts)
+    # the cylinder written in the file, independent of any computation
+    assert (facts.shape, facts.radius, facts.length, facts.mass) == ("cylinder", 0.05, 0.02, 2)
+    assert facts.xyz == (0, 0, 0.1) and facts.size is None
+    # the mapping view: the fields that are set, JSON-ready as lists
+    assert facts["radius"] == 0.05 and "size" not in facts
+    assert set(facts) == {"shape", "mass", "xyz", "rpy", "radius", "length"}
+    as_json = json.loads(json.dumps(mismatch.to_dict()))
+    assert as_json["data"]["xyz"] == [0, 0, 0.1]
+    with pytest.raises(KeyError):
+        facts["size"]
+
+
+def test_the_cli_hint_is_chosen_by_the_findings_rule_not_its_id_text() -> None:
+    (mismatch,) = [d for d in _checked(_MISMATCH) if d.rule == "inertia-mismatch"]
+    hint = command_hint(mismatch)
+    assert hint is not None
+    assert "`fishbot inertia cylinder --mass 2 --radius 0.05 --length 0.02 --xyz 0 0 0.1`" in hint
+    # the same words made elsewhere, without the rule, are not taken for it
+    stranger = diagnostic(
+        "inertia-mismatch", Severity.WARNING, mismatch.message, data=dict(mismatch.data)
+    )
+    assert command_hint(stranger) is None
+
+
+def test_a_consequence_says_what_it_follows_from_and_goes_with_its_cause() -> None:
+    text = _MISMATCH.replace('link="base"/><child', 'link="bse"/><child')
+    assert "multiple-roots" not in {d.rule for d in _checked(text)}
+    quiet = _checked(text, Config(ignore=("undefined-link",)))
+    (roots,) = [d for d in quiet if d.rule == "multiple-roots"]
+    assert roots.follows == ("undefined-link",)
+    assert roots.to_dict()["data"]["follows"] == ["undefined-link"]
+    cause = diagnostic("undefined-link", Severity.ERROR, "joint 'j': ...", path="r.urdf")
+    assert without_consequences([cause, roots]) == [cause]

@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import os
 import re
-from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field
+from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass, field, fields
 from enum import Enum
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
+    from .catalog import Rule
     from .errors import FishbotUrdfError
     from .model import Location
 
@@ -48,11 +49,46 @@ class Subject:
         return f"{self.kind.value} {self.name!r}"
 
 
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Facts(Mapping[str, Any]):
+    """The facts behind a finding, for programs: each rule that has some reports them as a
+    subclass with typed fields (`catalog.physics.GroundFacts`, ...).
+
+    A finding's facts are also a read-only mapping of the fields that are set (not None),
+    so ``finding.data["mass"]`` and ``json.dumps(dict(finding.data))`` work as they did
+    when the facts were a dict.
+    """
+
+    def __getitem__(self, key: str) -> Any:
+        value = getattr(self, key, None) if key in self._names() else None
+        if value is None:
+            raise KeyError(key)
+        return value
+
+    def __iter__(self) -> Iterator[str]:
+        return (name for name in self._names() if getattr(self, name) is not None)
+
+    def __len__(self) -> int:
+        return sum(1 for _ in self)
+
+    @classmethod
+    def _names(cls) -> tuple[str, ...]:
+        return tuple(f.name for f in fields(cls))
+
+    def to_dict(self) -> dict[str, Any]:
+        """A JSON-ready dict of the fields that are set (tuples as lists)."""
+        return {name: _plain(getattr(self, name)) for name in self}
+
+
+def _plain(value: Any) -> Any:
+    return [_plain(v) for v in value] if isinstance(value, tuple) else value
+
+
 _NO_DATA: Mapping[str, Any] = MappingProxyType({})
 
 FOLLOWS = "follows"
-"""The key of a finding's data that lists the rules whose findings it follows from: it is
-only news when none of them is reported (see `without_consequences`)."""
+"""The key under which `Diagnostic.to_dict` lists the rules a finding follows from (see
+`Diagnostic.follows`)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -69,7 +105,12 @@ class Diagnostic:
         column: 1-based column (in characters), or None.
         hint: What is allowed or what to do; rendered in parentheses.
         subject: What the finding is about (the link, joint, ... and its name), if anything.
-        data: Facts behind the finding for programs (numbers, names), by rule; not compared.
+        data: Facts behind the finding for programs (numbers, names): a `Facts` of the
+            rule's own type (a read-only mapping too); not compared.
+        definition: The `Rule` it is a finding of (None for an error that stopped a file
+            from being read, whose ``rule`` is a kind of error); not compared.
+        follows: Ids of the rules whose findings this one follows from: it is only news
+            when none of them is reported (see `without_consequences`); not compared.
     """
 
     rule: str
@@ -81,6 +122,8 @@ class Diagnostic:
     hint: str | None = None
     subject: Subject | None = None
     data: Mapping[str, Any] = field(default_factory=lambda: _NO_DATA, compare=False, repr=False)
+    definition: Rule | None = field(default=None, compare=False, repr=False)
+    follows: tuple[str, ...] = field(default=(), compare=False, repr=False)
 
     @property
     def is_error(self) -> bool:
@@ -98,9 +141,29 @@ class Diagnostic:
         return where
 
     def __reduce__(self) -> tuple[Any, ...]:
-        # Pickled with its facts as a dict (a read-only mapping does not pickle), so that
+        # Pickled with plain facts as a dict (a read-only mapping does not pickle), so that
         # findings can come back from other processes.
-        return (_unpickled, (*(getattr(self, name) for name in _FIELDS), dict(self.data)))
+        data = self.data if isinstance(self.data, Facts) else dict(self.data)
+        return (_unpickled, (*(getattr(self, name) for name in _FIELDS), data))
+
+    def with_hint(self, hint: str | None) -> Diagnostic:
+        """This finding with ``hint`` in the place of its own."""
+        # (as dataclasses.replace would make it, in half the time: a check may phrase
+        # thousands)
+        d = self
+        return Diagnostic(
+            d.rule,
+            d.severity,
+            d.message,
+            d.path,
+            d.line,
+            d.column,
+            hint,
+            d.subject,
+            d.data,
+            d.definition,
+            d.follows,
+        )
 
     def format(self) -> str:
         """Render as one GCC-style line: ``path:line:col: error: message (hint) [rule]``.
@@ -132,17 +195,37 @@ class Diagnostic:
             "subject": None
             if subject is None
             else {"kind": subject.kind.value, "name": subject.name},
-            "data": dict(self.data),
+            "data": self._data_dict(),
         }
 
+    def _data_dict(self) -> dict[str, Any]:
+        data = self.data
+        facts = data.to_dict() if isinstance(data, Facts) else dict(data)
+        if self.follows:
+            facts[FOLLOWS] = list(self.follows)
+        return facts
 
-_FIELDS = ("rule", "severity", "message", "path", "line", "column", "hint", "subject")
+
+_FIELDS = (
+    "rule",
+    "severity",
+    "message",
+    "path",
+    "line",
+    "column",
+    "hint",
+    "subject",
+    "definition",
+    "follows",
+)
 
 
 def _unpickled(*values: Any) -> Diagnostic:
-    rule, severity, message, path, line, column, hint, subject, data = values
-    facts = MappingProxyType(data) if data else _NO_DATA
-    return Diagnostic(rule, severity, message, path, line, column, hint, subject, facts)
+    rule, severity, message, path, line, column, hint, subject, definition, follows, data = values
+    facts = data if isinstance(data, Facts) else MappingProxyType(data) if data else _NO_DATA
+    return Diagnostic(
+        rule, severity, message, path, line, column, hint, subject, facts, definition, follows
+    )
 
 
 def diagnostic(
@@ -157,13 +240,31 @@ def diagnostic(
     hint: str | None = None,
     subject: Subject | None = None,
     data: Mapping[str, Any] | None = None,
+    definition: Rule | None = None,
+    follows: Iterable[str] = (),
 ) -> Diagnostic:
     """The one way to make a finding: at ``where`` (a Location), or else in ``path`` at
-    ``line`` and ``column`` (None for the whole file)."""
-    facts = _NO_DATA if not data else MappingProxyType(dict(data))
+    ``line`` and ``column`` (None for the whole file). ``data`` is best a `Facts`; a plain
+    mapping is kept as a read-only copy."""
+    if isinstance(data, Facts):
+        facts: Mapping[str, Any] = data
+    else:
+        facts = _NO_DATA if not data else MappingProxyType(dict(data))
     if where is not None:
         path, line, column = where.path, where.line, where.column
-    return Diagnostic(rule, severity, message, path, line, column, hint, subject, facts)
+    return Diagnostic(
+        rule,
+        severity,
+        message,
+        path,
+        line,
+        column,
+        hint,
+        subject,
+        facts,
+        definition,
+        tuple(follows),
+    )
 
 
 def from_error(exc: FishbotUrdfError, path: str = "<input>") -> Diagnostic:
@@ -233,7 +334,7 @@ def without_consequences(findings: Iterable[Diagnostic]) -> list[Diagnostic]:
     rule is turned off or silenced), the consequence is."""
     kept = list(findings)
     rules = {finding.rule for finding in kept}
-    return [f for f in kept if not rules.intersection(f.data.get(FOLLOWS, ()))]
+    return [f for f in kept if not rules.intersection(f.follows)]
 
 
 def has_errors(diagnostics: Iterable[Diagnostic], *, strict: bool = False) -> bool:

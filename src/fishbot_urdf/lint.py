@@ -13,7 +13,6 @@ from .catalog import Rule
 from .catalog.reading import BAD_NUMBER, MISSING_ATTRIBUTE, ROBOT_NAME
 from .config import Config
 from .diagnostics import (
-    FOLLOWS,
     Diagnostic,
     Kind,
     Subject,
@@ -35,7 +34,7 @@ if TYPE_CHECKING:
 
 __all__ = ["CheckResult", "check", "check_file"]
 
-_UNNAMED = (MISSING_ATTRIBUTE.id, ROBOT_NAME.id)
+_UNNAMED = (MISSING_ATTRIBUTE, ROBOT_NAME)
 
 
 @dataclass(frozen=True, slots=True)
@@ -144,8 +143,8 @@ def check(
     given = robot.robot if isinstance(robot, Analysis) else robot
     path = robot.path if isinstance(robot, Analysis) else None
     model = values(given, path)  # first: an analysis needs the types right
-    unnamed = any(d.rule in _UNNAMED for d in model)
-    infinite = any(d.rule == BAD_NUMBER.id for d in model)
+    unnamed = any(d.definition in _UNNAMED for d in model)
+    infinite = any(d.definition is BAD_NUMBER for d in model)
     if unnamed or infinite:
         # The rules compare and sort names: one that is None is read as one left out, "".
         # They do arithmetic on numbers: one that is not finite is read as 0.
@@ -182,7 +181,7 @@ def _rule_findings(
             subject = finding.subject
             causes = unread.get(subject) if check.uses_values and subject is not None else None
             if causes:
-                finding = replace(finding, data={**finding.data, FOLLOWS: sorted(causes)})
+                finding = replace(finding, follows=tuple(sorted(causes)))
             yield finding
 
 

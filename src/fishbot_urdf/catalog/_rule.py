@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from dataclasses import dataclass
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, fields
 from enum import Enum
 from typing import TYPE_CHECKING, Any
 
@@ -58,7 +58,9 @@ _LABELS = {
 }
 
 
-@dataclass(frozen=True, slots=True)
+# Compared and hashed by identity: each rule is made once, and a dict keyed by rules (the
+# CLI's hints) then hashes no text.
+@dataclass(frozen=True, slots=True, eq=False)
 class Rule:
     """One kind of finding.
 
@@ -86,6 +88,16 @@ class Rule:
     language: str = "urdf"
     fatal: bool = False
 
+    def __post_init__(self) -> None:
+        _MADE.setdefault(self.id, self)
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        # A catalogued rule comes back from another process as the same object (findings
+        # made in worker processes keep their rule).
+        if _MADE.get(self.id) is self:
+            return (_made, (self.id,))
+        return (Rule, tuple(getattr(self, f.name) for f in fields(self)))
+
     def report(
         self,
         message: str,
@@ -96,9 +108,11 @@ class Rule:
         hint: str | None = None,
         severity: Severity | None = None,
         data: Mapping[str, Any] | None = None,
+        follows: Iterable[str] = (),
     ) -> Diagnostic:
         """A finding of this rule at ``where`` (or about the whole file ``path``), at its
-        default severity unless ``severity`` says otherwise."""
+        default severity unless ``severity`` says otherwise. ``data`` holds the facts behind
+        it (a `Facts`), ``follows`` the ids of rules whose findings it follows from."""
         return diagnostic(
             self.id,
             severity or self.severity,
@@ -108,6 +122,8 @@ class Rule:
             hint=hint,
             subject=subject,
             data=data,
+            definition=self,
+            follows=follows,
         )
 
     def to_dict(self) -> dict[str, Any]:
@@ -124,3 +140,10 @@ class Rule:
             "language": self.language,
             "fatal": self.fatal,
         }
+
+
+_MADE: dict[str, Rule] = {}
+
+
+def _made(rule_id: str) -> Rule:
+    return _MADE[rule_id]

@@ -5,7 +5,9 @@ Data only: the checks that report them are in `fishbot_urdf.rules`.
 
 from __future__ import annotations
 
-from ..diagnostics import Severity
+from dataclasses import dataclass
+
+from ..diagnostics import Facts, Severity
 from ._rule import Consumer, Family, Rule
 
 E, W = Severity.ERROR, Severity.WARNING
@@ -34,6 +36,20 @@ _COLLIDING = """\
 # base_link_mm.stl (a box 200 x 200 x 100 units), base_link_cut.stl (a binary STL cut
 # short) and base_link_fine.stl (30 000 triangles).
 _FOUND = "meshes/base_link.stl"
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class MeshNotFoundFacts(Facts):
+    """The facts of a `mesh-not-found` finding."""
+
+    package: str | None = None
+    """The package that is not found, when the file is named ``package://`` of it."""
+    looked_for: str | None = None
+    """The file that programs look for, and is not there."""
+    beside_writer: str | None = None
+    """The file of that name beside the xacro file that wrote the name, when there is one."""
+
+
 MESH_NOT_FOUND = Rule(
     "mesh-not-found",
     E,

@@ -5,11 +5,68 @@ Data only: the checks that report them are in `fishbot_urdf.rules`.
 
 from __future__ import annotations
 
-from ..diagnostics import Severity
+from dataclasses import dataclass
+
+from ..diagnostics import Facts, Severity
 from ._rule import Consumer, Family, Rule
 
 _SIMULATORS = (Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE, Consumer.PYBULLET)
 E, W = Severity.ERROR, Severity.WARNING
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class MassFacts(Facts):
+    """The facts of a `massless-link` finding: the moving body's mass, and its principal
+    moments when the mass is there but a moment is not."""
+
+    mass: float
+    """The body's mass, kg."""
+    principal_moments: tuple[float, float, float] | None = None
+    """Its principal moments of inertia, kg*m^2, smallest first."""
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class InertiaFacts(Facts):
+    """The facts of an `inertia-not-positive` or `inertia-triangle` finding."""
+
+    principal_moments: tuple[float, float, float]
+    """The link's principal moments of inertia, kg*m^2, smallest first."""
+    merged_body_physical: bool
+    """Whether the body made by merging the links fixed to it is physical."""
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class CollisionFacts(Facts):
+    """The facts of an `inertia-mismatch` finding: what it takes to compute the inertial
+    that matches the collision (``shape`` with its ``size``, or ``radius`` and
+    ``length``)."""
+
+    shape: str
+    """``box``, ``cylinder`` or ``sphere``."""
+    mass: float
+    """The link's mass, kg."""
+    xyz: tuple[float, float, float]
+    """Where the collision is, in the link frame."""
+    rpy: tuple[float, float, float]
+    """How the collision is turned, in the link frame."""
+    size: tuple[float, float, float] | None = None
+    """A box's size."""
+    radius: float | None = None
+    """A cylinder's or a sphere's radius."""
+    length: float | None = None
+    """A cylinder's length."""
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class GroundFacts(Facts):
+    """The facts of a `below-ground` or `above-ground` finding."""
+
+    distance_mm: float
+    """How far the lowest point is below (or above) the ground, mm."""
+    tolerance_mm: float
+    """The distance taken as touching, mm."""
+
+
 MASSLESS_LINK = Rule(
     "massless-link",
     E,

@@ -5,8 +5,19 @@ These are data only; the reader (``fishbot_urdf.parse``) reports them as it read
 
 from __future__ import annotations
 
-from ..diagnostics import Severity
+from dataclasses import dataclass
+
+from ..diagnostics import Facts, Severity
 from ._rule import Consumer, Family, Rule
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class FieldFacts(Facts):
+    """The facts of a finding about one value of a model built in code."""
+
+    field: str
+    """Where the value is in the model: ``robot.joints[0].axis``."""
+
 
 _SIMULATORS = (Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE, Consumer.PYBULLET)
 _ALL = (Consumer.URDFDOM, *_SIMULATORS)

@@ -6,7 +6,9 @@ These are data only; errors of the setup stop a command with exit status 2.
 
 from __future__ import annotations
 
-from ..diagnostics import Severity
+from dataclasses import dataclass
+
+from ..diagnostics import Facts, Severity
 from ._rule import Consumer, Family, Rule
 
 E, W = Severity.ERROR, Severity.WARNING
@@ -119,6 +121,17 @@ fishbot graph fishbot.urdf -o fishbot.png
     language="shell",
     fatal=True,
 )
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class FillFacts(Facts):
+    """The facts of a `fill-skipped` finding."""
+
+    reason: str
+    """Why no inertial was added: the rule id of the error that stopped it (``no-mass``,
+    ``mesh-not-found``, ...)."""
+
+
 FILL_SKIPPED = Rule(
     "fill-skipped",
     E,

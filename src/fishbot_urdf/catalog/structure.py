@@ -5,9 +5,9 @@ Data only: the checks that report them are in `fishbot_urdf.rules`.
 
 from __future__ import annotations
 
-from ..diagnostics import (
-    Severity,
-)
+from dataclasses import dataclass
+
+from ..diagnostics import Facts, Severity
 from ._rule import Consumer, Family, Rule
 
 _SIMULATORS = (Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE, Consumer.PYBULLET)
@@ -149,6 +149,18 @@ DUPLICATE_MATERIAL = Rule(
 """,
     consumers=(Consumer.URDFDOM, Consumer.GAZEBO, Consumer.DRAKE),
 )
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class UndefinedLinkFacts(Facts):
+    """The facts of an `undefined-link` finding."""
+
+    end: str
+    """Which end of the joint names it: ``parent`` or ``child``."""
+    link: str
+    """The link name that is not defined."""
+
+
 UNDEFINED_LINK = Rule(
     "undefined-link",
     E,
@@ -413,6 +425,16 @@ MULTIPLE_PARENTS = Rule(
 """,
     consumers=_ALL,
 )
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class RootsFacts(Facts):
+    """The facts of a `multiple-roots` finding."""
+
+    roots: tuple[str, ...]
+    """The root links, in file order."""
+
+
 MULTIPLE_ROOTS = Rule(
     "multiple-roots",
     E,
@@ -473,6 +495,16 @@ NO_ROOT = Rule(
 """,
     consumers=_ALL,
 )
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class LoopFacts(Facts):
+    """The facts of a `cycle` finding."""
+
+    joints: tuple[str, ...]
+    """The joints of the loop."""
+
+
 CYCLE = Rule(
     "cycle",
     E,

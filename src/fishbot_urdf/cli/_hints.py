@@ -3,19 +3,21 @@ do in general; here they learn how to do it from the command line."""
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from typing import Any
+from collections.abc import Callable, Iterable
 
 from ..catalog import Rule
-from ..catalog.meshes import MESH_NOT_FOUND
+from ..catalog.meshes import MESH_NOT_FOUND, MeshNotFoundFacts
 from ..catalog.physics import (
     ABOVE_GROUND,
     BELOW_GROUND,
     INERTIA_MISMATCH,
     MASSLESS_LINK,
     MISSING_INERTIAL,
+    CollisionFacts,
+    GroundFacts,
+    MassFacts,
 )
-from ..catalog.setup import FILL_SKIPPED
+from ..catalog.setup import FILL_SKIPPED, FillFacts
 from ..diagnostics import Diagnostic
 from ..errors import FishbotUrdfError, ToolTimeoutError
 from ..expansion import ExpansionLimitError, XacroError
@@ -27,72 +29,71 @@ from ..packages import PackageNotFoundError
 def phrased(finding: Diagnostic) -> Diagnostic:
     """``finding`` with the command line's way to act on it added to its hint."""
     hint = command_hint(finding)
-    if hint is finding.hint:
-        return finding
-    d = finding
-    # (as dataclasses.replace would make it, in half the time: a check may phrase thousands)
-    return Diagnostic(
-        d.rule, d.severity, d.message, d.path, d.line, d.column, hint, d.subject, d.data
-    )
+    return finding if hint is finding.hint else finding.with_hint(hint)
 
 
 def command_hint(finding: Diagnostic) -> str | None:
     """``finding``'s hint, with the command line's way to act on it added."""
-    extra = _EXTRA.get(finding.rule)
-    words = extra(finding.data) if extra is not None else None
+    words = _BY_RULE.get(finding.definition, _nothing)(finding.data)
     if not words:
         return finding.hint
     return f"{finding.hint}; {words}" if finding.hint else words
 
 
-def _numbers(values: Any) -> str:
+def _nothing(facts: object) -> None:
+    return None
+
+
+def _numbers(values: Iterable[float]) -> str:
     return " ".join(f"{v:g}" for v in values)
 
 
-def _shape_command(data: Any) -> str | None:
-    shape = data.get("shape")
-    if shape is None:
+def _shape_command(facts: object) -> str | None:
+    if not isinstance(facts, CollisionFacts):
         return None
-    if shape == "box":
-        x, y, z = data["size"]
+    if facts.size is not None:
+        x, y, z = facts.size
         size = f"--size {x:g} {y:g} {z:g}"
-    elif shape == "cylinder":
-        size = f"--radius {data['radius']:g} --length {data['length']:g}"
+    elif facts.length is not None:
+        size = f"--radius {facts.radius:g} --length {facts.length:g}"
     else:
-        size = f"--radius {data['radius']:g}"
-    words = f"{shape} --mass {data['mass']:g} {size}"
-    for name in ("xyz", "rpy"):
-        if any(data.get(name, ())):
-            words += f" --{name} {_numbers(data[name])}"
+        size = f"--radius {facts.radius:g}"
+    words = f"{facts.shape} --mass {facts.mass:g} {size}"
+    if any(facts.xyz):
+        words += f" --xyz {_numbers(facts.xyz)}"
+    if any(facts.rpy):
+        words += f" --rpy {_numbers(facts.rpy)}"
     return f"`fishbot inertia {words}` prints the inertial of the collision"
 
 
-def _tolerance(data: Any) -> str | None:
-    return "change it with --ground-tolerance MM" if "tolerance_mm" in data else None
+def _tolerance(facts: object) -> str | None:
+    return "change it with --ground-tolerance MM" if isinstance(facts, GroundFacts) else None
 
 
-def _fill(data: Any) -> str:
+def _fill(facts: object) -> str:
     return "`fishbot inertia ROBOT --fill --density KG_PER_M3 -o OUT` writes one"
 
 
-def _moments(data: Any) -> str | None:
-    if "principal_moments" not in data:
+def _moments(facts: object) -> str | None:
+    if not isinstance(facts, MassFacts) or facts.principal_moments is None:
         return None
     return "`fishbot inertia box|cylinder|sphere` prints those of a solid"
 
 
-def _fill_skipped(data: Any) -> str | None:
-    if data.get("reason") == "no-mass":
+def _fill_skipped(facts: object) -> str | None:
+    if isinstance(facts, FillFacts) and facts.reason == "no-mass":
         return "give --mass LINK=KG or --density KG_PER_M3"
     return None
 
 
-def _package(data: Any) -> str | None:
-    package = data.get("package")
-    return None if package is None else f"give its folder with --package {package}=PATH"
+def _package(facts: object) -> str | None:
+    if not isinstance(facts, MeshNotFoundFacts) or facts.package is None:
+        return None
+    return f"give its folder with --package {facts.package}=PATH"
 
 
-_BY_RULE: dict[Rule, Callable[[Any], str | None]] = {
+# What a finding of each rule can add: chosen by the finding's rule and its typed facts.
+_BY_RULE: dict[Rule | None, Callable[[object], str | None]] = {
     INERTIA_MISMATCH: _shape_command,
     BELOW_GROUND: _tolerance,
     ABOVE_GROUND: _tolerance,
@@ -101,7 +102,6 @@ _BY_RULE: dict[Rule, Callable[[Any], str | None]] = {
     FILL_SKIPPED: _fill_skipped,
     MESH_NOT_FOUND: _package,
 }
-_EXTRA = {rule.id: words for rule, words in _BY_RULE.items()}
 
 
 def error_hint(exc: FishbotUrdfError) -> tuple[str, str | None] | None:

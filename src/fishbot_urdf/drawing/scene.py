@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..analysis import Analysis, of
 from ..catalog import Rule
-from ..catalog.meshes import MESH_FORMAT, MESH_INVALID, SHAPE_NOT_DRAWN
+from ..catalog.meshes import MESH_FORMAT, MESH_INVALID, SHAPE_NOT_DRAWN, MeshNotFoundFacts
 from ..catalog.setup import TOOL_MISSING
 from ..diagnostics import Diagnostic, Kind, Severity, Subject, sort_key
 from ..errors import FishbotUrdfError, LimitError, ShapeError, ToolNotFoundError
@@ -227,7 +227,8 @@ class _Loader:
         """Say, once for each, which of a link's meshes lead to no file."""
         uses = [(link, shape) for shape in shapes if isinstance(shape, Mesh) and shape.filename]
         for finding in unresolved(self.analysis, uses, drawing=True):
-            package = finding.data.get("package")
+            facts = finding.data
+            package = facts.package if isinstance(facts, MeshNotFoundFacts) else None
             if package is not None:  # one finding for a package, for all its meshes
                 if package in self.missing:
                     continue

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..analysis import Analysis, of
-from ..catalog.setup import FILL_SKIPPED
+from ..catalog.setup import FILL_SKIPPED, FillFacts
 from ..diagnostics import Diagnostic, Kind, Subject
 from ..errors import ArgumentError, FishbotUrdfError, ShapeError, UnknownNameError
 from ..graph import root
@@ -204,5 +204,5 @@ def _skip(link: Link, path: str, why: str, reason: str) -> Diagnostic:
         link.source,
         path=path,
         subject=owner,
-        data={"reason": reason},
+        data=FillFacts(reason=reason),
     )

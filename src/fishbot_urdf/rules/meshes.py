@@ -20,6 +20,7 @@ from ..catalog.meshes import (
     MESH_NOT_FOUND,
     MESH_UNITS,
     MESH_URI,
+    MeshNotFoundFacts,
 )
 from ..diagnostics import Diagnostic, Kind, Severity, Subject
 from ..errors import FishbotUrdfError, ShapeError
@@ -85,7 +86,7 @@ def unresolved(
             path=analysis.path,
             subject=Subject(Kind.LINK, link.name),
             hint=f"searched: {'; '.join(path.searched)}",
-            data={"package": package},
+            data=MeshNotFoundFacts(package=package),
             severity=Severity.WARNING,
         )
 
@@ -98,7 +99,7 @@ def _unresolved(
         return None  # found, or not ours to judge
     named = f"link {link.name!r}: mesh {mesh.filename!r}"
     then = ", so it is not drawn" if drawing else ""
-    data: dict[str, str] = {}
+    data: MeshNotFoundFacts | None = None
     if state is State.MALFORMED:
         rule, what, hint = MESH_URI, f"{path.problem}{then}", path.fix
     elif state is State.OTHER_CASE:
@@ -125,15 +126,15 @@ def _unresolved(
     )
 
 
-def _not_found(analysis: Analysis, mesh: Mesh, path: MeshPath) -> tuple[str, dict[str, str]]:
+def _not_found(analysis: Analysis, mesh: Mesh, path: MeshPath) -> tuple[str, MeshNotFoundFacts]:
     """The hint and the data of a mesh whose file is not where programs look for it."""
     paths = analysis.mesh_paths
     assert path.file is not None
-    data = {"looked_for": str(path.file)}
+    data = MeshNotFoundFacts(looked_for=str(path.file))
     beside = paths.beside_writer(mesh)
     if beside is not None:
         # The classic mistake: the name is right beside the xacro file that wrote it.
-        data["beside_writer"] = str(beside)
+        data = MeshNotFoundFacts(looked_for=str(path.file), beside_writer=str(beside))
         writer = mesh.source.path if mesh.source else "the file that wrote it"
         held = paths.in_package(beside)
         package, inside = held if held is not None else ("PACKAGE", "path")

@@ -24,8 +24,11 @@ from ..catalog.structure import (
     UNDEFINED_MIMIC,
     UNREACHABLE_LINK,
     ZERO_AXIS,
+    LoopFacts,
+    RootsFacts,
+    UndefinedLinkFacts,
 )
-from ..diagnostics import FOLLOWS, Diagnostic, Kind, Subject
+from ..diagnostics import Diagnostic, Kind, Subject
 from ..model import Joint, Location, Robot
 from ..wording import did_you_mean, listing
 
@@ -113,7 +116,7 @@ def _joints(analysis: Analysis) -> Iterator[Diagnostic]:
                     path=path,
                     subject=owner,
                     hint=_suggest(name, link_names),
-                    data={"end": end, "link": name},
+                    data=UndefinedLinkFacts(end=end, link=name),
                 )
         if joint.parent and joint.parent == joint.child:
             yield JOINT_SELF_LOOP.report(
@@ -256,7 +259,8 @@ def _tree(analysis: Analysis) -> Iterator[Diagnostic]:
             path=path,
             subject=_the_robot(robot),
             hint="connect every link but one to a parent with a joint",
-            data={"roots": list(topo.roots), FOLLOWS: _broken_ends(analysis)},
+            data=RootsFacts(roots=tuple(topo.roots)),
+            follows=_broken_ends(analysis),
         )
     if not topo.roots:
         yield NO_ROOT.report(
@@ -278,7 +282,7 @@ def _tree(analysis: Analysis) -> Iterator[Diagnostic]:
             path=path,
             subject=Subject(Kind.JOINT, first.name),
             hint="URDF is a tree; break the loop or model it with a mimic joint",
-            data={"joints": [j.name for j in loop]},
+            data=LoopFacts(joints=tuple(j.name for j in loop)),
         )
     if len(topo.roots) <= 1:
         for link in robot.links:

@@ -32,7 +32,14 @@ from numbers import Real
 from typing import TypeVar
 
 from ..catalog import Rule
-from ..catalog.reading import BAD_COLOR, BAD_NUMBER, MISSING_ATTRIBUTE, ROBOT_NAME, ROBOT_VERSION
+from ..catalog.reading import (
+    BAD_COLOR,
+    BAD_NUMBER,
+    MISSING_ATTRIBUTE,
+    ROBOT_NAME,
+    ROBOT_VERSION,
+    FieldFacts,
+)
 from ..catalog.xml import XML_CONTROL_CHAR
 from ..diagnostics import Diagnostic, Kind, Severity, Subject
 from ..errors import FieldTypeError
@@ -177,7 +184,7 @@ class _Walk:
                 subject=self.owner,
                 hint=hint,
                 severity=Severity.ERROR,
-                data={"field": field},
+                data=FieldFacts(field=field),
             )
         )
 

@@ -6,7 +6,7 @@ import math
 from collections.abc import Iterator
 
 from ...analysis import Analysis
-from ...catalog.physics import ABOVE_GROUND, BELOW_GROUND
+from ...catalog.physics import ABOVE_GROUND, BELOW_GROUND, GroundFacts
 from ...diagnostics import Diagnostic
 from ...model import Box, Collision, Cylinder, JointType, Link, Sphere
 from ...spatial import Pose
@@ -97,7 +97,7 @@ def ground(analysis: Analysis, tolerance: float) -> Iterator[Diagnostic]:
                 path=path,
                 subject=link_subject(link),
                 hint=f"raise the joints above it or shorten the shape by {depth} mm; {passes}",
-                data={"distance_mm": -z * 1000, "tolerance_mm": tolerance * 1000},
+                data=GroundFacts(distance_mm=-z * 1000, tolerance_mm=tolerance * 1000),
             )
     z, _, link, collision = bottom
     if z > tolerance + _MICROMETRE and not unknown:
@@ -108,7 +108,7 @@ def ground(analysis: Analysis, tolerance: float) -> Iterator[Diagnostic]:
             path=path,
             subject=link_subject(link),
             hint=f"the robot floats: lower the joint below {root.name!r} by {height} mm; " + passes,
-            data={"distance_mm": z * 1000, "tolerance_mm": tolerance * 1000},
+            data=GroundFacts(distance_mm=z * 1000, tolerance_mm=tolerance * 1000),
         )
 
 

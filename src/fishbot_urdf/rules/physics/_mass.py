@@ -11,6 +11,8 @@ from ...catalog.physics import (
     INERTIA_TRIANGLE,
     MASSLESS_LINK,
     MISSING_INERTIAL,
+    InertiaFacts,
+    MassFacts,
     W,
 )
 from ...catalog.reading import BAD_NUMBER, NEGATIVE_MASS
@@ -85,7 +87,7 @@ def _inertial(
         if merged
         else ""
     )
-    facts = {"principal_moments": list(moments), "merged_body_physical": merged}
+    facts = InertiaFacts(principal_moments=moments, merged_body_physical=merged)
     if negative:
         # A negative moment written in the file is a sign slip, merged or not.
         slip = any(getattr(inertial.inertia, f) < 0 for f in ("ixx", "iyy", "izz"))
@@ -179,7 +181,7 @@ def _moving(
             path=path,
             subject=owner,
             hint="a moving body needs a mass (MuJoCo: above 1e-15); give its real mass",
-            data={"mass": mass},
+            data=MassFacts(mass=mass),
         )
     else:  # flat
         # (below that the link's own inertia is reported as not positive definite)
@@ -191,5 +193,5 @@ def _moving(
             subject=owner,
             hint="a moving body needs every moment above 1e-15 kg*m^2 (MuJoCo refuses it "
             "otherwise); compute them from the body's shape",
-            data={"mass": mass, "principal_moments": list(principal)},
+            data=MassFacts(mass=mass, principal_moments=principal),
         )

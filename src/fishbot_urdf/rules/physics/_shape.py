@@ -5,9 +5,8 @@ from __future__ import annotations
 import math
 from itertools import chain
 from operator import sub
-from typing import Any
 
-from ...catalog.physics import INERTIA_MISMATCH
+from ...catalog.physics import INERTIA_MISMATCH, CollisionFacts
 from ...diagnostics import Diagnostic
 from ...inertia import solid_moments
 from ...model import Box, Cylinder, Link, Origin, Sphere, Vector3
@@ -86,16 +85,21 @@ def mismatch(link: Link, path: str, moments: Vector3) -> Diagnostic | None:
     )
 
 
-def _collision_facts(shape: Box | Cylinder | Sphere, mass: float, origin: Origin) -> dict[str, Any]:
+def _collision_facts(shape: Box | Cylinder | Sphere, mass: float, origin: Origin) -> CollisionFacts:
     """What it takes to compute the inertial that matches the collision."""
-    facts: dict[str, Any] = {"mass": mass, "xyz": list(origin.xyz), "rpy": list(origin.rpy)}
-    if isinstance(shape, Box):
-        facts.update(shape="box", size=list(shape.size))
-    elif isinstance(shape, Cylinder):
-        facts.update(shape="cylinder", radius=shape.radius, length=shape.length)
-    else:
-        facts.update(shape="sphere", radius=shape.radius)
-    return facts
+    size = shape.size if isinstance(shape, Box) else None
+    length = shape.length if isinstance(shape, Cylinder) else None
+    radius = None if isinstance(shape, Box) else shape.radius
+    kind = "box" if size is not None else "cylinder" if length is not None else "sphere"
+    return CollisionFacts(
+        shape=kind,
+        mass=mass,
+        xyz=origin.xyz,
+        rpy=origin.rpy,
+        size=size,
+        radius=radius,
+        length=length,
+    )
 
 
 def _off_diagonal(m: Matrix3) -> bool:
