@@ -50,6 +50,7 @@ STRICTER = {
     "inertia-not-positive": "no matter has a negative moment of inertia; simulators refuse it",
     "inertia-triangle": "no rigid body has one moment above the sum of the other two (MuJoCo)",
     "massless-link": "a moving body without mass or inertia cannot be simulated (MuJoCo)",
+    "missing-inertial": "Gazebo drops a moving link without <inertial>, as one of mass 0",
     "mesh-uri": "ROS's resource retriever finds no package in package:///",
     "mesh-not-found": "a mesh that is not there is drawn by nobody",
     "unknown-reference": "Gazebo and ros2_control cannot attach to a part that does not exist",

@@ -156,8 +156,8 @@ def _moving(
                 link.source,
                 path=path,
                 subject=link_subject(link),
-                hint="simulators drop a link without mass or cannot move it; give it one "
-                "computed from its collision shapes",
+                hint="Gazebo drops it with everything below it, as it drops one of mass 0; "
+                "give it one computed from its collision shapes",
             )
         return
     if any(inertial.mass < 0 for _, inertial, _ in having):
