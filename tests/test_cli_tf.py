@@ -102,3 +102,31 @@ def test_a_position_outside_the_limits_and_a_broken_robot(tmp_path: Path) -> Non
     code, out, err = _tf(str(broken), "a", "b")
     assert (code, out) == (1, "")
     assert "[undefined-link]" in err
+
+
+def test_a_joint_without_a_position_of_its_own_is_named_for_what_it_is(tmp_path: Path) -> None:
+    # imu_joint is one of the fishbot's fixed joints: there is a joint of that name.
+    code, out, err = _tf(str(XACRO), "base_link", "imu_link", "-j", "imu_joint=1")
+    assert (code, out) == (2, "")
+    assert (
+        "joint 'imu_joint' is fixed: it takes no position "
+        "(moving joints: left_wheel_joint, right_wheel_joint)"
+    ) in err
+    assert "no joint" not in err
+    robot = tmp_path / "gripper.urdf"
+    robot.write_text(
+        '<robot name="g"><link name="world"/><link name="base"/><link name="a"/><link name="b"/>'
+        '<joint name="slide" type="planar"><parent link="world"/><child link="base"/></joint>'
+        '<joint name="left" type="prismatic"><parent link="base"/><child link="a"/>'
+        '<limit lower="0" upper="0.1" effort="1" velocity="1"/></joint>'
+        '<joint name="right" type="prismatic"><parent link="base"/><child link="b"/>'
+        '<limit lower="0" upper="0.1" effort="1" velocity="1"/><mimic joint="left"/></joint>'
+        "</robot>"
+    )
+    code, _, err = _tf(str(robot), "a", "b", "-j", "right=0.05")
+    assert code == 2
+    assert "joint 'right' mimics 'left' and follows it: set 'left' instead" in err
+    code, _, err = _tf(str(robot), "a", "b", "-j", "slide=0.05")
+    assert code == 2
+    assert "joint 'slide' is planar: its position is slide.x, slide.y and slide.yaw" in err
+    assert _tf(str(robot), "world", "b", "-j", "slide.x=1", "-j", "left=0.05")[0] == 0

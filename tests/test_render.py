@@ -141,6 +141,7 @@ def test_a_mesh_is_read_and_one_that_cannot_be_is_its_bounding_box(tmp_path: Pat
     [
         (["--size", "10x10"], "is not WIDTHxHEIGHT", 2),
         (["-j", "nothing=1"], "no joint 'nothing'", 2),
+        (["-j", "imu_joint=1"], "joint 'imu_joint' is fixed: it takes no position", 2),
     ],
 )
 def test_wrong_options(tmp_path: Path, args: list[str], said: str, code: int) -> None:

@@ -145,3 +145,21 @@ def test_every_reload_is_within_the_limits_the_viewer_was_made_in(arm: Path) -> 
             shown.reload()
     finally:
         shown.close()
+
+
+def test_a_fixed_joint_given_a_position_is_said_to_be_fixed(tmp_path: Path) -> None:
+    robot = tmp_path / "arm.urdf"
+    robot.write_text(ARM.replace("</robot>", FIXED_TOOL + "</robot>"), encoding="utf-8")
+    port = _free_port()
+    result = CliRunner().invoke(cli, ["view", str(robot), "--port", str(port), "-j", "tool=1"])
+    assert result.exit_code == 2
+    assert result.stdout == ""
+    assert "joint 'tool' is fixed: it takes no position" in result.stderr
+    with socket.socket() as again:  # and the viewer's port is free again
+        again.bind(("127.0.0.1", port))
+
+
+FIXED_TOOL = (
+    '<link name="tool"/><joint name="tool" type="fixed"><parent link="base"/>'
+    '<child link="tool"/></joint>'
+)

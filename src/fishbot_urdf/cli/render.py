@@ -12,7 +12,7 @@ from ..drawing.scene import build_scene
 from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
 from ..kinematics import Kinematics
 from ..output import write_atomic
-from ._checking import nearest_config, posable_input, read_files
+from ._checking import check_joint_names, nearest_config, posable_input, read_files
 from ._common import (
     EXIT_OK,
     emit_findings,
@@ -107,6 +107,7 @@ def render(
     assert result.analysis is not None
     try:
         kinematics = Kinematics(result.analysis)
+        check_joint_names(result.analysis, positions, kinematics.variables)
         q = kinematics.configuration(positions)
         # The analysis finds the meshes (with the packages given), as check does.
         scene = build_scene(result.analysis, q, collision=collision)

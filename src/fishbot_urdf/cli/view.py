@@ -13,7 +13,7 @@ import click
 
 from ..drawing.viewer import Viewer
 from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
-from ._checking import check_input, nearest_config, posing, posing_errors
+from ._checking import check_input, check_joint_names, nearest_config, posing, posing_errors
 from ._common import (
     EXIT_INVALID,
     emit_findings,
@@ -68,11 +68,15 @@ def view(
     positions = joint_positions(joint_items)
     config = nearest_config(file)
 
+    loaded: list[Any] = []  # the analysis of the first load, for the -j names
+
     def load() -> tuple[Any, Sequence[str]]:
         result = check_input(file, values, packages, posing(config))
         blocking = posing_errors(result.diagnostics)
         if result.analysis is None or blocking:
             raise _Unreadable(blocking)
+        if not loaded:
+            loaded.append(result.analysis)
         return result.analysis, result.files
 
     try:
@@ -83,9 +87,8 @@ def view(
     except FishbotUrdfError as exc:  # cannot serve there, viser missing, a limit reached
         stop_on(exc)
     try:
+        check_joint_names(loaded[0], positions, viewer.values)
         for name, value in positions.items():
-            if name not in viewer.values:
-                raise UnknownNameError("joint", name, viewer.values)
             viewer.set(name, value)
     except (UnknownNameError, ArgumentError) as exc:
         viewer.close()
