@@ -130,3 +130,53 @@ def test_a_joint_without_a_position_of_its_own_is_named_for_what_it_is(tmp_path:
     assert code == 2
     assert "joint 'slide' is planar: its position is slide.x, slide.y and slide.yaw" in err
     assert _tf(str(robot), "world", "b", "-j", "slide.x=1", "-j", "left=0.05")[0] == 0
+
+
+WHEEL = """\
+<robot name="r">
+  <link name="base_link"/>
+  <link name="wheel">
+    <visual><geometry><cylinder radius="0.032" length="0.04"/></geometry></visual>
+    <inertial>{inertial}</inertial>
+  </link>
+  <joint name="wheel_joint" type="continuous">
+    <parent link="base_link"/><child link="wheel"/><origin xyz="0 0.1 0"/><axis xyz="0 1 0"/>
+  </joint>
+</robot>
+"""
+INERTIA = '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>'
+
+
+@pytest.mark.parametrize(
+    ("inertial", "rule"),
+    [
+        ('<mass value="0.1"/>', "missing-element"),  # no <inertia>
+        ("<mass/>" + INERTIA, "missing-attribute"),
+        ('<mass value="1kg"/>' + INERTIA, "bad-number"),
+        ('<mass value="-1"/>' + INERTIA, "negative-mass"),
+        ('<origin xyz="0 0"/><mass value="1"/>' + INERTIA, "bad-vector"),
+    ],
+)
+def test_a_fault_of_the_inertial_alone_is_printed_and_tf_answers(
+    tmp_path: Path, inertial: str, rule: str
+) -> None:
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(WHEEL.format(inertial=inertial))
+    # pinocchio loads each of them (the frames do not depend on the inertial) and places
+    # the wheel where the joint's origin says.
+    pin = pytest.importorskip("pinocchio")
+    model = pin.buildModelFromUrdf(str(robot))
+    data = model.createData()
+    pin.framesForwardKinematics(model, data, pin.neutral(model))
+    placed = data.oMf[model.getFrameId("wheel")].translation
+    code, out, err = _tf(str(robot), "base_link", "wheel", "--format", "json")
+    assert code == 0, err
+    assert json.loads(out)["translation"] == list(placed) == [0.0, 0.1, 0.0]
+    (line,) = err.splitlines()
+    assert ": error: link 'wheel': " in line and line.endswith(f"[{rule}]")
+    # the shape in doubt still stops it: a joint's origin
+    broken = tmp_path / "broken.urdf"
+    broken.write_text(robot.read_text().replace('xyz="0 0.1 0"', 'xyz="0 0.1"'))
+    code, out, err = _tf(str(broken), "base_link", "wheel")
+    assert (code, out) == (1, "")
+    assert "[bad-vector]" in err

@@ -272,3 +272,21 @@ def test_building_a_scene_stops_at_the_deadline(tmp_path: Path) -> None:
     with time_limit(1e-6), pytest.raises(TimeLimitError) as info:
         render_png(build_scene(analysis))
     assert info.value.what == "building the scene"
+
+
+def test_a_robot_whose_only_fault_is_an_inertial_is_drawn(tmp_path: Path) -> None:
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="base_link">'
+        '<visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>'
+        '<inertial><mass value="1"/></inertial></link></robot>'
+    )
+    out = tmp_path / "r.png"
+    result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(out)])
+    assert result.exit_code == 0, result.stderr
+    assert _pixels(out.read_bytes()).std() > 0  # something is drawn
+    (line,) = result.stderr.splitlines()
+    assert line == (
+        f"{robot}:1:103: error: link 'base_link': <inertial> has no <inertia> "
+        '(write <inertia ixx=".." ixy="0" ixz="0" iyy=".." iyz="0" izz=".."/>) [missing-element]'
+    )

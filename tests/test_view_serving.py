@@ -163,3 +163,29 @@ FIXED_TOOL = (
     '<link name="tool"/><joint name="tool" type="fixed"><parent link="base"/>'
     '<child link="tool"/></joint>'
 )
+
+
+def test_a_robot_whose_only_fault_is_an_inertial_is_shown_with_it(tmp_path: Path) -> None:
+    robot = tmp_path / "arm.urdf"
+    robot.write_text(
+        ARM.replace(
+            '<link name="base">', '<link name="base"><inertial><mass value="1"/></inertial>'
+        ),
+        encoding="utf-8",
+    )
+    command = [sys.executable, "-m", "fishbot_urdf", "view", str(robot), "--port", "0"]
+    shown = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert shown.stdout is not None and shown.stderr is not None
+        assert shown.stdout.readline().startswith("fishbot view: http://localhost:")
+    finally:
+        shown.terminate()
+        _, err = shown.communicate(timeout=60)
+    (line,) = err.splitlines()
+    assert line.startswith(f"{robot}:3:")
+    assert line.endswith("error: link 'base': <inertial> has no <inertia> " + INERTIA_HINT)
+
+
+INERTIA_HINT = (
+    '(write <inertia ixx=".." ixy="0" ixz="0" iyy=".." iyz="0" izz=".."/>) [missing-element]'
+)

@@ -54,6 +54,11 @@ FOLLOWS = "follows"
 """The key of a finding's data that lists the rules whose findings it follows from: it is
 only news when none of them is reported (see `without_consequences`)."""
 
+ELEMENT = "element"
+"""The key of a finding's data that names the element it is about, where that matters more
+than its rule's family: ``"inertial"`` for a link's mass, inertia and their origin, which
+leave the robot's shape and frames as they are."""
+
 
 @dataclass(frozen=True, slots=True)
 class Diagnostic:

@@ -12,7 +12,7 @@ import click
 
 from ..catalog import all_rules
 from ..config import Config, find_config, load_config
-from ..diagnostics import Diagnostic
+from ..diagnostics import ELEMENT, Diagnostic
 from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
 from ..lint import CheckResult, check_file
 from ..model import JointType
@@ -81,10 +81,13 @@ def nearest_config(file: str) -> Config:
 
 def posing_errors(diagnostics: Iterable[Diagnostic]) -> list[Diagnostic]:
     """The errors that leave a robot's shape or tree in doubt (reading, URDF and structure
-    rules): `tf`, `render` and `view` stop on them; physics and mesh findings are
+    rules, but for those about a link's inertial alone: its mass, inertia and their origin
+    place nothing): `tf`, `render` and `view` stop on them; physics and mesh findings are
     `check`'s."""
     ids = {rule.id for rule in all_rules() if rule.family.value in _SHAPING}
-    return [d for d in diagnostics if d.is_error and d.rule in ids]
+    return [
+        d for d in diagnostics if d.is_error and d.rule in ids and d.data.get(ELEMENT) != "inertial"
+    ]
 
 
 _SHAPING = ("xml", "urdf", "structure", "xacro")  # the families of `posing_errors`
@@ -106,7 +109,8 @@ def posable_input(
 ) -> CheckResult:
     """FILE read and checked (with ``config``, else the nearest configuration, narrowed to
     the rules of `posing_errors`), for a command that poses the robot (tf, render): a robot
-    whose shape or tree is in doubt stops it with its errors (and ``refusal``), exit 1."""
+    whose shape or tree is in doubt stops it with its errors (and ``refusal``), exit 1; any
+    other robot's findings are printed, as check prints them, and the command goes on."""
     try:
         result = check_input(name, args, packages, posing(config or nearest_config(name)))
     except FishbotUrdfError as exc:
@@ -117,6 +121,7 @@ def posable_input(
         if refusal:
             click.echo(refusal, err=True)
         sys.exit(EXIT_INVALID)
+    emit_findings(result.diagnostics)
     return result
 
 

@@ -84,9 +84,11 @@ def render(
     ROS needed. The camera frames the whole robot. Visuals keep their materials' colours;
     meshes are found as `fishbot check` finds them and read from STL and OBJ (other formats
     with `pip install 'fishbot-urdf[mesh]'`); one that cannot be read is drawn as its
-    bounding box, and what is not drawn as it is is a warning, printed as check prints its
-    findings. Exit status: 0 written, 1 the robot has errors, 2 a file could not be read or
-    written, a joint or position is wrong, or the command line is wrong.
+    bounding box, and what is not drawn as it is is a warning; findings are printed as
+    check prints them. Exit status: 0 written (errors that leave the shape as it is, such as
+    a fault in an <inertial>, do not stop it), 1 the robot has errors that leave its shape
+    or tree in doubt (nothing is written), 2 a file could not be read or written, a joint or
+    position is wrong, or the command line is wrong.
 
     \b
     Examples:

@@ -7,7 +7,7 @@ import gc
 import sys
 import time
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 
@@ -25,6 +25,9 @@ from ._common import (
     stop_on,
     xacro_args,
 )
+
+if TYPE_CHECKING:
+    from ..lint import CheckResult
 
 _COLLECT_EVERY = 100_000  # new container objects between two young collections (Python: 700)
 
@@ -68,7 +71,7 @@ def view(
     positions = joint_positions(joint_items)
     config = nearest_config(file)
 
-    loaded: list[Any] = []  # the analysis of the first load, for the -j names
+    loaded: list[CheckResult] = []  # the first load: its findings, and the -j names
 
     def load() -> tuple[Any, Sequence[str]]:
         result = check_input(file, values, packages, posing(config))
@@ -76,7 +79,7 @@ def view(
         if result.analysis is None or blocking:
             raise _Unreadable(blocking)
         if not loaded:
-            loaded.append(result.analysis)
+            loaded.append(result)
         return result.analysis, result.files
 
     try:
@@ -87,13 +90,15 @@ def view(
     except FishbotUrdfError as exc:  # cannot serve there, viser missing, a limit reached
         stop_on(exc)
     try:
-        check_joint_names(loaded[0], positions, viewer.values)
+        first = loaded[0]
+        assert first.analysis is not None
+        check_joint_names(first.analysis, positions, viewer.values)
         for name, value in positions.items():
             viewer.set(name, value)
     except (UnknownNameError, ArgumentError) as exc:
         viewer.close()
         raise click.BadParameter(exc.message, param_hint="--joint") from None
-    emit_findings(config.apply(viewer.findings))
+    emit_findings([*loaded[0].diagnostics, *config.apply(viewer.findings)])
     click.echo(f"fishbot view: {viewer.url} (Ctrl-C stops)")
     # Off for the commands that end (see main); on, rarely, for the reloads to come.
     gc.set_threshold(_COLLECT_EVERY, *gc.get_threshold()[1:])

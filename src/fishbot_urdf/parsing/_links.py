@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from lxml import etree
 
 from ..catalog.reading import (
@@ -11,7 +13,7 @@ from ..catalog.reading import (
     MISSING_ELEMENT,
     UNKNOWN_GEOMETRY,
 )
-from ..diagnostics import Kind, Subject
+from ..diagnostics import ELEMENT, Kind, Subject
 from ..model import (
     ZERO3,
     Box,
@@ -102,6 +104,15 @@ class LinkReader(ReaderBase):
         return Link(name, inertial, tuple(visuals), tuple(collisions), tuple(extras), at)
 
     def inertial(self, el: etree._Element, at: Location, owner: Owner) -> Inertial:
+        found = len(self.diagnostics)
+        inertial = self._inertial(el, at, owner)
+        if len(self.diagnostics) > found:  # about the mass alone: the shape and frames stand
+            self.diagnostics[found:] = [
+                replace(d, data={**d.data, ELEMENT: "inertial"}) for d in self.diagnostics[found:]
+            ]
+        return inertial
+
+    def _inertial(self, el: etree._Element, at: Location, owner: Owner) -> Inertial:
         origin = _NO_ORIGIN
         mass = 0.0
         inertia: Inertia | None = None
