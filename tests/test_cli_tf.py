@@ -180,3 +180,28 @@ def test_a_fault_of_the_inertial_alone_is_printed_and_tf_answers(
     code, out, err = _tf(str(broken), "base_link", "wheel")
     assert (code, out) == (1, "")
     assert "[bad-vector]" in err
+
+
+def test_a_xacro_argument_named_as_a_joint_says_how_to_place_the_joint() -> None:
+    code, out, err = _tf(str(XACRO), "base_link", "left_wheel_link", "left_wheel_joint:=1.0")
+    assert code == 0
+    assert out.startswith("At time 0.0\n- Translation: [0.000, 0.100, -0.060]\n")
+    assert err == (
+        f"{XACRO}: warning: argument 'left_wheel_joint' is given, but no <xacro:arg> declares "
+        "it and nothing reads it ('left_wheel_joint' is a joint: did you mean "
+        "`-j left_wheel_joint=1.0`?) [xacro-unknown-arg]\n"
+    )
+    # Any other argument no file reads is the warning check and expand give.
+    code, _, err = _tf(str(XACRO), "base_link", "left_wheel_link", "use_sim:=true")
+    checked = CliRunner().invoke(cli, ["check", "-q", str(XACRO), "use_sim:=true"])
+    assert (code, checked.exit_code) == (0, 0)
+    assert err == checked.stderr != ""
+    # A URDF file takes no arguments at all: a joint's name is worth a word (check says
+    # nothing of the others, and neither does tf).
+    urdf = FISHBOT / "urdf" / "first_robot.urdf"
+    code, _, err = _tf(str(urdf), "base_link", "imu_link", "imu_joint:=1", "use_sim:=true")
+    assert code == 0
+    assert err == (
+        f"{urdf}: warning: argument 'imu_joint' is given, but a URDF file takes no arguments "
+        "('imu_joint' is a fixed joint, which takes no position) [xacro-unknown-arg]\n"
+    )

@@ -290,3 +290,17 @@ def test_a_robot_whose_only_fault_is_an_inertial_is_drawn(tmp_path: Path) -> Non
         f"{robot}:1:103: error: link 'base_link': <inertial> has no <inertia> "
         '(write <inertia ixx=".." ixy="0" ixz="0" iyy=".." iyz="0" izz=".."/>) [missing-element]'
     )
+
+
+def test_a_xacro_argument_named_as_a_joint_is_a_warning(tmp_path: Path) -> None:
+    out = tmp_path / "r.png"
+    result = CliRunner().invoke(
+        cli, ["render", str(XACRO), "right_wheel_joint:=90deg", "-o", str(out)]
+    )
+    assert result.exit_code == 0
+    assert out.exists()
+    assert result.stderr == (
+        f"{XACRO}: warning: argument 'right_wheel_joint' is given, but no <xacro:arg> declares "
+        "it and nothing reads it ('right_wheel_joint' is a joint: did you mean "
+        "`-j right_wheel_joint=90deg`?) [xacro-unknown-arg]\n"
+    )

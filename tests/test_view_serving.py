@@ -165,7 +165,9 @@ FIXED_TOOL = (
 )
 
 
-def test_a_robot_whose_only_fault_is_an_inertial_is_shown_with_it(tmp_path: Path) -> None:
+def test_a_robot_whose_only_fault_is_an_inertial_is_shown_with_its_findings(
+    tmp_path: Path,
+) -> None:
     robot = tmp_path / "arm.urdf"
     robot.write_text(
         ARM.replace(
@@ -173,7 +175,8 @@ def test_a_robot_whose_only_fault_is_an_inertial_is_shown_with_it(tmp_path: Path
         ),
         encoding="utf-8",
     )
-    command = [sys.executable, "-m", "fishbot_urdf", "view", str(robot), "--port", "0"]
+    command = [sys.executable, "-m", "fishbot_urdf", "view", str(robot), "shoulder:=0.5"]
+    command += ["--port", "0"]
     shown = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         assert shown.stdout is not None and shown.stderr is not None
@@ -181,7 +184,11 @@ def test_a_robot_whose_only_fault_is_an_inertial_is_shown_with_it(tmp_path: Path
     finally:
         shown.terminate()
         _, err = shown.communicate(timeout=60)
-    (line,) = err.splitlines()
+    said, line = err.splitlines()
+    assert said == (
+        f"{robot}: warning: argument 'shoulder' is given, but a URDF file takes no arguments "
+        "('shoulder' is a joint: did you mean `-j shoulder=0.5`?) [xacro-unknown-arg]"
+    )
     assert line.startswith(f"{robot}:3:")
     assert line.endswith("error: link 'base': <inertial> has no <inertia> " + INERTIA_HINT)
 

@@ -6,18 +6,21 @@ from __future__ import annotations
 
 import sys
 from collections.abc import Collection, Iterable, Mapping
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 import click
 
 from ..catalog import all_rules
+from ..catalog.xacro import XACRO_UNKNOWN_ARG
 from ..config import Config, find_config, load_config
-from ..diagnostics import ELEMENT, Diagnostic
+from ..diagnostics import ELEMENT, Diagnostic, Kind, Subject, sort_key
 from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
 from ..lint import CheckResult, check_file
 from ..model import JointType
 from ..output import Source
 from ..packages import PackageFinder
+from ..parsing import is_xacro_path
 from ..rules import Family
 from ..wording import listing
 from ._common import EXIT_INVALID, emit_findings, stdin_urdf, stop_on
@@ -33,6 +36,7 @@ __all__ = [
     "posable_input",
     "posing",
     "posing_errors",
+    "posing_findings",
     "read_files",
 ]
 
@@ -111,8 +115,9 @@ def posable_input(
     the rules of `posing_errors`), for a command that poses the robot (tf, render): a robot
     whose shape or tree is in doubt stops it with its errors (and ``refusal``), exit 1; any
     other robot's findings are printed, as check prints them, and the command goes on."""
+    config = config or nearest_config(name)
     try:
-        result = check_input(name, args, packages, posing(config or nearest_config(name)))
+        result = check_input(name, args, packages, posing(config))
     except FishbotUrdfError as exc:
         stop_on(exc)
     blocking = posing_errors(result.diagnostics)
@@ -121,8 +126,50 @@ def posable_input(
         if refusal:
             click.echo(refusal, err=True)
         sys.exit(EXIT_INVALID)
-    emit_findings(result.diagnostics)
+    emit_findings(posing_findings(name, result, args, config))
     return result
+
+
+def posing_findings(
+    name: str, result: CheckResult, args: Mapping[str, str], config: Config
+) -> list[Diagnostic]:
+    """The findings a command that poses the robot prints, once it can pose it: the check's,
+    with a word for each name:=value argument that names a joint (-j places joints; xacro
+    reads name:=value). A URDF file takes no arguments: those that name no joint pass
+    without a word, as check lets them."""
+    analysis = result.analysis
+    if not args or analysis is None:
+        return list(result.diagnostics)
+    found = [_with_joint_hint(d, analysis, args) for d in result.diagnostics]
+    if not is_xacro_path(name):
+        found += config.apply(
+            XACRO_UNKNOWN_ARG.report(
+                f"argument {arg!r} is given, but a URDF file takes no arguments",
+                None,
+                path=result.path,
+                subject=Subject(Kind.FILE, result.path),
+                hint=_joint_hint(analysis, arg, args[arg]),
+                data={"argument": arg},
+            )
+            for arg in args
+            if arg in analysis.joints
+        )
+    return sorted(found, key=sort_key)
+
+
+def _with_joint_hint(
+    finding: Diagnostic, analysis: Analysis, args: Mapping[str, str]
+) -> Diagnostic:
+    arg = finding.data.get("argument") if finding.rule == XACRO_UNKNOWN_ARG.id else None
+    if not isinstance(arg, str) or arg not in analysis.joints or arg not in args:
+        return finding
+    return replace(finding, hint=_joint_hint(analysis, arg, args[arg]))
+
+
+def _joint_hint(analysis: Analysis, joint: str, value: str) -> str:
+    if analysis.joints[joint].type is JointType.FIXED:
+        return f"{joint!r} is a fixed joint, which takes no position"
+    return f"{joint!r} is a joint: did you mean `-j {joint}={value}`?"
 
 
 def check_joint_names(

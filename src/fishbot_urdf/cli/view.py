@@ -13,7 +13,14 @@ import click
 
 from ..drawing.viewer import Viewer
 from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
-from ._checking import check_input, check_joint_names, nearest_config, posing, posing_errors
+from ._checking import (
+    check_input,
+    check_joint_names,
+    nearest_config,
+    posing,
+    posing_errors,
+    posing_findings,
+)
 from ._common import (
     EXIT_INVALID,
     emit_findings,
@@ -98,7 +105,7 @@ def view(
     except (UnknownNameError, ArgumentError) as exc:
         viewer.close()
         raise click.BadParameter(exc.message, param_hint="--joint") from None
-    emit_findings([*loaded[0].diagnostics, *config.apply(viewer.findings)])
+    emit_findings([*posing_findings(file, first, values, config), *config.apply(viewer.findings)])
     click.echo(f"fishbot view: {viewer.url} (Ctrl-C stops)")
     # Off for the commands that end (see main); on, rarely, for the reloads to come.
     gc.set_threshold(_COLLECT_EVERY, *gc.get_threshold()[1:])
