@@ -57,7 +57,8 @@ only news when none of them is reported (see `without_consequences`)."""
 ELEMENT = "element"
 """The key of a finding's data that names the element it is about, where that matters more
 than its rule's family: ``"inertial"`` for a link's mass, inertia and their origin, which
-leave the robot's shape and frames as they are."""
+leave the robot's shape and frames as they are; ``"axis"`` for a joint's axis, which urdfdom
+does not read for a fixed or floating joint."""
 
 
 @dataclass(frozen=True, slots=True)

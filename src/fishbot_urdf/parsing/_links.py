@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from dataclasses import replace
-
 from lxml import etree
 
 from ..catalog.reading import (
@@ -13,7 +11,7 @@ from ..catalog.reading import (
     MISSING_ELEMENT,
     UNKNOWN_GEOMETRY,
 )
-from ..diagnostics import ELEMENT, Kind, Subject
+from ..diagnostics import Kind, Subject
 from ..model import (
     ZERO3,
     Box,
@@ -106,10 +104,7 @@ class LinkReader(ReaderBase):
     def inertial(self, el: etree._Element, at: Location, owner: Owner) -> Inertial:
         found = len(self.diagnostics)
         inertial = self._inertial(el, at, owner)
-        if len(self.diagnostics) > found:  # about the mass alone: the shape and frames stand
-            self.diagnostics[found:] = [
-                replace(d, data={**d.data, ELEMENT: "inertial"}) for d in self.diagnostics[found:]
-            ]
+        self.about(found, "inertial")  # about the mass alone: the shape and frames stand
         return inertial
 
     def _inertial(self, el: etree._Element, at: Location, owner: Owner) -> Inertial:
