@@ -479,3 +479,9 @@ def test_a_wrong_joint_position_is_a_usage_error(tmp_path: Path, given: str, sai
     result = CliRunner().invoke(cli, ["inertia", str(path), "-j", given])
     assert result.exit_code == 2
     assert said in result.stderr
+
+
+def test_a_fixed_joint_is_said_to_be_fixed() -> None:
+    result = CliRunner().invoke(cli, ["inertia", str(XACRO), "-j", "imu_joint=1"])
+    assert result.exit_code == 2
+    assert "joint 'imu_joint' is fixed: it takes no position" in result.stderr

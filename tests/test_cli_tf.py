@@ -102,3 +102,106 @@ def test_a_position_outside_the_limits_and_a_broken_robot(tmp_path: Path) -> Non
     code, out, err = _tf(str(broken), "a", "b")
     assert (code, out) == (1, "")
     assert "[undefined-link]" in err
+
+
+def test_a_joint_without_a_position_of_its_own_is_named_for_what_it_is(tmp_path: Path) -> None:
+    # imu_joint is one of the fishbot's fixed joints: there is a joint of that name.
+    code, out, err = _tf(str(XACRO), "base_link", "imu_link", "-j", "imu_joint=1")
+    assert (code, out) == (2, "")
+    assert (
+        "joint 'imu_joint' is fixed: it takes no position "
+        "(moving joints: left_wheel_joint, right_wheel_joint)"
+    ) in err
+    assert "no joint" not in err
+    robot = tmp_path / "gripper.urdf"
+    robot.write_text(
+        '<robot name="g"><link name="world"/><link name="base"/><link name="a"/><link name="b"/>'
+        '<joint name="slide" type="planar"><parent link="world"/><child link="base"/></joint>'
+        '<joint name="left" type="prismatic"><parent link="base"/><child link="a"/>'
+        '<limit lower="0" upper="0.1" effort="1" velocity="1"/></joint>'
+        '<joint name="right" type="prismatic"><parent link="base"/><child link="b"/>'
+        '<limit lower="0" upper="0.1" effort="1" velocity="1"/><mimic joint="left"/></joint>'
+        "</robot>"
+    )
+    code, _, err = _tf(str(robot), "a", "b", "-j", "right=0.05")
+    assert code == 2
+    assert "joint 'right' mimics 'left' and follows it: set 'left' instead" in err
+    code, _, err = _tf(str(robot), "a", "b", "-j", "slide=0.05")
+    assert code == 2
+    assert "joint 'slide' is planar: its position is slide.x, slide.y and slide.yaw" in err
+    assert _tf(str(robot), "world", "b", "-j", "slide.x=1", "-j", "left=0.05")[0] == 0
+
+
+WHEEL = """\
+<robot name="r">
+  <link name="base_link"/>
+  <link name="wheel">
+    <visual><geometry><cylinder radius="0.032" length="0.04"/></geometry></visual>
+    <inertial>{inertial}</inertial>
+  </link>
+  <joint name="wheel_joint" type="continuous">
+    <parent link="base_link"/><child link="wheel"/><origin xyz="0 0.1 0"/><axis xyz="0 1 0"/>
+  </joint>
+</robot>
+"""
+INERTIA = '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>'
+
+
+@pytest.mark.parametrize(
+    ("inertial", "rule"),
+    [
+        ('<mass value="0.1"/>', "missing-element"),  # no <inertia>
+        ("<mass/>" + INERTIA, "missing-attribute"),
+        ('<mass value="1kg"/>' + INERTIA, "bad-number"),
+        ('<mass value="-1"/>' + INERTIA, "negative-mass"),
+        ('<origin xyz="0 0"/><mass value="1"/>' + INERTIA, "bad-vector"),
+    ],
+)
+def test_a_fault_of_the_inertial_alone_is_printed_and_tf_answers(
+    tmp_path: Path, inertial: str, rule: str
+) -> None:
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(WHEEL.format(inertial=inertial))
+    # pinocchio loads each of them (the frames do not depend on the inertial) and places
+    # the wheel where the joint's origin says.
+    pin = pytest.importorskip("pinocchio")
+    model = pin.buildModelFromUrdf(str(robot))
+    data = model.createData()
+    pin.framesForwardKinematics(model, data, pin.neutral(model))
+    placed = data.oMf[model.getFrameId("wheel")].translation
+    code, out, err = _tf(str(robot), "base_link", "wheel", "--format", "json")
+    assert code == 0, err
+    assert json.loads(out)["translation"] == list(placed) == [0.0, 0.1, 0.0]
+    (line,) = err.splitlines()
+    assert ": error: link 'wheel': " in line and line.endswith(f"[{rule}]")
+    # the shape in doubt still stops it: a joint's origin
+    broken = tmp_path / "broken.urdf"
+    broken.write_text(robot.read_text().replace('xyz="0 0.1 0"', 'xyz="0 0.1"'))
+    code, out, err = _tf(str(broken), "base_link", "wheel")
+    assert (code, out) == (1, "")
+    assert "[bad-vector]" in err
+
+
+def test_a_xacro_argument_named_as_a_joint_says_how_to_place_the_joint() -> None:
+    code, out, err = _tf(str(XACRO), "base_link", "left_wheel_link", "left_wheel_joint:=1.0")
+    assert code == 0
+    assert out.startswith("At time 0.0\n- Translation: [0.000, 0.100, -0.060]\n")
+    assert err == (
+        f"{XACRO}: warning: argument 'left_wheel_joint' is given, but no <xacro:arg> declares "
+        "it and nothing reads it ('left_wheel_joint' is a joint: did you mean "
+        "`-j left_wheel_joint=1.0`?) [xacro-unknown-arg]\n"
+    )
+    # Any other argument no file reads is the warning check and expand give.
+    code, _, err = _tf(str(XACRO), "base_link", "left_wheel_link", "use_sim:=true")
+    checked = CliRunner().invoke(cli, ["check", "-q", str(XACRO), "use_sim:=true"])
+    assert (code, checked.exit_code) == (0, 0)
+    assert err == checked.stderr != ""
+    # A URDF file takes no arguments at all: a joint's name is worth a word (check says
+    # nothing of the others, and neither does tf).
+    urdf = FISHBOT / "urdf" / "first_robot.urdf"
+    code, _, err = _tf(str(urdf), "base_link", "imu_link", "imu_joint:=1", "use_sim:=true")
+    assert code == 0
+    assert err == (
+        f"{urdf}: warning: argument 'imu_joint' is given, but a URDF file takes no arguments "
+        "('imu_joint' is a fixed joint, which takes no position) [xacro-unknown-arg]\n"
+    )

@@ -95,8 +95,8 @@ CASES = [
     ),
     (
         "missing_inertial",
-        0,
-        "warning",
+        1,
+        "error",
         "missing-inertial",
         "link 'left_wheel_link' has collision geometry and moves (joint 'left_wheel_joint' is "
         "continuous) but no <inertial>",
@@ -299,10 +299,29 @@ def test_a_base_without_inertial_weighs_nothing(tmp_path: Path) -> None:
     text = text[:start] + text[text.index("</inertial>") + len("</inertial>") :]
     path = _write(tmp_path, "nobase.urdf", text.replace('xyz="0 0 0.101"', 'xyz="0 0 0.091"'))
     code, lines = _findings(path)
-    assert code == 0
+    assert code == 1
     (line,) = lines
-    assert "warning: link 'base_link' has collision geometry but no <inertial>" in line
+    assert "error: link 'base_link' has collision geometry but no <inertial>" in line
     assert line.endswith("[missing-inertial]")
+
+
+def test_a_moving_link_without_inertial_is_graded_as_one_of_mass_0() -> None:
+    # The two fixtures differ only in the left wheel's inertial: none, or one of mass 0.
+    # sdformat (Gazebo) drops both links alike, with everything below them ("has no
+    # <inertial> block defined" / "a mass value of less than or equal to zero", then
+    # "is not modeled in sdf"), so both are errors; pinocchio reads both wheels as massless.
+    pin = pytest.importorskip("pinocchio")
+    graded = {}
+    for name in ("missing_inertial", "massless_wheel"):
+        path = PHYSICS / f"{name}.urdf"
+        (finding,) = [d for d in check_file(path).diagnostics if d.subject is not None]
+        graded[name] = (finding.rule, finding.severity.value, finding.subject.name)
+        model = pin.buildModelFromUrdf(str(path))
+        assert model.inertias[model.getJointId("left_wheel_joint")].mass == 0.0
+    assert graded == {
+        "missing_inertial": ("missing-inertial", "error", "left_wheel_link"),
+        "massless_wheel": ("massless-link", "error", "left_wheel_link"),
+    }
 
 
 def test_a_point_mass_is_no_mismatch() -> None:

@@ -141,6 +141,7 @@ def test_a_mesh_is_read_and_one_that_cannot_be_is_its_bounding_box(tmp_path: Pat
     [
         (["--size", "10x10"], "is not WIDTHxHEIGHT", 2),
         (["-j", "nothing=1"], "no joint 'nothing'", 2),
+        (["-j", "imu_joint=1"], "joint 'imu_joint' is fixed: it takes no position", 2),
     ],
 )
 def test_wrong_options(tmp_path: Path, args: list[str], said: str, code: int) -> None:
@@ -271,3 +272,35 @@ def test_building_a_scene_stops_at_the_deadline(tmp_path: Path) -> None:
     with time_limit(1e-6), pytest.raises(TimeLimitError) as info:
         render_png(build_scene(analysis))
     assert info.value.what == "building the scene"
+
+
+def test_a_robot_whose_only_fault_is_an_inertial_is_drawn(tmp_path: Path) -> None:
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="base_link">'
+        '<visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>'
+        '<inertial><mass value="1"/></inertial></link></robot>'
+    )
+    out = tmp_path / "r.png"
+    result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(out)])
+    assert result.exit_code == 0, result.stderr
+    assert _pixels(out.read_bytes()).std() > 0  # something is drawn
+    (line,) = result.stderr.splitlines()
+    assert line == (
+        f"{robot}:1:103: error: link 'base_link': <inertial> has no <inertia> "
+        '(write <inertia ixx=".." ixy="0" ixz="0" iyy=".." iyz="0" izz=".."/>) [missing-element]'
+    )
+
+
+def test_a_xacro_argument_named_as_a_joint_is_a_warning(tmp_path: Path) -> None:
+    out = tmp_path / "r.png"
+    result = CliRunner().invoke(
+        cli, ["render", str(XACRO), "right_wheel_joint:=90deg", "-o", str(out)]
+    )
+    assert result.exit_code == 0
+    assert out.exists()
+    assert result.stderr == (
+        f"{XACRO}: warning: argument 'right_wheel_joint' is given, but no <xacro:arg> declares "
+        "it and nothing reads it ('right_wheel_joint' is a joint: did you mean "
+        "`-j right_wheel_joint=90deg`?) [xacro-unknown-arg]\n"
+    )

@@ -61,9 +61,10 @@ WHEEL_XACRO = """\
 </robot>
 """
 
-# The folder the setup rules' shell examples run in: a robot whose wheels have collision
-# shapes and no inertial (for fishbot inertia --fill), a xacro file that includes a file of
-# the ROS package in src/, a robot with a box too far to draw.
+# The folder the setup rules' shell examples run in: a valid robot whose wheels have
+# collision shapes and no inertial (for fishbot inertia --fill; they are welded to the base,
+# so that the robot is valid without them: a moving link without one is an error), a xacro
+# file that includes a file of the ROS package in src/, a robot with a box too far to draw.
 WORKSPACE = {
     "fishbot.urdf": """\
 <robot name="fishbot">
@@ -80,11 +81,11 @@ WORKSPACE = {
   <link name="right_wheel_link">
     <collision><geometry><cylinder radius="0.032" length="0.04"/></geometry></collision>
   </link>
-  <joint name="left_wheel_joint" type="continuous">
-    <parent link="base_link"/><child link="left_wheel_link"/><axis xyz="0 0 1"/>
+  <joint name="left_wheel_joint" type="fixed">
+    <parent link="base_link"/><child link="left_wheel_link"/>
   </joint>
-  <joint name="right_wheel_joint" type="continuous">
-    <parent link="base_link"/><child link="right_wheel_link"/><axis xyz="0 0 1"/>
+  <joint name="right_wheel_joint" type="fixed">
+    <parent link="base_link"/><child link="right_wheel_link"/>
   </joint>
 </robot>
 """,

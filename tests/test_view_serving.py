@@ -145,3 +145,54 @@ def test_every_reload_is_within_the_limits_the_viewer_was_made_in(arm: Path) -> 
             shown.reload()
     finally:
         shown.close()
+
+
+def test_a_fixed_joint_given_a_position_is_said_to_be_fixed(tmp_path: Path) -> None:
+    robot = tmp_path / "arm.urdf"
+    robot.write_text(ARM.replace("</robot>", FIXED_TOOL + "</robot>"), encoding="utf-8")
+    port = _free_port()
+    result = CliRunner().invoke(cli, ["view", str(robot), "--port", str(port), "-j", "tool=1"])
+    assert result.exit_code == 2
+    assert result.stdout == ""
+    assert "joint 'tool' is fixed: it takes no position" in result.stderr
+    with socket.socket() as again:  # and the viewer's port is free again
+        again.bind(("127.0.0.1", port))
+
+
+FIXED_TOOL = (
+    '<link name="tool"/><joint name="tool" type="fixed"><parent link="base"/>'
+    '<child link="tool"/></joint>'
+)
+
+
+def test_a_robot_whose_only_fault_is_an_inertial_is_shown_with_its_findings(
+    tmp_path: Path,
+) -> None:
+    robot = tmp_path / "arm.urdf"
+    robot.write_text(
+        ARM.replace(
+            '<link name="base">', '<link name="base"><inertial><mass value="1"/></inertial>'
+        ),
+        encoding="utf-8",
+    )
+    command = [sys.executable, "-m", "fishbot_urdf", "view", str(robot), "shoulder:=0.5"]
+    command += ["--port", "0"]
+    shown = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert shown.stdout is not None and shown.stderr is not None
+        assert shown.stdout.readline().startswith("fishbot view: http://localhost:")
+    finally:
+        shown.terminate()
+        _, err = shown.communicate(timeout=60)
+    said, line = err.splitlines()
+    assert said == (
+        f"{robot}: warning: argument 'shoulder' is given, but a URDF file takes no arguments "
+        "('shoulder' is a joint: did you mean `-j shoulder=0.5`?) [xacro-unknown-arg]"
+    )
+    assert line.startswith(f"{robot}:3:")
+    assert line.endswith("error: link 'base': <inertial> has no <inertia> " + INERTIA_HINT)
+
+
+INERTIA_HINT = (
+    '(write <inertia ixx=".." ixy="0" ixz="0" iyy=".." iyz="0" izz=".."/>) [missing-element]'
+)

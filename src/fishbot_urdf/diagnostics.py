@@ -90,6 +90,12 @@ FOLLOWS = "follows"
 """The key under which `Diagnostic.to_dict` lists the rules a finding follows from (see
 `Diagnostic.follows`)."""
 
+ELEMENT = "element"
+"""The key of a finding's data that names the element it is about, where that matters more
+than its rule's family: ``"inertial"`` for a link's mass, inertia and their origin, which
+leave the robot's shape and frames as they are; ``"axis"`` for a joint's axis, which urdfdom
+does not read for a fixed or floating joint."""
+
 
 @dataclass(frozen=True, slots=True)
 class Diagnostic:

@@ -78,8 +78,9 @@ MASSLESS_LINK = Rule(
     "them, so a massless sensor frame fixed to a heavy link is fine. MuJoCo refuses a moving body "
     "whose mass or a principal moment is below 1e-15 (`mjMINVAL`), Gazebo drops a link of mass 0 "
     "together with everything below it, Drake stops with a mass matrix that is not positive "
-    "definite, and in PyBullet the joint never moves. Give the link its real mass, and the "
-    "inertia of its shape (`fishbot inertia cylinder ...` prints one).",
+    "definite, and in PyBullet the joint never moves. A moving link with no `<inertial>` at all is "
+    "`missing-inertial`'s, an error too: Gazebo drops it in the same way. Give the link its real "
+    "mass, and the inertia of its shape (`fishbot inertia cylinder ...` prints one).",
     bad="""\
 <robot name="fishbot">
   <link name="base_link"/>
@@ -198,16 +199,20 @@ INERTIA_TRIANGLE = Rule(
 )
 MISSING_INERTIAL = Rule(
     "missing-inertial",
-    W,
+    E,
     Family.PHYSICS,
     summary="A moving link, or the robot's base, has collision shapes but no <inertial>.",
-    explanation="A link without `<inertial>` has no mass in URDF, and a simulator cannot use it "
-    "as written when it moves or is the robot's base: Gazebo drops it with everything below it "
-    "(the whole robot, for the base), Drake stops because the body has no mass, PyBullet gives it "
-    "1 kg and an inertia of 1 `kg*m^2` about each axis, and MuJoCo computes one from the "
-    "collision shapes at the density of water. Links held by fixed joints count with what they "
-    "are fixed to, so a sensor frame needs none. Add an `<inertial>`: `fishbot inertia ROBOT "
-    "--fill --density KG_PER_M3 -o OUT` computes them from the collision shapes.",
+    explanation="A link without `<inertial>` has no mass in URDF, and the programs that read it "
+    "take it as a link of mass 0, so a moving link without one is an error, as a moving link of "
+    "mass 0 is (`massless-link`): sdformat, through which Gazebo (classic and gz-sim) loads a "
+    "URDF, drops a link that has no `<inertial>` exactly as one whose mass is 0, with its joint "
+    "and everything below it (for the robot's base, the whole robot); Drake stops because the "
+    "body has no mass; pinocchio and KDL take it as massless. Others make one up: PyBullet gives "
+    "it 1 kg and an inertia of 1 `kg*m^2` about each axis, and MuJoCo computes one from the "
+    "collision shapes at the density of water. robot_state_publisher and RViz only place frames "
+    "and do not care. Links held by fixed joints count with what they are fixed to, so a sensor "
+    "frame needs none. Add an `<inertial>`: `fishbot inertia ROBOT --fill --density KG_PER_M3 -o "
+    "OUT` computes them from the collision shapes.",
     bad="""\
 <robot name="fishbot">
   <link name="base_link"/>

@@ -119,7 +119,10 @@ XACRO_UNKNOWN_ARG = Rule(
     explanation="xacro takes any `name:=value` and quietly ignores the ones no `<xacro:arg>` "
     "or `$(arg ...)` reads, so a misspelt argument leaves its default in place and the robot "
     "is built without the arm, the sensor or the simulation tags that were asked for. Spell the "
-    "argument as the file declares it; `--strict` makes this an error for CI.",
+    "argument as the file declares it; `--strict` makes this an error for CI. `tf`, `render` "
+    "and `view` warn too, and when the argument is named as a joint they say that `-j "
+    "NAME=VALUE` places joints; a URDF file takes no arguments, and for one they warn only of "
+    "joints' names.",
     bad="""\
 # fishbot.urdf.xacro declares <xacro:arg name="use_sim" default="false"/>
 fishbot check --strict --package fishbot_description=src/fishbot_description \\

@@ -1,31 +1,42 @@
 """What the commands that read and check a robot share: reading FILE with its nearest
 configuration, what it read (never to be written over), and the narrower check of the
-commands that pose the robot (tf, render, view)."""
+commands that pose the robot (tf, render, view), with what their -j names may be."""
 
 from __future__ import annotations
 
 import sys
-from collections.abc import Iterable
+from collections.abc import Collection, Iterable, Mapping
+from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import click
 
 from ..catalog import all_rules
+from ..catalog.xacro import XACRO_UNKNOWN_ARG
 from ..config import Config, find_config, load_config
-from ..diagnostics import Diagnostic
-from ..errors import FishbotUrdfError
+from ..diagnostics import ELEMENT, Diagnostic, Kind, Subject, sort_key
+from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
 from ..lint import CheckResult, check_file
+from ..model import JointType
 from ..output import Source
 from ..packages import PackageFinder
+from ..parsing import is_xacro_path
 from ..rules import Family
+from ..wording import listing
 from ._common import EXIT_INVALID, emit_findings, stdin_urdf, stop_on
+
+if TYPE_CHECKING:
+    from ..analysis import Analysis
 
 __all__ = [
     "STDIN",
     "check_input",
+    "check_joint_names",
     "nearest_config",
     "posable_input",
     "posing",
     "posing_errors",
+    "posing_findings",
     "read_files",
 ]
 
@@ -74,10 +85,13 @@ def nearest_config(file: str) -> Config:
 
 def posing_errors(diagnostics: Iterable[Diagnostic]) -> list[Diagnostic]:
     """The errors that leave a robot's shape or tree in doubt (reading, URDF and structure
-    rules): `tf`, `render` and `view` stop on them; physics and mesh findings are
+    rules, but for those about a link's inertial alone: its mass, inertia and their origin
+    place nothing): `tf`, `render` and `view` stop on them; physics and mesh findings are
     `check`'s."""
     ids = {rule.id for rule in all_rules() if rule.family.value in _SHAPING}
-    return [d for d in diagnostics if d.is_error and d.rule in ids]
+    return [
+        d for d in diagnostics if d.is_error and d.rule in ids and d.data.get(ELEMENT) != "inertial"
+    ]
 
 
 _SHAPING = ("xml", "urdf", "structure", "xacro")  # the families of `posing_errors`
@@ -99,9 +113,11 @@ def posable_input(
 ) -> CheckResult:
     """FILE read and checked (with ``config``, else the nearest configuration, narrowed to
     the rules of `posing_errors`), for a command that poses the robot (tf, render): a robot
-    whose shape or tree is in doubt stops it with its errors (and ``refusal``), exit 1."""
+    whose shape or tree is in doubt stops it with its errors (and ``refusal``), exit 1; any
+    other robot's findings are printed, as check prints them, and the command goes on."""
+    config = config or nearest_config(name)
     try:
-        result = check_input(name, args, packages, posing(config or nearest_config(name)))
+        result = check_input(name, args, packages, posing(config))
     except FishbotUrdfError as exc:
         stop_on(exc)
     blocking = posing_errors(result.diagnostics)
@@ -110,4 +126,99 @@ def posable_input(
         if refusal:
             click.echo(refusal, err=True)
         sys.exit(EXIT_INVALID)
+    emit_findings(posing_findings(name, result, args, config))
     return result
+
+
+def posing_findings(
+    name: str, result: CheckResult, args: Mapping[str, str], config: Config
+) -> list[Diagnostic]:
+    """The findings a command that poses the robot prints, once it can pose it: the check's,
+    with a word for each name:=value argument that names a joint (-j places joints; xacro
+    reads name:=value). A URDF file takes no arguments: those that name no joint pass
+    without a word, as check lets them."""
+    analysis = result.analysis
+    if not args or analysis is None:
+        return list(result.diagnostics)
+    found = [_with_joint_hint(d, analysis, args) for d in result.diagnostics]
+    if not is_xacro_path(name):
+        found += config.apply(
+            XACRO_UNKNOWN_ARG.report(
+                f"argument {arg!r} is given, but a URDF file takes no arguments",
+                None,
+                path=result.path,
+                subject=Subject(Kind.FILE, result.path),
+                hint=_joint_hint(analysis, arg, args[arg]),
+                data={"argument": arg},
+            )
+            for arg in args
+            if arg in analysis.joints
+        )
+    return sorted(found, key=sort_key)
+
+
+def _with_joint_hint(
+    finding: Diagnostic, analysis: Analysis, args: Mapping[str, str]
+) -> Diagnostic:
+    arg = finding.data.get("argument") if finding.rule == XACRO_UNKNOWN_ARG.id else None
+    if not isinstance(arg, str) or arg not in analysis.joints or arg not in args:
+        return finding
+    return replace(finding, hint=_joint_hint(analysis, arg, args[arg]))
+
+
+def _joint_hint(analysis: Analysis, joint: str, value: str) -> str:
+    if analysis.joints[joint].type is JointType.FIXED:
+        return f"{joint!r} is a fixed joint, which takes no position"
+    return f"{joint!r} is a joint: did you mean `-j {joint}={value}`?"
+
+
+def check_joint_names(
+    analysis: Analysis, positions: Mapping[str, float], variables: Collection[str]
+) -> None:
+    """Refuse a -j name that is none of ``variables`` (the positions the robot has), saying
+    what it names: a joint that has no position of its own, or no joint at all.
+
+    Raises:
+        ArgumentError: The name is a joint that has no position of its own: fixed, a mimic
+            joint (it follows another), planar or floating (its positions are JOINT.x ...).
+        UnknownNameError: No joint has that name (the error names the closest).
+    """
+    for name in positions:
+        if name not in variables:
+            raise _not_a_position(analysis, name, variables)
+
+
+def _not_a_position(analysis: Analysis, name: str, variables: Collection[str]) -> FishbotUrdfError:
+    joint = analysis.joints.get(name)
+    if joint is None:
+        return UnknownNameError("joint", name, variables)
+    if joint.type is JointType.FIXED:
+        moving = f"moving joints: {listing(variables)}" if variables else "no joint moves"
+        return ArgumentError(f"joint {name!r} is fixed: it takes no position ({moving})", name=name)
+    parts = [v for v in variables if v.startswith(name + ".")]
+    if parts:
+        listed = ", ".join(parts[:-1]) + " and " + parts[-1]
+        return ArgumentError(
+            f"joint {name!r} is {joint.type.value}: its position is {listed}", name=name
+        )
+    follows = analysis.plan.mimics.get(name)
+    if follows is not None and follows.leader is not None:
+        return ArgumentError(
+            f"joint {name!r} mimics {follows.leader!r} and follows it: "
+            f"set {follows.leader!r} instead",
+            name=name,
+        )
+    if follows is not None:
+        return ArgumentError(
+            f"joint {name!r} mimics a joint whose position is not one number: it stays at "
+            f"its offset, {follows.offset:g}",
+            name=name,
+        )
+    owner = analysis.parent_joint.get(joint.child)
+    if owner is not None and owner is not joint:
+        return ArgumentError(
+            f"joint {name!r} places no link: link {joint.child!r} hangs from joint "
+            f"{owner.name!r}, its first parent joint",
+            name=name,
+        )
+    return UnknownNameError("joint", name, variables)

@@ -235,8 +235,10 @@ def check(
 ) -> None:
     """Check URDF or xacro files, like check_urdf, and more strictly.
 
-    Prints exactly what check_urdf prints (the robot's name and its link tree) whenever the
-    tree can be read, errors or not. Every finding goes to stderr as one line,
+    Prints on stdout exactly what check_urdf prints: the robot's name and its link tree
+    where urdfdom builds the robot (whatever else is found), nothing where urdfdom refuses
+    the file (a fault of <robot>, of a joint, of the names or of the tree). Every finding
+    goes to stderr as one line,
     path:line:col: error: ... [rule]. A .xacro file is expanded first (name:=value
     arguments go to it) and findings point at the xacro source. Beyond check_urdf it checks
     masses and inertias (errors where a simulator would refuse them), inertias against

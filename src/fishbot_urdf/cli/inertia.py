@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 import click
 
+from ..catalog.physics import MISSING_INERTIAL
 from ..diagnostics import escape_controls
 from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
 from ..inertia import (
@@ -296,8 +297,9 @@ def robot(
     except FishbotUrdfError as exc:
         stop_on(exc)
     if fill:
-        errors = [d for d in result.diagnostics if d.is_error]
-        if result.analysis is None or errors:  # the robot's own faults come first
+        # The robot's own faults come first; a missing inertial is what --fill writes.
+        errors = [d for d in result.diagnostics if d.is_error and d.rule != MISSING_INERTIAL.id]
+        if result.analysis is None or errors:
             emit_findings(errors or result.diagnostics)
             click.echo("nothing written: fix the errors above first", err=True)
             sys.exit(EXIT_INVALID)

@@ -12,7 +12,7 @@ from ..drawing.scene import build_scene
 from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
 from ..kinematics import Kinematics
 from ..output import write_atomic
-from ._checking import nearest_config, posable_input, read_files
+from ._checking import check_joint_names, nearest_config, posable_input, read_files
 from ._common import (
     EXIT_OK,
     emit_findings,
@@ -84,9 +84,11 @@ def render(
     ROS needed. The camera frames the whole robot. Visuals keep their materials' colours;
     meshes are found as `fishbot check` finds them and read from STL and OBJ (other formats
     with `pip install 'fishbot-urdf[mesh]'`); one that cannot be read is drawn as its
-    bounding box, and what is not drawn as it is is a warning, printed as check prints its
-    findings. Exit status: 0 written, 1 the robot has errors, 2 a file could not be read or
-    written, a joint or position is wrong, or the command line is wrong.
+    bounding box, and what is not drawn as it is is a warning; findings are printed as
+    check prints them. Exit status: 0 written (errors that leave the shape as it is, such as
+    a fault in an <inertial>, do not stop it), 1 the robot has errors that leave its shape
+    or tree in doubt (nothing is written), 2 a file could not be read or written, a joint or
+    position is wrong, or the command line is wrong.
 
     \b
     Examples:
@@ -107,6 +109,7 @@ def render(
     assert result.analysis is not None
     try:
         kinematics = Kinematics(result.analysis)
+        check_joint_names(result.analysis, positions, kinematics.variables)
         q = kinematics.configuration(positions)
         # The analysis finds the meshes (with the packages given), as check does.
         scene = build_scene(result.analysis, q, collision=collision)

@@ -13,7 +13,7 @@ import click
 from ..errors import ArgumentError, StructureError, UnknownNameError
 from ..kinematics import Kinematics
 from ..spatial import euler_ypr, quaternion
-from ._checking import posable_input
+from ._checking import check_joint_names, posable_input
 from ._common import (
     EXIT_OK,
     format_option,
@@ -53,9 +53,11 @@ def tf(
 
     Joints are at 0 unless -j places them (mimic joints follow their leader). Planar and
     floating joints take JOINT.x, JOINT.y, JOINT.yaw (planar) or JOINT.x ... JOINT.yaw
-    (floating: x y z roll pitch yaw). Exit status: 0 done, 1 the robot has errors, 2 a
-    frame or joint that does not exist, a position outside its limits, a file that cannot
-    be read, or a wrong command line.
+    (floating: x y z roll pitch yaw). Findings about the robot are printed as check prints
+    them. Exit status: 0 done (errors that leave the frames as they are, such as a fault in
+    an <inertial>, do not stop it), 1 the robot has errors that leave its shape or tree in
+    doubt (nothing is computed), 2 a frame or joint that does not exist, a position outside
+    its limits, a file that cannot be read, or a wrong command line.
 
     \b
     Examples:
@@ -73,6 +75,7 @@ def tf(
         kinematics = Kinematics(result.analysis)
         for name in (frame_from, frame_to):
             kinematics.link_index(name)
+        check_joint_names(result.analysis, positions, kinematics.variables)
         pose = kinematics.transform(kinematics.configuration(positions), frame_from, frame_to)
     except UnknownNameError as exc:
         raise click.UsageError(exc.message) from None

@@ -7,13 +7,20 @@ import gc
 import sys
 import time
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 
 from ..drawing.viewer import Viewer
 from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
-from ._checking import check_input, nearest_config, posing, posing_errors
+from ._checking import (
+    check_input,
+    check_joint_names,
+    nearest_config,
+    posing,
+    posing_errors,
+    posing_findings,
+)
 from ._common import (
     EXIT_INVALID,
     emit_findings,
@@ -25,6 +32,9 @@ from ._common import (
     stop_on,
     xacro_args,
 )
+
+if TYPE_CHECKING:
+    from ..lint import CheckResult
 
 _COLLECT_EVERY = 100_000  # new container objects between two young collections (Python: 700)
 
@@ -68,11 +78,15 @@ def view(
     positions = joint_positions(joint_items)
     config = nearest_config(file)
 
+    loaded: list[CheckResult] = []  # the first load: its findings, and the -j names
+
     def load() -> tuple[Any, Sequence[str]]:
         result = check_input(file, values, packages, posing(config))
         blocking = posing_errors(result.diagnostics)
         if result.analysis is None or blocking:
             raise _Unreadable(blocking)
+        if not loaded:
+            loaded.append(result)
         return result.analysis, result.files
 
     try:
@@ -83,14 +97,15 @@ def view(
     except FishbotUrdfError as exc:  # cannot serve there, viser missing, a limit reached
         stop_on(exc)
     try:
+        first = loaded[0]
+        assert first.analysis is not None
+        check_joint_names(first.analysis, positions, viewer.values)
         for name, value in positions.items():
-            if name not in viewer.values:
-                raise UnknownNameError("joint", name, viewer.values)
             viewer.set(name, value)
     except (UnknownNameError, ArgumentError) as exc:
         viewer.close()
         raise click.BadParameter(exc.message, param_hint="--joint") from None
-    emit_findings(config.apply(viewer.findings))
+    emit_findings([*posing_findings(file, first, values, config), *config.apply(viewer.findings)])
     click.echo(f"fishbot view: {viewer.url} (Ctrl-C stops)")
     # Off for the commands that end (see main); on, rarely, for the reloads to come.
     gc.set_threshold(_COLLECT_EVERY, *gc.get_threshold()[1:])

@@ -32,6 +32,7 @@ def unknown_args(
             path=path,
             subject=Subject(Kind.FILE, path),
             hint=hint,
+            data={"argument": name},
         )
 
 

@@ -74,7 +74,10 @@ class JointReader(LinkReader):
                         f"a joint has at most one <{tag}>",
                     )
                 else:
+                    made = len(self.diagnostics)
                     parts[tag] = read(self, child, c_at, owner)
+                    if tag == "axis":  # urdfdom reads no fixed or floating joint's axis
+                        self.about(made, "axis")
             elif isinstance(tag, str):
                 extras.append(self.extra(child))
         ends: list[tuple[str, Location | None]] = []
@@ -143,6 +146,14 @@ class JointReader(LinkReader):
         )
 
     def dynamics(self, el: etree._Element, at: Location, owner: Owner) -> Dynamics:
+        if el.get("damping") is None and el.get("friction") is None:
+            # urdfdom refuses the joint, so the whole file
+            self.error(
+                MISSING_ATTRIBUTE,
+                f"{owner}: <dynamics> has neither 'damping' nor 'friction'",
+                at,
+                'write <dynamics damping="NUMBER" friction="NUMBER"/>, or leave it out',
+            )
         return Dynamics(
             self.number(el, at, "damping", owner), self.number(el, at, "friction", owner), at
         )

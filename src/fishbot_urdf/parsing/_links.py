@@ -102,6 +102,12 @@ class LinkReader(ReaderBase):
         return Link(name, inertial, tuple(visuals), tuple(collisions), tuple(extras), at)
 
     def inertial(self, el: etree._Element, at: Location, owner: Owner) -> Inertial:
+        found = len(self.diagnostics)
+        inertial = self._inertial(el, at, owner)
+        self.about(found, "inertial")  # about the mass alone: the shape and frames stand
+        return inertial
+
+    def _inertial(self, el: etree._Element, at: Location, owner: Owner) -> Inertial:
         origin = _NO_ORIGIN
         mass = 0.0
         inertia: Inertia | None = None

@@ -16,11 +16,14 @@ from ...catalog.physics import (
     W,
 )
 from ...catalog.reading import BAD_NUMBER, NEGATIVE_MASS
-from ...diagnostics import Diagnostic
+from ...diagnostics import ELEMENT, Diagnostic
 from ...inertia import combine
 from ...model import Inertial, Joint, Link, Vector3
 from ...spatial import Pose
 from ._common import TINY, link_subject, moment_text, moments_text, physical, place, tolerance
+
+# The reading rules this module reports are about the inertial alone (see ELEMENT).
+_ABOUT_INERTIAL = {ELEMENT: "inertial"}
 
 
 def finite(inertial: Inertial) -> bool:
@@ -64,6 +67,7 @@ def _inertial(
             path=path,
             subject=owner,
             hint="write finite numbers",
+            data=_ABOUT_INERTIAL,
         )
         return
     if inertial.mass < 0:
@@ -74,6 +78,7 @@ def _inertial(
             path=path,
             subject=owner,
             hint="mass is >= 0 kg",
+            data=_ABOUT_INERTIAL,
         )
     tol = tolerance(moments)
     negative = moments[0] < -tol
@@ -158,8 +163,8 @@ def _moving(
                 link.source,
                 path=path,
                 subject=link_subject(link),
-                hint="simulators drop a link without mass or cannot move it; give it one "
-                "computed from its collision shapes",
+                hint="Gazebo drops it with everything below it, as it drops one of mass 0; "
+                "give it one computed from its collision shapes",
             )
         return
     if any(inertial.mass < 0 for _, inertial, _ in having):
