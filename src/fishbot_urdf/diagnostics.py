@@ -91,10 +91,8 @@ FOLLOWS = "follows"
 `Diagnostic.follows`)."""
 
 ELEMENT = "element"
-"""The key of a finding's data that names the element it is about, where that matters more
-than its rule's family: ``"inertial"`` for a link's mass, inertia and their origin, which
-leave the robot's shape and frames as they are; ``"axis"`` for a joint's axis, which urdfdom
-does not read for a fixed or floating joint."""
+"""The key under which `Diagnostic.to_dict` names the element a finding is about (see
+`Diagnostic.element`)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -117,6 +115,11 @@ class Diagnostic:
             from being read, whose ``rule`` is a kind of error); not compared.
         follows: Ids of the rules whose findings this one follows from: it is only news
             when none of them is reported (see `without_consequences`); not compared.
+        element: The element of its subject the finding is about, where that matters more
+            than its rule's family: ``"inertial"`` for a link's mass, inertia and their
+            origin, which leave the robot's shape and frames as they are; ``"axis"`` for a
+            joint's axis, which urdfdom does not read for a fixed or floating joint; not
+            compared.
     """
 
     rule: str
@@ -130,6 +133,7 @@ class Diagnostic:
     data: Mapping[str, Any] = field(default_factory=lambda: _NO_DATA, compare=False, repr=False)
     definition: Rule | None = field(default=None, compare=False, repr=False)
     follows: tuple[str, ...] = field(default=(), compare=False, repr=False)
+    element: str | None = field(default=None, compare=False, repr=False)
 
     @property
     def is_error(self) -> bool:
@@ -169,6 +173,7 @@ class Diagnostic:
             d.data,
             d.definition,
             d.follows,
+            d.element,
         )
 
     def format(self) -> str:
@@ -209,6 +214,8 @@ class Diagnostic:
         facts = data.to_dict() if isinstance(data, Facts) else dict(data)
         if self.follows:
             facts[FOLLOWS] = list(self.follows)
+        if self.element is not None:
+            facts[ELEMENT] = self.element
         return facts
 
 
@@ -223,14 +230,27 @@ _FIELDS = (
     "subject",
     "definition",
     "follows",
+    "element",
 )
 
 
 def _unpickled(*values: Any) -> Diagnostic:
-    rule, severity, message, path, line, column, hint, subject, definition, follows, data = values
+    *fixed, data = values
+    rule, severity, message, path, line, column, hint, subject, definition, follows, element = fixed
     facts = data if isinstance(data, Facts) else MappingProxyType(data) if data else _NO_DATA
     return Diagnostic(
-        rule, severity, message, path, line, column, hint, subject, facts, definition, follows
+        rule,
+        severity,
+        message,
+        path,
+        line,
+        column,
+        hint,
+        subject,
+        facts,
+        definition,
+        follows,
+        element,
     )
 
 
@@ -248,6 +268,7 @@ def diagnostic(
     data: Mapping[str, Any] | None = None,
     definition: Rule | None = None,
     follows: Iterable[str] = (),
+    element: str | None = None,
 ) -> Diagnostic:
     """The one way to make a finding: at ``where`` (a Location), or else in ``path`` at
     ``line`` and ``column`` (None for the whole file). ``data`` is best a `Facts`; a plain
@@ -270,6 +291,7 @@ def diagnostic(
         facts,
         definition,
         tuple(follows),
+        element,
     )
 
 

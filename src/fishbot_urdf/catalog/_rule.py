@@ -109,10 +109,12 @@ class Rule:
         severity: Severity | None = None,
         data: Mapping[str, Any] | None = None,
         follows: Iterable[str] = (),
+        element: str | None = None,
     ) -> Diagnostic:
         """A finding of this rule at ``where`` (or about the whole file ``path``), at its
         default severity unless ``severity`` says otherwise. ``data`` holds the facts behind
-        it (a `Facts`), ``follows`` the ids of rules whose findings it follows from."""
+        it (a `Facts`), ``follows`` the ids of rules whose findings it follows from, ``element``
+        the element of the subject it is about (see `Diagnostic`)."""
         return diagnostic(
             self.id,
             severity or self.severity,
@@ -124,6 +126,7 @@ class Rule:
             data=data,
             definition=self,
             follows=follows,
+            element=element,
         )
 
     def to_dict(self) -> dict[str, Any]:

@@ -6,7 +6,9 @@ reports xacro's warnings.
 
 from __future__ import annotations
 
-from ..diagnostics import Severity
+from dataclasses import dataclass
+
+from ..diagnostics import Facts, Severity
 from ._rule import Consumer, Family, Rule
 
 _XACRO = (Consumer.XACRO,)
@@ -111,6 +113,16 @@ XACRO_UNDEFINED = Rule(
     language="xacro",
     fatal=True,
 )
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class UnknownArgFacts(Facts):
+    """The facts of a `xacro-unknown-arg` finding."""
+
+    argument: str
+    """The ``name`` of the ``name:=value`` given."""
+
+
 XACRO_UNKNOWN_ARG = Rule(
     "xacro-unknown-arg",
     W,

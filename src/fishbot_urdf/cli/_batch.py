@@ -27,7 +27,7 @@ from ..catalog.structure import (
     NO_ROOT,
     UNDEFINED_LINK,
 )
-from ..diagnostics import ELEMENT, Kind, has_errors
+from ..diagnostics import Kind, has_errors
 from ..diagnostics import escape_line_controls as shown
 from ..errors import FishbotUrdfError
 from ..graph import tree_text
@@ -371,7 +371,7 @@ def urdfdom_refuses(result: CheckResult) -> bool:
         if subject.kind is Kind.JOINT:
             joint = analysis.joints.get(subject.name) if analysis is not None else None
             axisless = joint is not None and joint.type in _AXISLESS
-            if not (axisless and finding.data.get(ELEMENT) == "axis"):
+            if not (axisless and finding.element == "axis"):
                 return True
     return False
 

@@ -12,9 +12,9 @@ from typing import TYPE_CHECKING
 import click
 
 from ..catalog import all_rules
-from ..catalog.xacro import XACRO_UNKNOWN_ARG
+from ..catalog.xacro import XACRO_UNKNOWN_ARG, UnknownArgFacts
 from ..config import Config, find_config, load_config
-from ..diagnostics import ELEMENT, Diagnostic, Kind, Subject, sort_key
+from ..diagnostics import Diagnostic, Kind, Subject, sort_key
 from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
 from ..lint import CheckResult, check_file
 from ..model import JointType
@@ -89,9 +89,7 @@ def posing_errors(diagnostics: Iterable[Diagnostic]) -> list[Diagnostic]:
     place nothing): `tf`, `render` and `view` stop on them; physics and mesh findings are
     `check`'s."""
     ids = {rule.id for rule in all_rules() if rule.family.value in _SHAPING}
-    return [
-        d for d in diagnostics if d.is_error and d.rule in ids and d.data.get(ELEMENT) != "inertial"
-    ]
+    return [d for d in diagnostics if d.is_error and d.rule in ids and d.element != "inertial"]
 
 
 _SHAPING = ("xml", "urdf", "structure", "xacro")  # the families of `posing_errors`
@@ -149,7 +147,7 @@ def posing_findings(
                 path=result.path,
                 subject=Subject(Kind.FILE, result.path),
                 hint=_joint_hint(analysis, arg, args[arg]),
-                data={"argument": arg},
+                data=UnknownArgFacts(argument=arg),
             )
             for arg in args
             if arg in analysis.joints
@@ -160,8 +158,11 @@ def posing_findings(
 def _with_joint_hint(
     finding: Diagnostic, analysis: Analysis, args: Mapping[str, str]
 ) -> Diagnostic:
-    arg = finding.data.get("argument") if finding.rule == XACRO_UNKNOWN_ARG.id else None
-    if not isinstance(arg, str) or arg not in analysis.joints or arg not in args:
+    facts = finding.data
+    if finding.definition is not XACRO_UNKNOWN_ARG or not isinstance(facts, UnknownArgFacts):
+        return finding
+    arg = facts.argument
+    if arg not in analysis.joints or arg not in args:
         return finding
     return replace(finding, hint=_joint_hint(analysis, arg, args[arg]))
 

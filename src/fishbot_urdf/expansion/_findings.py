@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Collection, Iterable, Iterator
 
-from ..catalog.xacro import XACRO_UNKNOWN_ARG, XACRO_WARNING
+from ..catalog.xacro import XACRO_UNKNOWN_ARG, XACRO_WARNING, UnknownArgFacts
 from ..diagnostics import Diagnostic, Kind, Subject
 from ..wording import closest, listing
 
@@ -32,7 +32,7 @@ def unknown_args(
             path=path,
             subject=Subject(Kind.FILE, path),
             hint=hint,
-            data={"argument": name},
+            data=UnknownArgFacts(argument=name),
         )
 
 

@@ -3,13 +3,12 @@
 from __future__ import annotations
 
 from dataclasses import replace
-from types import MappingProxyType
 
 from lxml import etree
 
 from ..catalog import Rule
 from ..catalog.reading import BAD_NUMBER, BAD_VECTOR, MISSING_ATTRIBUTE, UNKNOWN_ELEMENT
-from ..diagnostics import ELEMENT, Diagnostic, Kind, Severity, Subject
+from ..diagnostics import Diagnostic, Kind, Severity, Subject
 from ..extensions import Reference
 from ..model import ZERO3, Location, Vector3
 from ..xml.locator import Locator
@@ -66,11 +65,10 @@ class ReaderBase:
 
     def about(self, found: int, element: str) -> None:
         """Mark the findings made since there were ``found`` as about ``element`` alone (see
-        `fishbot_urdf.diagnostics.ELEMENT`)."""
+        `fishbot_urdf.diagnostics.Diagnostic.element`)."""
         if len(self.diagnostics) > found:
             self.diagnostics[found:] = [
-                replace(d, data=MappingProxyType({**d.data, ELEMENT: element}))
-                for d in self.diagnostics[found:]
+                replace(d, element=element) for d in self.diagnostics[found:]
             ]
 
     def missing(

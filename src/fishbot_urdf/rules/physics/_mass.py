@@ -16,14 +16,13 @@ from ...catalog.physics import (
     W,
 )
 from ...catalog.reading import BAD_NUMBER, NEGATIVE_MASS
-from ...diagnostics import ELEMENT, Diagnostic
+from ...diagnostics import Diagnostic
 from ...inertia import combine
 from ...model import Inertial, Joint, Link, Vector3
 from ...spatial import Pose
 from ._common import TINY, link_subject, moment_text, moments_text, physical, place, tolerance
 
-# The reading rules this module reports are about the inertial alone (see ELEMENT).
-_ABOUT_INERTIAL = {ELEMENT: "inertial"}
+# The reading rules this module reports are about the inertial alone (Diagnostic.element).
 
 
 def finite(inertial: Inertial) -> bool:
@@ -67,7 +66,7 @@ def _inertial(
             path=path,
             subject=owner,
             hint="write finite numbers",
-            data=_ABOUT_INERTIAL,
+            element="inertial",
         )
         return
     if inertial.mass < 0:
@@ -78,7 +77,7 @@ def _inertial(
             path=path,
             subject=owner,
             hint="mass is >= 0 kg",
-            data=_ABOUT_INERTIAL,
+            element="inertial",
         )
     tol = tolerance(moments)
     negative = moments[0] < -tol
