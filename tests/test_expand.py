@@ -904,3 +904,84 @@ def test_a_property_local_to_a_macro_is_no_later_definition(tmp_path: Path) -> N
     with pytest.raises(XacroError) as caught:
         expand(path)
     assert "is not defined" in str(caught.value)
+
+
+# -- YAML with units, as the Universal Robots descriptions load it ---------------------------
+
+UR_STYLE = DATA / "xacro" / "ur_style"
+UR_PACKAGE = {"ur_style_description": UR_STYLE / "ur_style_description"}
+UR_TOP = "ur_style_description/urdf/ur.urdf.xacro"
+UR_ARGS = ("ur_type:=ur5e", "name:=ur5e")
+
+
+@pytest.mark.parametrize("trust", [False, True])
+def test_a_ur_style_description_expands_as_the_xacro_command_with_no_message(
+    trust: bool, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # Its macros read joint limits and kinematics with xacro.load_yaml, from files written
+    # with !degrees, !radians, !meters, !millimeters, !foot and !inches.
+    reference = xacro_command(UR_TOP, *UR_ARGS, cwd=UR_STYLE, packages=UR_PACKAGE)
+    assert (reference.returncode, reference.stderr) == (0, "")
+    assert 'upper="6.283185307179586"' in reference.stdout  # !degrees 360.0
+    monkeypatch.chdir(UR_STYLE)
+    ours = expand(UR_TOP, parse_args(UR_ARGS), UR_PACKAGE, trust_expressions=trust)
+    assert (ours.text, ours.messages) == (reference.stdout, ())
+
+
+def test_a_ur_style_description_passes_strict_expand_and_check(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    reference = xacro_command(UR_TOP, *UR_ARGS, cwd=UR_STYLE, packages=UR_PACKAGE)
+    monkeypatch.chdir(UR_STYLE)
+    given = [
+        UR_TOP,
+        *UR_ARGS,
+        "--package",
+        f"ur_style_description={UR_PACKAGE['ur_style_description']}",
+    ]
+    runner = CliRunner()
+    expanded = runner.invoke(cli, ["expand", "--strict", *given])
+    assert (expanded.exit_code, expanded.stderr) == (0, "")
+    assert expanded.stdout == reference.stdout
+    checked = runner.invoke(cli, ["check", "--strict", *given])
+    assert (checked.exit_code, checked.stderr) == (0, "")
+
+
+UNITS_YAML = """\
+angles: {deg: !degrees 360.0, neg: !degrees -90, expr: !degrees 2 * 45, rad: !radians pi / 2}
+lengths: {m: !meters 1.5, mm: !millimeters 162.5, ft: !foot 2, in: !inches 10}
+plain: [1, 2.5, text]
+"""
+
+
+@pytest.mark.parametrize("trust", [False, True])
+def test_yaml_units_load_as_the_xacro_command_loads_them(
+    trust: bool, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    _write(
+        tmp_path,
+        {
+            "units.yaml": UNITS_YAML,
+            "robot.xacro": f"""<robot name="u" {NS}>
+  <xacro:property name="u" value="${{xacro.load_yaml('units.yaml')}}"/>
+  <xacro:property name="again" value="${{load_yaml('units.yaml')}}"/>
+  <link name="a" x="${{u['angles']['deg']}} ${{u.angles.neg}}"
+                 y="${{u.angles.expr}} ${{u.angles.rad}}"/>
+  <link name="b" x="${{u.lengths.m}} ${{u.lengths.mm}}"
+                 y="${{again.lengths.ft}} ${{again.lengths['in']}}"/>
+  <link name="c" x="${{u.plain}} ${{[v * 2 for v in again.plain[:2]]}}"/>
+</robot>
+""",
+        },
+    )
+    reference = xacro_command("robot.xacro", cwd=tmp_path)
+    assert reference.returncode == 0, reference.stderr
+    # xacro's own words for the deprecated load_yaml(), and nothing else
+    said = tuple(line for line in reference.stderr.splitlines() if line.strip())
+    assert said[0] == (
+        "warning: Using load_yaml() directly is deprecated. Use xacro.load_yaml() instead."
+    )
+    monkeypatch.chdir(tmp_path)
+    ours = expand("robot.xacro", trust_expressions=trust)
+    assert ours.text == reference.stdout
+    assert ours.messages == tuple(line for line in said if not line.startswith(_LOCATION_LINES))
