@@ -985,3 +985,52 @@ def test_yaml_units_load_as_the_xacro_command_loads_them(
     ours = expand("robot.xacro", trust_expressions=trust)
     assert ours.text == reference.stdout
     assert ours.messages == tuple(line for line in said if not line.startswith(_LOCATION_LINES))
+
+
+def test_an_argument_used_before_its_declaration_says_where_it_is_declared(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # As the UR description's top file: <robot name="$(arg name)"> above <xacro:arg name="name">.
+    reference = xacro_command(UR_TOP, "ur_type:=ur5e", cwd=UR_STYLE, packages=UR_PACKAGE)
+    assert reference.returncode != 0  # xacro refuses it too
+    assert "Undefined substitution argument name" in reference.stderr
+    monkeypatch.chdir(UR_STYLE)
+    with pytest.raises(XacroError) as caught:
+        expand(UR_TOP, {"ur_type": "ur5e"}, UR_PACKAGE)
+    error = caught.value
+    lines = Path(UR_TOP).read_text(encoding="utf-8").splitlines()
+    used = next(n for n, line in enumerate(lines, 1) if 'name="$(arg name)">' in line)
+    declared = next(n for n, line in enumerate(lines, 1) if '<xacro:arg name="name"' in line)
+    assert (error.rule, error.path, error.line) == ("xacro-undefined", UR_TOP, used)
+    assert error.message == "argument 'name' is used before its <xacro:arg> declaration"
+    assert error.hint == (
+        f"it is declared later, at {UR_TOP}:{declared}, and xacro needs the declaration "
+        "first; the root element's attributes are read before anything in it: give "
+        "name:=... on the command line"
+    )
+    package = f"ur_style_description={UR_PACKAGE['ur_style_description']}"
+    result = CliRunner().invoke(cli, ["expand", UR_TOP, "ur_type:=ur5e", "--package", package])
+    assert result.exit_code == 1
+    assert result.stderr.startswith(f"{UR_TOP}:{used}:1: error: argument 'name' is used before")
+
+
+def test_an_argument_declared_below_its_use_in_the_robot(tmp_path: Path) -> None:
+    _write(
+        tmp_path,
+        {
+            "robot.xacro": f"""<robot name="r" {NS}>
+  <link name="$(arg prefix)base"/>
+  <xacro:arg name="prefix" default="my_"/>
+</robot>
+"""
+        },
+    )
+    assert xacro_command("robot.xacro", cwd=tmp_path).returncode != 0
+    error = _error(tmp_path, {})
+    assert (error.rule, error.line) == ("xacro-undefined", 2)
+    assert error.message == "argument 'prefix' is used before its <xacro:arg> declaration"
+    assert error.hint == (
+        f"it is declared later, at {shown_path(str(tmp_path / 'robot.xacro'))}:3, and xacro "
+        "needs the declaration first; move the declaration above the first use, or give "
+        "prefix:=... on the command line"
+    )

@@ -128,6 +128,22 @@ class Explaining:
         if isinstance(inner, self.subst.ArgException):
             known = sorted(self.xacro.substitution_args_context.get("arg", {}))
             missing = str(inner)
+            later = self._defined_later(missing, where, "arg")
+            if later is not None:  # xacro reads <xacro:arg> in document order, as properties
+                node = self.node
+                on_root = node is not None and node.parentNode is node.ownerDocument
+                fix = (
+                    f"the root element's attributes are read before anything in it: give "
+                    f"{missing}:=... on the command line"
+                    if on_root
+                    else f"move the declaration above the first use, or give {missing}:=... "
+                    "on the command line"
+                )
+                return undefined(
+                    f"argument '{missing}' is used before its <xacro:arg> declaration",
+                    f"it is declared later, at {shown_path(later.path)}:{later.line}, and "
+                    f"xacro needs the declaration first; {fix}",
+                )
             return undefined(
                 f"argument '{missing}' is not declared",
                 _closest(missing, known, "arguments")
@@ -194,12 +210,14 @@ class Explaining:
             calls=calls,
         )
 
-    def _defined_later(self, name: str, where: Location | None) -> Location | None:
-        """Where a ``<xacro:property name=...>`` of ``name`` is written after ``where``, in
-        its file or in another file read so far (one before it in the same file is in a
-        scope the use cannot see)."""
+    def _defined_later(
+        self, name: str, where: Location | None, kind: str = "property"
+    ) -> Location | None:
+        """Where a ``<xacro:property name=...>`` (or ``<xacro:arg>``, for ``kind`` "arg") of
+        ``name`` is written after ``where``, in its file or in another file read so far (one
+        before it in the same file is in a scope the use cannot see)."""
         pattern = re.compile(
-            rb"<[\w.-]+:property\b[^>]*?\sname\s*=\s*([\"'])"
+            rb"<[\w.-]+:" + kind.encode() + rb"\b[^>]*?\sname\s*=\s*([\"'])"
             + re.escape(name.encode("utf-8"))
             + rb"\1"
         )
