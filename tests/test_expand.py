@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from conftest import DATA, FISHBOT, XACRO_CORPUS, xacro_command
+from conftest import DATA, FISHBOT, XACRO_CORPUS, run_check_urdf, xacro_command
 
 import fishbot_urdf
 from fishbot_urdf.cli import cli
@@ -1033,4 +1033,46 @@ def test_an_argument_declared_below_its_use_in_the_robot(tmp_path: Path) -> None
         f"it is declared later, at {shown_path(str(tmp_path / 'robot.xacro'))}:3, and xacro "
         "needs the declaration first; move the declaration above the first use, or give "
         "prefix:=... on the command line"
+    )
+
+
+# -- findings about what macro calls made name the calls ---------------------------------------
+
+TWO_WHEELS = f"""<robot name="r" {NS}>
+  <link name="base_link"/>
+  <xacro:macro name="wheel" params="side">
+    <link name="wheel_link"/>
+    <joint name="${{side}}_wheel_joint" type="continuous">
+      <parent link="base_link"/>
+      <child link="wheel_link"/>
+      <axis xyz="0 1 0"/>
+    </joint>
+  </xacro:macro>
+  <xacro:macro name="wheels">
+    <xacro:wheel side="left"/>
+    <xacro:wheel side="right"/>
+  </xacro:macro>
+  WHEELS
+</robot>
+"""
+
+
+def test_a_link_two_macro_calls_make_names_both_calls(tmp_path: Path) -> None:
+    path = tmp_path / "robot.urdf.xacro"
+    path.write_text(TWO_WHEELS.replace("WHEELS", "<xacro:wheels/>"), encoding="utf-8")
+    urdf = tmp_path / "robot.urdf"
+    urdf.write_text(xacro_command(path.name, cwd=tmp_path).stdout, encoding="utf-8")
+    refused = run_check_urdf(urdf)  # urdfdom refuses the robot for it
+    assert b"link 'wheel_link' is not unique" in refused.stdout + refused.stderr
+    [finding] = [d for d in fishbot_urdf.check_file(path).diagnostics if d.rule == "duplicate-link"]
+    shown = shown_path(str(path))
+    assert (finding.path, finding.line) == (shown, 4)  # the macro's <link>
+    assert finding.message == (
+        "link 'wheel_link' is defined twice (first by macro wheel called at "
+        f"{shown}:12, in macro wheels called at {shown}:15; again by macro wheel called at "
+        f"{shown}:13, in macro wheels called at {shown}:15)"
+    )
+    assert finding.hint == (
+        "every link needs a unique name: make it from a parameter of macro wheel that "
+        "each call gives its own value"
     )

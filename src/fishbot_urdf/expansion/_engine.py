@@ -6,6 +6,7 @@ import contextvars
 import functools
 import io
 import os
+import sys
 import threading
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -16,7 +17,7 @@ from xml.parsers.expat import ExpatError
 from ..diagnostics import shown_path
 from ..errors import FishbotUrdfError, InputError, LimitError
 from ..inputs import Deadline, deadline, max_bytes, read_input
-from ..location import Location
+from ..location import Location, MacroLocation, calls_of
 from ..packages import PackageNotFoundError, find_package
 from ._allowlist import allowed_callables, prepare_symbols
 from ._errors import SOURCE_KEY, Explaining, limited, source
@@ -34,21 +35,25 @@ class _KeepOnClone:
     counts the clones: macros that call each other twice per level double the document
     with every level, and a budget stops that before it fills the memory."""
 
-    __slots__ = ("budget", "left", "until")
+    __slots__ = ("budget", "called", "left", "until")
 
     def __init__(self, budget: int, until: Deadline) -> None:
         self.budget = self.left = budget
         self.until = until
+        self.called: Callable[[Any], None] = lambda body: None  # a macro body cloned
 
     def handle(self, operation: int, key: str, data: Any, src: Any, dst: Any) -> None:
         # The clone shares the original's user data: it only ever holds this one entry and
-        # is never changed (a macro call clones thousands of elements, so this is hot).
+        # is never replaced but by `Run._made_by_call` (a macro call clones thousands of
+        # elements, so this is hot).
         dst._user_data = src._user_data
         self.left -= 1
         if self.left < 0:
             raise _Overgrown(f"makes more than {self.budget:,} elements")
         if not self.left & 63:
             self.until.check("the expansion")
+        if src.tagName == "xacro:macro":  # the last of a body's elements to be cloned
+            self.called(dst)
 
 
 class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
@@ -135,6 +140,8 @@ class Run(Explaining):
         x.init_stacks(None)
         symbols = x._global_symbols
         self.allowed = allowed_callables(symbols)
+        self._calling = x.handle_macro_call.__code__
+        self._keeper.called = self._made_by_call
         return self
 
     def __exit__(self, *exc: object) -> None:
@@ -234,6 +241,40 @@ class Run(Explaining):
         kwargs.pop("file", None)
         self._message(*args, **kwargs)
         return ""
+
+    def _made_by_call(self, body: Any) -> None:
+        """Note on each element of a macro body just cloned for a call the call that makes
+        it (and the calls that made that call), for findings that tell apart what two
+        calls of one macro make. The call is read off the stack: handle_macro_call is the
+        caller of the clone."""
+        frame: Any = sys._getframe(3)  # handle <- user-data handler <- _clone_node <- cloneNode
+        step = self._calling
+        while frame is not None and frame.f_code is not step:
+            frame = frame.f_back
+        if frame is None:
+            return
+        call = frame.f_locals["node"]
+        site = source(call)
+        if site is None:
+            return
+        calls = ((call.tagName[6:], Location(*site)), *calls_of(site))
+        made: dict[int, dict[str, Any]] = {}  # one entry per element of the macro's text
+        keeper = self._keeper
+        element_node = body.ELEMENT_NODE
+        stack = [body]
+        while stack:
+            element = stack.pop()
+            stack += [c for c in element.childNodes if c.nodeType == element_node]
+            shared = getattr(element, "_user_data", None)  # none: made by xacro itself
+            if not shared:
+                continue
+            entry = made.get(id(shared))
+            if entry is None:
+                path, line, column = shared[SOURCE_KEY][0]
+                entry = made[id(shared)] = {
+                    SOURCE_KEY: (MacroLocation(path, line, column, calls), keeper)
+                }
+            element._user_data = entry
 
     def _property(self, function: Callable[..., Any]) -> Callable[..., Any]:
         def run(node: Any, table: Any) -> Any:

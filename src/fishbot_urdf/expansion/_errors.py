@@ -217,7 +217,9 @@ class Explaining:
         ``name`` is written after ``where``, in its file or in another file read so far (one
         before it in the same file is in a scope the use cannot see)."""
         pattern = re.compile(
-            rb"<[\w.-]+:" + kind.encode() + rb"\b[^>]*?\sname\s*=\s*([\"'])"
+            rb"<[\w.-]+:"
+            + kind.encode()
+            + rb"\b[^>]*?\sname\s*=\s*([\"'])"
             + re.escape(name.encode("utf-8"))
             + rb"\1"
         )
