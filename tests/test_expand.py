@@ -547,7 +547,9 @@ def test_syntax_error_in_an_included_file(tmp_path: Path) -> None:
         3,
         "xacro-syntax",
     )
-    assert error.message == "not well-formed XML: mismatched tag"
+    assert error.message == (
+        "not well-formed XML: mismatched tag: </robot> ends <link> of line 2, which is still open"
+    )
 
 
 def test_external_entities_are_not_read(tmp_path: Path) -> None:
@@ -1075,4 +1077,48 @@ def test_a_link_two_macro_calls_make_names_both_calls(tmp_path: Path) -> None:
     assert finding.hint == (
         "every link needs a unique name: make it from a parameter of macro wheel that "
         "each call gives its own value"
+    )
+
+
+# -- an element never closed names its start tag and line -----------------------------------
+
+UNCLOSED = f"""<?xml version="1.0"?>
+<robot name="r" {NS}>
+  <link name="a">
+    <visual>
+      <geometry><box size="1 1 1"/></geometry>
+  </link>
+</robot>
+"""
+
+
+def test_a_mismatched_end_tag_names_the_element_left_open(tmp_path: Path) -> None:
+    path = tmp_path / "robot.urdf.xacro"
+    path.write_text(UNCLOSED, encoding="utf-8")
+    reference = xacro_command(path.name, cwd=tmp_path)
+    assert reference.returncode != 0
+    assert "mismatched tag: line 6, column 4" in reference.stderr  # 0-based column
+    with pytest.raises(XacroError) as caught:
+        expand(path)
+    error = caught.value
+    assert (error.rule, error.line, error.column) == ("xacro-syntax", 6, 5)
+    assert error.message == (
+        "not well-formed XML: mismatched tag: </link> ends <visual> of line 4, which is still open"
+    )
+    assert error.hint == "close it with </visual> before </link>"
+
+
+def test_a_file_that_ends_inside_an_element_names_it(tmp_path: Path) -> None:
+    path = tmp_path / "robot.urdf.xacro"
+    path.write_text(UNCLOSED.split("  </link>")[0], encoding="utf-8")
+    assert xacro_command(path.name, cwd=tmp_path).returncode != 0
+    with pytest.raises(XacroError) as caught:
+        expand(path)
+    error = caught.value
+    assert (error.rule, error.line) == ("xacro-syntax", 6)
+    assert error.message == (
+        "not well-formed XML: the file ends with <visual> of line 4 still open"
+    )
+    assert error.hint == (
+        "close it with </visual>; <link> of line 3 and <robot> of line 2 are still open too"
     )

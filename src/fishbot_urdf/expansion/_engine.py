@@ -95,6 +95,7 @@ class Run(Explaining):
         self.symbols: Any = None  # the symbol table of a failed expression
         self.macros: Any = None  # the macro table at the last macro call
         self.parsing: str | None = None  # the file being parsed
+        self.unclosed: list[tuple[str, Location | None]] = []  # where its parse stopped
         self.given_attributes: list[Any] = []  # elements an <xacro:attribute> wrote to
         self.properties: dict[str, Location | None] = {}  # where each property was defined
         self._saved: list[tuple[Any, str, Any]] = []
@@ -329,7 +330,12 @@ class Run(Explaining):
                 where=Location(shown_path(filename), 1, 1),
             )
         self.parsing = filename
-        document = _LocatingBuilder(shown_path(filename), self._keeper).parseString(data)
+        builder = _LocatingBuilder(shown_path(filename), self._keeper)
+        try:
+            document = builder.parseString(data)
+        except ExpatError:
+            self.unclosed = _open_elements(builder.curNode)
+            raise
         self.parsing = None
         return document
 
@@ -430,6 +436,15 @@ class Run(Explaining):
         return Expansion(
             self.path, text, tuple(seen), tuple(_sources(document, self.path)), messages
         )
+
+
+def _open_elements(node: Any) -> list[tuple[str, Location | None]]:
+    """The elements a parse stopped inside, innermost first, with where each starts."""
+    found = []
+    while node is not None and node.nodeType == node.ELEMENT_NODE:
+        found.append((node.tagName, source(node)))
+        node = node.parentNode
+    return found
 
 
 def _frames(error: BaseException) -> Iterator[Any]:

@@ -42,6 +42,7 @@ class Explaining:
     symbols: Any
     macros: Any
     parsing: str | None
+    unclosed: list[tuple[str, Location | None]]
     properties: dict[str, Location | None]
 
     # ----------------------------------------------------------------------------
@@ -83,6 +84,31 @@ class Explaining:
                 where=where,
             )
         detail = reason.removeprefix("not well-formed ").strip("()")
+        opened = [(tag, at.line) for tag, at in self.unclosed if at is not None]
+        if opened and detail in ("mismatched tag", "no element found"):
+            tag, line = opened[0]
+            if detail == "no element found":  # the end of the file
+                others = [f"<{t}> of line {n}" for t, n in opened[1:]]
+                around = ", ".join(others[:-1]) + " and " + others[-1] if others else ""
+                also = f"; {around.removeprefix(' and ')} {'are' if len(others) > 1 else 'is'}"
+                also += " still open too"
+                return XacroError(
+                    f"not well-formed XML: the file ends with <{tag}> of line {line} still open",
+                    rule="xacro-syntax",
+                    hint=f"close it with </{tag}>" + (also if others else ""),
+                    where=where,
+                )
+            text = _line_of(os.path.join(self.xacro.root_dir, name), exc.lineno)
+            # expat points at the end tag's name
+            closing = re.match(r"</\s*([^\s>]+)", text[text.rfind("</", 0, exc.offset + 1) :])
+            end = f"</{closing.group(1)}>" if closing else "an end tag"
+            return XacroError(
+                f"not well-formed XML: mismatched tag: {end} ends <{tag}> of line {line}, "
+                "which is still open",
+                rule="xacro-syntax",
+                hint=f"close it with </{tag}> before {end}",
+                where=where,
+            )
         return XacroError(f"not well-formed XML: {detail}", rule="xacro-syntax", where=where)
 
     def _xacro_error(self, outer: Any) -> FishbotUrdfError:
