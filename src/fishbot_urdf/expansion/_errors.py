@@ -84,32 +84,45 @@ class Explaining:
                 where=where,
             )
         detail = reason.removeprefix("not well-formed ").strip("()")
+        left_open = self._left_open(detail, name, exc, where)
+        if left_open is not None:
+            return left_open
+        return XacroError(f"not well-formed XML: {detail}", rule="xacro-syntax", where=where)
+
+    def _left_open(
+        self, detail: str, name: str, exc: ExpatError, where: Location
+    ) -> XacroError | None:
+        """For an end tag that ends another element, or a file that ends inside one: the
+        error naming the elements still open and the lines they start on."""
         opened = [(tag, at.line) for tag, at in self.unclosed if at is not None]
-        if opened and detail in ("mismatched tag", "no element found"):
-            tag, line = opened[0]
-            if detail == "no element found":  # the end of the file
-                others = [f"<{t}> of line {n}" for t, n in opened[1:]]
-                around = ", ".join(others[:-1]) + " and " + others[-1] if others else ""
-                also = f"; {around.removeprefix(' and ')} {'are' if len(others) > 1 else 'is'}"
-                also += " still open too"
-                return XacroError(
-                    f"not well-formed XML: the file ends with <{tag}> of line {line} still open",
-                    rule="xacro-syntax",
-                    hint=f"close it with </{tag}>" + (also if others else ""),
-                    where=where,
+        if not opened or detail not in ("mismatched tag", "no element found"):
+            return None
+        tag, since = opened[0]
+        if detail == "no element found":  # the end of the file
+            others = [f"<{t}> of line {n}" for t, n in opened[1:]]
+            hint = f"close it with </{tag}>"
+            if others:
+                around = (
+                    ", ".join(others[:-1]) + " and " + others[-1] if len(others) > 1 else others[0]
                 )
-            text = _line_of(os.path.join(self.xacro.root_dir, name), exc.lineno)
-            # expat points at the end tag's name
-            closing = re.match(r"</\s*([^\s>]+)", text[text.rfind("</", 0, exc.offset + 1) :])
-            end = f"</{closing.group(1)}>" if closing else "an end tag"
+                hint += f"; {around} {'are' if len(others) > 1 else 'is'} still open too"
             return XacroError(
-                f"not well-formed XML: mismatched tag: {end} ends <{tag}> of line {line}, "
-                "which is still open",
+                f"not well-formed XML: the file ends with <{tag}> of line {since} still open",
                 rule="xacro-syntax",
-                hint=f"close it with </{tag}> before {end}",
+                hint=hint,
                 where=where,
             )
-        return XacroError(f"not well-formed XML: {detail}", rule="xacro-syntax", where=where)
+        text = _line_of(os.path.join(self.xacro.root_dir, name), exc.lineno)
+        # expat points at the end tag's name
+        closing = re.match(r"</\s*([^\s>]+)", text[text.rfind("</", 0, exc.offset + 1) :])
+        end = f"</{closing.group(1)}>" if closing else "an end tag"
+        return XacroError(
+            f"not well-formed XML: mismatched tag: {end} ends <{tag}> of line {since}, "
+            "which is still open",
+            rule="xacro-syntax",
+            hint=f"close it with </{tag}> before {end}",
+            where=where,
+        )
 
     def _xacro_error(self, outer: Any) -> FishbotUrdfError:
         exc = outer  # xacro wraps its errors in each other: the innermost says what happened
