@@ -1122,3 +1122,62 @@ def test_a_file_that_ends_inside_an_element_names_it(tmp_path: Path) -> None:
     assert error.hint == (
         "close it with </visual>; <link> of line 3 and <robot> of line 2 are still open too"
     )
+
+
+# -- an expression Python cannot compute quotes it and says why in plain words --------------
+
+KG = f"""<robot name="r" {NS}>
+  <xacro:property name="m" value="1kg"/>
+  <link name="a">
+    <inertial>
+      <mass value="${{EXPRESSION}}"/>
+    </inertial>
+  </link>
+</robot>
+"""
+
+
+@pytest.mark.parametrize(
+    ("expression", "said"),
+    [
+        ("m + 2", 'can only concatenate str (not "int") to str'),
+        ("m * 2.0", "can't multiply sequence by non-int of type 'float'"),
+        ("2 / m", "unsupported operand type(s) for /: 'int' and 'str'"),
+        ("float(m)", "could not convert string to float: '1kg'"),
+    ],
+)
+def test_a_value_with_a_unit_in_arithmetic_is_named(
+    expression: str, said: str, tmp_path: Path
+) -> None:
+    path = tmp_path / "robot.urdf.xacro"
+    path.write_text(KG.replace("EXPRESSION", expression), encoding="utf-8")
+    reference = xacro_command(path.name, cwd=tmp_path)
+    assert reference.returncode != 0
+    assert f"error: {said}" in reference.stderr  # Python's words, and no expression
+    with pytest.raises(XacroError) as caught:
+        expand(path)
+    error = caught.value
+    assert (error.rule, error.line) == ("xacro-error", 5)
+    assert error.message == (
+        f"${{{expression}}} cannot be computed: property 'm' is the text '1kg', not a number "
+        f"({said})"
+    )
+    assert error.hint == (
+        f"property 'm' is defined at {shown_path(str(path))}:2; write the number alone, "
+        'value="1": xacro values have no units'
+    )
+
+
+def test_an_expression_python_cannot_compute_is_quoted(tmp_path: Path) -> None:
+    error = _error(
+        tmp_path,
+        {
+            "robot.xacro": f"""<robot name="r" {NS}>
+  <xacro:property name="n" value="0"/>
+  <link name="a" x="${{1 / n}}"/>
+</robot>
+"""
+        },
+    )
+    assert (error.rule, error.line) == ("xacro-error", 3)
+    assert error.message == "${1 / n} cannot be computed: it divides by zero (division by zero)"

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import ast
 import os
 import re
 from pathlib import Path
@@ -15,9 +16,12 @@ from ..location import Location
 from ..packages import PackageNotFoundError
 from ..wording import closest, listing
 from ._bounds import UnsafeExpression
+from ._interpreter import parsed
 from ._result import ExpansionLimitError, XacroError
 
 _XACRO_NS = "http://www.ros.org/wiki/xacro"
+# A number with a unit after it ("1kg", "0.5 m", "90deg"): the number, then the unit.
+_NUMBER_AND_UNIT = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([^\d\s.].*)")
 
 
 def source(node: Any) -> Location | None:
@@ -164,6 +168,10 @@ class Explaining:
                 )
         if isinstance(inner, NameError):
             return self._undefined_name(inner, exc, where, calls)
+        if isinstance(inner, TypeError | ValueError | ArithmeticError):
+            expression = str(exc.suffix or "").strip().removeprefix("when evaluating expression ")
+            if expression:
+                return self._not_computed(expression.strip("'"), inner, where, calls)
         if isinstance(inner, self.subst.ArgException):
             known = sorted(self.xacro.substitution_args_context.get("arg", {}))
             missing = str(inner)
@@ -248,6 +256,64 @@ class Explaining:
             where=where,
             calls=calls,
         )
+
+    def _not_computed(
+        self,
+        expression: str,
+        inner: Exception,
+        where: Location | None,
+        calls: tuple[tuple[str, Location | None], ...],
+    ) -> XacroError:
+        """An expression Python cannot compute (text in arithmetic, a division by zero):
+        quoted, with the values at fault named in plain words."""
+        said = " ".join(str(inner).split()) or type(inner).__name__
+        texts = self._texts_in(expression) if isinstance(inner, TypeError | ValueError) else []
+        hint = None
+        if texts:
+            why = "; ".join(
+                f"{self._named(name)} is the text {value!r}, not a number" for name, value in texts
+            )
+            name, value = texts[0]
+            defined = self.properties.get(name)
+            at = (
+                f"{self._named(name)} is defined at {defined.path}:{defined.line}"
+                if defined
+                else ""
+            )
+            number = _NUMBER_AND_UNIT.fullmatch(value)
+            if number is not None:
+                there = f"{at}; write" if at else "write"
+                hint = f'{there} the number alone, value="{number[1]}": xacro values have no units'
+            elif at:
+                hint = at
+        elif isinstance(inner, ZeroDivisionError):
+            why = "it divides by zero"
+        else:
+            why = ""
+        message = f"{_shown(expression)} cannot be computed: " + (
+            f"{why} ({said})" if why else said
+        )
+        return XacroError(message, hint=hint, where=where, calls=calls)
+
+    def _texts_in(self, expression: str) -> list[tuple[str, str]]:
+        """The names of ``expression`` whose values are text, with their values."""
+        try:
+            tree = parsed(expression)
+        except SyntaxError:
+            return []
+        found: dict[str, str] = {}
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Name) and node.id not in found:
+                try:
+                    value = self.symbols[node.id]
+                except Exception:  # not in the table (a lambda's), or failing to resolve
+                    continue
+                if isinstance(value, str):
+                    found[node.id] = value
+        return list(found.items())
+
+    def _named(self, name: str) -> str:
+        return f"property '{name}'" if name in self.properties else f"'{name}'"
 
     def _defined_later(
         self, name: str, where: Location | None, kind: str = "property"
