@@ -105,6 +105,7 @@ class Run(Explaining):
         self.deadline = deadline()  # one for the whole expansion, from the caller's
         self._keeper = _KeepOnClone(max(1, max_bytes() // 32), self.deadline)
         self._evaluating = (evaluate.__code__, xacro.safe_eval.__code__)
+        self._calling = xacro.handle_macro_call.__code__  # the step that clones macro bodies
         self.allowed: frozenset[int] = frozenset()  # what expressions may call, once known
 
     # -- the hooks -------------------------------------------------------------------------
@@ -141,7 +142,6 @@ class Run(Explaining):
         x.init_stacks(None)
         symbols = x._global_symbols
         self.allowed = allowed_callables(symbols)
-        self._calling = x.handle_macro_call.__code__
         self._keeper.called = self._made_by_call
         return self
 
@@ -248,7 +248,7 @@ class Run(Explaining):
         it (and the calls that made that call), for findings that tell apart what two
         calls of one macro make. The call is read off the stack: handle_macro_call is the
         caller of the clone."""
-        frame: Any = sys._getframe(3)  # handle <- user-data handler <- _clone_node <- cloneNode
+        frame: Any = sys._getframe(3)  # the clone's: above it, handle and minidom's handler
         step = self._calling
         while frame is not None and frame.f_code is not step:
             frame = frame.f_back

@@ -80,9 +80,9 @@ def _names(analysis: Analysis) -> Iterator[Diagnostic]:
                 seen = f" (first defined at line {where.line})" if where else ""
                 hint = f"every {kind.value} needs a unique name"
                 made, again = calls_of(where), calls_of(item.source)
-                if made or again:  # written once, in a macro, and made by two calls
+                if made or again:  # made by macro calls: the calls tell the two apart
                     seen = f" (first {_made(where, made)}; again {_made(item.source, again)})"
-                    if made and again and made[0][0] == again[0][0]:
+                    if made and again and where == item.source:  # one element, two calls
                         hint += (
                             f": make it from a parameter of macro {made[0][0]} that each "
                             "call gives its own value"
