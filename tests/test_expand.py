@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from conftest import DATA, FISHBOT, XACRO_CORPUS, xacro_command
+from conftest import DATA, FISHBOT, XACRO_CORPUS, run_check_urdf, xacro_command
 
 import fishbot_urdf
 from fishbot_urdf.cli import cli
@@ -547,7 +547,9 @@ def test_syntax_error_in_an_included_file(tmp_path: Path) -> None:
         3,
         "xacro-syntax",
     )
-    assert error.message == "not well-formed XML: mismatched tag"
+    assert error.message == (
+        "not well-formed XML: mismatched tag: </robot> ends <link> of line 2, which is still open"
+    )
 
 
 def test_external_entities_are_not_read(tmp_path: Path) -> None:
@@ -904,3 +906,278 @@ def test_a_property_local_to_a_macro_is_no_later_definition(tmp_path: Path) -> N
     with pytest.raises(XacroError) as caught:
         expand(path)
     assert "is not defined" in str(caught.value)
+
+
+# -- YAML with units, as the Universal Robots descriptions load it ---------------------------
+
+UR_STYLE = DATA / "xacro" / "ur_style"
+UR_PACKAGE = {"ur_style_description": UR_STYLE / "ur_style_description"}
+UR_TOP = "ur_style_description/urdf/ur.urdf.xacro"
+UR_ARGS = ("ur_type:=ur5e", "name:=ur5e")
+
+
+@pytest.mark.parametrize("trust", [False, True])
+def test_a_ur_style_description_expands_as_the_xacro_command_with_no_message(
+    trust: bool, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # Its macros read joint limits and kinematics with xacro.load_yaml, from files written
+    # with !degrees, !radians, !meters, !millimeters, !foot and !inches.
+    reference = xacro_command(UR_TOP, *UR_ARGS, cwd=UR_STYLE, packages=UR_PACKAGE)
+    assert (reference.returncode, reference.stderr) == (0, "")
+    assert 'upper="6.283185307179586"' in reference.stdout  # !degrees 360.0
+    monkeypatch.chdir(UR_STYLE)
+    ours = expand(UR_TOP, parse_args(UR_ARGS), UR_PACKAGE, trust_expressions=trust)
+    assert (ours.text, ours.messages) == (reference.stdout, ())
+
+
+def test_a_ur_style_description_passes_strict_expand_and_check(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    reference = xacro_command(UR_TOP, *UR_ARGS, cwd=UR_STYLE, packages=UR_PACKAGE)
+    monkeypatch.chdir(UR_STYLE)
+    given = [
+        UR_TOP,
+        *UR_ARGS,
+        "--package",
+        f"ur_style_description={UR_PACKAGE['ur_style_description']}",
+    ]
+    runner = CliRunner()
+    expanded = runner.invoke(cli, ["expand", "--strict", *given])
+    assert (expanded.exit_code, expanded.stderr) == (0, "")
+    assert expanded.stdout == reference.stdout
+    checked = runner.invoke(cli, ["check", "--strict", *given])
+    assert (checked.exit_code, checked.stderr) == (0, "")
+
+
+UNITS_YAML = """\
+angles: {deg: !degrees 360.0, neg: !degrees -90, expr: !degrees 2 * 45, rad: !radians pi / 2}
+lengths: {m: !meters 1.5, mm: !millimeters 162.5, ft: !foot 2, in: !inches 10}
+plain: [1, 2.5, text]
+"""
+
+
+@pytest.mark.parametrize("trust", [False, True])
+def test_yaml_units_load_as_the_xacro_command_loads_them(
+    trust: bool, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    _write(
+        tmp_path,
+        {
+            "units.yaml": UNITS_YAML,
+            "robot.xacro": f"""<robot name="u" {NS}>
+  <xacro:property name="u" value="${{xacro.load_yaml('units.yaml')}}"/>
+  <xacro:property name="again" value="${{load_yaml('units.yaml')}}"/>
+  <link name="a" x="${{u['angles']['deg']}} ${{u.angles.neg}}"
+                 y="${{u.angles.expr}} ${{u.angles.rad}}"/>
+  <link name="b" x="${{u.lengths.m}} ${{u.lengths.mm}}"
+                 y="${{again.lengths.ft}} ${{again.lengths['in']}}"/>
+  <link name="c" x="${{u.plain}} ${{[v * 2 for v in again.plain[:2]]}}"/>
+</robot>
+""",
+        },
+    )
+    reference = xacro_command("robot.xacro", cwd=tmp_path)
+    assert reference.returncode == 0, reference.stderr
+    # xacro's own words for the deprecated load_yaml(), and nothing else
+    said = tuple(line for line in reference.stderr.splitlines() if line.strip())
+    assert said[0] == (
+        "warning: Using load_yaml() directly is deprecated. Use xacro.load_yaml() instead."
+    )
+    monkeypatch.chdir(tmp_path)
+    ours = expand("robot.xacro", trust_expressions=trust)
+    assert ours.text == reference.stdout
+    assert ours.messages == tuple(line for line in said if not line.startswith(_LOCATION_LINES))
+
+
+def test_an_argument_used_before_its_declaration_says_where_it_is_declared(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # As the UR description's top file: <robot name="$(arg name)"> above <xacro:arg name="name">.
+    reference = xacro_command(UR_TOP, "ur_type:=ur5e", cwd=UR_STYLE, packages=UR_PACKAGE)
+    assert reference.returncode != 0  # xacro refuses it too
+    assert "Undefined substitution argument name" in reference.stderr
+    monkeypatch.chdir(UR_STYLE)
+    with pytest.raises(XacroError) as caught:
+        expand(UR_TOP, {"ur_type": "ur5e"}, UR_PACKAGE)
+    error = caught.value
+    lines = Path(UR_TOP).read_text(encoding="utf-8").splitlines()
+    used = next(n for n, line in enumerate(lines, 1) if 'name="$(arg name)">' in line)
+    declared = next(n for n, line in enumerate(lines, 1) if '<xacro:arg name="name"' in line)
+    assert (error.rule, error.path, error.line) == ("xacro-undefined", UR_TOP, used)
+    assert error.message == "argument 'name' is used before its <xacro:arg> declaration"
+    assert error.hint == (
+        f"it is declared later, at {UR_TOP}:{declared}, and xacro needs the declaration "
+        "first; the root element's attributes are read before anything in it: give "
+        "name:=... on the command line"
+    )
+    package = f"ur_style_description={UR_PACKAGE['ur_style_description']}"
+    result = CliRunner().invoke(cli, ["expand", UR_TOP, "ur_type:=ur5e", "--package", package])
+    assert result.exit_code == 1
+    assert result.stderr.startswith(f"{UR_TOP}:{used}:1: error: argument 'name' is used before")
+
+
+def test_an_argument_declared_below_its_use_in_the_robot(tmp_path: Path) -> None:
+    _write(
+        tmp_path,
+        {
+            "robot.xacro": f"""<robot name="r" {NS}>
+  <link name="$(arg prefix)base"/>
+  <xacro:arg name="prefix" default="my_"/>
+</robot>
+"""
+        },
+    )
+    assert xacro_command("robot.xacro", cwd=tmp_path).returncode != 0
+    error = _error(tmp_path, {})
+    assert (error.rule, error.line) == ("xacro-undefined", 2)
+    assert error.message == "argument 'prefix' is used before its <xacro:arg> declaration"
+    assert error.hint == (
+        f"it is declared later, at {shown_path(str(tmp_path / 'robot.xacro'))}:3, and xacro "
+        "needs the declaration first; move the declaration above the first use, or give "
+        "prefix:=... on the command line"
+    )
+
+
+# -- findings about what macro calls made name the calls ---------------------------------------
+
+TWO_WHEELS = f"""<robot name="r" {NS}>
+  <link name="base_link"/>
+  <xacro:macro name="wheel" params="side">
+    <link name="wheel_link"/>
+    <joint name="${{side}}_wheel_joint" type="continuous">
+      <parent link="base_link"/>
+      <child link="wheel_link"/>
+      <axis xyz="0 1 0"/>
+    </joint>
+  </xacro:macro>
+  <xacro:macro name="wheels">
+    <xacro:wheel side="left"/>
+    <xacro:wheel side="right"/>
+  </xacro:macro>
+  WHEELS
+</robot>
+"""
+
+
+def test_a_link_two_macro_calls_make_names_both_calls(tmp_path: Path) -> None:
+    path = tmp_path / "robot.urdf.xacro"
+    path.write_text(TWO_WHEELS.replace("WHEELS", "<xacro:wheels/>"), encoding="utf-8")
+    urdf = tmp_path / "robot.urdf"
+    urdf.write_text(xacro_command(path.name, cwd=tmp_path).stdout, encoding="utf-8")
+    refused = run_check_urdf(urdf)  # urdfdom refuses the robot for it
+    assert b"link 'wheel_link' is not unique" in refused.stdout + refused.stderr
+    [finding] = [d for d in fishbot_urdf.check_file(path).diagnostics if d.rule == "duplicate-link"]
+    shown = shown_path(str(path))
+    assert (finding.path, finding.line) == (shown, 4)  # the macro's <link>
+    assert finding.message == (
+        "link 'wheel_link' is defined twice (first by macro wheel called at "
+        f"{shown}:12, in macro wheels called at {shown}:15; again by macro wheel called at "
+        f"{shown}:13, in macro wheels called at {shown}:15)"
+    )
+    assert finding.hint == (
+        "every link needs a unique name: make it from a parameter of macro wheel that "
+        "each call gives its own value"
+    )
+
+
+# -- an element never closed names its start tag and line -----------------------------------
+
+UNCLOSED = f"""<?xml version="1.0"?>
+<robot name="r" {NS}>
+  <link name="a">
+    <visual>
+      <geometry><box size="1 1 1"/></geometry>
+  </link>
+</robot>
+"""
+
+
+def test_a_mismatched_end_tag_names_the_element_left_open(tmp_path: Path) -> None:
+    path = tmp_path / "robot.urdf.xacro"
+    path.write_text(UNCLOSED, encoding="utf-8")
+    reference = xacro_command(path.name, cwd=tmp_path)
+    assert reference.returncode != 0
+    assert "mismatched tag: line 6, column 4" in reference.stderr  # 0-based column
+    with pytest.raises(XacroError) as caught:
+        expand(path)
+    error = caught.value
+    assert (error.rule, error.line, error.column) == ("xacro-syntax", 6, 5)
+    assert error.message == (
+        "not well-formed XML: mismatched tag: </link> ends <visual> of line 4, which is still open"
+    )
+    assert error.hint == "close it with </visual> before </link>"
+
+
+def test_a_file_that_ends_inside_an_element_names_it(tmp_path: Path) -> None:
+    path = tmp_path / "robot.urdf.xacro"
+    path.write_text(UNCLOSED.split("  </link>")[0], encoding="utf-8")
+    assert xacro_command(path.name, cwd=tmp_path).returncode != 0
+    with pytest.raises(XacroError) as caught:
+        expand(path)
+    error = caught.value
+    assert (error.rule, error.line) == ("xacro-syntax", 6)
+    assert error.message == (
+        "not well-formed XML: the file ends with <visual> of line 4 still open"
+    )
+    assert error.hint == (
+        "close it with </visual>; <link> of line 3 and <robot> of line 2 are still open too"
+    )
+
+
+# -- an expression Python cannot compute quotes it and says why in plain words --------------
+
+KG = f"""<robot name="r" {NS}>
+  <xacro:property name="m" value="1kg"/>
+  <link name="a">
+    <inertial>
+      <mass value="${{EXPRESSION}}"/>
+    </inertial>
+  </link>
+</robot>
+"""
+
+
+@pytest.mark.parametrize(
+    ("expression", "said"),
+    [
+        ("m + 2", 'can only concatenate str (not "int") to str'),
+        ("m * 2.0", "can't multiply sequence by non-int of type 'float'"),
+        ("2 / m", "unsupported operand type(s) for /: 'int' and 'str'"),
+        ("float(m)", "could not convert string to float: '1kg'"),
+    ],
+)
+def test_a_value_with_a_unit_in_arithmetic_is_named(
+    expression: str, said: str, tmp_path: Path
+) -> None:
+    path = tmp_path / "robot.urdf.xacro"
+    path.write_text(KG.replace("EXPRESSION", expression), encoding="utf-8")
+    reference = xacro_command(path.name, cwd=tmp_path)
+    assert reference.returncode != 0
+    assert f"error: {said}" in reference.stderr  # Python's words, and no expression
+    with pytest.raises(XacroError) as caught:
+        expand(path)
+    error = caught.value
+    assert (error.rule, error.line) == ("xacro-error", 5)
+    assert error.message == (
+        f"${{{expression}}} cannot be computed: property 'm' is the text '1kg', not a number "
+        f"({said})"
+    )
+    assert error.hint == (
+        f"property 'm' is defined at {shown_path(str(path))}:2; write the number alone, "
+        'value="1": xacro values have no units'
+    )
+
+
+def test_an_expression_python_cannot_compute_is_quoted(tmp_path: Path) -> None:
+    error = _error(
+        tmp_path,
+        {
+            "robot.xacro": f"""<robot name="r" {NS}>
+  <xacro:property name="n" value="0"/>
+  <link name="a" x="${{1 / n}}"/>
+</robot>
+"""
+        },
+    )
+    assert (error.rule, error.line) == ("xacro-error", 3)
+    assert error.message == "${1 / n} cannot be computed: it divides by zero (division by zero)"

@@ -4,8 +4,11 @@ mimic chains."""
 from __future__ import annotations
 
 import math
+import shutil
+from pathlib import Path
 
 import pytest
+from conftest import FISHBOT
 
 import fishbot_urdf
 from fishbot_urdf import (
@@ -184,3 +187,56 @@ def test_a_mimic_on_or_of_a_fixed_joint() -> None:
     plain = Joint("plain", JointType.FIXED, "base", "l4")
     moving = Joint("moving", JointType.CONTINUOUS, "base", "l5", mimic=Mimic("lead"))
     assert _rules(lead, plain, moving) == []
+
+
+def _hints(*joints: Joint, links: tuple[Link, ...] = ()) -> dict[str, str | None]:
+    names = {"base"} | {j.child for j in joints}
+    every = links + tuple(Link(n) for n in sorted(names - {link.name for link in links}))
+    found = fishbot_urdf.check(Robot("r", links=every, joints=joints))
+    return {d.rule: d.hint for d in found if get(d.rule).family is Family.JOINTS}
+
+
+def test_the_fishbot_s_wheel_turned_by_1_57079_suggests_a_clean_axis(tmp_path: Path) -> None:
+    # The fishbot's wheel cylinder is turned by rpy="1.57079 0 0": R takes its z axis to
+    # (0, -sin 1.57079, cos 1.57079) = (0, -1, 6.327e-06), which is y within 1e-4.
+    copy = tmp_path / "fishbot"
+    shutil.copytree(FISHBOT, copy)
+    wheel = copy / "urdf" / "fishbot" / "actuator" / "wheel.urdf.xacro"
+    text = wheel.read_text(encoding="utf-8")
+    assert '<axis xyz="0.0 1.0 0.0"/>' in text
+    wheel.write_text(text.replace('<axis xyz="0.0 1.0 0.0"/>', '<axis xyz="0.0 0.0 1.0"/>'))
+    found = fishbot_urdf.check_file(copy / "urdf" / "fishbot" / "fishbot.urdf.xacro").diagnostics
+    hints = {d.hint for d in found if d.rule == "wheel-axis"}
+    messages = {d.message.split(", but ")[1] for d in found if d.rule == "wheel-axis"}
+    assert messages == {
+        "its wheel 'left_wheel_link' is a cylinder along 0 -1 0",
+        "its wheel 'right_wheel_link' is a cylinder along 0 -1 0",
+    }
+    assert hints == {
+        'a wheel turns about its cylinder\'s axis: <axis xyz="0 1 0"/> '
+        "(0 -1 0 turns it the other way)"
+    }
+
+
+@pytest.mark.parametrize(
+    ("axis", "rpy", "suggested"),
+    [
+        ((0.0, 0.0, 1.0), (math.pi / 2, 0.0, 0.0), "0 1 0"),  # no sense given: the positive one
+        ((0.0, 0.0, 1.0), (-1.57079, 0.0, 0.0), "0 1 0"),
+        ((0.0, -0.5, 0.8), (1.57079, 0.0, 0.0), "0 -1 0"),  # the joint's axis leans to -y
+        ((0.0, 0.0, 1.0), (0.0, 1.57079, 0.0), "1 0 0"),
+        ((0.0, 0.0, 1.0), (math.pi / 4, 0.0, 0.0), "0 -0.7071 0.7071"),  # nothing to round
+    ],
+)
+def test_a_suggested_wheel_axis_is_rounded_to_a_clean_one(
+    axis: tuple[float, float, float], rpy: tuple[float, float, float], suggested: str
+) -> None:
+    joint = Joint("j", JointType.CONTINUOUS, "base", "wheel", axis=axis)
+    hint = _hints(joint, links=(_wheel(rpy),))["wheel-axis"]
+    assert hint is not None
+    assert hint.startswith(f'a wheel turns about its cylinder\'s axis: <axis xyz="{suggested}"/>')
+
+
+def test_the_unit_axis_suggested_for_a_long_one_is_rounded() -> None:
+    joint = Joint("j", JointType.CONTINUOUS, "base", "arm", axis=(0.0, 2.0, 0.0001))
+    assert _hints(joint)["axis-length"] == 'write the unit vector: <axis xyz="0 1 0"/>'

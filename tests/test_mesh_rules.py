@@ -63,7 +63,7 @@ def test_a_missing_mesh_says_where_it_looked_and_suggests_a_name(package: Path) 
             "mesh-not-found",
             "error",
             f"link 'base_link': mesh 'package://demo/meshes/base_lnk.stl' is not found "
-            f"(looked for {looked}) (did you mean '{package / 'meshes' / 'base_link.stl'}'? "
+            f"(looked for {looked}) (did you mean 'package://demo/meshes/base_link.stl'? "
             "package:// names a file inside the package's folder) [mesh-not-found]",
         )
     ]
@@ -72,9 +72,59 @@ def test_a_missing_mesh_says_where_it_looked_and_suggests_a_name(package: Path) 
 def test_a_mesh_named_in_another_case(package: Path) -> None:
     [(rule, severity, message)] = _found(package, "package://demo/meshes/Base_Link.STL")
     assert (rule, severity) == ("mesh-case", "error")
-    assert f"is found only as '{package / 'meshes' / 'base_link.stl'}'" in message
-    [(rule, _, _)] = _found(package, "package://demo/Meshes/base_link.stl")  # a folder too
+    assert "is found only as 'package://demo/meshes/base_link.stl'" in message
+    [(rule, _, message)] = _found(package, "package://demo/Meshes/base_link.stl")  # a folder too
     assert rule == "mesh-case"
+    assert "is found only as 'package://demo/meshes/base_link.stl'" in message
+
+
+@pytest.mark.parametrize(
+    ("name", "suggested"),
+    [
+        ("../meshes/base_lnk.stl", "../meshes/base_link.stl"),
+        ("file://{root}/meshes/base_lnk.stl", "file://{root}/meshes/base_link.stl"),
+        ("{root}/meshes/base_lnk.stl", "{root}/meshes/base_link.stl"),  # as the robot writes
+    ],
+)
+def test_a_name_suggested_is_written_as_the_robot_writes_its_name(
+    package: Path, name: str, suggested: str
+) -> None:
+    [(rule, _, message)] = _found(package, name.format(root=package))
+    assert rule == "mesh-not-found"
+    assert f"did you mean '{suggested.format(root=package)}'?" in message
+
+
+XACRO_MESHES = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="base_link">
+    <visual><geometry><mesh filename="{name}"/></geometry></visual>
+  </link>
+</robot>
+"""
+
+
+@pytest.mark.parametrize(
+    ("name", "found"),
+    [
+        ("$(find demo)/meshes/base_lnk.stl", "did you mean '$(find demo)/meshes/base_link.stl'?"),
+        ("file://$(find demo)/meshes/base_lnk.stl", "'file://$(find demo)/meshes/base_link.stl'"),
+        ("$(find demo)/meshes/Base_Link.stl", "found only as '$(find demo)/meshes/base_link.stl'"),
+        (
+            "package://demo/meshes/base_lnk.stl",
+            "did you mean 'package://demo/meshes/base_link.stl'",
+        ),
+    ],
+)
+def test_a_xacro_robot_is_offered_names_in_its_own_form_never_this_machine_s_path(
+    package: Path, name: str, found: str
+) -> None:
+    path = package / "urdf" / "robot.urdf.xacro"
+    path.write_text(XACRO_MESHES.format(name=name), encoding="utf-8")
+    [finding] = [d for d in check_file(path).diagnostics if d.rule.startswith("mesh-")]
+    said = f"{finding.message} ({finding.hint})"
+    assert found in said
+    offered = said.partition(" is ")[2]  # after the mesh's name, as expanded
+    assert f"'{package}" not in offered
+    assert f"'file://{package}" not in offered
 
 
 @pytest.mark.parametrize(

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 
 class Location(NamedTuple):
@@ -15,3 +15,30 @@ class Location(NamedTuple):
     path: str
     line: int
     column: int
+
+
+class MacroLocation(Location):
+    """Where an element a xacro macro call made is written (in the macro's body), with the
+    calls that made it: ``(macro name, where it was called)``, innermost first.
+
+    It compares, hashes and prints as the plain `Location` it extends: the calls tell
+    apart the elements two calls of one macro make, for the findings that name them.
+    """
+
+    calls: tuple[tuple[str, Location], ...] = ()
+
+    def __new__(
+        cls, path: str, line: int, column: int, calls: tuple[tuple[str, Location], ...] = ()
+    ) -> MacroLocation:
+        made = super().__new__(cls, path, line, column)
+        made.calls = calls
+        return made
+
+    def __reduce__(self) -> tuple[type[MacroLocation], tuple[str, int, int, tuple[Any, ...]]]:
+        return (MacroLocation, (self.path, self.line, self.column, self.calls))
+
+
+def calls_of(where: Location | None) -> tuple[tuple[str, Location], ...]:
+    """The macro calls that made the element written at ``where``, innermost first (none
+    for an element not made by a macro call)."""
+    return where.calls if isinstance(where, MacroLocation) else ()

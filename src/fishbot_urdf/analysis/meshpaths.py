@@ -156,11 +156,12 @@ class MeshPaths:
         if path.state is State.NO_PACKAGE:
             package = str(path.package)
             raise PackageNotFoundError(package, path.searched, path=at, line=line, column=column)
-        message = f"mesh {mesh.filename!r} {self.why(path)}"
+        message = f"mesh {mesh.filename!r} {self.why(path, at)}"
         raise MeshNotFoundError(message, path=at, line=line, column=column)
 
-    def why(self, path: MeshPath) -> str:
-        """Why ``path`` leads to no file, as a message goes on after the mesh's name."""
+    def why(self, path: MeshPath, writer: str | None = None) -> str:
+        """Why ``path`` leads to no file, as a message goes on after the mesh's name (a file
+        named in the robot's own form: see `written`; ``writer`` wrote the mesh)."""
         state = path.state
         if state is State.FOUND:
             return f"is {path.file}"
@@ -173,7 +174,8 @@ class MeshPaths:
         if state is State.NO_FOLDER:
             return "is a relative name, and the robot was read from text, with no folder"
         if state is State.OTHER_CASE:
-            return f"is found only as {path.other!r}, a name that differs in case"
+            other = self.written(path.name, str(path.other), writer)
+            return f"is found only as {other!r}, a name that differs in case"
         if path.relative:
             return f"is not found (looked for {path.file}; {RULE})"
         return f"is not found (looked for {path.file})"
@@ -212,6 +214,34 @@ class MeshPaths:
             if parent == folder:
                 return None
             folder = parent
+
+    def written(self, name: str, file: str | Path, writer: str | None = None) -> str:
+        """``file`` named in the form the robot names it by ``name``: ``package://PKG/...``
+        through the same package, ``file://`` as ``file://``, a relative name relative to
+        the robot file's folder, and an absolute path as ``$(find PKG)/...`` when a xacro
+        file (``writer``) wrote it and a package holds the file. Anything else, and a file
+        outside the package ``name`` names: the absolute path."""
+        full = os.path.abspath(file)
+        if name.startswith("package://"):
+            package = name[len("package://") :].partition("/")[0]
+            folder = self._folders.get(package)
+            if isinstance(folder, Path):
+                inside = os.path.relpath(full, os.path.abspath(folder))
+                if not inside.startswith(os.pardir):
+                    return f"package://{package}/{inside.replace(os.sep, '/')}"
+            return full
+        if name.startswith("file://"):
+            return "file://" + self.written(name[len("file://") :], full, writer)
+        if _relative(name):
+            if self.robot_file is None:
+                return full
+            beside = os.path.dirname(os.path.abspath(self.robot_file))
+            return os.path.relpath(full, beside).replace(os.sep, "/")
+        if writer is not None and writer.lower().endswith(".xacro"):
+            held = self.in_package(Path(full))
+            if held is not None:
+                return f"$(find {held[0]})/{held[1]}"
+        return full
 
     def closest(self, file: Path) -> str | None:
         """The file beside ``file`` whose name is closest to its name, if any is close."""

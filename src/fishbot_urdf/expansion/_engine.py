@@ -6,6 +6,7 @@ import contextvars
 import functools
 import io
 import os
+import sys
 import threading
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -16,7 +17,7 @@ from xml.parsers.expat import ExpatError
 from ..diagnostics import shown_path
 from ..errors import FishbotUrdfError, InputError, LimitError
 from ..inputs import Deadline, deadline, max_bytes, read_input
-from ..location import Location
+from ..location import Location, MacroLocation, calls_of
 from ..packages import PackageNotFoundError, find_package
 from ._allowlist import allowed_callables, prepare_symbols
 from ._errors import SOURCE_KEY, Explaining, limited, source
@@ -34,21 +35,25 @@ class _KeepOnClone:
     counts the clones: macros that call each other twice per level double the document
     with every level, and a budget stops that before it fills the memory."""
 
-    __slots__ = ("budget", "left", "until")
+    __slots__ = ("budget", "called", "left", "until")
 
     def __init__(self, budget: int, until: Deadline) -> None:
         self.budget = self.left = budget
         self.until = until
+        self.called: Callable[[Any], None] = lambda body: None  # a macro body cloned
 
     def handle(self, operation: int, key: str, data: Any, src: Any, dst: Any) -> None:
         # The clone shares the original's user data: it only ever holds this one entry and
-        # is never changed (a macro call clones thousands of elements, so this is hot).
+        # is never replaced but by `Run._made_by_call` (a macro call clones thousands of
+        # elements, so this is hot).
         dst._user_data = src._user_data
         self.left -= 1
         if self.left < 0:
             raise _Overgrown(f"makes more than {self.budget:,} elements")
         if not self.left & 63:
             self.until.check("the expansion")
+        if src.tagName == "xacro:macro":  # the last of a body's elements to be cloned
+            self.called(dst)
 
 
 class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
@@ -90,6 +95,7 @@ class Run(Explaining):
         self.symbols: Any = None  # the symbol table of a failed expression
         self.macros: Any = None  # the macro table at the last macro call
         self.parsing: str | None = None  # the file being parsed
+        self.unclosed: list[tuple[str, Location | None]] = []  # where its parse stopped
         self.given_attributes: list[Any] = []  # elements an <xacro:attribute> wrote to
         self.properties: dict[str, Location | None] = {}  # where each property was defined
         self._saved: list[tuple[Any, str, Any]] = []
@@ -99,6 +105,7 @@ class Run(Explaining):
         self.deadline = deadline()  # one for the whole expansion, from the caller's
         self._keeper = _KeepOnClone(max(1, max_bytes() // 32), self.deadline)
         self._evaluating = (evaluate.__code__, xacro.safe_eval.__code__)
+        self._calling = xacro.handle_macro_call.__code__  # the step that clones macro bodies
         self.allowed: frozenset[int] = frozenset()  # what expressions may call, once known
 
     # -- the hooks -------------------------------------------------------------------------
@@ -135,6 +142,7 @@ class Run(Explaining):
         x.init_stacks(None)
         symbols = x._global_symbols
         self.allowed = allowed_callables(symbols)
+        self._keeper.called = self._made_by_call
         return self
 
     def __exit__(self, *exc: object) -> None:
@@ -235,6 +243,40 @@ class Run(Explaining):
         self._message(*args, **kwargs)
         return ""
 
+    def _made_by_call(self, body: Any) -> None:
+        """Note on each element of a macro body just cloned for a call the call that makes
+        it (and the calls that made that call), for findings that tell apart what two
+        calls of one macro make. The call is read off the stack: handle_macro_call is the
+        caller of the clone."""
+        frame: Any = sys._getframe(3)  # the clone's: above it, handle and minidom's handler
+        step = self._calling
+        while frame is not None and frame.f_code is not step:
+            frame = frame.f_back
+        if frame is None:
+            return
+        call = frame.f_locals["node"]
+        site = source(call)
+        if site is None:
+            return
+        calls = ((call.tagName[6:], Location(*site)), *calls_of(site))
+        made: dict[int, dict[str, Any]] = {}  # one entry per element of the macro's text
+        keeper = self._keeper
+        element_node = body.ELEMENT_NODE
+        stack = [body]
+        while stack:
+            element = stack.pop()
+            stack += [c for c in element.childNodes if c.nodeType == element_node]
+            shared = getattr(element, "_user_data", None)  # none: made by xacro itself
+            if not shared:
+                continue
+            entry = made.get(id(shared))
+            if entry is None:
+                path, line, column = shared[SOURCE_KEY][0]
+                entry = made[id(shared)] = {
+                    SOURCE_KEY: (MacroLocation(path, line, column, calls), keeper)
+                }
+            element._user_data = entry
+
     def _property(self, function: Callable[..., Any]) -> Callable[..., Any]:
         def run(node: Any, table: Any) -> Any:
             self.properties[node.getAttribute("name")] = source(node)
@@ -288,7 +330,12 @@ class Run(Explaining):
                 where=Location(shown_path(filename), 1, 1),
             )
         self.parsing = filename
-        document = _LocatingBuilder(shown_path(filename), self._keeper).parseString(data)
+        builder = _LocatingBuilder(shown_path(filename), self._keeper)
+        try:
+            document = builder.parseString(data)
+        except ExpatError:
+            self.unclosed = _open_elements(builder.curNode)
+            raise
         self.parsing = None
         return document
 
@@ -389,6 +436,15 @@ class Run(Explaining):
         return Expansion(
             self.path, text, tuple(seen), tuple(_sources(document, self.path)), messages
         )
+
+
+def _open_elements(node: Any) -> list[tuple[str, Location | None]]:
+    """The elements a parse stopped inside, innermost first, with where each starts."""
+    found = []
+    while node is not None and node.nodeType == node.ELEMENT_NODE:
+        found.append((node.tagName, source(node)))
+        node = node.parentNode
+    return found
 
 
 def _frames(error: BaseException) -> Iterator[Any]:

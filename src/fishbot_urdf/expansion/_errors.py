@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import ast
 import os
 import re
 from pathlib import Path
@@ -15,9 +16,12 @@ from ..location import Location
 from ..packages import PackageNotFoundError
 from ..wording import closest, listing
 from ._bounds import UnsafeExpression
+from ._interpreter import parsed
 from ._result import ExpansionLimitError, XacroError
 
 _XACRO_NS = "http://www.ros.org/wiki/xacro"
+# A number with a unit after it ("1kg", "0.5 m", "90deg"): the number, then the unit.
+_NUMBER_AND_UNIT = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([^\d\s.].*)")
 
 
 def source(node: Any) -> Location | None:
@@ -42,6 +46,7 @@ class Explaining:
     symbols: Any
     macros: Any
     parsing: str | None
+    unclosed: list[tuple[str, Location | None]]
     properties: dict[str, Location | None]
 
     # ----------------------------------------------------------------------------
@@ -83,7 +88,45 @@ class Explaining:
                 where=where,
             )
         detail = reason.removeprefix("not well-formed ").strip("()")
+        left_open = self._left_open(detail, name, exc, where)
+        if left_open is not None:
+            return left_open
         return XacroError(f"not well-formed XML: {detail}", rule="xacro-syntax", where=where)
+
+    def _left_open(
+        self, detail: str, name: str, exc: ExpatError, where: Location
+    ) -> XacroError | None:
+        """For an end tag that ends another element, or a file that ends inside one: the
+        error naming the elements still open and the lines they start on."""
+        opened = [(tag, at.line) for tag, at in self.unclosed if at is not None]
+        if not opened or detail not in ("mismatched tag", "no element found"):
+            return None
+        tag, since = opened[0]
+        if detail == "no element found":  # the end of the file
+            others = [f"<{t}> of line {n}" for t, n in opened[1:]]
+            hint = f"close it with </{tag}>"
+            if others:
+                around = (
+                    ", ".join(others[:-1]) + " and " + others[-1] if len(others) > 1 else others[0]
+                )
+                hint += f"; {around} {'are' if len(others) > 1 else 'is'} still open too"
+            return XacroError(
+                f"not well-formed XML: the file ends with <{tag}> of line {since} still open",
+                rule="xacro-syntax",
+                hint=hint,
+                where=where,
+            )
+        text = _line_of(os.path.join(self.xacro.root_dir, name), exc.lineno)
+        # expat points at the end tag's name
+        closing = re.match(r"</\s*([^\s>]+)", text[text.rfind("</", 0, exc.offset + 1) :])
+        end = f"</{closing.group(1)}>" if closing else "an end tag"
+        return XacroError(
+            f"not well-formed XML: mismatched tag: {end} ends <{tag}> of line {since}, "
+            "which is still open",
+            rule="xacro-syntax",
+            hint=f"close it with </{tag}> before {end}",
+            where=where,
+        )
 
     def _xacro_error(self, outer: Any) -> FishbotUrdfError:
         exc = outer  # xacro wraps its errors in each other: the innermost says what happened
@@ -125,9 +168,29 @@ class Explaining:
                 )
         if isinstance(inner, NameError):
             return self._undefined_name(inner, exc, where, calls)
+        if isinstance(inner, TypeError | ValueError | ArithmeticError):
+            expression = str(exc.suffix or "").strip().removeprefix("when evaluating expression ")
+            if expression:
+                return self._not_computed(expression.strip("'"), inner, where, calls)
         if isinstance(inner, self.subst.ArgException):
             known = sorted(self.xacro.substitution_args_context.get("arg", {}))
             missing = str(inner)
+            later = self._defined_later(missing, where, "arg")
+            if later is not None:  # xacro reads <xacro:arg> in document order, as properties
+                node = self.node
+                on_root = node is not None and node.parentNode is node.ownerDocument
+                fix = (
+                    f"the root element's attributes are read before anything in it: give "
+                    f"{missing}:=... on the command line"
+                    if on_root
+                    else f"move the declaration above the first use, or give {missing}:=... "
+                    "on the command line"
+                )
+                return undefined(
+                    f"argument '{missing}' is used before its <xacro:arg> declaration",
+                    f"it is declared later, at {shown_path(later.path)}:{later.line}, and "
+                    f"xacro needs the declaration first; {fix}",
+                )
             return undefined(
                 f"argument '{missing}' is not declared",
                 _closest(missing, known, "arguments")
@@ -194,12 +257,74 @@ class Explaining:
             calls=calls,
         )
 
-    def _defined_later(self, name: str, where: Location | None) -> Location | None:
-        """Where a ``<xacro:property name=...>`` of ``name`` is written after ``where``, in
-        its file or in another file read so far (one before it in the same file is in a
-        scope the use cannot see)."""
+    def _not_computed(
+        self,
+        expression: str,
+        inner: Exception,
+        where: Location | None,
+        calls: tuple[tuple[str, Location | None], ...],
+    ) -> XacroError:
+        """An expression Python cannot compute (text in arithmetic, a division by zero):
+        quoted, with the values at fault named in plain words."""
+        said = " ".join(str(inner).split()) or type(inner).__name__
+        texts = self._texts_in(expression) if isinstance(inner, TypeError | ValueError) else []
+        hint = None
+        if texts:
+            why = "; ".join(
+                f"{self._named(name)} is the text {value!r}, not a number" for name, value in texts
+            )
+            name, value = texts[0]
+            defined = self.properties.get(name)
+            at = (
+                f"{self._named(name)} is defined at {defined.path}:{defined.line}"
+                if defined
+                else ""
+            )
+            number = _NUMBER_AND_UNIT.fullmatch(value)
+            if number is not None:
+                there = f"{at}; write" if at else "write"
+                hint = f'{there} the number alone, value="{number[1]}": xacro values have no units'
+            elif at:
+                hint = at
+        elif isinstance(inner, ZeroDivisionError):
+            why = "it divides by zero"
+        else:
+            why = ""
+        message = f"{_shown(expression)} cannot be computed: " + (
+            f"{why} ({said})" if why else said
+        )
+        return XacroError(message, hint=hint, where=where, calls=calls)
+
+    def _texts_in(self, expression: str) -> list[tuple[str, str]]:
+        """The names of ``expression`` whose values are text, with their values."""
+        try:
+            tree = parsed(expression)
+        except SyntaxError:
+            return []
+        found: dict[str, str] = {}
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Name) and node.id not in found:
+                try:
+                    value = self.symbols[node.id]
+                except Exception:  # not in the table (a lambda's), or failing to resolve
+                    continue
+                if isinstance(value, str):
+                    found[node.id] = value
+        return list(found.items())
+
+    def _named(self, name: str) -> str:
+        return f"property '{name}'" if name in self.properties else f"'{name}'"
+
+    def _defined_later(
+        self, name: str, where: Location | None, kind: str = "property"
+    ) -> Location | None:
+        """Where a ``<xacro:property name=...>`` (or ``<xacro:arg>``, for ``kind`` "arg") of
+        ``name`` is written after ``where``, in its file or in another file read so far (one
+        before it in the same file is in a scope the use cannot see)."""
         pattern = re.compile(
-            rb"<[\w.-]+:property\b[^>]*?\sname\s*=\s*([\"'])"
+            rb"<[\w.-]+:"
+            + kind.encode()
+            + rb"\b[^>]*?\sname\s*=\s*([\"'])"
             + re.escape(name.encode("utf-8"))
             + rb"\1"
         )

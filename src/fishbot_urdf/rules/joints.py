@@ -26,6 +26,8 @@ __all__ = ["REPORTS", "joints"]
 _TURN = 2 * math.pi
 _SLACK = 1e-3  # rounding in written angles (6.2832 for 2 pi)
 _TURNED = _TURN + _SLACK  # an angle beyond this is more than a whole turn
+_ROUNDING = 1e-4  # a suggested axis's component this near -1, 0 or 1 is written as that
+_LEANS = 0.05  # a joint axis whose cosine with a wheel's is below this gives it no sense
 
 
 _MOVING = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)
@@ -61,7 +63,7 @@ def _joint(analysis: Analysis, joint: Joint) -> Iterator[Diagnostic]:
     x, y, z = joint.axis
     length = math.sqrt(x * x + y * y + z * z)
     if length > 0 and abs(length - 1.0) > _SLACK:
-        unit = " ".join(f"{v / length:.4g}" for v in joint.axis)
+        unit = _vector(_clean((x / length, y / length, z / length)), ".4g")
         yield AXIS_LENGTH.report(
             f"{_named(joint)}: axis {_vector(joint.axis)} has length {length:.4g}",
             joint.source,
@@ -201,15 +203,30 @@ def _wheel(analysis: Analysis, joint: Joint, length: float) -> Iterator[Diagnost
     cosine = abs(sum(a * b for a, b in zip(along, joint.axis, strict=True))) / length
     if cosine >= math.cos(math.radians(10)):
         return
-    fit = " ".join(f"{0.0 if abs(v) < 1e-9 else v:.4g}" for v in along)
+    along = _clean(along)
+    # A cylinder has no sense along its axis: the axis keeps the sense the joint's leans
+    # to, else the positive one (0 1 0 for a wheel turned by rpy="1.5708 0 0", as written
+    # in ROS's differential-drive robots); the other sense turns the wheel the other way.
+    lean = sum(a * b for a, b in zip(along, joint.axis, strict=True)) / length
+    sense = lean if abs(lean) >= _LEANS else max(along, key=abs)
+    fit = along if sense > 0 else _clean((-along[0], -along[1], -along[2]))
+    other = _clean((-fit[0], -fit[1], -fit[2]))
     yield WHEEL_AXIS.report(
         f"joint {joint.name!r} turns about {_vector(joint.axis)}, but its wheel "
-        f"{child.name!r} is a cylinder along {fit}",
+        f"{child.name!r} is a cylinder along {_vector(along, '.4g')}",
         joint.source,
         path=analysis.path,
         subject=_subject(joint),
-        hint=f'a wheel turns about its cylinder\'s axis: <axis xyz="{fit}"/>',
+        hint=f'a wheel turns about its cylinder\'s axis: <axis xyz="{_vector(fit, ".4g")}"/> '
+        f"({_vector(other, '.4g')} turns it the other way)",
     )
+
+
+def _clean(axis: Vector3) -> Vector3:
+    """An axis to suggest, each component within :data:`_ROUNDING` of -1, 0 or 1 written as
+    that (an angle of 1.57079 for pi/2 leaves cos = 6.3e-06 in a rotated axis)."""
+    x, y, z = (float(round(v)) + 0.0 if abs(v - round(v)) <= _ROUNDING else v for v in axis)
+    return (x, y, z)
 
 
 def _z_of(origin: Origin) -> Vector3:
@@ -248,8 +265,8 @@ def _rpy(analysis: Analysis, named: str, origin: Origin, subject: Subject) -> Di
     )
 
 
-def _vector(values: Vector3) -> str:
-    return " ".join(f"{v:g}" for v in values)
+def _vector(values: Vector3, spec: str = "g") -> str:
+    return " ".join(format(v, spec) for v in values)
 
 
 REPORTS: tuple[Rule, ...] = rules_in(catalog.joints)

@@ -100,11 +100,11 @@ def _unresolved(
     named = f"link {link.name!r}: mesh {mesh.filename!r}"
     then = ", so it is not drawn" if drawing else ""
     data: MeshNotFoundFacts | None = None
+    paths = analysis.mesh_paths
     if state is State.MALFORMED:
         rule, what, hint = MESH_URI, f"{path.problem}{then}", path.fix
     elif state is State.OTHER_CASE:
-        rule, what = MESH_CASE, f"is found only as {path.other!r}, a name that differs in case"
-        what += then
+        rule, what = MESH_CASE, paths.why(path, mesh.source.path if mesh.source else None) + then
         hint = "Linux file names are case-sensitive: write the name exactly as the file's"
     elif state is State.MISSING:
         rule, what = MESH_NOT_FOUND, analysis.mesh_paths.why(path) + then
@@ -144,7 +144,10 @@ def _not_found(analysis: Analysis, mesh: Mesh, path: MeshPath) -> tuple[str, Mes
             data,
         )
     close = paths.closest(path.file)
-    guess = f"did you mean {close!r}? " if close else ""
+    if close is None:
+        return _fix(mesh.filename), data
+    written = paths.written(mesh.filename, close, mesh.source.path if mesh.source else None)
+    guess = f"did you mean {written!r}? "
     return guess + _fix(mesh.filename), data
 
 

@@ -29,6 +29,7 @@ from ..catalog.structure import (
     UndefinedLinkFacts,
 )
 from ..diagnostics import Diagnostic, Kind, Subject
+from ..location import calls_of
 from ..model import Joint, Location, Robot
 from ..wording import did_you_mean, listing
 
@@ -80,16 +81,34 @@ def _names(analysis: Analysis) -> Iterator[Diagnostic]:
             if item.name in first:
                 where = first[item.name]
                 seen = f" (first defined at line {where.line})" if where else ""
+                hint = f"every {kind.value} needs a unique name"
+                made, again = calls_of(where), calls_of(item.source)
+                if made or again:  # made by macro calls: the calls tell the two apart
+                    seen = f" (first {_made(where, made)}; again {_made(item.source, again)})"
+                    if made and again and where == item.source:  # one element, two calls
+                        hint += (
+                            f": make it from a parameter of macro {made[0][0]} that each "
+                            "call gives its own value"
+                        )
                 subject = Subject(kind, item.name)
                 yield _DUPLICATES[kind].report(
                     f"{subject} is defined twice{seen}",
                     item.source,
                     path=path,
                     subject=subject,
-                    hint=f"every {kind.value} needs a unique name",
+                    hint=hint,
                 )
             else:
                 first[item.name] = item.source
+
+
+def _made(where: Location | None, calls: tuple[tuple[str, Location], ...]) -> str:
+    """Where an element was written: the macro calls that made it, else its line."""
+    if calls:
+        return "by " + ", in ".join(
+            f"macro {name} called at {site.path}:{site.line}" for name, site in calls
+        )
+    return f"at {where.path}:{where.line}" if where else "somewhere unknown"
 
 
 def _suggest(name: str, candidates: Iterable[str]) -> str:
