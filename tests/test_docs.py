@@ -78,7 +78,7 @@ class Block:
     def kind(self) -> str:
         if self.lang in ("", "console") and self.text.startswith("$ "):
             return "console"
-        return self.lang
+        return "console block without a $ command" if self.lang == "console" else self.lang
 
 
 def blocks(page: Path) -> list[Block]:
