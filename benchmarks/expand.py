@@ -1,6 +1,6 @@
 """Benchmark: `fishbot expand` vs the xacro command, whole processes. Run by hand:
 
-    python benchmarks/expand.py         # prints Markdown lines for the README
+    python benchmarks/expand.py         # prints Markdown lines for docs/performance.md
 
 On the fishbot (robots/fishbot/urdf/fishbot/fishbot.urdf.xacro) and on a generated xacro
 file with 1 000 macro calls. The xacro command resolves $(find) through a stand-in

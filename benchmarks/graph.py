@@ -1,6 +1,6 @@
 """Benchmark: `fishbot graph` vs urdf_to_graphviz, whole processes. Run by hand:
 
-    python benchmarks/graph.py            # prints a Markdown table for the README
+    python benchmarks/graph.py            # prints a Markdown table for docs/performance.md
     python benchmarks/graph.py --quick    # 100 and 1 000 links only
 
 On the generated chain and tree robots (see robots.py), best of several runs, seconds:

@@ -4,13 +4,13 @@ check_urdf on PATH (liburdfdom-tools):
 
     python benchmarks/run.py [--runs N] [--only WORD] [--pypi-corpus CACHE]
 
-It prints one Markdown table for the README: each measure, fishbot's figure, the floor it is
-measured against, their ratio and the goal. Whole processes are timed alternately, ours then
-the floor, and the medians compared, so that the machine's drift hits both sides; in-process
-figures are the best of several passes. Robots: robots/fishbot's first_robot.urdf and xacro,
-every URDF the test dependencies ship (example-robot-data, hpp-environments,
-cookie-description), and generated chains and trees (robots.py). Peak memory is the
-process's maximum resident set, as the kernel counts it.
+It prints one Markdown table for docs/performance.md: each measure, fishbot's figure, the
+floor it is measured against, their ratio and the goal. Whole processes are timed
+alternately, ours then the floor, and the medians compared, so that the machine's drift hits
+both sides; in-process figures are the best of several passes. Robots: robots/fishbot's
+first_robot.urdf and xacro, every URDF the test dependencies ship (example-robot-data,
+hpp-environments, cookie-description), and generated chains and trees (robots.py). Peak
+memory is the process's maximum resident set, as the kernel counts it.
 
 With --pypi-corpus CACHE (the cache of pypi_corpus.py, filled by it), the robots people have:
 every URDF file of the pinned PyPI packages, meshes installed as the packages ship them.

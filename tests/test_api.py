@@ -1,4 +1,6 @@
-"""Drift: the public API resolves, the README's commands and the examples run as written."""
+"""Drift: the public API resolves, the README's Quickstart is CI's, its pictures are the tools',
+and the examples run as written (tests/test_docs.py runs every other command of the README and
+the documentation)."""
 
 from __future__ import annotations
 
@@ -8,7 +10,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from conftest import ROOT, require_tool
+from conftest import ROOT
 
 import fishbot_urdf
 
@@ -64,12 +66,12 @@ def test_quickstart_check_command_runs() -> None:
     assert proc.stdout.startswith("robot name is: ")
 
 
-def test_readme_architecture_names_every_module() -> None:
+def test_the_architecture_page_names_every_module() -> None:
     package = Path(fishbot_urdf.__file__).parent
     modules = {p.stem for p in package.iterdir() if p.suffix == ".py" and p.name[0] != "_"}
     modules |= {p.name + "/" for p in package.iterdir() if (p / "__init__.py").exists()}
-    section = README.split("## Architecture", 1)[1].split("\n## ", 1)[0]
-    assert sorted(m for m in modules if f"`{m}`" not in section) == []
+    page = (ROOT / "docs" / "architecture.md").read_text(encoding="utf-8")
+    assert sorted(m for m in modules if f"`{m}`" not in page) == []
 
 
 @pytest.mark.parametrize("example", EXAMPLES, ids=[p.name for p in EXAMPLES])
@@ -175,39 +177,6 @@ def test_mass_example_output() -> None:
     assert lines[12] == "left wheel turned 60 degrees: centre of mass moves 0.0e+00 m"
 
 
-def _readme_sessions() -> list[tuple[str, list[str]]]:
-    """The README's ``$ fishbot ...`` blocks that run here as written: (command, lines)."""
-    found = []
-    for block in re.findall(r"```\n\$ (fishbot [^\n]*)\n(.*?)```", README, re.DOTALL):
-        command, output = block
-        paths = [a for a in command.split()[2:] if "/" in a]
-        if all((ROOT / p).exists() for p in paths):
-            found.append((command, output.splitlines()))
-    return found
-
-
-@pytest.mark.parametrize("command", [c for c, _ in _readme_sessions()])
-def test_readme_sessions_show_the_real_output(command: str) -> None:
-    lines = dict(_readme_sessions())[command]
-    proc = subprocess.run(
-        [sys.executable, "-m", "fishbot_urdf", *command.split()[1:]],
-        cwd=ROOT,
-        capture_output=True,
-        text=True,
-        check=False,
-    )
-    real = proc.stderr.splitlines() + proc.stdout.splitlines()
-    shown = [line for line in lines if line != "..."]
-    if "..." in lines:
-        assert set(shown) <= set(real)
-    else:
-        assert sorted(shown) == sorted(real)
-
-
-def test_readme_sessions_are_found() -> None:
-    assert len(_readme_sessions()) >= 3
-
-
 def test_every_exception_the_library_raises_is_a_fishbot_urdf_error() -> None:
     # Every `raise SomeError(...)` in the library names a FishbotUrdfError subclass (an
     # assertion of an invariant aside), so that `except FishbotUrdfError` catches them all.
@@ -254,14 +223,3 @@ def test_every_exception_the_library_raises_is_a_fishbot_urdf_error() -> None:
             cls = typing.get_type_hints(cls)["return"]
         assert isinstance(cls, type), (module, name)
         assert issubclass(cls, fishbot_urdf.FishbotUrdfError), (module, name)
-
-
-def test_readme_library_example_runs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    require_tool("dot", "graphviz")  # the example renders an SVG
-    block = README.split("## Library", 1)[1].split("```python\n", 1)[1].split("```", 1)[0]
-    code = block.replace('"robots/', f'"{ROOT}/robots/')
-    monkeypatch.chdir(tmp_path)
-    printed: list[object] = []
-    exec(compile(code, "README.md", "exec"), {"print": lambda *a: printed.append(a)})
-    assert (tmp_path / "tree.svg").read_bytes().startswith(b"<?xml")
-    assert printed

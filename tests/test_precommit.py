@@ -101,7 +101,7 @@ def setup(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, dict[str, str
     shutil.copy(BAD, project / "bad.urdf")
     # A top-level xacro robot and the file of macros it includes (no robot of its own).
     shutil.copytree(DATA / "suppress" / "xacro", project / "xacro")
-    # The project's configuration, as the README shows it (the whole-robot hook names the
+    # The project's configuration, as docs/ci.md shows it (the whole-robot hook names the
     # top-level xacro robot).
     config = {
         "repos": [
@@ -252,19 +252,19 @@ def test_quiet_prints_the_findings_only() -> None:
     assert (status, out, err) == (1, "", _check(str(BAD))[2])
 
 
-# --- the README's snippets -----------------------------------------------------------------
+# --- the snippets of the CI recipes page (docs/ci.md) ---------------------------------------
 
 
-def _readme_blocks(heading: str) -> list[Any]:
-    """The YAML blocks of the README's section ``heading``, parsed."""
-    text = (ROOT / "README.md").read_text(encoding="utf-8")
-    section = re.split(r"\n##+ ", text.split(f"### {heading}\n", 1)[1])[0]
+def _ci_page_blocks(heading: str) -> list[Any]:
+    """The YAML blocks of the CI recipes page's section ``heading``, parsed."""
+    text = (ROOT / "docs" / "ci.md").read_text(encoding="utf-8")
+    section = re.split(r"\n##+ ", text.split(f"## {heading}\n", 1)[1])[0]
     return [yaml.safe_load(b) for b in re.findall(r"```yaml\n(.*?)```", section, re.DOTALL)]
 
 
-def test_the_readme_pre_commit_snippets_name_the_real_hooks() -> None:
+def test_the_ci_page_pre_commit_snippets_name_the_real_hooks() -> None:
     hooks = {h["id"]: h for h in yaml.safe_load((ROOT / ".pre-commit-hooks.yaml").read_text())}
-    remote, local = _readme_blocks("pre-commit")
+    remote, local = _ci_page_blocks("pre-commit")
     assert [h["id"] for h in remote["repos"][0]["hooks"]] == list(hooks)
     (hook,) = local["repos"][0]["hooks"]
     assert hook["additional_dependencies"] == ["fishbot-urdf"]
@@ -272,8 +272,8 @@ def test_the_readme_pre_commit_snippets_name_the_real_hooks() -> None:
         assert hook[key] == hooks["fishbot-check"][key], key
 
 
-def test_the_readme_workflow_runs_as_written(tmp_path: Path) -> None:
-    (workflow,) = _readme_blocks("GitHub Actions")
+def test_the_ci_page_workflow_runs_as_written(tmp_path: Path) -> None:
+    (workflow,) = _ci_page_blocks("GitHub Actions")
     steps = workflow["jobs"]["fishbot"]["steps"]
     uses = [s["uses"].split("@")[0] for s in steps if "uses" in s]
     assert uses == ["actions/checkout", "actions/setup-python", "github/codeql-action/upload-sarif"]
