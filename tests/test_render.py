@@ -49,8 +49,10 @@ def test_the_fishbot_is_in_the_picture_in_its_colours(tmp_path: Path, view: str)
     assert pixels.shape == (300, 400, 3)
     background = (pixels == 255).all(axis=2).mean()
     assert 0.2 < background < 0.95  # the robot is there, framed with room around it
-    # The body is blue, the wheels yellow (fishbot.urdf.xacro's materials).
-    assert _share(pixels, (0, 0, 255)) > 0.05
+    # The body is blue, seen through (alpha 0.5) over white: blue well above red and
+    # green; the wheels are yellow (fishbot.urdf.xacro's materials).
+    r, g, b = (pixels[..., i] for i in range(3))
+    assert ((b > r + 60) & (b > g + 60)).mean() > 0.05
     if view != "top":
         assert _share(pixels, (255, 255, 0)) > 0.002
     # Framed: the robot touches no edge.
@@ -271,3 +273,27 @@ def test_building_a_scene_stops_at_the_deadline(tmp_path: Path) -> None:
     with time_limit(1e-6), pytest.raises(TimeLimitError) as info:
         render_png(build_scene(analysis))
     assert info.value.what == "building the scene"
+
+
+def test_the_first_robots_imu_is_seen_through_its_body(tmp_path: Path) -> None:
+    # first_robot.urdf: a cylinder (radius 0.1 m, 0.12 m long) white at alpha 0.5 around a
+    # 2 cm black box at alpha 0.5, 3 cm above the body's centre.
+    first = FISHBOT / "urdf" / "first_robot.urdf"
+    out = tmp_path / "first.png"
+    result = CliRunner().invoke(
+        cli, ["render", str(first), "-o", str(out), "--view", "front", "--size", "400x300"]
+    )
+    assert (result.exit_code, result.output) == (0, "")
+    pixels = _pixels(out.read_bytes())
+    # Seen from the front the body is 0.2 m wide and 0.12 m tall, framed with a 12% margin:
+    # 0.2 m * 1.12 over the 400 pixels, 0.56 mm a pixel, the body's centre in the middle.
+    metre = 1 / (0.2 * 1.12 / 400)
+    imu_row = round(150 - 0.03 * metre)  # 3 cm up
+    half = int(0.01 * metre) - 4  # within the IMU's 2 cm
+    imu = pixels[imu_row - half : imu_row + half, 200 - half : 200 + half]
+    body = pixels[150 - half : 150 + half, 200 - half : 200 + half]  # below the IMU
+    assert imu.mean() < body.mean() - 50  # the black IMU darkens the white body
+    assert np.ptp(imu, axis=2).max() < 10  # and stays grey: black seen through white
+    # Where the IMU is not, the body lets the white background through: brighter than
+    # its face drawn opaque, lit at 0.88.
+    assert body.mean() > 0.88 * 255 + 3
