@@ -297,3 +297,91 @@ def test_the_first_robots_imu_is_seen_through_its_body(tmp_path: Path) -> None:
     # Where the IMU is not, the body lets the white background through: brighter than
     # its face drawn opaque, lit at 0.88.
     assert body.mean() > 0.88 * 255 + 3
+
+
+FRAMES = """\
+<robot name="frames">
+  <link name="base_link">
+    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
+  </link>
+  <link name="imu_link"/>
+  <joint name="imu_joint" type="fixed"><parent link="base_link"/><child link="imu_link"/></joint>
+</robot>
+"""
+
+
+def test_a_robot_with_nothing_to_draw_is_an_error_and_no_picture(tmp_path: Path) -> None:
+    robot = tmp_path / "frames.urdf"
+    robot.write_text(FRAMES)
+    out = tmp_path / "frames.png"
+    result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(out)])
+    assert result.exit_code == 1
+    assert result.stdout == ""
+    assert result.stderr == (
+        f"{robot}:1:1: error: robot 'frames': no link has a visual shape: there is nothing to "
+        "draw (give a link a <visual>; `fishbot render --collision` draws its 1 collision "
+        "shape) [nothing-drawn]\n"
+        "nothing written: fix the errors above first\n"
+    )
+    assert not out.exists()
+    # Its collision shape is drawn.
+    result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(out), "--collision"])
+    assert (result.exit_code, result.output) == (0, "")
+    assert (_pixels(out.read_bytes()) != 255).any()
+
+
+def test_a_robot_whose_shapes_cannot_be_drawn_has_nothing_to_draw(tmp_path: Path) -> None:
+    robot = tmp_path / "lost.urdf"
+    robot.write_text(
+        '<robot name="lost"><link name="a"><visual><geometry><mesh filename="gone.stl"/>'
+        "</geometry></visual></link></robot>"
+    )
+    scene = build_scene(fishbot_urdf.load(robot))
+    assert scene.parts == ()
+    nothing, gone = scene.findings  # in the order of their places
+    assert gone.rule == "mesh-not-found"
+    assert (nothing.rule, nothing.severity.value, nothing.where) == (
+        "nothing-drawn",
+        "error",
+        f"{robot}:1:1",
+    )
+    assert nothing.message == (
+        "robot 'lost': its only visual shape cannot be drawn: there is nothing to draw"
+    )
+    assert (nothing.hint, dict(nothing.data)) == (
+        None,
+        {"kind": "visual", "visuals": 1, "collisions": 0},
+    )
+    collision = build_scene(fishbot_urdf.load(robot), collision=True)
+    [finding] = collision.findings
+    assert (
+        finding.message == "robot 'lost': no link has a collision shape: there is nothing to draw"
+    )
+    out = tmp_path / "lost.png"
+    result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(out), "--collision"])
+    assert result.exit_code == 1
+    assert result.stderr.splitlines()[0].endswith(
+        "(give a link a <collision>; without --collision, `fishbot render` draws its 1 visual "
+        "shape) [nothing-drawn]"
+    )
+    assert not out.exists()
+
+
+def test_a_configuration_that_ignores_nothing_drawn_gets_the_blank_picture(
+    tmp_path: Path,
+) -> None:
+    (tmp_path / "frames.urdf").write_text(FRAMES)
+    (tmp_path / "fishbot.toml").write_text('ignore = ["nothing-drawn"]\n')
+    out = tmp_path / "frames.png"
+    result = CliRunner().invoke(cli, ["render", str(tmp_path / "frames.urdf"), "-o", str(out)])
+    assert (result.exit_code, result.output) == (0, "")
+    assert (_pixels(out.read_bytes()) == 255).all()
+
+
+def test_render_help_says_what_nothing_to_draw_does() -> None:
+    result = CliRunner().invoke(cli, ["render", "--help"])
+    text = " ".join(result.stdout.split())
+    assert (
+        "A robot with no shape to draw (no visuals, or none that can be drawn) is an error" in text
+    )
+    assert "1 the robot has errors or nothing to draw (nothing written)" in text

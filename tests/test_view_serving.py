@@ -145,3 +145,27 @@ def test_every_reload_is_within_the_limits_the_viewer_was_made_in(arm: Path) -> 
             shown.reload()
     finally:
         shown.close()
+
+
+def test_a_robot_with_no_visual_shows_its_frames_with_a_warning(tmp_path: Path) -> None:
+    robot = tmp_path / "frames.urdf"
+    robot.write_text(
+        '<robot name="frames"><link name="a"/><link name="b"/>'
+        '<joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint></robot>',
+        encoding="utf-8",
+    )
+    shown = Viewer(_loader(robot), port=0)
+    try:
+        [finding] = shown.findings  # the visuals' (the collision shapes' toggle says nothing)
+        assert (finding.rule, finding.severity.value, finding.where) == (
+            "nothing-drawn",
+            "warning",
+            f"{robot}:1:1",
+        )
+        assert (
+            finding.message
+            == "robot 'frames': no link has a visual shape: there is nothing to draw"
+        )
+        assert set(shown._frames) == {"a", "b"}
+    finally:
+        shown.close()

@@ -7,7 +7,7 @@ from collections.abc import Callable
 from typing import Any
 
 from ..catalog import Rule
-from ..catalog.meshes import MESH_NOT_FOUND
+from ..catalog.meshes import MESH_NOT_FOUND, NOTHING_DRAWN
 from ..catalog.physics import (
     ABOVE_GROUND,
     BELOW_GROUND,
@@ -92,6 +92,22 @@ def _package(data: Any) -> str | None:
     return None if package is None else f"give its folder with --package {package}=PATH"
 
 
+def _other_shapes(data: Any) -> str | None:
+    """How to draw the shapes of the other kind, when the robot has some."""
+    if data.get("kind") == "visual" and data.get("collisions"):
+        count = data["collisions"]
+        return f"`fishbot render --collision` draws its {_shapes(count, 'collision')}"
+    if data.get("kind") == "collision" and data.get("visuals"):
+        return (
+            f"without --collision, `fishbot render` draws its {_shapes(data['visuals'], 'visual')}"
+        )
+    return None
+
+
+def _shapes(count: int, kind: str) -> str:
+    return f"{count} {kind} shape{'s' if count != 1 else ''}"
+
+
 _BY_RULE: dict[Rule, Callable[[Any], str | None]] = {
     INERTIA_MISMATCH: _shape_command,
     BELOW_GROUND: _tolerance,
@@ -100,6 +116,7 @@ _BY_RULE: dict[Rule, Callable[[Any], str | None]] = {
     MASSLESS_LINK: _moments,
     FILL_SKIPPED: _fill_skipped,
     MESH_NOT_FOUND: _package,
+    NOTHING_DRAWN: _other_shapes,
 }
 _EXTRA = {rule.id: words for rule, words in _BY_RULE.items()}
 

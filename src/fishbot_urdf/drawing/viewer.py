@@ -22,18 +22,19 @@ import os
 import threading
 import warnings
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
-from ..diagnostics import Diagnostic
+from ..catalog.meshes import NOTHING_DRAWN
+from ..diagnostics import Diagnostic, Severity
 from ..errors import ArgumentError, UnknownNameError
 from ..inputs import max_seconds, time_limit
 from ..kinematics import Kinematics
 from ..model import JointType
 from ..spatial import quaternion
 from ._serving import ServeError, authority, control_id, serve, shown
-from .scene import build_scene
+from .scene import Scene, build_scene
 
 __all__ = ["ServeError", "Viewer"]
 
@@ -172,7 +173,7 @@ class Viewer:
                     )
                     if kind == "collision":
                         self._collisions.append(mesh)
-            self.findings = tuple(dict.fromkeys((*visual.findings, *collision.findings)))
+            self.findings = _viewed(visual, collision)
             if not self.reloads:  # frame the robot, from the front left and above
                 corner, far_corner = visual.bounds()
                 centre = (corner + far_corner) / 2
@@ -382,6 +383,18 @@ def _range(analysis: Any, variable: str) -> tuple[float, float]:
         return -1.0, 1.0
     part = variable.rsplit(".", 1)[-1]
     return (-1.0, 1.0) if part in ("x", "y", "z") else (-math.pi, math.pi)
+
+
+def _viewed(visual: Scene, collision: Scene) -> tuple[Diagnostic, ...]:
+    """What the page cannot show as it is, once each: a robot with no visual shape to draw
+    still shows its link frames (a warning here), and one without collision shapes has
+    nothing on their toggle (no finding)."""
+    found = [
+        replace(f, severity=Severity.WARNING) if f.rule == NOTHING_DRAWN.id else f
+        for f in visual.findings
+    ]
+    found += [f for f in collision.findings if f.rule != NOTHING_DRAWN.id]
+    return tuple(dict.fromkeys(found))
 
 
 def _frame_size(np: Any, scene: Any) -> float:
