@@ -189,7 +189,7 @@ def test_transparent_layers_piled_on_a_few_rows_are_refused(
 
     layers = [(strip(x * 1e-3), (0.0, 0.0, 1.0, 0.5)) for x in range(250)]
     below = ([[[0, -0.5, -1.0], [0, 0.5, -1.0], [0, 0, -0.9]]], RED)  # the picture's bottom
-    monkeypatch.setattr("fishbot_urdf.drawing.picture._GLASS", 64 * 16)
+    monkeypatch.setattr("fishbot_urdf.drawing._raster._GLASS", 64 * 16)
     with pytest.raises(PictureLimitError) as info:
         render_png(_scene(*layers, below), "front", 32, 64)
     error = info.value
