@@ -385,3 +385,51 @@ def test_render_help_says_what_nothing_to_draw_does() -> None:
         "A robot with no shape to draw (no visuals, or none that can be drawn) is an error" in text
     )
     assert "1 the robot has errors or nothing to draw (nothing written)" in text
+
+
+def test_the_library_draws_the_picture_fishbot_render_draws(tmp_path: Path) -> None:
+    first = FISHBOT / "urdf" / "first_robot.urdf"
+    out = tmp_path / "cli.png"
+    args = ["render", str(first), "-o", str(out), "--view", "front", "--size", "400x300"]
+    assert CliRunner().invoke(cli, args).exit_code == 0
+    robot = fishbot_urdf.load(first)
+    data = fishbot_urdf.picture(robot, view="front", width=400, height=300)
+    assert data == out.read_bytes()
+    written = tmp_path / "deep" / "first.png"
+    assert fishbot_urdf.picture(robot, written, view="front", width=400, height=300) == data
+    assert written.read_bytes() == data
+    with pytest.raises(fishbot_urdf.InputError, match="refusing to write over the input"):
+        fishbot_urdf.picture(robot, first)  # the robot's own file
+
+
+def test_the_library_picture_poses_the_joints_and_refuses_nothing_to_draw(
+    tmp_path: Path,
+) -> None:
+    arm = tmp_path / "arm.urdf"
+    arm.write_text(
+        '<robot name="arm"><link name="a"><visual><geometry><box size="0.1 0.1 0.1"/>'
+        '</geometry></visual></link><link name="b"><visual><origin xyz="0.5 0 0"/>'
+        '<geometry><box size="1 0.1 0.1"/></geometry></visual></link>'
+        '<joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 1 0"/>'
+        '<limit lower="-2" upper="2" effort="1" velocity="1"/></joint></robot>'
+    )
+    robot = fishbot_urdf.load(arm)
+    flat = _pixels(fishbot_urdf.picture(robot, view="front", width=200, height=200))
+    up = _pixels(
+        fishbot_urdf.picture(robot, view="front", width=200, height=200, positions={"j": -1.5708})
+    )
+
+    def aspect(p: np.ndarray) -> float:
+        drawn = (p != 255).any(axis=2)
+        return np.nonzero(drawn.any(axis=1))[0].size / np.nonzero(drawn.any(axis=0))[0].size
+
+    assert aspect(flat) == pytest.approx(1.0, abs=0.1)  # end on, a square
+    assert aspect(up) > 5  # raised, a tall bar
+    with pytest.raises(fishbot_urdf.UnknownNameError):
+        fishbot_urdf.picture(robot, positions={"elbow": 1.0})
+    out = tmp_path / "nothing.png"
+    with pytest.raises(fishbot_urdf.RobotError) as info:
+        fishbot_urdf.picture(robot, out, collision=True)  # it has no collision shape
+    [finding] = info.value.diagnostics
+    assert (finding.rule, finding.severity.value) == ("nothing-drawn", "error")
+    assert not out.exists()

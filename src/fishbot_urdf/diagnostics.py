@@ -57,8 +57,9 @@ only news when none of them is reported (see `without_consequences`)."""
 
 @dataclass(frozen=True, slots=True)
 class Diagnostic:
-    """One finding, located in a source file. Make one with `diagnostic` (or a rule's
-    ``Rule.report``).
+    """One finding, located in a source file.
+
+    Make one with `diagnostic` (or a rule's ``Rule.report``).
 
     Attributes:
         rule: Stable rule id, e.g. ``undefined-link``.

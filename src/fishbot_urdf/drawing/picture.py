@@ -21,17 +21,22 @@ from __future__ import annotations
 
 import struct
 import zlib
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from pathlib import Path
+from typing import Any
 
-from ..errors import ArgumentError
+from ..analysis import Analysis, of
+from ..errors import ArgumentError, RobotError
 from ..inputs import deadline
+from ..kinematics import Kinematics
+from ..model import Robot
+from ..output import write_atomic
 from ._raster import PictureLimitError, Triangles, Visits, rasterise, screen, see_through
+from .dot import source_files
+from .scene import Scene, build_scene
 
-if TYPE_CHECKING:
-    from .scene import Scene
-
-__all__ = ["MAX_COVER", "MAX_PIXELS", "VIEWS", "PictureLimitError", "render_png"]
+__all__ = ["MAX_COVER", "MAX_PIXELS", "VIEWS", "PictureLimitError", "picture", "render_png"]
 
 # Where the camera looks from (towards the scene's centre), and which way is up on screen.
 VIEWS: dict[str, tuple[tuple[float, float, float], tuple[float, float, float]]] = {
@@ -55,6 +60,52 @@ the picture."""
 
 _BYTES_PER_SAMPLE = 12  # a float64 depth and an int32 triangle
 _BAND = 256  # rows of the picture coloured and averaged at once
+
+
+def picture(
+    robot: Robot | Analysis,
+    path: str | Path | None = None,
+    *,
+    view: str = "iso",
+    width: int = 800,
+    height: int = 600,
+    positions: Mapping[str, float] | None = None,
+    collision: bool = False,
+    packages: Mapping[str, str | Path] | None = None,
+) -> bytes:
+    """A shaded 3D picture of the robot as PNG bytes, as `fishbot render` draws it.
+
+    The visuals in their materials' colours (or, with ``collision``, the collision shapes)
+    posed at ``positions`` (radians or metres by joint name; the rest at zero, mimic
+    joints following), seen from ``view`` (``iso``, ``front``, ``side`` or ``top``), on a
+    ``width`` x ``height`` picture. Meshes are found as `check` finds them (``packages``:
+    folders of ROS packages by name, for ``package://`` names); what cannot be drawn as it
+    is is left out or drawn as its box, as `build_scene` says in its findings. With
+    ``path``, the PNG is also written there, whole or not at all, and never over a file the
+    robot was read from (the link/joint graph is `render_graph`'s).
+
+    Returns:
+        The PNG file's bytes.
+
+    Raises:
+        RobotError: Nothing would be drawn: its ``diagnostics`` are the scene's findings,
+            the ``nothing-drawn`` error among them (no blank picture is made).
+        StructureError: The robot has no single root.
+        UnknownNameError, ArgumentError: ``positions`` names an unknown joint or holds a
+            position out of its limits; ``view`` or a size is wrong.
+        PictureLimitError: The picture would pass :data:`MAX_PIXELS` or :data:`MAX_COVER`.
+        InputError: ``path`` cannot be written, or is a file the robot was read from.
+    """
+    analysis = of(robot, packages)
+    q = Kinematics(analysis).configuration(positions)
+    scene = build_scene(analysis, q, collision=collision)
+    if any(finding.is_error for finding in scene.findings):
+        raise RobotError(scene.findings, path=analysis.path)
+    data = render_png(scene, view, width, height)
+    if path is not None:
+        meshes = map(str, analysis.mesh_paths.found(analysis.robot))
+        write_atomic(path, data, inputs=[*source_files(analysis.robot), *meshes])
+    return data
 
 
 def render_png(scene: Scene, view: str = "iso", width: int = 800, height: int = 600) -> bytes:
