@@ -41,7 +41,7 @@ from ._notes import failure_note, findings_of, viewed
 from ._serving import ServeError, authority, control_id, serve, shown
 from .scene import Scene, build_scene
 
-__all__ = ["ServeError", "Viewer", "findings_of"]
+__all__ = ["ServeError", "Viewer"]
 
 _log = logging.getLogger(__name__)
 
