@@ -31,6 +31,46 @@ def test_every_name_in_all_resolves() -> None:
     assert sorted(fishbot_urdf.__all__) == fishbot_urdf.__all__
 
 
+def _attribute_doc(name: str) -> str:
+    """The string written below ``name = ...`` in the module that defines it (a type alias's
+    docstring, as documentation tools read it)."""
+    import ast
+    import importlib
+
+    module = importlib.import_module(f"fishbot_urdf.{fishbot_urdf._WHERE[name]}")
+    tree = ast.parse(Path(str(module.__file__)).read_text(encoding="utf-8"))
+    for node, after in zip(tree.body, tree.body[1:], strict=False):
+        targets = node.targets if isinstance(node, ast.Assign) else []
+        named = any(isinstance(t, ast.Name) and t.id == name for t in targets)
+        if named and isinstance(after, ast.Expr) and isinstance(after.value, ast.Constant):
+            return str(after.value.value)
+    return ""
+
+
+def test_every_public_name_has_a_one_line_summary() -> None:
+    # The API reference takes each name's first line as its summary: a sentence of its own.
+    import inspect
+
+    for name in fishbot_urdf.__all__:
+        if name == "__version__":
+            continue
+        value = getattr(fishbot_urdf, name)
+        if inspect.isclass(value) or inspect.isroutine(value):
+            doc = inspect.getdoc(value) or ""
+        else:  # a type alias
+            doc = inspect.cleandoc(_attribute_doc(name))
+        lines = doc.splitlines()
+        assert lines and lines[0].endswith("."), (name, lines[:1])
+        assert len(lines) == 1 or not lines[1].strip(), (name, lines[:2])
+        assert len(lines[0]) <= 100, (name, lines[0])
+
+
+def test_the_3d_picture_and_the_graph_have_names_that_say_so() -> None:
+    assert "picture" in fishbot_urdf.__all__ and "render_graph" in fishbot_urdf.__all__
+    assert fishbot_urdf.picture.__module__ == "fishbot_urdf.drawing.picture"
+    assert fishbot_urdf.render_graph.__module__ == "fishbot_urdf.drawing.dot"
+
+
 def test_version_comes_from_the_package_metadata() -> None:
     from importlib.metadata import version
 

@@ -670,7 +670,8 @@ def test_a_workspace_with_links_that_cannot_be_followed(
     robot = urdf / "r.urdf"
     robot.write_text(
         '<robot name="r"><link name="a"><visual><geometry>'
-        '<mesh filename="package://nopkg/m.stl"/></geometry></visual></link></robot>'
+        '<mesh filename="package://nopkg/m.stl"/></geometry></visual>'
+        '<visual><geometry><box size="1 1 1"/></geometry></visual></link></robot>'
     )
     status, out, err = run("check", "-q", "ws/src/pkg/urdf/r.urdf")
     assert (status, out) == (0, "")

@@ -214,14 +214,21 @@ def test_png_decodes(in_tmp: Path) -> None:
 
 def test_render_and_draw_in_the_library(tmp_path: Path, fishbot_robot: fishbot_urdf.Robot) -> None:
     require_tool("dot", "graphviz")
-    written = fishbot_urdf.render(fishbot_robot, tmp_path / "tree.svg")
+    written = fishbot_urdf.render_graph(fishbot_robot, tmp_path / "tree.svg")
     assert written == tmp_path / "tree.svg"
     assert written.read_bytes().lstrip().startswith(b"<?xml")
-    gv = fishbot_urdf.render(fishbot_robot, tmp_path / "tree.txt", format="gv")
+    gv = fishbot_urdf.render_graph(fishbot_robot, tmp_path / "tree.txt", format="gv")
     assert gv.read_text() == fishbot_urdf.to_dot(fishbot_robot)
     assert fishbot_urdf.draw(fishbot_robot, "png").startswith(b"\x89PNG\r\n\x1a\n")
     with pytest.raises(ValueError, match="unknown format 'jpg'"):
         fishbot_urdf.draw(fishbot_robot, "jpg")
+
+
+def test_render_is_render_graph_under_its_old_name(tmp_path: Path) -> None:
+    robot = fishbot_urdf.load(FIRST)
+    with pytest.deprecated_call(match="render_graph"):
+        written = fishbot_urdf.render(robot, tmp_path / "tree.gv")
+    assert written.read_text() == fishbot_urdf.to_dot(robot)
 
 
 def test_render_never_writes_over_the_robot_s_own_file(tmp_path: Path) -> None:
@@ -229,7 +236,7 @@ def test_render_never_writes_over_the_robot_s_own_file(tmp_path: Path) -> None:
     source.write_bytes(FIRST.read_bytes())
     robot = fishbot_urdf.load(source)
     with pytest.raises(fishbot_urdf.InputError, match="refusing to write over the input"):
-        fishbot_urdf.render(robot, source)
+        fishbot_urdf.render_graph(robot, source)
     assert source.read_bytes() == FIRST.read_bytes()
 
 
@@ -505,7 +512,7 @@ def test_never_writes_over_a_file_the_xacro_includes(in_tmp: Path) -> None:
     assert "refusing to write over the input" in result.stderr
     robot = fishbot_urdf.load(in_tmp / "r.urdf.xacro")
     with pytest.raises(fishbot_urdf.InputError, match="refusing to write over the input"):
-        fishbot_urdf.render(robot, in_tmp / "inc.xacro", format="gv")
+        fishbot_urdf.render_graph(robot, in_tmp / "inc.xacro", format="gv")
     assert (in_tmp / "inc.xacro").read_bytes() == before
 
 

@@ -106,7 +106,7 @@ def test_tool_not_found_error(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -
     monkeypatch.setenv("PATH", str(tmp_path))  # no `dot` here
     robot = fishbot_urdf.Robot("r", (fishbot_urdf.Link("a"),))
     with pytest.raises(ToolNotFoundError) as info:
-        fishbot_urdf.render(robot, tmp_path / "r.svg")
+        fishbot_urdf.render_graph(robot, tmp_path / "r.svg")
     error = info.value
     assert isinstance(error, FishbotUrdfError)
     assert (error.rule, error.tool) == ("tool-missing", "dot")

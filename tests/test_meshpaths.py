@@ -223,7 +223,8 @@ def test_a_robot_read_from_text_has_no_folder_for_relative_names(tmp_path: Path)
     text = '<robot name="r">' + _LINK.format(link="a", name="meshes/a.stl").split("<joint")[0]
     robot = fishbot_urdf.parse(text + "</robot>")
     scene = build_scene(robot)
-    [finding] = scene.findings
+    nothing, finding = scene.findings  # its only shape is not drawn: nothing is
+    assert nothing.rule == "nothing-drawn"
     assert (finding.rule, finding.severity.value) == ("mesh-not-found", "warning")
     assert finding.message == (
         "link 'a': mesh 'meshes/a.stl' is a relative name, and the robot was read from text, "

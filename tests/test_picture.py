@@ -124,3 +124,77 @@ def test_an_empty_scene_is_the_background() -> None:
     pixels = _pixels(render_png(empty, "iso", 32, 16))
     assert pixels.shape == (16, 32, 3)
     assert (pixels == 255).all()
+
+
+# A square facing the front camera is lit at 0.35 + 0.65 |n . l|, l = (1, -0.4, 0.6) / |l|.
+_LIT = 255 * (0.35 + 0.65 / float(np.linalg.norm([1.0, -0.4, 0.6])))
+
+
+@pytest.mark.parametrize("given", ["near first", "far first"])
+def test_a_transparent_square_blends_with_what_is_behind_it(given: str) -> None:
+    glass = (_square(1.0), (0.0, 0.0, 1.0, 0.5))  # blue, half transparent, nearer
+    wall = (_square(0.0), RED)
+    parts = (glass, wall) if given == "near first" else (wall, glass)
+    centre = _pixels(render_png(_scene(*parts), "front", 64, 48))[24, 32]
+    # half the blue, half the red seen through it
+    np.testing.assert_allclose(centre, [0.5 * _LIT, 0, 0.5 * _LIT], atol=1)
+
+
+@pytest.mark.parametrize("front", ["blue", "red"])
+def test_transparent_squares_are_blended_back_to_front_whatever_their_order(front: str) -> None:
+    near, far = (1.0, 0.0) if front == "blue" else (0.0, 1.0)
+    blue = (_square(near), (0.0, 0.0, 1.0, 0.5))
+    red = (_square(far), (1.0, 0.0, 0.0, 0.5))
+    for parts in ((blue, red), (red, blue)):
+        centre = _pixels(render_png(_scene(*parts), "front", 64, 48))[24, 32]
+        # over the white background: the far one first, then the near one over it
+        behind = 0.5 * np.array([_LIT, 0, 0] if front == "blue" else [0, 0, _LIT]) + 127.5
+        seen = 0.5 * np.array([0, 0, _LIT] if front == "blue" else [_LIT, 0, 0]) + 0.5 * behind
+        np.testing.assert_allclose(centre, seen, atol=1)
+
+
+def test_a_transparent_square_behind_an_opaque_one_is_hidden() -> None:
+    parts = ((_square(0.0), (0.0, 0.0, 1.0, 0.5)), (_square(1.0), RED))
+    centre = _pixels(render_png(_scene(*parts), "front", 64, 48))[24, 32]
+    np.testing.assert_allclose(centre, [_LIT, 0, 0], atol=1)
+
+
+def test_a_fully_transparent_shape_is_not_drawn() -> None:
+    pixels = _pixels(render_png(_scene((_square(0.0), (1.0, 0.0, 0.0, 0.0))), "front", 32, 24))
+    assert (pixels == 255).all()
+
+
+def test_transparent_layers_count_towards_the_visit_bound(monkeypatch: pytest.MonkeyPatch) -> None:
+    # Ten transparent squares, one behind the other: each sample is visited ten times.
+    parts = [(_square(float(x)), (0.0, 0.0, 1.0, 0.3)) for x in range(10)]
+    monkeypatch.setattr("fishbot_urdf.drawing.picture.MAX_COVER", 4)
+    with pytest.raises(PictureLimitError) as info:
+        render_png(_scene(*parts), "front", 64, 48)
+    assert (info.value.what, info.value.limit) == ("visits", 4 * 128 * 96)
+    monkeypatch.setattr("fishbot_urdf.drawing.picture.MAX_COVER", 64)
+    centre = _pixels(render_png(_scene(*parts), "front", 64, 48))[24, 32]
+    # 0.7 ** 10 of the white background is left, under ten layers of shaded blue
+    blue = 0.3 * _LIT * sum(0.7**i for i in range(10))
+    np.testing.assert_allclose(centre, [255 * 0.7**10, 255 * 0.7**10, blue + 255 * 0.7**10], atol=1)
+
+
+def test_transparent_layers_piled_on_a_few_rows_are_refused(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # The layers of 16 rows of samples at a time are held at once: 250 transparent strips
+    # over the top rows pass MAX_COVER there, though not over the whole picture.
+    def strip(x: float) -> list[list[list[float]]]:
+        a, b, c, d = ((x, -0.5, 0.9), (x, 0.5, 0.9), (x, 0.5, 1.0), (x, -0.5, 1.0))
+        return [[list(a), list(b), list(c)], [list(a), list(c), list(d)]]
+
+    layers = [(strip(x * 1e-3), (0.0, 0.0, 1.0, 0.5)) for x in range(250)]
+    below = ([[[0, -0.5, -1.0], [0, 0.5, -1.0], [0, 0, -0.9]]], RED)  # the picture's bottom
+    monkeypatch.setattr("fishbot_urdf.drawing._raster._GLASS", 64 * 16)
+    with pytest.raises(PictureLimitError) as info:
+        render_png(_scene(*layers, below), "front", 32, 64)
+    error = info.value
+    assert (error.what, error.limit) == ("visits", 64 * 64 * 16)
+    assert error.message.startswith(
+        "the picture's transparent triangles overlap more than 64 times over 1,024 of its "
+        "samples (rows 0 to 15 of 128)"
+    )

@@ -49,8 +49,10 @@ def test_the_fishbot_is_in_the_picture_in_its_colours(tmp_path: Path, view: str)
     assert pixels.shape == (300, 400, 3)
     background = (pixels == 255).all(axis=2).mean()
     assert 0.2 < background < 0.95  # the robot is there, framed with room around it
-    # The body is blue, the wheels yellow (fishbot.urdf.xacro's materials).
-    assert _share(pixels, (0, 0, 255)) > 0.05
+    # The body is blue, seen through (alpha 0.5) over white: blue well above red and
+    # green; the wheels are yellow (fishbot.urdf.xacro's materials).
+    r, g, b = (pixels[..., i] for i in range(3))
+    assert ((b > r + 60) & (b > g + 60)).mean() > 0.05
     if view != "top":
         assert _share(pixels, (255, 255, 0)) > 0.002
     # Framed: the robot touches no edge.
@@ -304,3 +306,166 @@ def test_a_xacro_argument_named_as_a_joint_is_a_warning(tmp_path: Path) -> None:
         "it and nothing reads it ('right_wheel_joint' is a joint: did you mean "
         "`-j right_wheel_joint=90deg`?) [xacro-unknown-arg]\n"
     )
+
+
+def test_the_first_robots_imu_is_seen_through_its_body(tmp_path: Path) -> None:
+    # first_robot.urdf: a cylinder (radius 0.1 m, 0.12 m long) white at alpha 0.5 around a
+    # 2 cm black box at alpha 0.5, 3 cm above the body's centre.
+    first = FISHBOT / "urdf" / "first_robot.urdf"
+    out = tmp_path / "first.png"
+    result = CliRunner().invoke(
+        cli, ["render", str(first), "-o", str(out), "--view", "front", "--size", "400x300"]
+    )
+    assert (result.exit_code, result.output) == (0, "")
+    pixels = _pixels(out.read_bytes())
+    # Seen from the front the body is 0.2 m wide and 0.12 m tall, framed with a 12% margin:
+    # 0.2 m * 1.12 over the 400 pixels, 0.56 mm a pixel, the body's centre in the middle.
+    metre = 1 / (0.2 * 1.12 / 400)
+    imu_row = round(150 - 0.03 * metre)  # 3 cm up
+    half = int(0.01 * metre) - 4  # within the IMU's 2 cm
+    imu = pixels[imu_row - half : imu_row + half, 200 - half : 200 + half]
+    body = pixels[150 - half : 150 + half, 200 - half : 200 + half]  # below the IMU
+    assert imu.mean() < body.mean() - 50  # the black IMU darkens the white body
+    assert np.ptp(imu, axis=2).max() < 10  # and stays grey: black seen through white
+    # Where the IMU is not, the body lets the white background through: brighter than
+    # its face drawn opaque, lit at 0.88.
+    assert body.mean() > 0.88 * 255 + 3
+
+
+FRAMES = """\
+<robot name="frames">
+  <link name="base_link">
+    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
+  </link>
+  <link name="imu_link"/>
+  <joint name="imu_joint" type="fixed"><parent link="base_link"/><child link="imu_link"/></joint>
+</robot>
+"""
+
+
+def test_a_robot_with_nothing_to_draw_is_an_error_and_no_picture(tmp_path: Path) -> None:
+    robot = tmp_path / "frames.urdf"
+    robot.write_text(FRAMES)
+    out = tmp_path / "frames.png"
+    result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(out)])
+    assert result.exit_code == 1
+    assert result.stdout == ""
+    assert result.stderr == (
+        f"{robot}:1:1: error: robot 'frames': no link has a visual shape: there is nothing to "
+        "draw (give a link a <visual>; `fishbot render --collision` draws its 1 collision "
+        "shape) [nothing-drawn]\n"
+        "nothing written: fix the errors above first\n"
+    )
+    assert not out.exists()
+    # Its collision shape is drawn.
+    result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(out), "--collision"])
+    assert (result.exit_code, result.output) == (0, "")
+    assert (_pixels(out.read_bytes()) != 255).any()
+
+
+def test_a_robot_whose_shapes_cannot_be_drawn_has_nothing_to_draw(tmp_path: Path) -> None:
+    robot = tmp_path / "lost.urdf"
+    robot.write_text(
+        '<robot name="lost"><link name="a"><visual><geometry><mesh filename="gone.stl"/>'
+        "</geometry></visual></link></robot>"
+    )
+    scene = build_scene(fishbot_urdf.load(robot))
+    assert scene.parts == ()
+    nothing, gone = scene.findings  # in the order of their places
+    assert gone.rule == "mesh-not-found"
+    assert (nothing.rule, nothing.severity.value, nothing.where) == (
+        "nothing-drawn",
+        "error",
+        f"{robot}:1:1",
+    )
+    assert nothing.message == (
+        "robot 'lost': its only visual shape cannot be drawn: there is nothing to draw"
+    )
+    assert (nothing.hint, dict(nothing.data)) == (
+        None,
+        {"kind": "visual", "visuals": 1, "collisions": 0},
+    )
+    collision = build_scene(fishbot_urdf.load(robot), collision=True)
+    [finding] = collision.findings
+    assert (
+        finding.message == "robot 'lost': no link has a collision shape: there is nothing to draw"
+    )
+    out = tmp_path / "lost.png"
+    result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(out), "--collision"])
+    assert result.exit_code == 1
+    assert result.stderr.splitlines()[0].endswith(
+        "(give a link a <collision>; without --collision, `fishbot render` draws its 1 visual "
+        "shape) [nothing-drawn]"
+    )
+    assert not out.exists()
+
+
+def test_a_configuration_that_ignores_nothing_drawn_gets_the_blank_picture(
+    tmp_path: Path,
+) -> None:
+    (tmp_path / "frames.urdf").write_text(FRAMES)
+    (tmp_path / "fishbot.toml").write_text('ignore = ["nothing-drawn"]\n')
+    out = tmp_path / "frames.png"
+    result = CliRunner().invoke(cli, ["render", str(tmp_path / "frames.urdf"), "-o", str(out)])
+    assert (result.exit_code, result.output) == (0, "")
+    assert (_pixels(out.read_bytes()) == 255).all()
+
+
+def test_render_help_says_what_nothing_to_draw_does() -> None:
+    result = CliRunner().invoke(cli, ["render", "--help"])
+    text = " ".join(result.stdout.split())
+    assert (
+        "A robot with no shape to draw (no visuals, or none that can be drawn) is an error" in text
+    )
+    assert (
+        "1 the robot has errors that leave its shape or tree in doubt, or nothing to draw "
+        "(nothing is written)" in text
+    )
+
+
+def test_the_library_draws_the_picture_fishbot_render_draws(tmp_path: Path) -> None:
+    first = FISHBOT / "urdf" / "first_robot.urdf"
+    out = tmp_path / "cli.png"
+    args = ["render", str(first), "-o", str(out), "--view", "front", "--size", "400x300"]
+    assert CliRunner().invoke(cli, args).exit_code == 0
+    robot = fishbot_urdf.load(first)
+    data = fishbot_urdf.picture(robot, view="front", width=400, height=300)
+    assert data == out.read_bytes()
+    written = tmp_path / "deep" / "first.png"
+    assert fishbot_urdf.picture(robot, written, view="front", width=400, height=300) == data
+    assert written.read_bytes() == data
+    with pytest.raises(fishbot_urdf.InputError, match="refusing to write over the input"):
+        fishbot_urdf.picture(robot, first)  # the robot's own file
+
+
+def test_the_library_picture_poses_the_joints_and_refuses_nothing_to_draw(
+    tmp_path: Path,
+) -> None:
+    arm = tmp_path / "arm.urdf"
+    arm.write_text(
+        '<robot name="arm"><link name="a"><visual><geometry><box size="0.1 0.1 0.1"/>'
+        '</geometry></visual></link><link name="b"><visual><origin xyz="0.5 0 0"/>'
+        '<geometry><box size="1 0.1 0.1"/></geometry></visual></link>'
+        '<joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 1 0"/>'
+        '<limit lower="-2" upper="2" effort="1" velocity="1"/></joint></robot>'
+    )
+    robot = fishbot_urdf.load(arm)
+    flat = _pixels(fishbot_urdf.picture(robot, view="front", width=200, height=200))
+    up = _pixels(
+        fishbot_urdf.picture(robot, view="front", width=200, height=200, positions={"j": -1.5708})
+    )
+
+    def aspect(p: np.ndarray) -> float:
+        drawn = (p != 255).any(axis=2)
+        return np.nonzero(drawn.any(axis=1))[0].size / np.nonzero(drawn.any(axis=0))[0].size
+
+    assert aspect(flat) == pytest.approx(1.0, abs=0.1)  # end on, a square
+    assert aspect(up) > 5  # raised, a tall bar
+    with pytest.raises(fishbot_urdf.UnknownNameError):
+        fishbot_urdf.picture(robot, positions={"elbow": 1.0})
+    out = tmp_path / "nothing.png"
+    with pytest.raises(fishbot_urdf.RobotError) as info:
+        fishbot_urdf.picture(robot, out, collision=True)  # it has no collision shape
+    [finding] = info.value.diagnostics
+    assert (finding.rule, finding.severity.value) == ("nothing-drawn", "error")
+    assert not out.exists()

@@ -60,11 +60,13 @@ WHEEL_XACRO = """\
 # The folder the setup rules' shell examples run in: a valid robot whose wheels have
 # collision shapes and no inertial (for fishbot inertia --fill; they are welded to the base,
 # so that the robot is valid without them: a moving link without one is an error), a xacro
-# file that includes a file of the ROS package in src/, a robot with a box too far to draw.
+# file that includes a file of the ROS package in src/, a robot with a box too far to draw
+# (and one drawn).
 WORKSPACE = {
     "fishbot.urdf": """\
 <robot name="fishbot">
   <link name="base_link">
+    <visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>
     <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
     <inertial>
       <mass value="1.0"/>
@@ -101,10 +103,15 @@ WORKSPACE = {
 <robot name="far">
   <link name="base_link">
     <visual><origin xyz="1e10 0 0"/><geometry><box size="0.2 0.2 0.1"/></geometry></visual>
+    <visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>
   </link>
 </robot>
 """,
 }
+# The same robot as fishbot.urdf, with no <visual>.
+WORKSPACE["frames.urdf"] = WORKSPACE["fishbot.urdf"].replace(
+    '    <visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>\n', ""
+)
 
 # Rules of what render and view cannot draw: the picture is drawn without it, exit status 0.
 DRAWING_RULES = {"shape-not-drawn"}

@@ -143,13 +143,15 @@ def test_an_edit_reloads_the_robot_and_keeps_the_sliders(
     browser: Any, viewer: Viewer, robot: Path
 ) -> None:
     held = viewer.values["left_wheel_joint"]
+    blue = _blue(_settled(browser))
     base = robot.parent / "base.urdf.xacro"
     text = base.read_text(encoding="utf-8")
     assert 'rgba="0.1 0.1 1.0 0.5"' in text
     base.write_text(text.replace('rgba="0.1 0.1 1.0 0.5"', 'rgba="1.0 0.1 0.1 0.5"'))
     _wait(lambda: viewer.reloads >= 1)
     assert viewer.values["left_wheel_joint"] == held
-    pixels = _wait(lambda: (lambda p: p if _blue(p) < 0.002 else None)(_screenshot(browser)))
+    # (what blue is left: the link frames' z axes)
+    pixels = _wait(lambda: (lambda p: p if _blue(p) < blue / 10 else None)(_screenshot(browser)))
     r, g, b = (pixels[..., i].astype(int) for i in range(3))
     assert ((r > 150) & (r > g + 60) & (r > b + 60)).mean() > 0.02  # now red
 

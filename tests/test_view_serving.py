@@ -90,12 +90,58 @@ def test_a_failing_first_load_frees_the_port(tmp_path: Path) -> None:
         Viewer(_loader(broken), port=port)
     with socket.socket() as again:  # no SO_REUSEADDR: the viewer's socket is closed
         again.bind(("127.0.0.1", port))
-    result = CliRunner().invoke(cli, ["view", str(broken), "--port", str(port)])
-    assert result.exit_code == 1
-    assert result.stdout == ""
-    assert "error:" in result.stderr
+    # (`fishbot view` waits for a fix instead: see test_view_page.py)
+
+
+def test_a_failing_load_is_shown_and_reported_until_a_load_succeeds(tmp_path: Path) -> None:
+    robot = tmp_path / "robot.urdf"
+    robot.write_text("<robot name='x'><link name='a'>", encoding="utf-8")
+    reported: list[FishbotUrdfError | None] = []
+    shown = Viewer(
+        _loader(robot), port=0, watch=(str(robot),), wait=lambda _: True, report=reported.append
+    )
+    try:
+        [error] = reported
+        assert shown.error is error
+        assert (error.rule, error.path) == ("xml-syntax", str(robot))
+        note = shown._trouble
+        assert note.visible
+        assert note.content.startswith(
+            "**The robot cannot be read.** No robot can be shown until the file is fixed:\n\n```\n"
+        )
+        assert f"{robot}:1:" in note.content and "[xml-syntax]" in note.content
+        assert shown._frames == {}
+        robot.write_text(ARM, encoding="utf-8")
+        _wait(lambda: len(reported) == 2)
+        assert reported[1] is None
+        assert shown.error is None and not note.visible
+        assert "upper" in shown._frames
+        robot.write_text(ARM.replace("</robot>", ""), encoding="utf-8")  # broken again
+        _wait(lambda: len(reported) == 3)
+        assert reported[2] is not None and shown.error is reported[2]
+        assert note.visible and "The robot read last is shown" in note.content
+        assert "upper" in shown._frames  # still there
+    finally:
+        shown.close()
+
+
+def test_a_first_load_that_fails_with_an_error_not_waited_for_is_raised(tmp_path: Path) -> None:
+    robot = tmp_path / "robot.urdf"
+    robot.write_text("<robot name='x'><link name='a'>", encoding="utf-8")
+    reported: list[FishbotUrdfError | None] = []
+    port = _free_port()
+    with pytest.raises(FishbotUrdfError):
+        Viewer(_loader(robot), port=port, wait=lambda _: False, report=reported.append)
+    assert reported == []
     with socket.socket() as again:
         again.bind(("127.0.0.1", port))
+
+
+def _wait(condition: Callable[[], Any], seconds: float = 20.0) -> None:
+    deadline = time.monotonic() + seconds
+    while not condition():
+        assert time.monotonic() < deadline, "timed out"
+        time.sleep(0.1)
 
 
 def test_the_library_prints_nothing(arm: Path, capfd: pytest.CaptureFixture[str]) -> None:
@@ -196,3 +242,27 @@ def test_a_robot_whose_only_fault_is_an_inertial_is_shown_with_its_findings(
 INERTIA_HINT = (
     '(write <inertia ixx=".." ixy="0" ixz="0" iyy=".." iyz="0" izz=".."/>) [missing-element]'
 )
+
+
+def test_a_robot_with_no_visual_shows_its_frames_with_a_warning(tmp_path: Path) -> None:
+    robot = tmp_path / "frames.urdf"
+    robot.write_text(
+        '<robot name="frames"><link name="a"/><link name="b"/>'
+        '<joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint></robot>',
+        encoding="utf-8",
+    )
+    shown = Viewer(_loader(robot), port=0)
+    try:
+        [finding] = shown.findings  # the visuals' (the collision shapes' toggle says nothing)
+        assert (finding.rule, finding.severity.value, finding.where) == (
+            "nothing-drawn",
+            "warning",
+            f"{robot}:1:1",
+        )
+        assert (
+            finding.message
+            == "robot 'frames': no link has a visual shape: there is nothing to draw"
+        )
+        assert set(shown._frames) == {"a", "b"}
+    finally:
+        shown.close()

@@ -19,8 +19,9 @@ if TYPE_CHECKING:
     from .catalog import Rule
     from .config import Config, find_config, load_config
     from .diagnostics import Diagnostic, Kind, Severity, Subject
-    from .drawing.dot import draw, render, to_dot
+    from .drawing.dot import draw, render, render_graph, to_dot
     from .drawing.mermaid import to_mermaid
+    from .drawing.picture import picture
     from .errors import (
         ArgumentError,
         ConfigError,
@@ -179,9 +180,11 @@ __all__ = [
     "mass_table",
     "mesh_inertia",
     "parse",
+    "picture",
     "principal_moments",
     "read",
     "render",
+    "render_graph",
     "resolve_package_uri",
     "root",
     "sarif_report",
@@ -282,9 +285,11 @@ _WHERE = {
     "mass_table": "inertia",
     "mesh_inertia": "inertia",
     "parse": "parsing",
+    "picture": "drawing.picture",
     "principal_moments": "inertia",
     "read": "parsing",
     "render": "drawing.dot",
+    "render_graph": "drawing.dot",
     "resolve_package_uri": "packages",
     "root": "graph",
     "sarif_report": "report",

@@ -191,8 +191,10 @@ def check_severities(severity: Mapping[str, object], *, path: str | None = None)
 
 
 def find_config(start: str | Path, known: dict[Path, Path | None] | None = None) -> Path | None:
-    """The nearest fishbot.toml, or pyproject.toml with a ``[tool.fishbot]`` table, in the
-    folder ``start`` (or the folder of the file ``start``) and the folders above it.
+    """The nearest fishbot.toml, or pyproject.toml with a ``[tool.fishbot]`` table.
+
+    It is looked for in the folder ``start`` (or the folder of the file ``start``) and the
+    folders above it.
 
     ``known`` (folder -> its answer) spares looking again in folders already searched:
     pass the same dict for the many files of one run.
@@ -234,9 +236,11 @@ def _stat_says(path: Path, test: Callable[[Path], bool]) -> bool:
 
 
 def load_config(path: str | Path) -> Config:
-    """Read a fishbot.toml (keys at the top) or a pyproject.toml (keys under
-    ``[tool.fishbot]``; one without that table is the default configuration). Any other
-    file name is read as a fishbot.toml.
+    """Read a fishbot.toml or a pyproject.toml.
+
+    A fishbot.toml has its keys at the top, a pyproject.toml under ``[tool.fishbot]`` (one
+    without that table is the default configuration). Any other file name is read as a
+    fishbot.toml.
 
     The file is read as every input is (:func:`fishbot_urdf.inputs.read_input`): a
     regular file within the size limit.

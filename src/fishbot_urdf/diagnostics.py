@@ -97,8 +97,9 @@ ELEMENT = "element"
 
 @dataclass(frozen=True, slots=True)
 class Diagnostic:
-    """One finding, located in a source file. Make one with `diagnostic` (or a rule's
-    ``Rule.report``).
+    """One finding, located in a source file.
+
+    Make one with `diagnostic` (or a rule's ``Rule.report``).
 
     Attributes:
         rule: Stable rule id, e.g. ``undefined-link``.

@@ -109,8 +109,9 @@ class RobotError(FishbotUrdfError):
 
 
 class StructureError(FishbotUrdfError):
-    """The robot's links do not form the tree a question needs: no root, several roots
-    (``roots`` lists them), or two links that are not connected."""
+    """The robot's links do not form the tree a question needs.
+
+    No root, several roots (``roots`` lists them), or two links that are not connected."""
 
     rule = "structure"
 
@@ -150,15 +151,18 @@ class ArgumentError(FishbotUrdfError, ValueError):
 
 
 class ShapeError(FishbotUrdfError, ValueError):
-    """A shape has no volume to fill: an open mesh, a shape of size zero, or a geometry no
-    formula covers."""
+    """A shape has no volume to fill.
+
+    An open mesh, a shape of size zero, or a geometry no formula covers."""
 
     rule = "shape"
 
 
 class ConfigError(FishbotUrdfError):
-    """A configuration file or option is wrong: an unknown rule or key, a value of the
-    wrong type. ``path`` and ``line`` say where, when it came from a file.
+    """A configuration file or option is wrong.
+
+    An unknown rule or key, or a value of the wrong type. ``path`` and ``line`` say where,
+    when it came from a file.
 
     Attributes:
         key: The setting at fault (``select``, ``ignore``, ``severity``), when one is.
@@ -183,8 +187,10 @@ class ConfigError(FishbotUrdfError):
 
 
 class FieldTypeError(FishbotUrdfError, TypeError):
-    """A field of a model built in Python holds a value of the wrong type: a str where a
-    number is expected, a list where a tuple is, an int where a `JointType` is.
+    """A field of a model built in Python holds a value of the wrong type.
+
+    A str where a number is expected, a list where a tuple is, an int where a `JointType`
+    is.
 
     Attributes:
         field: Where the value is, from the robot down (``robot.links[0].inertial.mass``).

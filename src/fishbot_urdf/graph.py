@@ -48,8 +48,9 @@ def root(robot: Robot | Analysis) -> str:
 
 
 def tree_text(robot: Robot | Analysis) -> Iterator[str]:
-    """Yield check_urdf's output for a robot with one root, piece by piece (join them to get
-    it all), whatever else is wrong with it.
+    """Yield check_urdf's output for a robot with one root, piece by piece.
+
+    Join the pieces to get it all. It is written whatever else is wrong with the robot.
 
     The pieces are the header and one line per link, each ending in a newline; a link
     appears once for every path to it, as in check_urdf.

@@ -127,9 +127,11 @@ def check(
     config: Config | None = None,
     packages: Mapping[str, str | Path] | PackageFinder | None = None,
 ) -> tuple[Diagnostic, ...]:
-    """Check a robot's structure and values; returns every finding of the selected rules,
-    sorted by position. ``packages`` are folders for the ``package://`` names of meshes
-    (looked up as for xacro's ``$(find)``). (Comments are not read here: see `check_file`.)
+    """Check a robot's structure and values: every finding of the selected rules.
+
+    The findings are sorted by position. ``packages`` are folders for the ``package://``
+    names of meshes (looked up as for xacro's ``$(find)``). (Comments are not read here:
+    see `check_file`.)
 
     A robot built in Python is held to what the reader gives: a number that is not finite, a
     missing name or a character XML cannot hold is the reader's finding (see

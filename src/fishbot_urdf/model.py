@@ -90,6 +90,7 @@ class Mesh:
 
 
 Geometry = Box | Cylinder | Sphere | Mesh
+"""Any shape a ``<geometry>`` holds."""
 
 
 @dataclass(frozen=True, slots=True)

@@ -70,8 +70,10 @@ _SKIP_DIRS = frozenset(("build", "install", "log", "node_modules", "__pycache__"
 
 
 class PackageNotFoundError(FishbotUrdfError):
-    """No place knows the package; ``searched`` lists every place looked at, in order (the
-    first is the packages given by name, ``given``)."""
+    """No place knows the package.
+
+    ``searched`` lists every place looked at, in order (the first is the packages given by
+    name, ``given``)."""
 
     rule = "package-not-found"
 
@@ -198,9 +200,11 @@ def find_package(
 
 
 class PackageFinder:
-    """Finds packages as `find_package` does, and keeps each answer (a folder, or that the
-    package is not found) by package name and the folder of the file that names it: for
-    one run over many files, which name the same packages from the same folders.
+    """Finds packages as `find_package` does, and keeps each answer.
+
+    Each answer (a folder, or that the package is not found) is kept by package name and
+    the folder of the file that names it: for one run over many files, which name the same
+    packages from the same folders.
 
     A package added or moved after it was looked up is not seen: make a new finder for a
     new run. Safe to share between threads (two may look the same package up at once).
@@ -254,8 +258,9 @@ def resolve_package_uri(
     near: str | Path | None = None,
     packages: Mapping[str, str | Path] | None = None,
 ) -> Path:
-    """The file a ``package://pkg/path`` or ``file://`` URI names (other text: a plain path,
-    relative to ``near``'s folder).
+    """The file a ``package://pkg/path`` or ``file://`` URI names.
+
+    Other text is a plain path, relative to ``near``'s folder.
 
     Raises:
         PackageNotFoundError: The package is not found.

@@ -55,8 +55,10 @@ class FileReport:
 
 
 def json_report(files: Sequence[FileReport]) -> dict[str, Any]:
-    """The report of ``fishbot check --format json``: ``ok`` overall, then per file its
-    robot, its findings and how many comments silenced, by rule."""
+    """The report of ``fishbot check --format json``, as a dict.
+
+    ``ok`` overall, then per file its robot, its findings and how many comments silenced,
+    by rule."""
     return {
         "ok": all(f.ok for f in files),
         "files": [
@@ -181,8 +183,10 @@ _ANNOTATIONS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.N
 
 
 def github_annotations(findings: Iterable[Diagnostic]) -> str:
-    """GitHub Actions workflow commands, one per finding: ``::error file=F,line=L,col=C,
-    title=RULE::message``, which the run's summary and the pull request show at the line.
+    """GitHub Actions workflow commands, one per finding.
+
+    Each is ``::error file=F,line=L,col=C,title=RULE::message``, which the run's summary
+    and the pull request show at the line.
 
     Each command is one line, with no terminal escape sequence in it: a newline or a
     carriage return is written as GitHub's ``%0A`` and ``%0D`` (which GitHub reads back:

@@ -171,8 +171,9 @@ def to_urdf(robot: Robot) -> str:
 
 
 def inertial_xml(inertial: Inertial) -> str:
-    """An ``<inertial>`` element as text (its children indented by two spaces), ready to
-    paste in a link.
+    """An ``<inertial>`` element as text, ready to paste in a link.
+
+    Its children are indented by two spaces.
 
     The numbers are written exactly (the shortest text that reads back as the same float).
     """
@@ -189,8 +190,10 @@ def inertial_xml(inertial: Inertial) -> str:
 def add_inertials(
     data: bytes | str, inertials: Mapping[str, Inertial], path: str = STRING_PATH
 ) -> str:
-    """The URDF ``data`` (text or bytes) with an ``<inertial>`` added as the first child of
-    each link named in ``inertials``; everything else (comments, order, spacing) is kept.
+    """The URDF ``data`` with an ``<inertial>`` added to each link named in ``inertials``.
+
+    ``data`` is text or bytes; each inertial is the first child of its link, and everything
+    else (comments, order, spacing) is kept.
 
     Raises:
         XmlSyntaxError: ``data`` is not well-formed XML.

@@ -123,12 +123,13 @@ def analyse(
     references: Iterable[Reference] | None = None,
     packages: Mapping[str, str | Path] | PackageFinder | None = None,
 ) -> Analysis:
-    """Analyse ``robot`` (linear in its size). ``path`` names the file it came from (by
-    default, where the robot element was read); ``references`` are the names its extension
-    elements give, as the file's reader found them (by default, read again from the
-    robot's extension elements, with no places); ``packages`` are where its meshes'
-    ``package://`` names are found (folders by name, or a
-    `fishbot_urdf.packages.PackageFinder`)."""
+    """Analyse ``robot`` (linear in its size).
+
+    ``path`` names the file it came from (by default, where the robot element was read);
+    ``references`` are the names its extension elements give, as the file's reader found
+    them (by default, read again from the robot's extension elements, with no places);
+    ``packages`` are where its meshes' ``package://`` names are found (folders by name, or
+    a `fishbot_urdf.packages.PackageFinder`)."""
     if path is None:
         path = robot.source.path if robot.source else "<robot>"
     check = deadline()

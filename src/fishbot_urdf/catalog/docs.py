@@ -1,8 +1,8 @@
-"""The rules as text: a table, one rule explained, and the same in Markdown (the README's
-rule list is made here, so that it always says what the registry says).
+"""The rules as text: a table, one rule explained, and the same in Markdown (the
+documentation site's rule list and rule pages are made here as the site builds, so that
+they always say what the registry says).
 
-``python -m fishbot_urdf.rules.docs --readme`` rewrites the rule list of README.md, between
-its two markers, from the registry.
+`with_rule_table` fills a page's rule list, between its two markers, from the registry.
 """
 
 from __future__ import annotations
@@ -25,9 +25,9 @@ __all__ = [
 ]
 
 README_BEGIN = "<!-- rules: begin -->"
-"""The line after which the README's rule list starts."""
+"""The line after which a page's rule list starts."""
 README_END = "<!-- rules: end -->"
-"""The line before which the README's rule list ends."""
+"""The line before which a page's rule list ends."""
 
 
 def _flags(rule: Rule) -> str:

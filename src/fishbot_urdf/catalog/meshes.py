@@ -172,3 +172,41 @@ fishbot render fishbot.urdf -o fishbot.png
     consumers=(),
     language="shell",
 )
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class NothingDrawnFacts(Facts):
+    """The facts of a `nothing-drawn` finding."""
+
+    kind: str
+    """The kind of shape asked for: ``visual`` or ``collision``."""
+    visuals: int
+    """The robot's visual shapes."""
+    collisions: int
+    """The robot's collision shapes."""
+
+
+NOTHING_DRAWN = Rule(
+    "nothing-drawn",
+    E,
+    Family.MESHES,
+    summary="A robot of which `fishbot render` would draw nothing: no link has a shape of the "
+    "kind asked for, or none of them can be drawn.",
+    explanation="A robot of links and joints alone is valid URDF, and RViz shows only its "
+    "frames; but a picture of it is a blank rectangle, which a script would publish as if it "
+    "were the robot. `fishbot render` says so and writes nothing, with exit status 1 (a "
+    "configuration that ignores the rule, or makes it a warning, gets the blank picture); "
+    "`fishbot view` shows the link frames and prints it as a warning. Give a link a "
+    "`<visual>`, draw the collision shapes with `--collision`, or fix the shapes that the "
+    "other warnings say cannot be drawn.",
+    bad="""\
+# frames.urdf: base_link and two wheel links, none with a <visual>
+fishbot render frames.urdf -o frames.png
+""",
+    good="""\
+# fishbot.urdf: the same links, base_link with a <visual>
+fishbot render fishbot.urdf -o fishbot.png
+""",
+    consumers=(),
+    language="shell",
+)

@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 
 from ..catalog import Rule
-from ..catalog.meshes import MESH_NOT_FOUND, MeshNotFoundFacts
+from ..catalog.meshes import MESH_NOT_FOUND, NOTHING_DRAWN, MeshNotFoundFacts, NothingDrawnFacts
 from ..catalog.physics import (
     ABOVE_GROUND,
     BELOW_GROUND,
@@ -92,6 +92,21 @@ def _package(facts: object) -> str | None:
     return f"give its folder with --package {facts.package}=PATH"
 
 
+def _other_shapes(facts: object) -> str | None:
+    """How to draw the shapes of the other kind, when the robot has some."""
+    if not isinstance(facts, NothingDrawnFacts):
+        return None
+    if facts.kind == "visual" and facts.collisions:
+        return f"`fishbot render --collision` draws its {_shapes(facts.collisions, 'collision')}"
+    if facts.kind == "collision" and facts.visuals:
+        return f"without --collision, `fishbot render` draws its {_shapes(facts.visuals, 'visual')}"
+    return None
+
+
+def _shapes(count: int, kind: str) -> str:
+    return f"{count} {kind} shape{'s' if count != 1 else ''}"
+
+
 # What a finding of each rule can add: chosen by the finding's rule and its typed facts.
 _BY_RULE: dict[Rule | None, Callable[[object], str | None]] = {
     INERTIA_MISMATCH: _shape_command,
@@ -101,6 +116,7 @@ _BY_RULE: dict[Rule | None, Callable[[object], str | None]] = {
     MASSLESS_LINK: _moments,
     FILL_SKIPPED: _fill_skipped,
     MESH_NOT_FOUND: _package,
+    NOTHING_DRAWN: _other_shapes,
 }
 
 

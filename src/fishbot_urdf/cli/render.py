@@ -7,6 +7,7 @@ from collections.abc import Sequence
 
 import click
 
+from ..diagnostics import Severity
 from ..drawing.picture import render_png
 from ..drawing.scene import build_scene
 from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
@@ -14,6 +15,7 @@ from ..kinematics import Kinematics
 from ..output import write_atomic
 from ._checking import check_joint_names, nearest_config, posable_input, read_files
 from ._common import (
+    EXIT_INVALID,
     EXIT_OK,
     emit_findings,
     joint_option,
@@ -85,10 +87,12 @@ def render(
     meshes are found as `fishbot check` finds them and read from STL and OBJ (other formats
     with `pip install 'fishbot-urdf[mesh]'`); one that cannot be read is drawn as its
     bounding box, and what is not drawn as it is is a warning; findings are printed as
-    check prints them. Exit status: 0 written (errors that leave the shape as it is, such as
-    a fault in an <inertial>, do not stop it), 1 the robot has errors that leave its shape
-    or tree in doubt (nothing is written), 2 a file could not be read or written, a joint or
-    position is wrong, or the command line is wrong.
+    check prints them. A robot with no shape to draw (no visuals, or none that can be drawn)
+    is an error [nothing-drawn]: no blank picture is written. Exit status: 0 written (errors
+    that leave the shape as it is, such as a fault in an <inertial>, do not stop it), 1 the
+    robot has errors that leave its shape or tree in doubt, or nothing to draw (nothing is
+    written), 2 a file could not be read or written, a joint or position is wrong, or the
+    command line is wrong.
 
     \b
     Examples:
@@ -117,7 +121,11 @@ def render(
         raise click.BadParameter(exc.message, param_hint="--joint") from None
     except FishbotUrdfError as exc:
         stop_on(exc)
-    emit_findings(config.apply(scene.findings))
+    findings = config.apply(scene.findings)
+    emit_findings(findings)
+    if any(finding.severity is Severity.ERROR for finding in findings):  # nothing-drawn
+        click.echo(refusal, err=True)
+        sys.exit(EXIT_INVALID)
     try:
         png = render_png(scene, view, width, height)
         if output == "-":

@@ -4,15 +4,16 @@ joint_state_publisher_gui without ROS)."""
 from __future__ import annotations
 
 import gc
-import sys
 import time
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 import click
 
+from ..config import Config
+from ..diagnostics import Diagnostic
 from ..drawing.viewer import Viewer
-from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
+from ..errors import ArgumentError, FishbotUrdfError, RobotError, UnknownNameError
 from ._checking import (
     check_input,
     check_joint_names,
@@ -24,11 +25,13 @@ from ._checking import (
 from ._common import (
     EXIT_INVALID,
     emit_findings,
+    fail,
     joint_option,
     joint_positions,
     limit_options,
     package_option,
     packages_option,
+    status_of,
     stop_on,
     xacro_args,
 )
@@ -64,9 +67,12 @@ def view(
     """Show FILE (URDF or xacro) in a web browser: visuals in their colours, collision
     shapes on a toggle, link frames as axes, and a slider per moving joint within its
     limits (mimic joints follow). The robot reloads when FILE or a file it includes
-    changes, keeping the sliders. Prints the URL to open; Ctrl-C stops. Only pages served
-    on --host and --port may talk to the viewer. --timeout and --max-size bound each
-    (re)load of the robot. Needs `pip install 'fishbot-urdf[view]'`.
+    changes, keeping the sliders. A change that breaks the robot is printed as check
+    prints its errors and shown on the page, which keeps the robot read last until the
+    file is fixed; a robot broken from the start is served as a page of its errors, and
+    shown once fixed. Prints the URL to open; Ctrl-C stops. Only pages served on --host
+    and --port may talk to the viewer. --timeout and --max-size bound each (re)load of
+    the robot. Needs `pip install 'fishbot-urdf[view]'`.
 
     \b
     Examples:
@@ -78,34 +84,44 @@ def view(
     positions = joint_positions(joint_items)
     config = nearest_config(file)
 
-    loaded: list[CheckResult] = []  # the first load: its findings, and the -j names
+    loaded: list[CheckResult] = []  # the last load: its findings, and the -j names
 
     def load() -> tuple[Any, Sequence[str]]:
         result = check_input(file, values, packages, posing(config))
         blocking = posing_errors(result.diagnostics)
         if result.analysis is None or blocking:
-            raise _Unreadable(blocking)
-        if not loaded:
-            loaded.append(result)
+            raise RobotError(blocking, path=file)
+        loaded[:] = [result]
         return result.analysis, result.files
 
+    terminal = _Terminal(file, config)
     try:
-        viewer = Viewer(load, host=host, port=port, packages=packages)
-    except _Unreadable as exc:
-        emit_findings(exc.findings)
-        sys.exit(EXIT_INVALID)
+        viewer = Viewer(
+            load,
+            host=host,
+            port=port,
+            packages=packages,
+            watch=(file,),
+            wait=lambda exc: status_of(exc) == EXIT_INVALID,  # the robot's fault: fixable
+            report=terminal.report,
+        )
     except FishbotUrdfError as exc:  # cannot serve there, viser missing, a limit reached
         stop_on(exc)
-    try:
-        first = loaded[0]
-        assert first.analysis is not None
-        check_joint_names(first.analysis, positions, viewer.values)
-        for name, value in positions.items():
-            viewer.set(name, value)
-    except (UnknownNameError, ArgumentError) as exc:
-        viewer.close()
-        raise click.BadParameter(exc.message, param_hint="--joint") from None
-    emit_findings([*posing_findings(file, first, values, config), *config.apply(viewer.findings)])
+    terminal.viewer = viewer
+    if viewer.error is None:
+        try:
+            first = loaded[0]
+            assert first.analysis is not None
+            check_joint_names(first.analysis, positions, viewer.values)
+            for name, value in positions.items():
+                viewer.set(name, value)
+        except (UnknownNameError, ArgumentError) as exc:
+            viewer.close()
+            raise click.BadParameter(exc.message, param_hint="--joint") from None
+        emit_findings(posing_findings(file, first, values, config))
+        terminal.drawn()
+    else:  # set, within their joints' ranges, once the robot is read
+        viewer.values.update(positions)
     click.echo(f"fishbot view: {viewer.url} (Ctrl-C stops)")
     # Off for the commands that end (see main); on, rarely, for the reloads to come.
     gc.set_threshold(_COLLECT_EVERY, *gc.get_threshold()[1:])
@@ -116,12 +132,36 @@ def view(
         viewer.close()
 
 
-class _Unreadable(Exception):
-    """The robot cannot be posed; ``findings`` say why (the first, as one line, in its
-    message: what the viewer logs when a reload fails)."""
+class _Terminal:
+    """What the terminal is told as the robot is read again: a load's errors, as check
+    prints them; that the robot is shown again after them; and the drawing's findings
+    when they change."""
 
-    def __init__(self, findings: list[Any]) -> None:
-        first = findings[0].format() if findings else "the robot cannot be read"
-        more = f" (and {len(findings) - 1} more)" if len(findings) > 1 else ""
-        super().__init__(first + more)
-        self.findings = findings
+    def __init__(self, file: str, config: Config) -> None:
+        self.file = file
+        self.config = config
+        self.viewer: Viewer | None = None  # (None while the first load is under way)
+        self.failed = False
+        self.said: list[Diagnostic] | None = None
+
+    def report(self, error: FishbotUrdfError | None) -> None:
+        """The viewer's `report` (on its watching thread)."""
+        if error is not None:
+            found = list(error.diagnostics) if isinstance(error, RobotError) else []
+            emit_findings(found or [fail(error)])
+            self.failed = True
+            return
+        if self.failed:
+            self.failed = False
+            click.echo(f"fishbot view: {self.file} is read again: the page shows it")
+        self.drawn()
+
+    def drawn(self) -> None:
+        """Print the drawing's findings, unless they are those printed last."""
+        viewer = self.viewer
+        if viewer is None:
+            return
+        found = self.config.apply(viewer.findings)
+        if found != self.said:
+            emit_findings(found)
+            self.said = found

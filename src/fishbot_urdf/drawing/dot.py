@@ -12,6 +12,7 @@ import os
 import shutil
 import signal
 import subprocess
+import warnings
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -25,7 +26,17 @@ from ..spatial import urdfdom_rpy
 from .layout import JOINT_COLORS, Drawing, drawing, joint_facts, link_facts, numbers
 from .mermaid import to_mermaid
 
-__all__ = ["FORMATS", "Drawing", "draw", "drawing", "pipe_dot", "render", "to_dot"]
+__all__ = [
+    "FORMATS",
+    "Drawing",
+    "draw",
+    "drawing",
+    "pipe_dot",
+    "render",
+    "render_graph",
+    "source_files",
+    "to_dot",
+]
 
 #: Output formats by file extension: DOT text, what `dot` renders, and Mermaid.
 FORMATS = {"gv": "DOT", "dot": "DOT", "pdf": "PDF", "svg": "SVG", "png": "PNG", "mmd": "Mermaid"}
@@ -164,8 +175,10 @@ def _stop(process: Any) -> None:
 def draw(
     robot: Robot | Analysis, format: str, *, detail: bool = False, timeout: float | None = None
 ) -> bytes:
-    """The robot's graph as the bytes of a file in ``format`` (a key of ``FORMATS``);
-    Graphviz's `dot`, where it draws, gets ``timeout`` seconds."""
+    """The robot's link/joint graph as the bytes of a file in ``format``.
+
+    ``format`` is a key of ``FORMATS``; Graphviz's `dot`, where it draws, gets ``timeout``
+    seconds."""
     format = format.lower()
     if format not in FORMATS:
         raise ArgumentError(
@@ -179,19 +192,19 @@ def draw(
     return pipe_dot(text, format, timeout=timeout)
 
 
-def render(
+def render_graph(
     robot: Robot | Analysis,
     path: str | Path,
     *,
     format: str | None = None,
     detail: bool = False,
 ) -> Path:
-    """Write the robot's graph to ``path``, in the format its extension names.
+    """Write the robot's link/joint graph to ``path``, in the format its extension names.
 
     ``.gv``/``.dot`` DOT text, ``.mmd`` a Mermaid flowchart, ``.pdf``/``.svg``/``.png``
     rendered by Graphviz's `dot`; ``format`` overrides the extension. The file is written
     whole or not at all, and never over a file the robot was read from (as far as its
-    elements' locations tell).
+    elements' locations tell). The 3D picture of the robot is `fishbot_urdf.picture`'s.
 
     Returns:
         The path written.
@@ -205,9 +218,32 @@ def render(
     chosen = format or Path(path).suffix.lstrip(".")
     analysis = of(robot)
     data = draw(analysis, chosen, detail=detail)
-    return write_atomic(path, data, inputs=_source_files(analysis.robot))
+    return write_atomic(path, data, inputs=source_files(analysis.robot))
 
 
-def _source_files(robot: Robot) -> set[str]:
+def render(
+    robot: Robot | Analysis,
+    path: str | Path,
+    *,
+    format: str | None = None,
+    detail: bool = False,
+) -> Path:
+    """Write the robot's link/joint graph (deprecated: call `render_graph`).
+
+    The same as `render_graph`, under a name that did not say what it draws: the 3D picture
+    `fishbot render` makes is `fishbot_urdf.picture`.
+    """
+    warnings.warn(
+        "fishbot_urdf.render is deprecated: it draws the link/joint graph, as "
+        "fishbot_urdf.render_graph does (the 3D picture of `fishbot render` is "
+        "fishbot_urdf.picture)",
+        DeprecationWarning,
+        stacklevel=2,
+    )
+    return render_graph(robot, path, format=format, detail=detail)
+
+
+def source_files(robot: Robot) -> set[str]:
+    """The files the robot's elements were read from, as their locations tell."""
     located: list[Robot | Link | Joint] = [robot, *robot.links, *robot.joints]
     return {item.source.path for item in located if item.source is not None}

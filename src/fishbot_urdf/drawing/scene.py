@@ -10,7 +10,8 @@ file is not found is left out; one that cannot be read (malformed, not finite) i
 its bounding box when its size is known (the vertices found in an STL or OBJ file, a
 COLLADA file's positions), else left out; so is a shape whose coordinates, scaled and posed,
 are not finite or lie farther than :data:`FARTHEST` from the root. Each is a finding in
-``Scene.findings``, of the mesh rule it breaks (``shape-not-drawn`` for a shape too far).
+``Scene.findings``, of the mesh rule it breaks (``shape-not-drawn`` for a shape too far);
+a scene with nothing to draw at all is one more, an error (``nothing-drawn``).
 """
 
 from __future__ import annotations
@@ -25,7 +26,14 @@ from typing import TYPE_CHECKING, Any
 
 from ..analysis import Analysis, of
 from ..catalog import Rule
-from ..catalog.meshes import MESH_FORMAT, MESH_INVALID, SHAPE_NOT_DRAWN, MeshNotFoundFacts
+from ..catalog.meshes import (
+    MESH_FORMAT,
+    MESH_INVALID,
+    NOTHING_DRAWN,
+    SHAPE_NOT_DRAWN,
+    MeshNotFoundFacts,
+    NothingDrawnFacts,
+)
 from ..catalog.setup import TOOL_MISSING
 from ..diagnostics import Diagnostic, Kind, Severity, Subject, sort_key
 from ..errors import FishbotUrdfError, LimitError, ShapeError, ToolNotFoundError
@@ -76,7 +84,9 @@ class Scene:
     Attributes:
         parts: The shapes, in link order.
         findings: One warning for each shape drawn as its bounding box, or not at all, at
-            its element, with the rule it breaks.
+            its element, with the rule it breaks; and, when no shape at all is drawn, an
+            error of rule ``nothing-drawn`` at the robot (its ``data``: ``kind``,
+            ``visual`` or ``collision``, and the robot's ``visuals`` and ``collisions``).
         poses: Every link's 4x4 pose in the root frame, by name.
     """
 
@@ -167,7 +177,32 @@ def build_scene(
                 continue
             color = (0.55, 0.7, 0.85, 1.0) if collision else _color(material, materials)
             parts.append(Part(link.name, world, color, placed, pose))
+    if not parts:
+        loader.findings.append(_nothing_drawn(analysis, collision))
     return Scene(tuple(parts), tuple(sorted(loader.findings, key=sort_key)), poses)
+
+
+def _nothing_drawn(analysis: Analysis, collision: bool) -> Diagnostic:
+    """The error of a scene with no shape in it: the robot has none of the kind asked for,
+    or none of them could be drawn (each said by a warning of its own)."""
+    robot = analysis.robot
+    visuals = sum(len(link.visuals) for link in robot.links)
+    collisions = sum(len(link.collisions) for link in robot.links)
+    kind, count = ("collision", collisions) if collision else ("visual", visuals)
+    if count:
+        many = f"none of its {count} {kind} shapes can be drawn"
+        what = many if count > 1 else f"its only {kind} shape cannot be drawn"
+        hint = None  # the warnings before it say why
+    else:
+        what, hint = f"no link has a {kind} shape", f"give a link a <{kind}>"
+    return NOTHING_DRAWN.report(
+        f"robot {robot.name!r}: {what}: there is nothing to draw",
+        robot.source,
+        path=analysis.path,
+        subject=Subject(Kind.ROBOT, robot.name),
+        hint=hint,
+        data=NothingDrawnFacts(kind=kind, visuals=visuals, collisions=collisions),
+    )
 
 
 def _shown(geometry: Geometry) -> str:

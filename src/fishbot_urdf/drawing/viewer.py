@@ -22,24 +22,28 @@ import os
 import threading
 import warnings
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from ..diagnostics import Diagnostic
-from ..errors import ArgumentError, UnknownNameError
+from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
 from ..inputs import max_seconds, time_limit
 from ..kinematics import Kinematics
 from ..model import JointType
 from ..spatial import quaternion
+from ._camera import aim, framing
+from ._controls import Input as _Input
+from ._controls import dropped as _dropped
+from ._controls import position as _position
+from ._controls import slider_range
+from ._glb import glb
+from ._notes import failure_note, findings_of, viewed
 from ._serving import ServeError, authority, control_id, serve, shown
-from .scene import build_scene
+from .scene import Scene, build_scene
 
 __all__ = ["ServeError", "Viewer"]
 
 _log = logging.getLogger(__name__)
-
-_SLACK = 1e-9  # a slider's end, reached in steps of (high - low) / 1000, may miss by a rounding
 
 
 class Viewer:
@@ -49,17 +53,30 @@ class Viewer:
     :mod:`fishbot_urdf.inputs`: the size limit, trusted expressions, and a time limit that
     starts again for each load).
 
+    A load that fails (``load`` raises a FishbotUrdfError: a `RobotError` with the robot's
+    errors, or the error that stopped the reading) leaves the robot read last on the page,
+    with the failure's findings shown above the controls until a load succeeds; the
+    viewer keeps watching the files of the last good load, those in ``watch`` and those the
+    failure names.
+
     Args:
         load: Reads the robot: returns (analysis, the files it was read from). Called again
             when one of those files changes.
         host, port: Where to serve (port 0: any free port; a port in use: the next free one).
         packages: Folders of ROS packages, for ``package://`` meshes.
+        watch: Files to watch whatever a load gives (the robot's own file).
+        wait: Whether a first load that fails with this error waits for a fix (the page
+            shows the error, and the robot once a load succeeds) rather than raise it;
+            None: never.
+        report: Called after every load the viewer makes on its own (after an edit, and
+            a first load that waits) with the error that stopped it, or None when the
+            robot is shown; on the thread that watches the files.
 
     Raises:
         ServeError: ``host`` and ``port`` cannot be served on.
         ToolError: viser is of a version whose requests the viewer cannot check.
-        FishbotUrdfError: The first load failed (whatever ``load`` raises); the server is
-            stopped and its port free again.
+        FishbotUrdfError: The first load failed (whatever ``load`` raises) and ``wait`` does
+            not wait for it; the server is stopped and its port free again.
     """
 
     def __init__(
@@ -69,8 +86,16 @@ class Viewer:
         host: str = "127.0.0.1",
         port: int = 8080,
         packages: Mapping[str, str | Path] | None = None,
+        watch: Sequence[str] = (),
+        wait: Callable[[FishbotUrdfError], bool] | None = None,
+        report: Callable[[FishbotUrdfError | None], None] | None = None,
     ) -> None:
         self._load = load
+        self._watched = tuple(watch)
+        self._report = report
+        self._points: Any = None  # the robot's, framed by the first load that succeeds
+        # The error of the last load, shown on the page; None while the robot is shown.
+        self.error: FishbotUrdfError | None = None
         self._context = contextvars.copy_context()
         self._packages = dict(packages or {})
         self._lock = threading.RLock()
@@ -99,7 +124,14 @@ class Viewer:
                 control_id(self._show_frames): _Input("Link frames", toggle=True),
             }
             self._inputs = dict(self._switches)
-            self.reload()
+            self._trouble = gui.add_markdown("", order=-1.0, visible=False)
+            self.server.on_client_connect(self._greet)
+            try:
+                self.reload()
+            except FishbotUrdfError as exc:
+                if wait is None or not wait(exc):
+                    raise
+                self._failed(exc)
         except BaseException:
             self.server.stop()  # joins its thread: the port is free again
             raise
@@ -159,31 +191,18 @@ class Viewer:
                 self._nodes.append(frame)  # removing a frame removes what hangs below it
             for kind, scene in (("visual", visual), ("collision", collision)):
                 for index, part in enumerate(scene.parts):
-                    count = len(part.local)
-                    mesh = self.server.scene.add_mesh_simple(
+                    mesh = self._mesh(
+                        np,
                         f"{_node(part.link)}/{kind}_{index}",
-                        part.local.reshape(-1, 3).astype(np.float32),
-                        np.arange(3 * count, dtype=np.uint32).reshape(-1, 3),
-                        color=tuple(round(255 * c) for c in part.color[:3]),
-                        opacity=part.color[3] if part.color[3] < 1.0 else None,
-                        side="double",
-                        flat_shading=True,
+                        part,
                         visible=kind == "visual" or self._show_collision.value,
                     )
                     if kind == "collision":
                         self._collisions.append(mesh)
-            self.findings = tuple(dict.fromkeys((*visual.findings, *collision.findings)))
-            if not self.reloads:  # frame the robot, from the front left and above
-                corner, far_corner = visual.bounds()
-                centre = (corner + far_corner) / 2
-                size = float(max(np.max(far_corner - corner), 0.05))
-                eye = np.array([1.0, 0.75, 0.65]) / np.linalg.norm([1.0, 0.75, 0.65])
-                camera = self.server.initial_camera
-                camera.up = (0.0, 0.0, 1.0)
-                camera.look_at = tuple(float(c) for c in centre)
-                camera.position = tuple(float(c) for c in centre + 2.2 * size * eye)
-                camera.near, camera.far = size / 100, size * 100
-            ranges = {name: _range(analysis, name) for name in kinematics.variables}
+            self.findings = viewed(visual, collision)
+            if self._points is None:
+                self._frame(np, visual)
+            ranges = {name: slider_range(analysis, name) for name in kinematics.variables}
             inputs = dict(self._switches)
             for name, (low, high) in ranges.items():
                 value = float(min(max(self.values.get(name, 0.0), low), high))
@@ -202,8 +221,59 @@ class Viewer:
                 and joint.type is JointType.CONTINUOUS
             )
             self._inputs = inputs  # one assignment: the server's thread reads it
-            self._stamps = {f: _stamp(f) for f in files}
+            self._stamps = {f: _stamp(f) for f in (*files, *self._watched)}
             self._pose()
+            self.error = None
+            self._trouble.visible = False
+
+    def _mesh(self, np: Any, name: str, part: Any, *, visible: bool) -> Any:
+        """A part on the page: a transparent one as a GLB file, which three.js blends
+        without hiding what is behind or inside it (see `fishbot_urdf.drawing._glb`)."""
+        red, green, blue, alpha = part.color
+        if alpha < 1.0:
+            return self.server.scene.add_glb(name, glb(np, part.local, part.color), visible=visible)
+        count = len(part.local)
+        return self.server.scene.add_mesh_simple(
+            name,
+            part.local.reshape(-1, 3).astype(np.float32),
+            np.arange(3 * count, dtype=np.uint32).reshape(-1, 3),
+            color=(round(255 * red), round(255 * green), round(255 * blue)),
+            side="double",
+            flat_shading=True,
+            visible=visible,
+        )
+
+    def _frame(self, np: Any, scene: Scene) -> None:
+        """Point the camera at the robot: the pages open already too (the robot was not
+        there to be seen before), each framed for its own view's width."""
+        parts = [part.triangles.reshape(-1, 3) for part in scene.parts]
+        if not parts:  # nothing drawn: the link frames are
+            parts = [np.array([pose[:3, 3] for pose in scene.poses.values()])]
+        self._points = np.concatenate(parts).astype(np.float32)
+        aim(self.server.initial_camera, framing(np, self._points))  # for a square view
+        for client in self.server.get_clients().values():
+            self._greet(client)
+
+    def _greet(self, client: Any) -> None:
+        """Frame the robot in a page that opens (viser has its view's size by then)."""
+        import numpy as np  # numpy: ~190 ms to load, only where arrays are made
+
+        with self._lock:
+            if self._points is not None:
+                aim(client.camera, framing(np, self._points, client.camera.aspect))
+
+    def _failed(self, exc: FishbotUrdfError) -> None:
+        """Show a load's error on the page (the robot read last stays), and watch the files
+        it names too."""
+        found = findings_of(exc)
+        named = [f.path for f in found if f.path and os.path.isfile(f.path)]
+        with self._lock:
+            self.error = exc
+            self._stamps = {f: _stamp(f) for f in (*self._stamps, *self._watched, *named)}
+            self._trouble.content = failure_note(found, shown=bool(self._frames))
+            self._trouble.visible = True
+        if self._report is not None:
+            self._report(exc)
 
     def set(self, name: str, value: float) -> None:
         """Move joint variable ``name`` (as its slider would) to ``value`` (radians or
@@ -281,6 +351,8 @@ class Viewer:
     def _pose(self) -> None:
         import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
+        if not self._frames:
+            return  # no robot read yet
         kinematics = self._kinematics
         q = np.array([self.values.get(v, 0.0) for v in kinematics.variables])
         poses = kinematics.forward(q)
@@ -305,51 +377,15 @@ class Viewer:
                 continue
             try:
                 self.reload()
-            except Exception as exc:  # the page keeps the robot loaded last
+            except FishbotUrdfError as exc:  # the page keeps the robot loaded last
+                self._failed(exc)
+            except Exception as exc:  # a fault of the viewer's: said, and watched again
                 _log.warning("the robot could not be read again: %s", exc)
                 self._stamps = {f: _stamp(f) for f in self._stamps}
             else:
                 self.reloads += 1
-
-
-@dataclass(frozen=True, slots=True)
-class _Input:
-    """A control on the page: a joint's slider (``low`` .. ``high``), or, with ``toggle``,
-    a checkbox."""
-
-    label: str
-    low: float = 0.0
-    high: float = 0.0
-    toggle: bool = False
-
-    @property
-    def title(self) -> str:
-        """How a log line names it."""
-        return f"{'checkbox' if self.toggle else 'joint'} {self.label!r}"
-
-
-def _position(value: Any, low: float, high: float) -> float | None:
-    """``value`` as a slider's position: a finite number (no bool, no text such as "nan")
-    within ``low`` .. ``high`` (less a rounding error, taken in), else None."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        return None
-    try:
-        number = float(value)
-    except OverflowError:  # an int beyond any float
-        return None
-    if not (math.isfinite(number) and low - _SLACK <= number <= high + _SLACK):
-        return None
-    return min(max(number, low), high)
-
-
-def _dropped(label: str, value: Any, low: float, high: float) -> None:
-    _log.warning(
-        "joint %r: dropped %s sent by the page (not a number within %g .. %g)",
-        label,
-        shown.repr(value),
-        low,
-        high,
-    )
+                if self._report is not None:
+                    self._report(None)
 
 
 def _stamp(path: str) -> float:
@@ -362,26 +398,6 @@ def _stamp(path: str) -> float:
 def _node(link: str) -> str:
     """A viser scene path for a link (``/`` would nest it)."""
     return "/robot/" + link.replace("/", "_")
-
-
-def _range(analysis: Any, variable: str) -> tuple[float, float]:
-    """A slider's range: the joint's limits, else a turn each way (or a metre, sliding)."""
-    joint = analysis.joints.get(variable)
-    if (
-        joint is not None
-        and joint.limit is not None
-        and joint.type
-        in (
-            JointType.REVOLUTE,
-            JointType.PRISMATIC,
-        )
-        and joint.limit.lower < joint.limit.upper
-    ):
-        return joint.limit.lower, joint.limit.upper
-    if joint is not None and joint.type is JointType.PRISMATIC:
-        return -1.0, 1.0
-    part = variable.rsplit(".", 1)[-1]
-    return (-1.0, 1.0) if part in ("x", "y", "z") else (-math.pi, math.pi)
 
 
 def _frame_size(np: Any, scene: Any) -> float:

@@ -60,16 +60,18 @@ _AT_LINK = Origin()
 
 
 def box_inertia(m: float, w: float, h: float, d: float, origin: Origin = _AT_LINK) -> Inertial:
-    """A solid box of mass ``m`` (kg) with sides ``w`` along x, ``h`` along y and ``d``
-    along z (m), as ``<box size="w h d"/>``: ixx = m/12 (h^2 + d^2), iyy = m/12 (w^2 + d^2),
-    izz = m/12 (w^2 + h^2) (kg*m^2)."""
+    """The inertial of a solid box of mass ``m`` (kg) and sides ``w``, ``h``, ``d`` (m).
+
+    The sides are along x, y and z, as ``<box size="w h d"/>``: ixx = m/12 (h^2 + d^2),
+    iyy = m/12 (w^2 + d^2), izz = m/12 (w^2 + h^2) (kg*m^2)."""
     return _diagonal(m, _box(m, w, h, d), origin)
 
 
 def cylinder_inertia(m: float, r: float, h: float, origin: Origin = _AT_LINK) -> Inertial:
-    """A solid cylinder of mass ``m`` (kg), radius ``r`` and height ``h`` (m) along its z
-    axis, as ``<cylinder radius="r" length="h"/>``: ixx = iyy = m/12 (3 r^2 + h^2),
-    izz = m/2 r^2 (kg*m^2)."""
+    """The inertial of a solid cylinder of mass ``m`` (kg), radius ``r`` and height ``h`` (m).
+
+    The height is along its z axis, as ``<cylinder radius="r" length="h"/>``:
+    ixx = iyy = m/12 (3 r^2 + h^2), izz = m/2 r^2 (kg*m^2)."""
     return _diagonal(m, _cylinder(m, r, h), origin)
 
 
@@ -113,8 +115,10 @@ def geometry_inertia(
     origin: Origin = _AT_LINK,
     resolve: Callable[[Mesh], Path] | None = None,
 ) -> Inertial:
-    """The inertia of a URDF box, cylinder or sphere filled uniformly with ``mass`` (kg),
-    or of a closed mesh when the optional trimesh package is installed.
+    """The inertia of a URDF shape filled uniformly with ``mass`` (kg).
+
+    A box, cylinder or sphere, or a closed mesh when the optional trimesh package is
+    installed.
 
     A mesh's file is found by ``resolve`` (for a robot's mesh, its analysis's
     ``mesh_paths.file``, as every command finds it), or else by the rule of
@@ -211,8 +215,10 @@ def combine(parts: Iterable[tuple[Inertial, Pose]]) -> MassProperties:
 
 
 def volume(geometry: Geometry, resolve: Callable[[Mesh], Path] | None = None) -> float:
-    """The volume of a URDF box, cylinder or sphere (m^3), or of a closed mesh when the
-    optional trimesh package is installed (found as `geometry_inertia` finds it).
+    """The volume of a URDF shape (m^3).
+
+    A box, cylinder or sphere, or a closed mesh when the optional trimesh package is
+    installed (found as `geometry_inertia` finds it).
 
     Raises:
         ShapeError: The mesh is not closed.
@@ -329,8 +335,9 @@ def mesh_inertia(
     origin: Origin = _AT_LINK,
     scale: Vector3 | None = None,
 ) -> Inertial:
-    """The inertia of a closed mesh file filled uniformly with ``mass`` (kg), about its
-    centre of mass, placed by ``origin`` (that of its collision). Needs trimesh
+    """The inertia of a closed mesh file filled uniformly with ``mass`` (kg).
+
+    About its centre of mass, placed by ``origin`` (that of its collision). Needs trimesh
     (``pip install 'fishbot-urdf[mesh]'``).
 
     Raises:

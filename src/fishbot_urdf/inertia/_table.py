@@ -155,10 +155,12 @@ def mass_table(
     diagnostics: Iterable[Diagnostic] = (),
     positions: Mapping[str, float] | None = None,
 ) -> MassTable:
-    """The mass table of ``robot`` with its joints at ``positions`` (rad or m; the rest at
-    zero, mimic joints following); each line lists the rules of ``diagnostics`` (its
-    findings, from `check_file`) whose subject is that link. Each link's centre of mass is
-    in its own frame; the total's is in the root link's.
+    """The mass table of ``robot`` with its joints at ``positions``.
+
+    Positions are in rad or m (the rest at zero, mimic joints following); each line lists
+    the rules of ``diagnostics`` (its findings, from `check_file`) whose subject is that
+    link. Each link's centre of mass is in its own frame; the total's is in the root
+    link's.
 
     Raises:
         UnknownNameError: ``positions`` names a joint that does not exist.

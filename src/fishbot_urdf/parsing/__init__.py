@@ -60,8 +60,9 @@ def read(
     args: Mapping[str, str] | None = None,
     packages: Mapping[str, str | Path] | None = None,
 ) -> Parsed:
-    """Read a URDF (or xacro) file leniently, collecting every finding instead of stopping at
-    the first.
+    """Read a URDF (or xacro) file leniently, collecting every finding.
+
+    It does not stop at the first finding.
 
     A ``.xacro`` file is expanded first (see :func:`fishbot_urdf.expand`), and the robot's
     elements keep the place they were written in the xacro files.

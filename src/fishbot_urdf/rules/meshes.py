@@ -271,8 +271,7 @@ def _fault(file: Path) -> str | None:
     return None
 
 
-# (shape-not-drawn is render's and view's finding: the check never draws)
-REPORTS: tuple[Rule, ...] = tuple(
-    r for r in rules_in(catalog.meshes) if r is not catalog.meshes.SHAPE_NOT_DRAWN
-)
+# (shape-not-drawn and nothing-drawn are render's and view's findings: the check never draws)
+_DRAWING = (catalog.meshes.SHAPE_NOT_DRAWN, catalog.meshes.NOTHING_DRAWN)
+REPORTS: tuple[Rule, ...] = tuple(r for r in rules_in(catalog.meshes) if r not in _DRAWING)
 """Every rule this module's check may report: the check runs only when one is selected."""
