@@ -19,7 +19,7 @@ from typing import NoReturn
 
 import click
 
-from ..diagnostics import escape_controls
+from ..escaping import escape_controls
 
 __all__ = ["cli", "main"]
 
