@@ -257,20 +257,19 @@ _FIELDS = (
 def _unpickled(*values: Any) -> Diagnostic:
     *fixed, data = values
     rule, severity, message, path, line, column, hint, subject, definition, follows, element = fixed
-    facts = data if isinstance(data, Facts) else MappingProxyType(data) if data else _NO_DATA
-    return Diagnostic(
+    return diagnostic(
         rule,
         severity,
         message,
-        path,
-        line,
-        column,
-        hint,
-        subject,
-        facts,
-        definition,
-        follows,
-        element,
+        path=path,
+        line=line,
+        column=column,
+        hint=hint,
+        subject=subject,
+        data=data,
+        definition=definition,
+        follows=follows,
+        element=element,
     )
 
 
