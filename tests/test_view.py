@@ -81,15 +81,21 @@ def viewer(robot: Path) -> Iterator[Viewer]:
     shown.close()
 
 
-@pytest.fixture(scope="module")
-def browser(viewer: Viewer) -> Iterator[Any]:
+def headless_chromium() -> Any:
+    """Debian's chromium, headless, driven by its chromedriver (a test skips without them,
+    or fails in CI)."""
     chromium = require_tool("chromium", "chromium")
     driver_path = require_tool("chromedriver", "chromium-driver")
     options = webdriver.ChromeOptions()
     for flag in CHROME_FLAGS:
         options.add_argument(flag)
     options.binary_location = chromium
-    driver = webdriver.Chrome(service=webdriver.ChromeService(driver_path), options=options)
+    return webdriver.Chrome(service=webdriver.ChromeService(driver_path), options=options)
+
+
+@pytest.fixture(scope="module")
+def browser(viewer: Viewer) -> Iterator[Any]:
+    driver = headless_chromium()
     driver.get(viewer.url)
     _wait(lambda: "Connected" in driver.find_element(By.TAG_NAME, "body").text)
     yield driver

@@ -16,16 +16,15 @@ from typing import Any
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from conftest import REQUIRE_TOOLS, require_tool
+from conftest import REQUIRE_TOOLS
 
 if not REQUIRE_TOOLS:  # on a user's machine without the [view] extra: skipped, with a reason
     pytest.importorskip("viser", reason="fishbot view needs the [view] extra")
     pytest.importorskip("selenium", reason="the browser tests need selenium ([test] extra)")
-from selenium import webdriver
 from selenium.webdriver.common.by import By
-from test_view import CHROME_FLAGS, _free_port, _settled, _wait
+from test_view import _free_port, _settled, _wait, headless_chromium
+from test_view_serving import _loader
 
-from fishbot_urdf import check_file
 from fishbot_urdf.cli import cli
 from fishbot_urdf.drawing.viewer import Viewer
 
@@ -60,13 +59,7 @@ def _magenta(pixels: np.ndarray) -> float:
 
 @pytest.fixture(scope="module")
 def driver() -> Iterator[Any]:
-    chromium = require_tool("chromium", "chromium")
-    driver_path = require_tool("chromedriver", "chromium-driver")
-    options = webdriver.ChromeOptions()
-    for flag in CHROME_FLAGS:
-        options.add_argument(flag)
-    options.binary_location = chromium
-    made = webdriver.Chrome(service=webdriver.ChromeService(driver_path), options=options)
+    made = headless_chromium()
     yield made
     made.quit()
 
@@ -84,11 +77,7 @@ def test_a_transparent_part_inside_another_is_seen(driver: Any, tmp_path: Path) 
     robot = tmp_path / "nested.urdf"
     robot.write_text(NESTED, encoding="utf-8")
 
-    def load() -> tuple[Any, tuple[str, ...]]:
-        result = check_file(robot)
-        return result.analysis, result.files
-
-    shown = Viewer(load, port=_free_port())
+    shown = Viewer(_loader(robot), port=_free_port())
     try:
         _open(driver, shown.url)
         pixels = _settled(driver)
@@ -107,11 +96,7 @@ def test_the_robot_fills_the_view(driver: Any, tmp_path: Path) -> None:
         encoding="utf-8",
     )
 
-    def load() -> tuple[Any, tuple[str, ...]]:
-        result = check_file(robot)
-        return result.analysis, result.files
-
-    shown = Viewer(load, port=_free_port())
+    shown = Viewer(_loader(robot), port=_free_port())
     try:
         _open(driver, shown.url)
         pixels = _settled(driver)
