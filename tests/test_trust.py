@@ -15,7 +15,7 @@ from click.testing import CliRunner
 from conftest import xacro_command
 
 from fishbot_urdf.cli import cli
-from fishbot_urdf.expansion import XacroError, expand
+from fishbot_urdf.expansion import ExpansionLimitError, XacroError, expand
 from fishbot_urdf.expansion._allowlist import UnsafeExpression, prepare_symbols
 from fishbot_urdf.expansion._interpreter import evaluate
 
@@ -428,11 +428,11 @@ def test_an_expansion_that_doubles_without_end_stops_at_the_size_limit(
     assert result.exit_code == 2
     assert result.stderr.startswith("robot.xacro:2:")
     assert (
-        ": error: the expansion makes more than 327 elements (macros that call each other "
-        "without a bound?), in macro m called from robot.xacro:2,"
+        ": error: the expansion would make more than 10,485 bytes in all, the size limit "
+        "(reached making elements), in macro m called from robot.xacro:2,"
     ) in result.stderr
     assert result.stderr.endswith(
-        "(raise the limits with --timeout SECONDS and --max-size MIB) [xacro-error]\n"
+        "(raise the limits with --timeout SECONDS and --max-size MIB) [limit]\n"
     )
 
 
@@ -476,8 +476,11 @@ def test_an_expansion_that_doubles_without_end_stops_at_the_time_limit(
         ("'\\t'.expandtabs(10**9)", "would make a value of more than 10,000,000 items"),
         ("('a' * 10**6).replace('a', 'b' * 20)", "would make a value of more than 10,000,000"),
         ("'-'.join(['a' * 10**6] * 11)", "would make a value of more than 10,000,000 items"),
-        ("[('a' * 9000000) + python.str(i) for i in python.range(3)]", "in all"),
-        ("math.prod(python.range(1, 10**6))", "a number of more than 1,000,000 bits"),
+        (
+            "[('a' * 9000000) + python.str(i) for i in python.range(3)]",
+            "a value of more than 10,000,000 items when written out",
+        ),
+        ("math.prod(python.range(1, 10**5))", "a number of more than 1,000,000 bits"),
     ],
 )
 def test_an_expression_that_would_build_a_huge_value_stops_before_it_does(
@@ -485,9 +488,9 @@ def test_an_expression_that_would_build_a_huge_value_stops_before_it_does(
 ) -> None:
     text = _robot(f'<link name="${{{expression.replace("<", "&lt;")}}}"/>')
     robot = _expand_in(tmp_path, {"robot.xacro": text}, monkeypatch)
-    with pytest.raises(XacroError) as caught:
+    with pytest.raises(ExpansionLimitError) as caught:
         expand(robot)
-    assert caught.value.rule == "xacro-unsafe"
+    assert caught.value.rule == "limit"
     assert what in caught.value.message
     assert caught.value.message.endswith(", more than a xacro expression may")
 
@@ -584,16 +587,16 @@ def test_include_patterns_match_what_glob_matches(
 ) -> None:
     import glob
 
+    from fishbot_urdf.expansion._budget import Budget
     from fishbot_urdf.expansion._files import Globbing
-    from fishbot_urdf.inputs import deadline
 
     for name in ("a.xacro", "b1.xacro", ".hidden.xacro", "c.txt", "d/x.xacro", "d/.y.xacro"):
         (tmp_path / "parts" / name).parent.mkdir(parents=True, exist_ok=True)
         (tmp_path / "parts" / name).write_text("<robot/>")
     monkeypatch.chdir(tmp_path)
-    assert sorted(Globbing(deadline()).glob(pattern)) == sorted(glob.glob(pattern))
+    assert sorted(Globbing(Budget()).glob(pattern)) == sorted(glob.glob(pattern))
     absolute = str(tmp_path / pattern)
-    assert sorted(Globbing(deadline()).glob(absolute)) == sorted(glob.glob(absolute))
+    assert sorted(Globbing(Budget()).glob(absolute)) == sorted(glob.glob(absolute))
 
 
 def test_an_include_pattern_stops_at_the_deadline(

@@ -127,8 +127,8 @@ def error_hint(exc: FishbotUrdfError) -> tuple[str, str | None] | None:
         return exc.message, "raise the limit with --max-size MIB"
     if isinstance(exc, ToolTimeoutError):
         return exc.message, "allow it longer with --timeout SECONDS"
-    if isinstance(exc, ExpansionLimitError):
-        return exc.message, "raise the limits with --timeout SECONDS and --max-size MIB"
+    if isinstance(exc, ExpansionLimitError):  # a bound of one expression has a hint of its own
+        return exc.message, exc.hint or "raise the limits with --timeout SECONDS and --max-size MIB"
     if isinstance(exc, TimeLimitError):
         return exc.message, "allow it longer with --timeout SECONDS"
     if isinstance(exc, XacroError) and exc.hint and exc.hint.endswith(TRUST_HINT):

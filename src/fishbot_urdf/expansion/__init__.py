@@ -1,10 +1,11 @@
 """Xacro -> URDF without ROS, with the PyPI ``xacro`` package as the engine.
 
 This package is the only place that imports xacro. xacro keeps its state in module globals
-(the file and macro stacks, the list of files read, the substitution arguments) and prints
-its warnings, so every expansion here runs alone, under a lock, with that state reset
-before and restored after, the engine's hooks patched in for the run only, and its messages
-captured instead of printed. The hooks:
+(the file and macro stacks, the list of files read, the substitution arguments, the symbol
+table) and prints its warnings, so every expansion runs xacro's code in a copy of its own
+(:mod:`._instance`), its evaluator chosen when the copy is made and never swapped, its
+hooks in place for good, and its messages captured instead of printed. Expansions on
+several threads run side by side, each on its own copy. The hooks:
 
 - ``$(find pkg)`` resolves through :func:`fishbot_urdf.packages.find_package`;
 - every element remembers the file, line and column it was written at (kept through the
@@ -19,7 +20,6 @@ from __future__ import annotations
 import os
 import re
 import stat
-import threading
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -36,8 +36,6 @@ __all__ = [
     "parse_args",
     "trusting_expressions",
 ]
-
-_LOCK = threading.RLock()
 
 
 def parse_args(items: list[str] | tuple[str, ...]) -> dict[str, str]:
@@ -95,8 +93,7 @@ def expand(
     from ._engine import Run  # xacro, minidom and the interpreter load here: ~15 ms
 
     trust = trusts_expressions() if trust_expressions is None else trust_expressions
-    with _LOCK, Run(name, dict(args or {}), dict(packages or {}), trust=trust) as run:
-        return run.expand()
+    return Run(name, dict(args or {}), dict(packages or {}), trust=trust).expand()
 
 
 # How a xacro file declares or reads an argument: <xacro:arg name="..."> (any prefix),

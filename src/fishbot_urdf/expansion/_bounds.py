@@ -10,9 +10,10 @@ arguments; a value made of shared parts by what it holds when written out.
 from __future__ import annotations
 
 import ast
+import functools
 import re
 import string
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Mapping
 from typing import Any
 
 from ..errors import FishbotUrdfError
@@ -24,11 +25,14 @@ __all__ = [
     "MAX_ITEMS",
     "SIZED",
     "UnsafeExpression",
+    "binary_size",
+    "binary_steps",
     "bounded_count",
     "bounded_lcm",
     "bounded_prod",
     "bounded_range",
     "bounded_sum",
+    "call_steps",
     "check_binary",
     "check_format",
     "check_printf",
@@ -94,19 +98,46 @@ _FIELD = re.compile(r"\d*|[^\W\d]\w*")
 _WIDTHS = re.compile(r"(\d+)")
 
 
-def check_format(template: str, args: Iterable[Any] = (), kwargs: Iterable[Any] = ()) -> None:
+def check_format(
+    template: str, args: Iterable[Any] = (), kwargs: Mapping[str, Any] | None = None
+) -> None:
     """Refuse a ``str.format`` template whose fields read an attribute or an item, at any
-    depth of nested specs, or whose widths and precisions would pass :data:`MAX_ITEMS`.
+    depth of nested specs, or whose widths and precisions would pass :data:`MAX_ITEMS`:
+    a width taken from an argument (``'{0:>{1}}'``) as well as one written in it, each
+    looked at before its field is made.
 
     Raises:
         UnsafeExpression: The template is refused.
     """
-    total = len(template)
-    for spec in _fields(template):
-        total += _spec_size(spec)
-    total += sum(_size(a) for a in args) + sum(_size(a) for a in kwargs)
-    if total > MAX_ITEMS:
-        raise too_big(f"a value of more than {MAX_ITEMS:,} items")
+    for _ in _fields(template):
+        pass  # refuses a field that reads an attribute or an item
+    sizing = _Sizing()
+    try:
+        sizing.vformat(template, tuple(args), dict(kwargs or {}))
+    except UnsafeExpression:
+        raise
+    except Exception:  # str.format refuses it too, and says why
+        pass
+
+
+class _Sizing(string.Formatter):
+    """Goes through a template as ``str.format`` does, nested fields resolved, and refuses
+    it as soon as its fields would pass :data:`MAX_ITEMS` in all, before each is made."""
+
+    def __init__(self) -> None:
+        self.total = 0
+
+    def format_field(self, value: Any, format_spec: str) -> str:
+        size = _spec_size(format_spec) + _size(value)
+        if any(len(n) >= 12 for n in _WIDTHS.findall(format_spec)):
+            size = MAX_ITEMS + 1
+        self.total += size
+        if self.total > MAX_ITEMS:
+            raise too_big(f"a value of more than {MAX_ITEMS:,} items")
+        return str(format(value, format_spec))
+
+    def check_unused_args(self, used_args: Any, args: Any, kwargs: Any) -> None:
+        return None
 
 
 def _fields(template: str, depth: int = 0) -> Iterable[str]:
@@ -168,6 +199,7 @@ def bounded_range(function: Callable[..., Any]) -> Callable[..., Any]:
     """xacro's ``range`` (the deprecated one keeps its warning), up to ``MAX_ITEMS`` items:
     making a range is quick, going through ``range(10**12)`` is not."""
 
+    @functools.wraps(function)
     def run(*args: Any) -> range:
         made: range = function(*args)
         if len(made) > MAX_ITEMS:
@@ -181,6 +213,7 @@ def bounded_count(function: Callable[..., Any], name: str) -> Callable[..., Any]
     """``math.factorial``, ``comb`` and ``perm`` up to ``MAX_COUNT``: past it they run for
     minutes."""
 
+    @functools.wraps(function)
     def run(*args: Any) -> Any:
         if any(isinstance(a, int) and a > MAX_COUNT for a in args):
             raise too_big(f"a math.{name} of a number past {MAX_COUNT:,}")
@@ -192,6 +225,7 @@ def bounded_count(function: Callable[..., Any], name: str) -> Callable[..., Any]
 def bounded_prod(function: Callable[..., Any]) -> Callable[..., Any]:
     """``math.prod``, its whole numbers' bits added up before it multiplies them."""
 
+    @functools.wraps(function)
     def run(iterable: Iterable[Any], *, start: Any = 1) -> Any:
         items = list(iterable)
         bits = sum(abs(v).bit_length() for v in (*items, start) if isinstance(v, int))
@@ -203,6 +237,7 @@ def bounded_prod(function: Callable[..., Any]) -> Callable[..., Any]:
 
 
 def bounded_lcm(function: Callable[..., Any]) -> Callable[..., Any]:
+    @functools.wraps(function)
     def run(*args: Any) -> Any:
         if sum(abs(v).bit_length() for v in args if isinstance(v, int)) > MAX_BITS:
             raise too_big(f"a number of more than {MAX_BITS:,} bits")
@@ -215,6 +250,7 @@ def bounded_sum(function: Callable[..., Any]) -> Callable[..., Any]:
     """``sum``: numbers as Python adds them; lists, tuples and strings (``sum(x, [])``
     copies at every step) with the length checked at every step."""
 
+    @functools.wraps(function)
     def run(iterable: Iterable[Any], start: Any = 0) -> Any:
         if not isinstance(start, list | tuple | str | bytes):
             return function(iterable, start)
@@ -253,6 +289,80 @@ def too_long(a: Any, b: Any) -> bool:
     return isinstance(a, SIZED) and isinstance(b, SIZED) and len(a) + len(b) > MAX_ITEMS
 
 
+# -- what an operation costs ----------------------------------------------------------------
+_DIGIT = 30  # bits in one of CPython's digits
+_MULTIPLY = 4096  # digit products per step when multiplying (measured: 1M x 500k bits, 60 ms)
+_DIVIDE = 2000  # digit products per step when dividing (measured: 1M / 500k bits, 270 ms)
+_QUADRATIC = frozenset(
+    """comb divmod factorial gcd isqrt lcm perm pow prod round""".split()  # noqa: SIM905
+)
+
+
+def _digits(value: Any) -> int:
+    return abs(value).bit_length() // _DIGIT + 1 if isinstance(value, int) else 1
+
+
+def binary_steps(kind: type[ast.operator], a: Any, b: Any) -> int:
+    """The steps ``a op b`` takes: one for small values; for whole numbers, by their size
+    (multiplying and dividing go by the product of their digits); for a string or a list
+    made or joined, by its length."""
+    if isinstance(a, int) and isinstance(b, int):
+        da, db = _digits(a), _digits(b)
+        if da + db < 64:
+            return 1
+        if kind is ast.Mult:
+            return da * db // _MULTIPLY + 1
+        if kind in (ast.FloorDiv, ast.Mod, ast.Div):
+            return da * db // _DIVIDE + 1
+        if kind is ast.Pow:
+            made = max(0, b) * da  # the digits of the result; its last squaring dominates
+            return made * made // (2 * _MULTIPLY) + 1
+        return (da + db) // 64 + 1
+    return _items_made(kind, a, b) // 64 + 1
+
+
+def binary_size(kind: type[ast.operator], a: Any, b: Any) -> int:
+    """About how many bytes ``a op b`` makes (checked against the bounds before it is
+    made, by :func:`check_binary`)."""
+    if isinstance(a, int) and isinstance(b, int):
+        bits = max(abs(a).bit_length(), abs(b).bit_length())
+        if kind is ast.Mult:
+            bits = abs(a).bit_length() + abs(b).bit_length()
+        elif kind is ast.Pow and b > 0:
+            bits = b * abs(a).bit_length()
+        elif kind is ast.LShift and b > 0:
+            bits += b
+        return bits // 8 + 28
+    made = _items_made(kind, a, b)
+    if isinstance(a, list | tuple) or isinstance(b, list | tuple):
+        return 8 * made + 56
+    return made + 48
+
+
+def _items_made(kind: type[ast.operator], a: Any, b: Any) -> int:
+    if kind is ast.Mult:
+        for sequence, count in ((a, b), (b, a)):
+            if isinstance(sequence, SIZED) and isinstance(count, int):
+                return len(sequence) * max(0, count)
+    if kind is ast.Add and isinstance(a, SIZED) and isinstance(b, SIZED):
+        return len(a) + len(b)
+    if kind is ast.Mod and isinstance(a, str | bytes):
+        return len(a) + sum(_size(v) for v in (b if isinstance(b, tuple) else (b,)))
+    return 0
+
+
+def call_steps(name: str | None, args: Iterable[Any]) -> int:
+    """The steps a function of the allowlist takes on whole numbers, by their size: the
+    ones that divide or multiply (``divmod``, ``round`` to tens, ``math.gcd``, ...) by the
+    square of the digits of the largest; any other, by its digits."""
+    digits = max((_digits(a) for a in args if isinstance(a, int)), default=1)
+    if digits < 64:
+        return 0
+    if name in _QUADRATIC:
+        return digits * digits // _DIVIDE + 1
+    return digits // 64 + 1
+
+
 def check_str_method(
     name: str, owner: str | bytes, args: list[Any], kwargs: dict[str, Any]
 ) -> None:
@@ -260,7 +370,7 @@ def check_str_method(
     before it runs."""
     limit = f"a value of more than {MAX_ITEMS:,} items"
     if name == "format" and isinstance(owner, str):
-        check_format(owner, args, kwargs.values())
+        check_format(owner, args, kwargs)
     elif name in ("ljust", "rjust", "center", "zfill"):
         width = args[0] if args else kwargs.get("width", 0)
         if isinstance(width, int) and width > MAX_ITEMS:

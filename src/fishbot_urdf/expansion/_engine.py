@@ -1,9 +1,8 @@
-"""The run of one expansion: xacro's state reset and its hooks patched in, then restored."""
+"""The run of one expansion: its own copy of xacro, its hooks in place, one budget."""
 
 from __future__ import annotations
 
 import contextvars
-import functools
 import io
 import os
 import sys
@@ -16,50 +15,59 @@ from xml.parsers.expat import ExpatError
 
 from ..diagnostics import shown_path
 from ..errors import FishbotUrdfError, InputError, LimitError
-from ..inputs import Deadline, deadline, max_bytes, read_input
+from ..inputs import read_input
 from ..location import Location, MacroLocation, calls_of
 from ..packages import PackageNotFoundError, find_package
 from ._allowlist import allowed_callables, prepare_symbols
+from ._budget import ELEMENT_BYTES, Budget
 from ._errors import SOURCE_KEY, Explaining, limited, source
 from ._files import Globbing, YamlError, load_yaml_bounded
+from ._instance import Xacro, load_xacro
 from ._interpreter import evaluate
-from ._result import Expansion, ExpansionLimitError, XacroError
+from ._result import Expansion, XacroError
 
 
-class _Overgrown(FishbotUrdfError):
-    """The expansion made more elements than its budget allows."""
-
-
-class _KeepOnClone:
+class _Keeper:
     """Copies an element's source location to its clones (DOM user-data handler), and
-    counts the clones: macros that call each other twice per level double the document
-    with every level, and a budget stops that before it fills the memory."""
+    charges each element made, parsed or cloned, to the expansion's budget: macros that
+    call each other twice per level double the document with every level, and an include
+    made fifty times over fifty times makes as many copies of its file."""
 
-    __slots__ = ("budget", "called", "left", "until")
+    __slots__ = ("budget", "called", "count")
 
-    def __init__(self, budget: int, until: Deadline) -> None:
-        self.budget = self.left = budget
-        self.until = until
+    def __init__(self, budget: Budget) -> None:
+        self.budget = budget
+        self.count = 0
         self.called: Callable[[Any], None] = lambda body: None  # a macro body cloned
+
+    def made(self, text: int) -> None:
+        """One element made, holding ``text`` characters of its own."""
+        self.budget.spend(ELEMENT_BYTES + text, "elements")
+        self.count += 1
+        if not self.count & 63:
+            self.budget.check()
 
     def handle(self, operation: int, key: str, data: Any, src: Any, dst: Any) -> None:
         # The clone shares the original's user data: it only ever holds this one entry and
         # is never replaced but by `Run._made_by_call` (a macro call clones thousands of
         # elements, so this is hot).
         dst._user_data = src._user_data
-        self.left -= 1
-        if self.left < 0:
-            raise _Overgrown(f"makes more than {self.budget:,} elements")
-        if not self.left & 63:
-            self.until.check("the expansion")
+        text = 0
+        for child in src.childNodes:
+            if child.nodeType == _TEXT:
+                text += len(child.data)
+        self.made(text)
         if src.tagName == "xacro:macro":  # the last of a body's elements to be cloned
             self.called(dst)
 
 
-class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
-    """minidom's builder, also noting where each element starts."""
+_TEXT = minidom.Node.TEXT_NODE
 
-    def __init__(self, path: str, keeper: _KeepOnClone) -> None:
+
+class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
+    """minidom's builder, also noting where each element starts and charging it."""
+
+    def __init__(self, path: str, keeper: _Keeper) -> None:
         super().__init__()
         self._path = path
         self._keeper = keeper
@@ -67,6 +75,7 @@ class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
     def start_element_handler(self, name: str, attributes: Any) -> None:
         parser = self.getParser()
         line, column = parser.CurrentLineNumber, parser.CurrentColumnNumber + 1
+        self._keeper.made(0)  # the file's text was charged as it was read
         super().start_element_handler(name, attributes)
         self.curNode.setUserData(SOURCE_KEY, Location(self._path, line, column), self._keeper)
 
@@ -74,7 +83,7 @@ class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
 
 
 class Run(Explaining):
-    """One expansion: xacro's state reset, its hooks in place, for the time of a ``with``."""
+    """One expansion, on a copy of xacro of its own (see :mod:`._instance`)."""
 
     def __init__(
         self,
@@ -84,10 +93,6 @@ class Run(Explaining):
         *,
         trust: bool = False,
     ) -> None:
-        import xacro  # type: ignore[import-untyped]
-        import xacro.substitution_args as subst  # type: ignore[import-untyped]
-
-        self.xacro, self.subst = xacro, subst
         self.path, self.args, self.packages = path, args, packages
         self.trust = trust  # expressions run as Python, as xacro runs them
         self.node: Any = None  # the element being worked on
@@ -98,72 +103,49 @@ class Run(Explaining):
         self.unclosed: list[tuple[str, Location | None]] = []  # where its parse stopped
         self.given_attributes: list[Any] = []  # elements an <xacro:attribute> wrote to
         self.properties: dict[str, Location | None] = {}  # where each property was defined
-        self._saved: list[tuple[Any, str, Any]] = []
         self._messages = io.StringIO()  # what xacro would have printed on stderr
-        # Elements a run may make by macro calls: one per 32 bytes of the size limit (8.4
-        # million by default; a 100,000-link robot made of macros needs about 2 million).
-        self.deadline = deadline()  # one for the whole expansion, from the caller's
-        self._keeper = _KeepOnClone(max(1, max_bytes() // 32), self.deadline)
-        self._evaluating = (evaluate.__code__, xacro.safe_eval.__code__)
-        self._calling = xacro.handle_macro_call.__code__  # the step that clones macro bodies
-        self.allowed: frozenset[int] = frozenset()  # what expressions may call, once known
+        # One budget for the whole expansion: its steps, what it makes, and the deadline
+        # in force where it was called.
+        self.budget = Budget()
+        self._keeper = _Keeper(self.budget)
+        own = load_xacro(
+            trust=trust,
+            message=self._message,
+            evaluate=self._evaluate,
+            substitution_eval=self._substitution_eval,
+        )
+        self.xacro, self.subst = own.xacro, own.subst
+        # The evaluators' code: a frame of one, in a traceback, holds the symbols of the
+        # expression that failed (xacro's own, when trusted, or this run's).
+        self._evaluating = (evaluate.__code__, own.xacro.safe_eval.__code__)
+        self._calling = own.xacro.handle_macro_call.__code__  # the step that clones bodies
+        self._install(own)
+        self.allowed: frozenset[int] = allowed_callables(self.xacro._global_symbols)
+        self._keeper.called = self._made_by_call
 
     # -- the hooks -------------------------------------------------------------------------
-    def __enter__(self) -> Run:
-        import xacro.color  # type: ignore[import-untyped]
-
-        x, subst = self.xacro, self.subst
+    def _install(self, own: Xacro) -> None:
+        """Put this run's hooks into its own copy of xacro, for good: nothing is restored."""
+        x, subst = own.xacro, own.subst
         # The element at fault and the macro calls that led to it are read off the stack
         # when an error comes (see _locate): no hook sits on xacro's recursion, which
         # keeps its depth the xacro command's.
-        self._patch(x, "grab_property", self._property(x.grab_property))
-        self._patch(x, "reqd_attrs", self._attributes(x.reqd_attrs))
-        if not self.trust:
-            self._patch(x, "safe_eval", self._evaluate)
-            self._patch(subst, "_eval", self._substitution_eval)
-        self._patch(x, "glob", Globbing(self.deadline))
-        self._patch(x, "eval_extension", self._extension(x.eval_extension))
-        self._patch(x, "parse", self._parse)
-        self._patch(x, "print_location", lambda: None)
-        # xacro prints its warnings and errors through xacro.color.message (the functions
-        # xacro.warning and xacro.error call it by name); ${xacro.message(...)} in a file
-        # holds the original function, so its entry in the symbol table is replaced too.
-        self._patch(xacro.color, "message", self._message)
+        x.grab_property = self._property(x.grab_property)
+        x.reqd_attrs = self._attributes(x.reqd_attrs)
+        x.glob = Globbing(self.budget)
+        x.eval_extension = self._extension(x.eval_extension)
+        x.parse = self._parse
+        x.print_location = lambda: None
         # Each run evaluates in a symbol table of its own: nothing one file does to
         # ``math`` or ``python`` reaches the next.
-        self._patch(x, "_global_symbols", self._fresh_symbols())
-        self._patch(subst, "_eval_find", self._find)
-        self._patch(subst._eval_dict, "find", self._find)
-        # the state a previous run may have left
-        self._patch(x, "all_includes", [])
-        self._patch(x, "root_dir", os.curdir)
-        self._patch(x, "verbosity", 1)
-        self._patch(x, "substitution_args_context", {})
+        x._global_symbols = self._fresh_symbols()
+        subst._eval_find = self._find
+        subst._eval_dict["find"] = self._find
         x.init_stacks(None)
-        symbols = x._global_symbols
-        self.allowed = allowed_callables(symbols)
-        self._keeper.called = self._made_by_call
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        for owner, name, value in reversed(self._saved):
-            if isinstance(owner, dict):
-                owner[name] = value
-            else:
-                setattr(owner, name, value)
-        self.xacro.init_stacks(None)
-
-    def _patch(self, owner: Any, name: str, value: Any) -> None:
-        if isinstance(owner, dict):
-            self._saved.append((owner, name, owner[name]))
-            owner[name] = value
-        else:
-            self._saved.append((owner, name, getattr(owner, name)))
-            setattr(owner, name, value)
 
     def _fresh_symbols(self) -> dict[str, Any]:
         x = self.xacro
-        symbols: dict[str, Any] = x.create_global_symbols()
+        symbols: dict[str, Any] = x._global_symbols  # made when this copy of xacro was
         if not self.trust:
             prepare_symbols(symbols)
         exposed = symbols["xacro"]
@@ -190,6 +172,7 @@ class Run(Explaining):
                 data = read_input(name)
             except InputError as exc:
                 raise x.XacroException(f"cannot read {name}: {exc.message}") from exc
+            self.budget.spend(len(data), "files read")
 
             def unit(value: str) -> float:
                 try:
@@ -199,7 +182,7 @@ class Run(Explaining):
 
             units = {u.value.tag: u.value.conversion_constant for u in x.ConstructUnits}
             try:
-                loaded = load_yaml_bounded(data, units, unit, self.deadline)
+                loaded = load_yaml_bounded(data, units, unit, self.budget)
             except YamlError as exc:
                 raise x.XacroException(f"{name} is not valid YAML: {exc.message}") from exc
             return x.YamlListWrapper.wrap(loaded)
@@ -211,7 +194,7 @@ class Run(Explaining):
         """xacro's ``safe_eval``, by allowlist (as xacro's own with --trust-expressions)."""
         if self.trust:
             return self.xacro.safe_eval(expression, globals, locals)
-        return evaluate(expression, globals, locals, allowed=self.allowed, until=self.deadline)
+        return evaluate(expression, globals, locals, allowed=self.allowed, budget=self.budget)
 
     def _substitution_eval(self, text: str, context: dict[str, Any]) -> str:
         """``$(eval ...)``: the same check as ``${...}``, and no builtins either."""
@@ -227,7 +210,7 @@ class Run(Explaining):
         builtins = dict(self.xacro._global_symbols["python"])
         allowed = self.allowed | {id(f) for f in functions.values() if callable(f)}
         scope = subst._DictWrapper(args, functions)
-        return str(evaluate(text, {}, scope, builtins, allowed=allowed, until=self.deadline))
+        return str(evaluate(text, {}, scope, builtins, allowed=allowed, budget=self.budget))
 
     def _message(self, msg: Any, *args: Any, **kwargs: Any) -> None:
         # As xacro.color.message writes to a stream that is not a terminal: no colour, the
@@ -329,6 +312,7 @@ class Run(Explaining):
                 hint="save it as UTF-8",
                 where=Location(shown_path(filename), 1, 1),
             )
+        self.budget.spend(len(data), "files read")
         self.parsing = filename
         builder = _LocatingBuilder(shown_path(filename), self._keeper)
         try:
@@ -385,18 +369,23 @@ class Run(Explaining):
         self.calls = calls
 
     # -- the run ---------------------------------------------------------------------------
+    def _walk(self) -> tuple[Any, str]:
+        """xacro's processing of the file, and the document written out."""
+        document = self.xacro.process_file(self.path, mappings=dict(self.args))
+        _stringify_attributes(self.given_attributes)
+        return document, document.toprettyxml(indent="  ")
+
     def expand(self) -> Expansion:
         x = self.xacro
+        # What the caller's thread raises while it waits (a signal handler's exception, an
+        # interrupt) is the caller's, and goes on as it is; only the walk's failures are
+        # the file's, and explained.
+        outcome, failure = _on_a_fresh_stack(self._walk, self.budget)
         try:
-            try:
-                document = _on_a_fresh_stack(
-                    functools.partial(x.process_file, self.path, mappings=dict(self.args))
-                )
-            except BaseException as exc:
-                self._locate(exc)
-                raise
-            _stringify_attributes(self.given_attributes)
-            text = document.toprettyxml(indent="  ")
+            if failure is not None:
+                self._locate(failure)
+                raise failure
+            document, text = outcome
         except ExpatError as exc:
             raise self._syntax_error(exc) from exc
         except PackageNotFoundError as exc:
@@ -417,14 +406,8 @@ class Run(Explaining):
                 where=source(self.node),
                 calls=self._calls(),
             ) from exc
-        except LimitError as exc:  # the deadline, or too many files globbed
+        except LimitError as exc:  # the budget, the deadline, or too many files globbed
             raise limited(exc, source(self.node), self._calls()) from exc
-        except _Overgrown as exc:
-            raise ExpansionLimitError(
-                f"the expansion {exc} (macros that call each other without a bound?)",
-                where=source(self.node),
-                calls=self._calls()[:3],
-            ) from exc
         except FishbotUrdfError:
             raise
         except Exception as exc:  # xacro stumbling on what the file gave it
@@ -455,16 +438,24 @@ def _frames(error: BaseException) -> Iterator[Any]:
         trace = trace.tb_next
 
 
-def _on_a_fresh_stack(work: Callable[[], Any]) -> Any:
+def _on_a_fresh_stack(work: Callable[[], Any], budget: Budget) -> tuple[Any, BaseException | None]:
     """Run ``work`` in a thread of its own, in the caller's context: xacro recurses once per
     nested macro call, and Python's recursion limit counts the frames of a thread, so the
-    caller's frames (a command line, a test runner) do not shorten how deep macros may go."""
+    caller's frames (a command line, a test runner) do not shorten how deep macros may go.
+
+    If the caller stops waiting (an interrupt, a signal handler that raises, an error), the
+    work is cancelled through its budget and ends at its next step: it never goes on
+    unwatched, and it runs on its own copy of xacro, whatever the caller does next.
+
+    Gives what ``work`` returned, or what it raised."""
     worker = _Worker(work)
-    worker.start()
-    worker.join()
-    if worker.failure is not None:
-        raise worker.failure
-    return worker.outcome
+    try:
+        worker.start()
+        worker.join()
+    except BaseException:
+        budget.cancel()
+        raise
+    return worker.outcome, worker.failure
 
 
 class _Worker(threading.Thread):

@@ -351,14 +351,18 @@ TRUST_HINT = "or expand with trust_expressions=True, which runs the file's code 
 def unsafe(
     inner: UnsafeExpression, where: Location | None, calls: tuple[tuple[str, Location | None], ...]
 ) -> XacroError:
-    """One located error for an expression refused, or stopped by a bound."""
+    """One located error for an expression refused, or stopped by a bound (a ``limit``)."""
     shown = _shown(inner.expression)
     if inner.too_big:
         message = f"expression {shown} would make {inner.what}, more than a xacro expression may"
-        hint = "a robot description needs no value that large"
-    elif inner.too_long:
+        return ExpansionLimitError(
+            message, hint="a robot description needs no value that large", where=where, calls=calls
+        )
+    if inner.too_long:
         message = f"expression {shown} takes {inner.what}, more than a xacro expression may"
-        hint = "a robot description needs no loop that long"
+        return ExpansionLimitError(
+            message, hint="a robot description needs no loop that long", where=where, calls=calls
+        )
     else:
         message = f"expression {shown} uses {inner.what}, which xacro expressions may not here"
         hint = (
@@ -374,6 +378,8 @@ def limited(
     """One located error for an expansion stopped by the deadline or a bound on files."""
     if isinstance(inner, TimeLimitError):
         message = f"the expansion takes longer than {inner.seconds:g} s"
+    elif inner.message.startswith("the expansion "):
+        message = inner.message
     else:
         message = f"the expansion stops: {inner.message}"
     return ExpansionLimitError(message, where=where, calls=calls[:3])

@@ -15,8 +15,8 @@ from collections.abc import Callable, Mapping
 from typing import Any
 
 from ..errors import FishbotUrdfError, LimitError
-from ..inputs import Deadline
 from ._bounds import MAX_ITEMS
+from ._budget import Budget
 
 __all__ = ["MAX_MATCHES", "Globbing", "YamlError", "load_yaml_bounded"]
 
@@ -31,10 +31,11 @@ class YamlError(FishbotUrdfError):
 
 
 class Globbing:
-    """Stands in for the ``glob`` module in xacro: ``glob(pattern)`` within the deadline."""
+    """Stands in for the ``glob`` module in xacro: ``glob(pattern)`` within the expansion's
+    budget (its deadline, and a cancellation)."""
 
-    def __init__(self, until: Deadline) -> None:
-        self.until = until
+    def __init__(self, budget: Budget) -> None:
+        self.budget = budget
 
     def glob(self, pattern: str) -> list[str]:
         """The paths ``pattern`` matches, as :func:`glob.glob` finds them (hidden names only
@@ -49,7 +50,7 @@ class Globbing:
     def _step(self, bases: list[str], part: str, last: bool) -> list[str]:
         matched: list[str] = []
         for base in bases:
-            self.until.check("globbing an include")
+            self.budget.check()
             if not part:  # a doubled or trailing separator
                 matched.append(os.path.join(base, ""))
                 continue
@@ -99,10 +100,11 @@ def load_yaml_bounded(
     data: bytes,
     units: Mapping[str, float],
     unit: Callable[[str], float],
-    until: Deadline,
+    budget: Budget,
 ) -> Any:
     """One YAML document read safely (PyYAML's SafeLoader), its unit tags (``!degrees``,
-    ...) evaluated by ``unit`` and scaled, and its aliases counted first.
+    ...) evaluated by ``unit`` and scaled, and its aliases counted first: the values it
+    stands for are charged to the budget before they are built.
 
     Raises:
         YamlError: The text is not YAML, or nests deeper than Python can build.
@@ -124,11 +126,13 @@ def load_yaml_bounded(
         node = loader.get_single_node()
         if node is None:
             return None
-        if _expanded(node, {}, until) > MAX_ITEMS:
+        nodes = _expanded(node, {}, budget)
+        if nodes > MAX_ITEMS:
             raise LimitError(
                 f"the YAML file's aliases name more than {MAX_ITEMS:,} items "
                 "(aliases of aliases, each naming the one before many times?)"
             )
+        budget.spend(nodes * _NODE_BYTES, "YAML values")
         return loader.construct_document(node)
     except yaml.YAMLError as exc:
         raise YamlError(str(exc)) from exc
@@ -138,7 +142,10 @@ def load_yaml_bounded(
         loader.dispose()
 
 
-def _expanded(node: Any, sizes: dict[int, int], until: Deadline) -> int:
+_NODE_BYTES = 64  # what one YAML value built takes, about (a short string, a float)
+
+
+def _expanded(node: Any, sizes: dict[int, int], budget: Budget) -> int:
     """How many nodes ``node`` stands for with every alias written out (each distinct node
     looked at once; a node that holds itself counts once)."""
     key = id(node)
@@ -147,15 +154,15 @@ def _expanded(node: Any, sizes: dict[int, int], until: Deadline) -> int:
         return known
     sizes[key] = 1
     if not len(sizes) & 1023:
-        until.check("loading a YAML file")
+        budget.check()
     total = 1
     value = node.value
     if isinstance(value, list):
         for item in value:
             if isinstance(item, tuple):  # a mapping's (key, value)
-                total += _expanded(item[0], sizes, until) + _expanded(item[1], sizes, until)
+                total += _expanded(item[0], sizes, budget) + _expanded(item[1], sizes, budget)
             else:
-                total += _expanded(item, sizes, until)
+                total += _expanded(item, sizes, budget)
             if total > MAX_ITEMS:
                 break
     sizes[key] = total

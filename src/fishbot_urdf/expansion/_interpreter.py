@@ -17,10 +17,12 @@ is compiled or run as Python. What a walk may do:
 
 Anything else -- an attribute or a name that starts with ``_``, ``:=``, ``await``, a
 function that is not listed -- is refused with :class:`UnsafeExpression` naming the
-construct. Every step counts against :data:`MAX_STEPS`, every value made against
-:data:`MAX_ITEMS` (and all of them together against :data:`MAX_MADE`), calls nest at most
-:data:`MAX_DEPTH` deep, and the deadline of :mod:`fishbot_urdf.inputs` is looked at every
-:data:`CHECK_EVERY` steps.
+construct. All the expressions of one expansion draw on one :class:`._budget.Budget`:
+every step (a node walked, an item a function goes through, the work of an operation on big
+numbers by their size) and every value made (by its size, charged before it is made where
+that can be known), with the deadline looked at every :data:`CHECK_EVERY` steps. One
+expression may also take at most :data:`MAX_STEPS` steps, make no single value of more than
+:data:`MAX_ITEMS` items, and nest its calls at most :data:`MAX_DEPTH` deep.
 """
 
 from __future__ import annotations
@@ -29,16 +31,19 @@ import ast
 import functools
 import operator
 import threading
+import types
 from collections.abc import Callable, Iterable, Iterator, Mapping
 from typing import Any
 
-from ..inputs import Deadline, deadline
 from ._allowlist import allowed_attribute, allowed_callables, is_allowed_method
 from ._bounds import (
     MAX_BITS,
     MAX_ITEMS,
     SIZED,
     UnsafeExpression,
+    binary_size,
+    binary_steps,
+    call_steps,
     check_binary,
     check_printf,
     check_spec,
@@ -47,11 +52,11 @@ from ._bounds import (
     too_long,
     weight,
 )
+from ._budget import CHECK_EVERY, Budget, size_of
 
 __all__ = [
     "CHECK_EVERY",
     "MAX_DEPTH",
-    "MAX_MADE",
     "MAX_STEPS",
     "Lambda",
     "evaluate",
@@ -60,12 +65,8 @@ __all__ = [
 
 MAX_STEPS = 1_000_000
 """The most steps (nodes walked, items iterated, 64 items weighed) one expression may take."""
-MAX_MADE = 2 * MAX_ITEMS
-"""The most items (characters, list items, ...) one expression may make in all."""
 MAX_DEPTH = 100
 """How deep an expression's lambdas may call each other."""
-CHECK_EVERY = 1024
-"""How many steps go by between two looks at the deadline."""
 
 _SCALARS = (int, float, complex, bool, type(None), range, slice)
 _SUBSCRIPTABLE = (str, bytes, list, tuple, dict, range)
@@ -76,6 +77,19 @@ _SHALLOW = frozenset(
     round setdefault slice tuple values zip""".split()  # noqa: SIM905
 )
 _KINDS_TAKEN = (isinstance, issubclass)  # functions whose arguments may be classes as such
+# Functions that go through an iterable they are given, in C: each item they take is
+# counted as a step (a list of ten million zeros is made in one step; summing it is not).
+# Some go through each argument; the rest only the first, and min and max only when it is
+# the only one.
+_CONSUMING_ALL = frozenset(
+    """difference difference_update intersection intersection_update isdisjoint issubset
+    issuperset symmetric_difference symmetric_difference_update union update""".split()  # noqa: SIM905
+)
+_CONSUMING_FIRST = frozenset(
+    """all any dict extend frozenset fromkeys fsum list prod set sorted sum tuple""".split()  # noqa: SIM905
+)  # str.join is in neither: its parts are taken (and counted) before it is called
+_CONSUMING_ALONE = frozenset(("max", "min"))
+_UNBOUND = (types.MethodDescriptorType, types.ClassMethodDescriptorType)
 _ACTIVE = threading.local()  # the evaluations running in this thread, innermost last
 
 
@@ -96,7 +110,7 @@ def evaluate(
     builtins: Mapping[str, Any] | None = None,
     *,
     allowed: frozenset[int] | None = None,
-    until: Deadline | None = None,
+    budget: Budget | None = None,
 ) -> Any:
     """Evaluate one expression as xacro's ``safe_eval`` would, by allowlist.
 
@@ -108,24 +122,27 @@ def evaluate(
         builtins: Names looked up last.
         allowed: The ids of the functions the expression may call (default: those in
             ``globals`` and its namespaces).
-        until: The deadline (default: :func:`fishbot_urdf.inputs.deadline`).
+        budget: What the expansion has left to spend, shared by all its expressions
+            (default: a budget of its own, with the limits in force).
 
     Raises:
         SyntaxError: The text is not a Python expression.
         UnsafeExpression: The expression does what the allowlist does not allow, or would
             pass a bound.
-        TimeLimitError: The deadline passed.
+        LimitError: The budget ran out (TimeLimitError: the deadline passed).
         Exception: What Python raises for the same expression (NameError, TypeError, ...).
     """
     tree = parsed(expression)
     if allowed is None:
         allowed = allowed_callables(getattr(globals, "root", globals))
-    run = _Evaluation(globals, locals, builtins or {}, allowed, until or deadline())
+    run = _Evaluation(globals, locals, builtins or {}, allowed, budget or Budget())
     stack: list[_Evaluation] = _ACTIVE.__dict__.setdefault("stack", [])
     stack.append(run)
     try:
         result = run.value(tree, None)
-        run.weigh(result)  # xacro writes it out with str()
+        # xacro writes it out with str(), into the document or a property: a copy made
+        # each time, charged each time.
+        run.budget.spend(run.weigh(result), "expression results")
         return result
     except UnsafeExpression as exc:
         raise exc.named(expression) from None
@@ -192,6 +209,22 @@ class _CalledBack:
         return repr(self.function)
 
 
+class _Counted:
+    """An iterable whose items are counted as steps as they are taken."""
+
+    __slots__ = ("items", "run")
+
+    def __init__(self, items: Iterable[Any], run: _Evaluation) -> None:
+        self.items = items
+        self.run = run
+
+    def __iter__(self) -> Iterator[Any]:
+        tick = self.run.tick
+        for item in self.items:
+            tick()
+            yield item
+
+
 _BINARY: dict[type[ast.operator], Callable[[Any, Any], Any]] = {
     ast.Add: operator.add,
     ast.Sub: operator.sub,
@@ -242,48 +275,57 @@ class _Evaluation:
         locals: Mapping[str, Any] | None,
         builtins: Mapping[str, Any],
         allowed: frozenset[int],
-        until: Deadline,
+        budget: Budget,
     ) -> None:
         self.globals = globals
         self.locals = locals
         self.builtins = builtins
         self.allowed = allowed
-        self.until = until
-        self.steps = 0
-        self.made = 0
+        self.budget = budget
+        self.last_step = budget.steps + MAX_STEPS  # this expression's own bound
         self.depth = 0
 
     # -- budget --------------------------------------------------------------------------
     def tick(self, count: int = 1) -> None:
-        before = self.steps
-        self.steps += count
-        if self.steps > MAX_STEPS:
+        budget = self.budget
+        budget.tick(count)
+        if budget.steps > self.last_step:
             raise UnsafeExpression("", f"more than {MAX_STEPS:,} steps", too_long=True)
-        if before // CHECK_EVERY != self.steps // CHECK_EVERY:
-            self.until.check("the expansion")
+
+    def work(self, count: int, what: str) -> None:
+        """Take ``count`` steps for one operation done in C, before it is begun: refused if
+        it would pass this expression's steps or the deadline."""
+        if count > CHECK_EVERY:
+            if self.budget.steps + count > self.last_step:
+                raise UnsafeExpression("", f"more than {MAX_STEPS:,} steps", too_long=True)
+            self.budget.afford(count, what)
+        elif count:
+            self.tick(count)
 
     def made_value(self, value: Any) -> Any:
-        """Count a value made against the bounds."""
+        """Count a value made against the bounds and the budget."""
         if isinstance(value, SIZED):
-            size = len(value)
-            if size > MAX_ITEMS:
+            if len(value) > MAX_ITEMS:
                 raise too_big(f"a value of more than {MAX_ITEMS:,} items")
-            self.made += size
-            if self.made > MAX_MADE:
-                raise too_big(f"values of more than {MAX_MADE:,} items in all")
         elif isinstance(value, int) and value.bit_length() > MAX_BITS:
             raise too_big(f"a number of more than {MAX_BITS:,} bits")
+        self.budget.spend(size_of(value))
         return value
 
-    def weigh(self, value: Any) -> None:
+    def weigh(self, value: Any) -> int:
         """Refuse a value that, written out or compared whole, would pass :data:`MAX_ITEMS`
         items: ``[[[0] * 1000] * 1000] * 1000`` is three small lists that hold a billion
-        zeros. Each distinct container is looked at once; 64 of its items count as a step."""
-        if isinstance(value, _SCALARS) or (isinstance(value, str | bytes) and len(value) < 64):
-            return
+        zeros. Each distinct container is looked at once; 64 of its items count as a step.
+        Gives how many items it holds written out (a number's digits are not counted)."""
+        if isinstance(value, _SCALARS):
+            return 1
+        if isinstance(value, str | bytes) and len(value) < 64:
+            return len(value)
         weights: dict[int, int] = {}
-        if weight(value, weights, self.tick) > MAX_ITEMS:
+        total = weight(value, weights, self.tick)
+        if total > MAX_ITEMS:
             raise too_big(f"a value of more than {MAX_ITEMS:,} items when written out")
+        return total
 
     # -- the walk ------------------------------------------------------------------------
     def value(self, node: ast.AST, frame: _Frame | None) -> Any:
@@ -360,7 +402,9 @@ class _Evaluation:
         return self.call(function, args, kwargs)
 
     def call(self, function: Any, args: list[Any], kwargs: dict[str, Any]) -> Any:
-        """Call a function the allowlist names, after looking at what it would make."""
+        """Call a function the allowlist names, after looking at what it would make and
+        charging what it would do."""
+        self.tick()
         if isinstance(function, Lambda):
             return self.call_lambda(function, tuple(args), kwargs)
         if id(function) not in self.allowed:
@@ -372,10 +416,35 @@ class _Evaluation:
         if function not in _KINDS_TAKEN:
             args = [self._called_back(given) for given in args]
             kwargs = {key: self._called_back(given) for key, given in kwargs.items()}
-        if getattr(function, "__name__", None) not in _SHALLOW:
+        name = getattr(function, "__name__", None)
+        if name not in _SHALLOW:
             for given in (*args, *kwargs.values()):
                 self.weigh(given)
+        self.work(call_steps(name, args), f"{name}() of numbers this big")
+        if name in _CONSUMING_ALL or name in _CONSUMING_FIRST or name in _CONSUMING_ALONE:
+            args = self._consumed(function, name, args)
         return self.made_value(function(*args, **kwargs))
+
+    def _consumed(self, function: Any, name: str, args: list[Any]) -> list[Any]:
+        """The arguments of a function that goes through them, counted as it does."""
+        first = 1 if isinstance(function, _UNBOUND) else 0  # a method's owner is not
+        if name in _CONSUMING_ALL:
+            return [*args[:first], *(self.counted(given) for given in args[first:])]
+        if len(args) <= first or (name in _CONSUMING_ALONE and len(args) > first + 1):
+            return args
+        return [*args[:first], self.counted(args[first]), *args[first + 1 :]]
+
+    def counted(self, given: Any) -> Any:
+        """An iterable handed to a function that goes through it, each item it takes
+        counted as a step (a mapping, which such functions read whole, by its size)."""
+        if isinstance(given, Mapping):
+            self.work(len(given), "reading a mapping this big")
+            return given
+        if isinstance(given, _SCALARS) and not isinstance(given, range):
+            return given
+        if not hasattr(given, "__iter__"):
+            return given
+        return _Counted(given, self)
 
     def _called_back(self, given: Any) -> Any:
         """A function handed to another (``map``'s, ``sorted``'s key), made to go through
@@ -449,7 +518,10 @@ class _Evaluation:
         if kind is ast.Mod and isinstance(left, str | bytes):
             check_printf(left, right)
             self.weigh(right)
-        return self.made_value(_BINARY[kind](left, right))
+        # What it makes and what it does, charged before it is done.
+        self.work(binary_steps(kind, left, right), "an operation on values this big")
+        self.budget.spend(binary_size(kind, left, right))
+        return _BINARY[kind](left, right)
 
     def _unary(self, node: ast.UnaryOp, frame: _Frame | None) -> Any:
         return _UNARY[type(node.op)](self.value(node.operand, frame))
@@ -468,10 +540,23 @@ class _Evaluation:
             right = self.value(part, frame)
             self.weigh(left)
             self.weigh(right)
+            if isinstance(op, ast.In | ast.NotIn):
+                right = self._searched(right)
             if not _COMPARE[type(op)](left, right):
                 return False
             left = right
         return True
+
+    def _searched(self, container: Any) -> Any:
+        """What ``in`` looks through, its work charged: a list item by item, a string 64
+        characters a step, an iterator each item it takes."""
+        if isinstance(container, list | tuple):
+            self.work(len(container), "searching a sequence this long")
+        elif isinstance(container, str | bytes):
+            self.work(len(container) // 64, "searching a string this long")
+        elif not isinstance(container, Mapping | set | frozenset | range):
+            return self.counted(container)
+        return container
 
     def _conditional(self, node: ast.IfExp, frame: _Frame | None) -> Any:
         chosen = node.body if self.value(node.test, frame) else node.orelse

@@ -47,8 +47,21 @@ class XacroError(FishbotUrdfError):
 
 
 class ExpansionLimitError(XacroError):
-    """An expansion was stopped for making more elements than the size limit allows, or for
-    taking longer than the time limit (see :mod:`fishbot_urdf.inputs`)."""
+    """An expansion was stopped by a bound: it would make more than the size limit allows
+    (values, files read, elements parsed or cloned, all counted together), or take longer
+    than the time limit (see :mod:`fishbot_urdf.inputs`), or one expression would pass a
+    bound of its own. Its rule is ``limit``."""
+
+    def __init__(
+        self,
+        message: str,
+        *,
+        rule: str = "limit",
+        hint: str | None = None,
+        where: Location | None = None,
+        calls: tuple[tuple[str, Location | None], ...] = (),
+    ) -> None:
+        super().__init__(message, rule=rule, hint=hint, where=where, calls=calls)
 
 
 @dataclass(frozen=True, slots=True)
