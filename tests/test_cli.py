@@ -439,6 +439,8 @@ def _package_robot(root: Path) -> dict[str, Path]:
     files = {
         "manifest": package / "package.xml",
         "config": package / "fishbot.toml",
+        # no [tool.fishbot] table: read on the way to fishbot.toml, and passed over
+        "pyproject": package / "urdf" / "pyproject.toml",
         "robot": package / "urdf" / "robot.urdf.xacro",
         "include": package / "urdf" / "parts.xacro",
         "yaml": package / "config" / "params.yaml",
@@ -446,6 +448,7 @@ def _package_robot(root: Path) -> dict[str, Path]:
     }
     files["manifest"].write_text('<package format="3"><name>pkg</name></package>')
     files["config"].write_text('ignore = ["mesh-faces"]\n')
+    files["pyproject"].write_text('[project]\nname = "fishbot-parts"\n')
     files["yaml"].write_text("mass: 1.5\n")
     files["mesh"].write_bytes(box_stl(0.1, 0.1, 0.1))
     files["include"].write_text(
@@ -480,13 +483,18 @@ _WRITING = {
 }
 
 
-_ROLES = ["robot", "include", "yaml", "mesh", "manifest", "config"]
+_ROLES = ["robot", "include", "yaml", "mesh", "manifest", "config", "pyproject"]
 
 
 @pytest.mark.parametrize(
     ("command", "role"),
     # expand reads no configuration
-    [(c, r) for c in sorted(_WRITING) for r in _ROLES if (c, r) != ("expand", "config")],
+    [
+        (c, r)
+        for c in sorted(_WRITING)
+        for r in _ROLES
+        if c != "expand" or r not in ("config", "pyproject")
+    ],
 )
 def test_no_file_read_is_written_over(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, command: str, role: str
@@ -503,6 +511,63 @@ def test_no_file_read_is_written_over(
     assert result.stderr.count("\n") == 1, result.stderr
     assert {path: path.read_bytes() for path in files.values()} == before
     assert not [p for p in tmp_path.rglob(".*") if p.is_file()]  # no temporary file left
+
+
+@pytest.mark.parametrize("fmt", ["text", "json", "sarif", "github"])
+@pytest.mark.parametrize("role", ["include", "yaml", "manifest", "config", "pyproject"])
+def test_what_a_robot_that_cannot_be_read_read_is_not_written_over_either(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, fmt: str, role: str
+) -> None:
+    # check writes its report for a file it could not read: what that file read before it
+    # stopped (its includes, YAML files, the package.xml of $(find)) is an input all the same.
+    files = _package_robot(tmp_path)
+    monkeypatch.chdir(tmp_path)
+    files["robot"].write_text(
+        files["robot"].read_text().replace("</robot>", '<link name="${no_such}"/></robot>')
+    )
+    before = {path: path.read_bytes() for path in files.values()}
+    target = files[role]
+    result = CliRunner().invoke(
+        cli, ["check", str(files["robot"]), "--format", fmt, "-o", str(target)]
+    )
+    assert result.exit_code == 2, result.stderr
+    refusal = result.stderr.splitlines()[-1]  # after the finding that stopped the reading
+    assert refusal.startswith(f"{target}: error: refusing to write over the input ")
+    assert refusal.endswith(f"{target.relative_to(tmp_path)} [io]")
+    assert {path: path.read_bytes() for path in files.values()} == before
+
+
+@pytest.mark.parametrize("command", sorted(_WRITING))
+def test_the_manifest_of_an_installed_package_is_not_written_over(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, command: str
+) -> None:
+    # A package under AMENT_PREFIX_PATH is found by its place, its package.xml unread.
+    share = tmp_path / "install" / "share" / "parts"
+    (share / "urdf").mkdir(parents=True)
+    manifest = share / "package.xml"
+    manifest.write_text('<package format="3"><name>parts</name></package>')
+    (share / "urdf" / "base.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="base_link">'
+        '<visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual>'
+        '<collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link></robot>'
+    )
+    robot = tmp_path / "robot" / "robot.urdf.xacro"
+    robot.parent.mkdir()
+    robot.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="$(find parts)/urdf/base.xacro"/></robot>'
+    )
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("AMENT_PREFIX_PATH", str(tmp_path / "install"))
+    before = manifest.read_bytes()
+    args = [a.format(robot=robot) for a in _WRITING[command]]
+    result = CliRunner().invoke(cli, [*args, "-o", str(manifest)])
+    assert result.exit_code == 2, result.stderr
+    # (check and inertia say first that the base link has no <inertial>)
+    assert result.stderr.splitlines()[-1] == (
+        f"{manifest}: error: refusing to write over the input {manifest} [io]"
+    )
+    assert manifest.read_bytes() == before
 
 
 def test_a_link_to_a_file_read_is_refused_too(

@@ -13,7 +13,9 @@ from fishbot_urdf.inputs import (
     DEFAULT_MAX_BYTES,
     InputTooLargeError,
     max_bytes,
+    note_inputs,
     read_input,
+    recording_inputs,
     size_limit,
 )
 
@@ -58,6 +60,33 @@ def test_a_file_over_the_limit_is_refused_with_its_size_and_the_limit(tmp_path: 
     assert caught.value.rule == "io"
     with size_limit(3000):
         assert len(read_input(path)) == 3000
+
+
+def test_the_files_read_are_recorded_in_the_context_that_reads_them(tmp_path: Path) -> None:
+    first, second, missing = tmp_path / "a.urdf", tmp_path / "b.yaml", tmp_path / "no.urdf"
+    first.write_bytes(b"<robot/>")
+    second.write_bytes(b"mass: 1\n")
+    elsewhere: list[list[str]] = []
+
+    def in_another_thread() -> None:
+        with recording_inputs() as other:
+            read_input(second)
+        elsewhere.append(other)
+
+    read_input(first)  # outside a recording: nothing noted, nothing kept
+    with recording_inputs() as outer:
+        read_input(first)
+        with recording_inputs() as inner:
+            read_input(second)
+            with pytest.raises(InputError):
+                read_input(missing)  # not read: no input
+            note_inputs(["kept.xml"])
+            thread = threading.Thread(target=in_another_thread)
+            thread.start()
+            thread.join()
+        assert inner == [str(second), "kept.xml"]
+    assert outer == [str(first), str(second), "kept.xml"]  # the inner one's too
+    assert elsewhere == [[str(second)]]  # another thread's recording is its own
 
 
 def test_the_limit_belongs_to_the_context_not_the_process() -> None:

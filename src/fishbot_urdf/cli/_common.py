@@ -20,11 +20,12 @@ from ..inputs import (
     InputTooLargeError,
     max_bytes,
     max_seconds,
+    recording_inputs,
     size_limit,
     time_limit,
     trusting_expressions,
 )
-from ..packages import PackageNotFoundError, recording_manifests
+from ..packages import PackageNotFoundError
 from ._hints import command_hint, error_hint
 
 if TYPE_CHECKING:
@@ -140,10 +141,11 @@ def xacro_args(items: Sequence[str]) -> dict[str, str]:
         raise click.BadParameter(escape_controls(exc.message), param_hint="ARGS") from None
 
 
-def manifests_read() -> list[str]:
-    """Every package.xml that the command reads from now on to find a package (for
-    ``$(find)`` and ``package://``), added to the list as they are read: inputs too."""
-    return click.get_current_context().with_resource(recording_manifests())
+def inputs_read() -> list[str]:
+    """Every file the command reads from now on (the robot, its includes and YAML files,
+    the configuration files looked at, the package.xml files of its packages, the meshes
+    it opens), added to the list as they are read: an output is never written over one."""
+    return click.get_current_context().with_resource(recording_inputs())
 
 
 def stdin_urdf() -> bytes:

@@ -18,8 +18,8 @@ from ._common import (
     EXIT_INVALID,
     EXIT_OK,
     emit_findings,
+    inputs_read,
     limit_options,
-    manifests_read,
     package_option,
     packages_option,
     stop_on,
@@ -95,7 +95,7 @@ def graph(
     values = xacro_args([a for a in args if ":=" in a])
     packages = packages_option(package_items)
     outputs = None if output is None else _graph_output(output, fmt)
-    manifests = manifests_read()
+    read = inputs_read()
     config = nearest_config(file)
     try:
         result = check_input(file, values, packages, config)
@@ -108,7 +108,7 @@ def graph(
     if outputs is None:
         outputs = _graph_pair(names[0] if names else _file_name(result.analysis.robot.name), fmt)
     try:
-        inputs = [*read_files(file, result, config), *manifests]
+        inputs = [*read_files(file, result), *read]
         _draw_all(result.analysis, outputs, detail, inputs)
     except FishbotUrdfError as exc:
         stop_on(exc)

@@ -37,10 +37,10 @@ from ._common import (
     emit_findings,
     fail,
     format_option,
+    inputs_read,
     joint_option,
     joint_positions,
     limit_options,
-    manifests_read,
     package_option,
     packages_option,
     stop_on,
@@ -290,7 +290,7 @@ def robot(
     values = xacro_args(args)
     packages = packages_option(package_items)
     positions = joint_positions(joint_items)
-    manifests = manifests_read()
+    read = inputs_read()
     config = nearest_config(file)
     try:
         result = check_input(file, values, packages, config)
@@ -305,7 +305,7 @@ def robot(
             sys.exit(EXIT_INVALID)
         # The copy is never written over anything read (the mesh files listed here are
         # those the filling opens, by the same analysis: no package.xml is read after).
-        inputs = [*read_files(file, result, config), *manifests]
+        inputs = [*read_files(file, result), *read]
         sys.exit(_fill(result, output or "-", density, _link_masses(masses), inputs))
     emit_findings(result.diagnostics)
     if result.analysis is None:
