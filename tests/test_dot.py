@@ -657,6 +657,37 @@ def test_a_dot_that_never_ends_is_stopped_with_what_it_started(
     assert not _alive(child)  # killed with dot's process group
 
 
+@pytest.mark.skipif(os.name != "posix", reason="the stand-in dot is a shell script")
+@pytest.mark.parametrize("seconds", ["2200000", "1e300"])
+def test_a_timeout_beyond_what_a_wait_can_count_still_draws(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, seconds: str
+) -> None:
+    # The system's wait counts milliseconds in a C int: 2,200,000 s is past its 24.8 days.
+    _fake_dot(tmp_path / "bin", "cat", monkeypatch)
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    out = tmp_path / "r.svg"
+    result = CliRunner().invoke(cli, ["graph", str(robot), "-o", str(out), "--timeout", seconds])
+    assert (result.exit_code, result.stderr) == (0, "")
+    assert out.read_text() == fishbot_urdf.to_dot(fishbot_urdf.load(robot))
+
+
+@pytest.mark.skipif(os.name != "posix", reason="the stand-in dot is a shell script")
+def test_dot_is_waited_for_in_parts_up_to_the_timeout(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from fishbot_urdf import ToolError
+    from fishbot_urdf.drawing import dot
+
+    _fake_dot(tmp_path / "bin", "cat > /dev/null; sleep 0.4; echo drawn", monkeypatch)
+    monkeypatch.setattr(dot, "_LONGEST_WAIT", 0.05)
+    assert dot.pipe_dot("digraph G {}", "svg", timeout=30) == b"drawn\n"
+    started = time.monotonic()
+    with pytest.raises(ToolError, match=r"within 0\.2 s"):
+        dot.pipe_dot("digraph G {}", "svg", timeout=0.2)
+    assert time.monotonic() - started < 5
+
+
 def _alive(pid: int) -> bool:
     """Whether a process runs, waiting a little for a kill to land (a zombie does not run)."""
     for _ in range(100):

@@ -145,6 +145,56 @@ def test_every_command_says_a_fifo_is_a_fifo(tmp_path: Path) -> None:
             ), (name, command)
 
 
+@pytest.mark.parametrize(
+    "command",
+    [
+        ["check"],
+        ["check", "-"],
+        ["expand"],
+        ["graph", "-o", "-"],
+        ["inertia"],
+        ["render", "-o", "-", "--size", "32x32"],
+        ["tf", "a", "a"],
+    ],
+)
+def test_limits_beyond_any_need_are_no_limits_not_a_crash(
+    tmp_path: Path, command: list[str]
+) -> None:
+    from click.testing import CliRunner
+
+    from fishbot_urdf.cli import cli
+
+    robot = tmp_path / "r.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="a"><visual><geometry><box size="1 1 1"/></geometry>'
+        '</visual><inertial><mass value="1"/>'
+        '<inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>'
+        "</link></robot>"
+    )
+    where = [] if command[1:2] == ["-"] else [str(robot)]  # "-": standard input
+    for limits in (["--max-size", "1e308"], ["--max-size", "1e13"], ["--timeout", "1e300"]):
+        result = CliRunner().invoke(
+            cli, [*command[:1], *where, *command[1:], *limits], input=robot.read_bytes()
+        )
+        assert result.exit_code == 0, (limits, result.output, result.exception)
+
+
+def test_standard_input_is_read_in_parts_whatever_the_limit() -> None:
+    # Read at once, a limit of 1e12 MiB asked the memory for that many bytes.
+    import subprocess
+    import sys
+
+    robot = b'<robot name="r"><link name="a"/></robot>'
+    done = subprocess.run(
+        [sys.executable, "-m", "fishbot_urdf", "check", "-", "--max-size", "1e12"],
+        input=robot,
+        capture_output=True,
+        check=False,
+    )
+    assert (done.returncode, done.stderr) == (0, b"")
+    assert done.stdout.startswith(b"robot name is: r\n")
+
+
 def test_standard_input_is_read_within_the_limit_too() -> None:
     from click.testing import CliRunner
 

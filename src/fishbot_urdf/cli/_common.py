@@ -156,11 +156,19 @@ def stdin_urdf() -> bytes:
         raise InputError(
             "standard input is closed (give a FILE, or pipe the robot in)", path="<stdin>"
         )
+    chunks: list[bytes] = []
+    left = limit + 1  # within the size limit, as files are; read in parts, as they are
     try:
-        data = stream.read(limit + 1)  # within the size limit, as files are
+        while left > 0:
+            chunk = stream.read(min(left, 1 << 20))
+            if not chunk:
+                break
+            chunks.append(chunk)
+            left -= len(chunk)
     except (OSError, ValueError) as exc:  # not readable, or closed since
         reason = getattr(exc, "strerror", None) or str(exc)
         raise InputError(f"cannot read: {reason}", path="<stdin>") from exc
+    data = b"".join(chunks)
     if len(data) > limit:
         raise InputTooLargeError("<stdin>", None, limit)
     if b"xmlns:xacro" in data[:4096] or b"<xacro:" in data:
@@ -283,7 +291,7 @@ def limit_options() -> Callable[[Wrapped], Wrapped]:
             trust_expressions: bool,
             **kwargs: Any,
         ) -> Any:
-            limit = max_bytes() if max_size is None else max(1, int(max_size * 1024 * 1024))
+            limit = max_bytes() if max_size is None else _bytes(max_size)
             seconds = max_seconds() if timeout is None else timeout
             with size_limit(limit), time_limit(seconds), trusting_expressions(trust_expressions):
                 return function(*args, **kwargs)
@@ -309,6 +317,13 @@ def limit_options() -> Callable[[Wrapped], Wrapped]:
         return size(seconds(trust(run)))  # type: ignore[return-value]
 
     return decorate
+
+
+def _bytes(mebibytes: float) -> int:
+    """``--max-size`` in bytes: at least 1, and at most what a process can hold (a larger
+    limit is no limit, and a number beyond it overflows what reads are counted in)."""
+    size = mebibytes * 1024 * 1024
+    return sys.maxsize if size >= sys.maxsize else max(1, int(size))
 
 
 class Number(click.ParamType):  # type: ignore[type-arg]
