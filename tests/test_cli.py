@@ -289,6 +289,85 @@ def test_closed_standard_streams_are_no_traceback(tmp_path: Path) -> None:
     assert closed_err.stdout == b""  # two roots: no tree to print
 
 
+_XACRO = FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"
+_CLOSED_OUT = b"<stdout>: error: cannot write: Bad file descriptor [io]\n"
+
+
+def _with_stdout_closed(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[bytes]:
+    """``fishbot ARGS >&-``, as a shell runs it."""
+    command = " ".join(f"'{a}'" for a in (sys.executable, "-m", "fishbot_urdf", *args))
+    return subprocess.run(
+        ["sh", "-c", f"exec {command} >&-"], capture_output=True, check=False, cwd=cwd
+    )
+
+
+@pytest.mark.skipif(os.name != "posix", reason="closing a standard stream is POSIX shell work")
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["check", str(FIRST)],
+        ["check", "--format", "json", str(FIRST)],
+        ["expand", str(_XACRO)],
+        ["graph", str(FIRST), "-o", "-"],
+        ["tf", str(FIRST), "base_link", "base_link"],
+        ["inertia", str(FIRST)],
+        ["inertia", "sphere", "--mass", "1", "--radius", "1"],
+        ["render", str(FIRST), "-o", "-", "--size", "32x32"],
+        ["rules"],
+        ["--help"],
+        ["--version"],
+    ],
+)
+def test_a_closed_standard_output_is_an_error_for_a_command_that_writes_there(
+    args: list[str],
+) -> None:
+    done = _with_stdout_closed(*args)
+    assert (done.returncode, done.stderr) == (2, _CLOSED_OUT)
+
+
+@pytest.mark.skipif(os.name != "posix", reason="closing a standard stream is POSIX shell work")
+def test_a_closed_standard_output_is_no_error_for_a_command_that_writes_nothing_there(
+    tmp_path: Path,
+) -> None:
+    assert _with_stdout_closed("check", "-q", str(FIRST)).returncode == 0
+    # The output file opened while standard output is closed does not take its place: it
+    # holds the report, and nothing else.
+    report = tmp_path / "report.json"
+    done = _with_stdout_closed("check", "--format", "json", str(FIRST), "-o", str(report))
+    assert (done.returncode, done.stderr) == (0, b"")
+    assert json.loads(report.read_text())["files"][0]["ok"] is True
+
+
+@pytest.mark.skipif(os.name != "posix", reason="a pipe closed by its reader")
+def test_a_reader_that_has_gone_ends_nothing_but_the_output(tmp_path: Path) -> None:
+    # `fishbot check robot.urdf | head -0`: no line, no traceback, and the robot's own
+    # status (its findings still go to stderr).
+    robot = tmp_path / "r.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="a"/><link name="b"><inertial><mass value="-1"/>'
+        '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>'
+        '<joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint></robot>'
+    )
+    for args, status in (
+        (["check", str(robot)], 1),
+        (["check", str(FIRST), str(robot)], 1),
+        (["graph", str(robot), "-o", "-"], 1),
+        (["expand", str(_XACRO)], 0),
+    ):
+        process = subprocess.Popen(
+            [sys.executable, "-m", "fishbot_urdf", *args],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+        )
+        assert process.stdout is not None and process.stderr is not None
+        process.stdout.close()  # the reader is gone before anything is written
+        with process.stderr:
+            assert process.wait(timeout=60) == status, args
+            said = process.stderr.read()
+        assert b"Traceback" not in said and b"stdout" not in said, args
+        assert said.count(b"\n") == (1 if status else 0), args
+
+
 def test_file_names_that_are_no_utf8_are_written_as_their_bytes(tmp_path: Path) -> None:
     if sys.platform == "darwin" or os.name != "posix":
         pytest.skip("this file system takes names that are not UTF-8 only on Linux")

@@ -194,15 +194,17 @@ def write_chunks(chunks: Iterable[str]) -> None:
 
 
 def to_stdout(data: bytes, *, flush: bool = True) -> None:
-    """Write to stdout; when the reader has gone (`fishbot check big.urdf | head`), stop
-    quietly with status 0 rather than let click turn the broken pipe into status 1."""
+    """Write to stdout. When the reader has gone (`fishbot check big.urdf | head`), the
+    rest of the output goes nowhere, quietly, and the command goes on to its own end and
+    status: the reader chose to stop, and the robot's findings still go to stderr. Output
+    that cannot be written (standard output closed, a full disk) is one line and exit 2."""
     try:
         sys.stdout.buffer.write(data)
         if flush:
             sys.stdout.buffer.flush()
     except BrokenPipeError:
-        stop_quietly()
-    except OSError as exc:  # a full disk, a closed terminal: one line, no traceback
+        discard_stdout()
+    except OSError as exc:  # closed (`>&-`), a full disk: one line, no traceback
         report_unwritten(exc)
         stop_quietly(EXIT_USAGE)
 
@@ -212,13 +214,20 @@ def report_unwritten(exc: OSError) -> None:
     emit_findings([fail(InputError(f"cannot write: {exc.strerror}", path="<stdout>"))])
 
 
-def stop_quietly(status: int = EXIT_OK) -> NoReturn:
-    """Exit; nothing more may reach a closed pipe, not even the flush at exit."""
+def discard_stdout() -> None:
+    """From now on, what goes to stdout goes nowhere (the reader has gone, or it failed):
+    nothing more may reach it, not even the flush at exit."""
     try:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
     except (OSError, ValueError):
         pass  # stdout is no real file (a test runner's buffer)
+
+
+def stop_quietly(status: int = EXIT_OK) -> NoReturn:
+    """Exit, with nothing more sent to stdout (see `discard_stdout`)."""
+    discard_stdout()
     sys.exit(status)
 
 
