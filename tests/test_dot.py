@@ -451,6 +451,9 @@ def test_a_robot_name_that_is_no_file_name_here_needs_o(in_tmp: Path, name: str,
         "(name the output: give OUT or -o FILE) [io]\n"
     )
     assert sorted(p.name for p in in_tmp.iterdir()) == ["r.urdf"]
+    svg = CliRunner().invoke(cli, ["graph", "r.urdf", "--format", "svg"])
+    assert svg.exit_code == 2
+    assert svg.stderr.startswith(f"{path.replace('.gv', '.svg')}: error: the robot's name ")
 
 
 @pytest.mark.skipif(os.name != "posix", reason="symbolic links")

@@ -112,7 +112,7 @@ def graph(
     named = outputs is not None or bool(names)  # else named after the robot, by the command
     try:
         if outputs is None:
-            stem = names[0] if names else _file_name(result.analysis.robot.name)
+            stem = names[0] if names else _file_name(result.analysis.robot.name, fmt)
             outputs = _graph_pair(stem, fmt)
         inputs = [*read_files(file, result), *read]
         _draw_all(result.analysis, outputs, detail, inputs, through_links=named)
@@ -127,7 +127,7 @@ def graph(
     sys.exit(status)
 
 
-def _file_name(robot: str) -> str:
+def _file_name(robot: str, fmt: str | None) -> str:
     """The robot's name as the stem of the files written in the current folder, if it is a
     plain file name there (no folder in it, not . or ..).
 
@@ -138,7 +138,7 @@ def _file_name(robot: str) -> str:
     if not robot or robot in (".", "..") or any(c in separators for c in robot):
         raise InputError(
             f"the robot's name {robot!r} is no file name in the current folder",
-            path="<output>" if robot in ("", ".", "..") else f"{robot}.gv",
+            path="<output>" if robot in ("", ".", "..") else f"{robot}.{fmt or 'gv'}",
         )
     return robot
 
