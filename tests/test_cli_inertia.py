@@ -352,6 +352,50 @@ def test_shapes_take_real_sizes_only(args: list[str]) -> None:
     assert result.stdout == ""
 
 
+@pytest.mark.parametrize(
+    ("args", "said"),
+    [
+        (
+            ["sphere", "--mass", "1", "--radius", "1e-200"],
+            "the sphere's inertia underflows to 0 kg*m^2 (radius 1e-200 m, mass 1 kg)",
+        ),
+        (
+            ["box", "--mass", "1", "--size", "1e-200", "1e-200", "1"],
+            "the box's inertia underflows to 0 kg*m^2 (x 1e-200 m, y 1e-200 m, z 1 m, mass 1 kg)",
+        ),
+        (
+            ["cylinder", "--mass", "1e-300", "--radius", "1e-5", "--length", "1e-5"],
+            "the cylinder's inertia underflows to 3.33333e-311 kg*m^2 (radius 1e-05 m, "
+            "length 1e-05 m, mass 1e-300 kg)",
+        ),
+    ],
+)
+def test_a_shape_whose_inertia_underflows_is_a_usage_error(args: list[str], said: str) -> None:
+    # As a size of 0 is: a value given on the command line that has no inertia to print.
+    result = run(*args)
+    assert (result.exit_code, result.stdout) == (2, "")
+    assert result.stderr.endswith(
+        f"Error: {said}: too small for a float; give a larger size or mass\n"
+    )
+
+
+def test_fill_leaves_out_a_link_whose_inertia_underflows(tmp_path: Path) -> None:
+    robot = tmp_path / "dust.urdf"
+    robot.write_text(
+        '<robot name="r">\n  <link name="dust"><collision><geometry><sphere radius="1e-100"/>'
+        "</geometry></collision></link>\n</robot>\n"
+    )
+    out = tmp_path / "filled.urdf"
+    result = run(str(robot), "--fill", "--density", "1000", "-o", str(out))
+    assert (result.exit_code, result.stdout) == (1, "")
+    assert result.stderr == (
+        f"{robot}:2:3: error: link 'dust': no <inertial> added (the sphere's inertia underflows "
+        "to 0 kg*m^2 (radius 1e-100 m, mass 4.18879e-297 kg): too small for a float; give a "
+        "larger size or mass) [fill-skipped]\nnothing written: no link could be filled\n"
+    )
+    assert not out.exists()
+
+
 def test_degrees_for_rpy_draw_a_warning() -> None:
     result = run("sphere", "--mass", "1", "--radius", "0.1", "--rpy", "90", "0", "0")
     assert result.exit_code == 0

@@ -438,12 +438,63 @@ def test_never_writes_over_the_input(in_tmp: Path) -> None:
     assert robot.read_bytes() == FIRST.read_bytes()
 
 
-def test_a_robot_name_that_is_no_file_name_needs_o(in_tmp: Path) -> None:
-    (in_tmp / "r.urdf").write_text('<robot name="../up"><link name="a"/></robot>')
+@pytest.mark.parametrize(
+    ("name", "path"),
+    [("../up", "../up.gv"), ("/tmp/up", "/tmp/up.gv"), ("a/b", "a/b.gv"), ("..", "<output>")],
+)
+def test_a_robot_name_that_is_no_file_name_here_needs_o(in_tmp: Path, name: str, path: str) -> None:
+    (in_tmp / "r.urdf").write_text(f'<robot name="{name}"><link name="a"/></robot>')
     result = CliRunner().invoke(cli, ["graph", "r.urdf"])
-    assert result.exit_code == 2
-    assert "the robot's name '../up' is no file name: give OUT or -o FILE" in result.stderr
+    assert (result.exit_code, result.stdout) == (2, "")
+    assert result.stderr == (
+        f"{path}: error: the robot's name {name!r} is no file name in the current folder "
+        "(name the output: give OUT or -o FILE) [io]\n"
+    )
     assert sorted(p.name for p in in_tmp.iterdir()) == ["r.urdf"]
+    svg = CliRunner().invoke(cli, ["graph", "r.urdf", "--format", "svg"])
+    assert svg.exit_code == 2
+    assert svg.stderr.startswith(f"{path.replace('.gv', '.svg')}: error: the robot's name ")
+
+
+@pytest.mark.skipif(os.name != "posix", reason="symbolic links")
+@pytest.mark.parametrize("fmt", [None, "gv", "mmd"])
+def test_a_name_made_from_the_robot_is_never_written_through_a_link(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, fmt: str | None
+) -> None:
+    # A robot named "evil" beside evil.gv -> ../victim.txt: the victim stays as it is.
+    here = tmp_path / "here"
+    here.mkdir()
+    monkeypatch.chdir(here)
+    victim = tmp_path / "victim.txt"
+    victim.write_bytes(b"kept\n")
+    (here / "r.urdf").write_text('<robot name="evil"><link name="a"/></robot>')
+    link = f"evil.{fmt or 'gv'}"
+    (here / link).symlink_to("../victim.txt")
+    extra = [] if fmt is None else ["--format", fmt]
+    result = CliRunner().invoke(cli, ["graph", "r.urdf", *extra])
+    assert (result.exit_code, result.stdout) == (2, "")
+    assert result.stderr == (
+        f"{link}: error: {link} is a link: this output is not written through one "
+        "(name the output: give OUT or -o FILE) [io]\n"
+    )
+    assert victim.read_bytes() == b"kept\n"
+    assert sorted(p.name for p in here.iterdir()) == sorted(["r.urdf", link])  # no .pdf
+    # A name the user gives is written as a shell's > writes it: through the link.
+    given = CliRunner().invoke(cli, ["graph", "r.urdf", "-o", link])
+    assert given.exit_code == 0, given.stderr
+    assert victim.read_bytes() != b"kept\n"
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="this system has no FIFOs")
+def test_a_name_made_from_the_robot_is_no_fifo(in_tmp: Path) -> None:
+    (in_tmp / "r.urdf").write_text('<robot name="r"><link name="a"/></robot>')
+    os.mkfifo(in_tmp / "r.gv")  # written to directly, it would wait for a reader for ever
+    result = CliRunner().invoke(cli, ["graph", "r.urdf"])
+    assert (result.exit_code, result.stdout) == (2, "")
+    assert result.stderr == (
+        "r.gv: error: r.gv is no regular file: this output replaces only one "
+        "(name the output: give OUT or -o FILE) [io]\n"
+    )
 
 
 def test_unreadable_robot(in_tmp: Path) -> None:
@@ -607,6 +658,37 @@ def test_a_dot_that_never_ends_is_stopped_with_what_it_started(
     assert not (tmp_path / "r.png").exists()
     child = int(pid_file.read_text())
     assert not _alive(child)  # killed with dot's process group
+
+
+@pytest.mark.skipif(os.name != "posix", reason="the stand-in dot is a shell script")
+@pytest.mark.parametrize("seconds", ["2200000", "1e300"])
+def test_a_timeout_beyond_what_a_wait_can_count_still_draws(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, seconds: str
+) -> None:
+    # The system's wait counts milliseconds in a C int: 2,200,000 s is past its 24.8 days.
+    _fake_dot(tmp_path / "bin", "cat", monkeypatch)
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    out = tmp_path / "r.svg"
+    result = CliRunner().invoke(cli, ["graph", str(robot), "-o", str(out), "--timeout", seconds])
+    assert (result.exit_code, result.stderr) == (0, "")
+    assert out.read_text() == fishbot_urdf.to_dot(fishbot_urdf.load(robot))
+
+
+@pytest.mark.skipif(os.name != "posix", reason="the stand-in dot is a shell script")
+def test_dot_is_waited_for_in_parts_up_to_the_timeout(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from fishbot_urdf import ToolError
+    from fishbot_urdf.drawing import dot
+
+    _fake_dot(tmp_path / "bin", "cat > /dev/null; sleep 0.4; echo drawn", monkeypatch)
+    monkeypatch.setattr(dot, "_LONGEST_WAIT", 0.05)
+    assert dot.pipe_dot("digraph G {}", "svg", timeout=30) == b"drawn\n"
+    started = time.monotonic()
+    with pytest.raises(ToolError, match=r"within 0\.2 s"):
+        dot.pipe_dot("digraph G {}", "svg", timeout=0.2)
+    assert time.monotonic() - started < 5
 
 
 def _alive(pid: int) -> bool:

@@ -11,6 +11,7 @@ from fishbot_urdf import (
     ArgumentError,
     ConfigError,
     FishbotUrdfError,
+    InertiaUnderflowError,
     InputError,
     PackageNotFoundError,
     RobotError,
@@ -145,6 +146,24 @@ def test_shape_error() -> None:
     assert isinstance(error, FishbotUrdfError) and isinstance(error, ValueError)
     assert error.rule == "shape"
     assert error.message == "link 'bare' has no collision shape"
+
+
+def test_inertia_underflow_error() -> None:
+    with pytest.raises(InertiaUnderflowError) as info:
+        fishbot_urdf.box_inertia(2.0, 1e-170, 1e-170, 1e-170)
+    error = info.value
+    assert isinstance(error, ShapeError) and isinstance(error, ValueError)
+    assert error.rule == "shape"
+    assert (error.shape, error.sizes, error.mass, error.moments) == (
+        "box",
+        (("x", 1e-170), ("y", 1e-170), ("z", 1e-170)),
+        2.0,
+        (0.0, 0.0, 0.0),
+    )
+    assert error.message == (
+        "the box's inertia underflows to 0 kg*m^2 (x 1e-170 m, y 1e-170 m, z 1e-170 m, mass "
+        "2 kg): too small for a float; give a larger size or mass"
+    )
 
 
 def test_structure_error() -> None:

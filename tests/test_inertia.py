@@ -5,7 +5,9 @@ from __future__ import annotations
 
 import math
 import random
+import sys
 from collections.abc import Callable
+from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
@@ -304,3 +306,105 @@ def test_the_mass_asked_for_is_the_mass_written() -> None:
     assert (
         fishbot_urdf.link_inertial(fishbot_urdf.Link("l", collisions=shapes), mass=2.0).mass == 2.0
     )
+
+
+# -- a shape too small for its inertia to be a float --------------------------------------
+
+_NORMAL = Fraction(sys.float_info.min)  # the smallest normal float, 2.2e-308
+
+
+def _exact_moments(kind: str, m: float, sizes: tuple[float, ...]) -> tuple[Fraction, ...]:
+    """The moments in exact arithmetic, from the textbook formulas."""
+    mass, s = Fraction(m), [Fraction(x) for x in sizes]
+    if kind == "sphere":
+        return (Fraction(2, 5) * mass * s[0] ** 2,) * 3
+    if kind == "cylinder":
+        r, h = s
+        across = mass / 12 * (3 * r**2 + h**2)
+        return (across, across, mass / 2 * r**2)
+    w, h, d = s
+    return (mass / 12 * (h**2 + d**2), mass / 12 * (w**2 + d**2), mass / 12 * (w**2 + h**2))
+
+
+_MADE: dict[str, Callable[..., fishbot_urdf.Inertial]] = {
+    "box": box_inertia,
+    "cylinder": cylinder_inertia,
+    "sphere": sphere_inertia,
+}
+
+
+@pytest.mark.parametrize("kind", ["box", "cylinder", "sphere"])
+def test_an_inertia_that_underflows_is_refused_and_one_that_does_not_is_exact(kind: str) -> None:
+    rng = random.Random(kind)
+    count = {"box": 3, "cylinder": 2, "sphere": 1}[kind]
+    refused = kept = 0
+    for _ in range(400):
+        # (Up to 1 kg, each step of the formula is at least as large as the moment it makes.)
+        m = 10 ** rng.uniform(-12, 0)
+        sizes = tuple(
+            10 ** rng.choice((rng.uniform(-200, -140), rng.uniform(-6, 1))) for _ in range(count)
+        )
+        exact = _exact_moments(kind, m, sizes)
+        if min(exact) < _NORMAL / 2:
+            with pytest.raises(fishbot_urdf.InertiaUnderflowError) as caught:
+                _MADE[kind](m, *sizes)
+            assert (caught.value.shape, caught.value.mass) == (kind, m)
+            assert [v for _, v in caught.value.sizes] == list(sizes)
+            assert caught.value.rule == "shape"
+            refused += 1
+        elif min(exact) > _NORMAL * 2:
+            i = _MADE[kind](m, *sizes).inertia
+            for got, want in zip((i.ixx, i.iyy, i.izz), exact, strict=True):
+                assert got == pytest.approx(float(want), rel=1e-12)
+            kept += 1
+    assert refused > 40 and kept > 40  # both sides of the edge are tried
+
+
+def test_the_sphere_of_radius_1e_200_and_its_message() -> None:
+    # 2/5 m r^2 = 4e-401: below the smallest float, 4.9e-324, so it comes out 0.
+    with pytest.raises(fishbot_urdf.InertiaUnderflowError) as caught:
+        sphere_inertia(1.0, 1e-200)
+    error = caught.value
+    assert isinstance(error, fishbot_urdf.ShapeError)
+    assert (error.shape, error.sizes, error.mass, error.moments) == (
+        "sphere",
+        (("radius", 1e-200),),
+        1.0,
+        (0.0, 0.0, 0.0),
+    )
+    assert error.message == (
+        "the sphere's inertia underflows to 0 kg*m^2 (radius 1e-200 m, mass 1 kg): too small "
+        "for a float; give a larger size or mass"
+    )
+    # A subnormal moment (precision lost) is refused too, and a flat box is not a small one:
+    # its moments about the axes in its plane are mathematically positive, the third not.
+    with pytest.raises(fishbot_urdf.InertiaUnderflowError, match="underflows to 4e-309"):
+        sphere_inertia(1.0, 1e-154)
+    assert box_inertia(1.0, 1.0, 1.0, 0.0).inertia.izz == pytest.approx(1 / 6)
+    assert sphere_inertia(0.0, 1e-200).inertia.ixx == 0.0  # no mass: 0 is the answer
+
+
+def test_fill_leaves_out_a_link_whose_inertia_underflows() -> None:
+    robot = fishbot_urdf.parse(
+        '<robot name="r"><link name="dust"><collision><geometry><sphere radius="1e-100"/>'
+        "</geometry></collision></link></robot>"
+    )
+    filling = fishbot_urdf.fill_inertials(robot, density=1000.0)
+    assert dict(filling.inertials) == {}
+    (skipped,) = filling.skipped
+    assert skipped.rule == "fill-skipped"
+    assert "the sphere's inertia underflows to 0 kg*m^2 (radius 1e-100 m" in skipped.message
+
+
+def test_a_mesh_whose_inertia_underflows(tmp_path: Path) -> None:
+    pytest.importorskip("trimesh")
+    from conftest import box_stl
+
+    from fishbot_urdf.inertia import mesh_inertia
+
+    mesh = tmp_path / "box.stl"
+    mesh.write_bytes(box_stl(1.0, 1.0, 1.0))
+    assert mesh_inertia(mesh, 12.0).inertia.ixx == pytest.approx(2.0)
+    with pytest.raises(fishbot_urdf.InertiaUnderflowError) as caught:
+        mesh_inertia(mesh, 12.0, scale=(1e-160, 1e-160, 1e-160))
+    assert (caught.value.shape, caught.value.path) == ("mesh", str(mesh))

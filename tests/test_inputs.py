@@ -13,7 +13,9 @@ from fishbot_urdf.inputs import (
     DEFAULT_MAX_BYTES,
     InputTooLargeError,
     max_bytes,
+    note_inputs,
     read_input,
+    recording_inputs,
     size_limit,
 )
 
@@ -58,6 +60,33 @@ def test_a_file_over_the_limit_is_refused_with_its_size_and_the_limit(tmp_path: 
     assert caught.value.rule == "io"
     with size_limit(3000):
         assert len(read_input(path)) == 3000
+
+
+def test_the_files_read_are_recorded_in_the_context_that_reads_them(tmp_path: Path) -> None:
+    first, second, missing = tmp_path / "a.urdf", tmp_path / "b.yaml", tmp_path / "no.urdf"
+    first.write_bytes(b"<robot/>")
+    second.write_bytes(b"mass: 1\n")
+    elsewhere: list[list[str]] = []
+
+    def in_another_thread() -> None:
+        with recording_inputs() as other:
+            read_input(second)
+        elsewhere.append(other)
+
+    read_input(first)  # outside a recording: nothing noted, nothing kept
+    with recording_inputs() as outer:
+        read_input(first)
+        with recording_inputs() as inner:
+            read_input(second)
+            with pytest.raises(InputError):
+                read_input(missing)  # not read: no input
+            note_inputs(["kept.xml"])
+            thread = threading.Thread(target=in_another_thread)
+            thread.start()
+            thread.join()
+        assert inner == [str(second), "kept.xml"]
+    assert outer == [str(first), str(second), "kept.xml"]  # the inner one's too
+    assert elsewhere == [[str(second)]]  # another thread's recording is its own
 
 
 def test_the_limit_belongs_to_the_context_not_the_process() -> None:
@@ -114,6 +143,56 @@ def test_every_command_says_a_fifo_is_a_fifo(tmp_path: Path) -> None:
             assert result.stderr == (
                 f"{fifo}: error: is a FIFO (named pipe), not a regular file [io]\n"
             ), (name, command)
+
+
+@pytest.mark.parametrize(
+    "command",
+    [
+        ["check"],
+        ["check", "-"],
+        ["expand"],
+        ["graph", "-o", "-"],
+        ["inertia"],
+        ["render", "-o", "-", "--size", "32x32"],
+        ["tf", "a", "a"],
+    ],
+)
+def test_limits_beyond_any_need_are_no_limits_not_a_crash(
+    tmp_path: Path, command: list[str]
+) -> None:
+    from click.testing import CliRunner
+
+    from fishbot_urdf.cli import cli
+
+    robot = tmp_path / "r.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="a"><visual><geometry><box size="1 1 1"/></geometry>'
+        '</visual><inertial><mass value="1"/>'
+        '<inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>'
+        "</link></robot>"
+    )
+    where = [] if command[1:2] == ["-"] else [str(robot)]  # "-": standard input
+    for limits in (["--max-size", "1e308"], ["--max-size", "1e13"], ["--timeout", "1e300"]):
+        result = CliRunner().invoke(
+            cli, [*command[:1], *where, *command[1:], *limits], input=robot.read_bytes()
+        )
+        assert result.exit_code == 0, (limits, result.output, result.exception)
+
+
+def test_standard_input_is_read_in_parts_whatever_the_limit() -> None:
+    # Read at once, a limit of 1e12 MiB asked the memory for that many bytes.
+    import subprocess
+    import sys
+
+    robot = b'<robot name="r"><link name="a"/></robot>'
+    done = subprocess.run(
+        [sys.executable, "-m", "fishbot_urdf", "check", "-", "--max-size", "1e12"],
+        input=robot,
+        capture_output=True,
+        check=False,
+    )
+    assert (done.returncode, done.stderr) == (0, b"")
+    assert done.stdout.startswith(b"robot name is: r\n")
 
 
 def test_standard_input_is_read_within_the_limit_too() -> None:

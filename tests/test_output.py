@@ -211,3 +211,35 @@ def test_a_refusal_at_commit_leaves_nothing(tmp_path: Path) -> None:
             out.commit([source])
         assert sorted(os.listdir(tmp_path)) == ["in.urdf"]
     assert source.read_text() == "in"
+
+
+@pytest.mark.skipif(os.name != "posix", reason="symbolic links and FIFOs")
+def test_a_name_the_caller_made_is_never_written_through_a_link(tmp_path: Path) -> None:
+    victim = tmp_path / "victim.txt"
+    victim.write_text("kept")
+    link = tmp_path / "made.gv"
+    link.symlink_to(victim)
+    with pytest.raises(InputError) as caught:
+        write_atomic(link, "x", through_links=False)
+    assert caught.value.message == f"{link} is a link: this output is not written through one"
+    os.mkfifo(tmp_path / "fifo.gv")
+    with pytest.raises(InputError, match="is no regular file: this output replaces only one"):
+        write_atomic(tmp_path / "fifo.gv", "x", through_links=False)
+    # A link made there while the file is written is replaced by the file, not followed.
+    late = tmp_path / "late.gv"
+    with output.AtomicFile(late, through_links=False) as out:
+        out.write("drawn")
+        late.symlink_to(victim)
+        out.commit()
+    assert (late.is_symlink(), late.read_text(), victim.read_text()) == (False, "drawn", "kept")
+    # A regular file is replaced as always.
+    write_atomic(tmp_path / "plain.gv", "one", through_links=False)
+    write_atomic(tmp_path / "plain.gv", "two", through_links=False)
+    assert (tmp_path / "plain.gv").read_text() == "two"
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "fifo.gv",
+        "late.gv",
+        "made.gv",
+        "plain.gv",
+        "victim.txt",
+    ]

@@ -11,12 +11,12 @@ from typing import Any
 import pytest
 
 from fishbot_urdf import packages
+from fishbot_urdf.inputs import recording_inputs
 from fishbot_urdf.packages import (
     PackageFinder,
     PackageNotFoundError,
     find_package,
     package_name,
-    recording_manifests,
     resolve_package_uri,
 )
 
@@ -345,16 +345,28 @@ def test_the_manifests_read_are_recorded(tmp_path: Path) -> None:
     other = _package(workspace / "src" / "zz" / "camera_description", "camera_description")
     (workspace / "build").mkdir()
     near = own / "urdf" / "robot.urdf"
-    with recording_manifests() as read:
+    with recording_inputs() as read:
         find_package("robot_bringup", near=near)
     assert read == [os.path.join(own, "package.xml")]
     finder = PackageFinder()
-    with recording_manifests() as outer:
-        with recording_manifests() as inner:
+    with recording_inputs() as outer:
+        with recording_inputs() as inner:
             assert finder.find("camera_description", near=near) == other
         assert str(other / "package.xml") in inner
         assert outer == inner  # an inner recording's manifests are the outer one's too
-    with recording_manifests() as again:  # a remembered answer: the same manifests
+    with recording_inputs() as again:  # a remembered answer: the same manifests
         finder.find("camera_description", near=near)
     assert again == inner
     find_package("robot_bringup", near=near)  # outside a recording: nothing to note
+
+
+def test_the_manifest_of_a_package_found_by_its_place_is_recorded(tmp_path: Path) -> None:
+    # Found without reading its package.xml (by --package, or under AMENT_PREFIX_PATH),
+    # the package still stands on it: an output must not replace it.
+    given = _package(tmp_path / "given", "given_pkg")
+    installed = _package(tmp_path / "install" / "share" / "installed_pkg", "installed_pkg")
+    environ = {"AMENT_PREFIX_PATH": str(tmp_path / "install")}
+    with recording_inputs() as read:
+        assert find_package("given_pkg", packages={"given_pkg": given}) == given
+        assert find_package("installed_pkg", environ=environ) == installed
+    assert read == [str(given / "package.xml"), str(installed / "package.xml")]

@@ -158,6 +158,40 @@ class ShapeError(FishbotUrdfError, ValueError):
     rule = "shape"
 
 
+class InertiaUnderflowError(ShapeError):
+    """A shape too small for its inertia to be a float.
+
+    A moment that is positive comes out 0, or below the smallest normal float (2.2e-308
+    kg*m^2), where precision is lost.
+
+    Attributes:
+        shape: ``box``, ``cylinder``, ``sphere`` or ``mesh``.
+        sizes: Each size given, as (name, metres): ``("radius", 1e-200)``.
+        mass: The mass given (kg).
+        moments: ixx, iyy and izz as they come out (kg*m^2).
+    """
+
+    def __init__(
+        self,
+        shape: str,
+        sizes: tuple[tuple[str, float], ...],
+        mass: float,
+        moments: tuple[float, float, float],
+        *,
+        path: str | None = None,
+    ) -> None:
+        self.shape = shape
+        self.sizes = sizes
+        self.mass = mass
+        self.moments = moments
+        given = ", ".join(f"{name} {value:g} m" for name, value in sizes)
+        super().__init__(
+            f"the {shape}'s inertia underflows to {min(moments):g} kg*m^2 ({given}, mass "
+            f"{mass:g} kg): too small for a float; give a larger size or mass",
+            path=path,
+        )
+
+
 class ConfigError(FishbotUrdfError):
     """A configuration file or option is wrong.
 

@@ -4,7 +4,8 @@ how long the work on a robot may take.
 Every file the library reads on a robot's behalf (the robot itself, its includes, YAML
 files, package manifests, meshes) goes through :func:`read_input`, so a FIFO, a device such
 as ``/dev/zero`` or a file of many gigabytes is refused with one clear error instead of
-hanging or filling the memory.
+hanging or filling the memory. Inside :func:`recording_inputs`, every file read so is
+noted, so that an output is never written over a file the work was made from.
 
 The limits belong to the caller's context (a :class:`contextvars.ContextVar`), not to the
 process: :func:`size_limit` and :func:`time_limit` change them for the code inside a
@@ -21,7 +22,7 @@ import errno
 import os
 import stat
 import time
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from contextlib import AbstractContextManager, contextmanager
 from contextvars import ContextVar
 from pathlib import Path
@@ -38,7 +39,9 @@ __all__ = [
     "deadline",
     "max_bytes",
     "max_seconds",
+    "note_inputs",
     "read_input",
+    "recording_inputs",
     "size_limit",
     "time_limit",
     "trusting_expressions",
@@ -55,6 +58,7 @@ _LIMIT: ContextVar[int] = ContextVar("fishbot_urdf_max_bytes", default=DEFAULT_M
 _SECONDS: ContextVar[float] = ContextVar("fishbot_urdf_max_seconds", default=DEFAULT_MAX_SECONDS)
 _END: ContextVar[float | None] = ContextVar("fishbot_urdf_deadline", default=None)
 _TRUST: ContextVar[bool] = ContextVar("fishbot_urdf_trust_expressions", default=False)
+_READ: ContextVar[list[str] | None] = ContextVar("fishbot_urdf_inputs_read", default=None)
 
 
 class TimeLimitError(LimitError):
@@ -158,6 +162,36 @@ def trusts_expressions() -> bool:
 
 
 @contextmanager
+def recording_inputs() -> Iterator[list[str]]:
+    """Note, in the list it gives, the name of every regular file :func:`read_input` opens
+    inside the ``with`` (this thread or task only, and the threads it runs work in with its
+    context), in the order opened, with those :func:`note_inputs` adds. Recordings may nest:
+    an inner one's names are the outer one's too, once it ends.
+
+    An output written with these names as its ``inputs`` (see :mod:`fishbot_urdf.output`)
+    is never written over a file the work read: the robot, its includes and YAML files,
+    the ``package.xml`` files read to find packages, the configuration, the meshes."""
+    outer = _READ.get()
+    read: list[str] = []
+    token = _READ.set(read)
+    try:
+        yield read
+    finally:
+        _READ.reset(token)
+        if outer is not None:
+            outer.extend(read)
+
+
+def note_inputs(paths: Iterable[str]) -> None:
+    """Add files to the recording in force (if any), as if read: those an answer depends on
+    without reading them again (an answer kept from an earlier search, a package's
+    manifest found by its place)."""
+    recording = _READ.get()
+    if recording is not None:
+        recording.extend(paths)
+
+
+@contextmanager
 def _holding(variable: ContextVar[Any], value: Any) -> Iterator[None]:
     token = variable.set(value)
     try:
@@ -195,6 +229,9 @@ def read_input(path: str | Path) -> bytes:
             raise InputError("is a directory, not a file", path=name) from cause
         if not stat.S_ISREG(mode):
             raise InputError(f"is {_kind(mode)}, not a regular file", path=name)
+        recording = _READ.get()
+        if recording is not None:
+            recording.append(name)
         size = os.fstat(handle).st_size
         if size > limit:
             raise InputTooLargeError(name, size, limit)

@@ -18,7 +18,13 @@ Source = str | Path | int
 for standard input, when that is a file)."""
 
 
-def write_atomic(path: str | Path, data: bytes | str, *, inputs: Iterable[Source] = ()) -> Path:
+def write_atomic(
+    path: str | Path,
+    data: bytes | str,
+    *,
+    inputs: Iterable[Source] = (),
+    through_links: bool = True,
+) -> Path:
     """Write ``data`` to ``path`` through a temporary file and a rename, making parent folders.
 
     A reader never sees half a file, and an existing file is only replaced by a complete new
@@ -30,12 +36,16 @@ def write_atomic(path: str | Path, data: bytes | str, *, inputs: Iterable[Source
     ``inputs`` are the files the output was made from: ``path`` is refused when it is one
     of them, compared as files (device and inode, links followed), not as names.
 
+    With ``through_links`` False (for a name the caller made, not one a user gave), ``path``
+    must be a new file or a regular one: a link, a device or a pipe there is refused, and a
+    link made there while the file is written is replaced, never written through.
+
     Raises:
         InputError: ``path`` is one of ``inputs``, a folder, read-only, or cannot be
-            written.
+            written; without ``through_links``, a link or no regular file.
     """
     inputs = tuple(inputs)
-    with AtomicFile(path, inputs=inputs) as out:
+    with AtomicFile(path, inputs=inputs, through_links=through_links) as out:
         out.write(data)
         return out.commit(inputs)
 
@@ -46,12 +56,14 @@ class AtomicFile:
     Use it in a ``with``: :meth:`commit` puts the file in place; leaving the ``with``
     without it (an error, an interrupt) removes what was written. The checks of
     :func:`write_atomic` are made when it opens (against the ``inputs`` known then) and
-    again at :meth:`commit` (against all of them).
+    again at :meth:`commit` (against all of them); ``through_links`` is as there.
     """
 
-    def __init__(self, path: str | Path, *, inputs: Iterable[Source] = ()) -> None:
+    def __init__(
+        self, path: str | Path, *, inputs: Iterable[Source] = (), through_links: bool = True
+    ) -> None:
         self.path = str(path)
-        self.target = _target(path, inputs)
+        self.target = _target(path, inputs, through_links)
         self._temporary: Path | None = None
         self._mode: int | None = None
         self._stream: Any = None
@@ -153,15 +165,19 @@ def _identity(source: Source) -> tuple[int, int] | None:
     return found.st_dev, found.st_ino
 
 
-def _target(path: str | Path, inputs: Iterable[Source]) -> Path:
+def _target(path: str | Path, inputs: Iterable[Source], through_links: bool = True) -> Path:
     """The file ``path`` names, once it is known to be one that may be written."""
     if not str(path):
         raise InputError("the output file name is empty", path="<output>")
     if str(path).endswith(("/", os.sep)):
         raise InputError(f"{path} names a folder (name a file in it)", path=str(path))
     refuse_inputs(path, inputs)
+    if not through_links:
+        _refuse_other_than_a_file(path)
     try:
-        target = Path(os.path.realpath(path))
+        # Without links followed, the rename puts the file in place of whatever the name
+        # is by then: a link made there meanwhile is replaced, not written through.
+        target = Path(os.path.realpath(path) if through_links else os.path.abspath(path))
         if target.is_dir():
             raise InputError(f"{path} is a folder (name a file in it)", path=str(path))
         if os.path.islink(path) and not target.parent.is_dir():
@@ -176,6 +192,24 @@ def _target(path: str | Path, inputs: Iterable[Source]) -> Path:
     except OSError as exc:  # a name too long, a loop of links, ...
         raise InputError(f"cannot write {path}: {exc.strerror}", path=str(path)) from exc
     return target
+
+
+def _refuse_other_than_a_file(path: str | Path) -> None:
+    """Refuse a link, a device, a pipe or a socket at ``path`` (a folder is refused later)."""
+    try:
+        found = os.lstat(path)
+    except FileNotFoundError:
+        return
+    except OSError as exc:  # a name too long, a folder on the way that is no folder, ...
+        raise InputError(f"cannot write {path}: {exc.strerror}", path=str(path)) from exc
+    if stat.S_ISLNK(found.st_mode):
+        raise InputError(
+            f"{path} is a link: this output is not written through one", path=str(path)
+        )
+    if not stat.S_ISREG(found.st_mode) and not stat.S_ISDIR(found.st_mode):
+        raise InputError(
+            f"{path} is no regular file: this output replaces only one", path=str(path)
+        )
 
 
 def _create_temporary(target: Path, mode: int) -> tuple[int, Path]:

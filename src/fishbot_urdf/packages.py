@@ -12,8 +12,10 @@ Places are searched in this order, and the first that knows the package wins:
 6. ``ament_index_python``, when it can be imported (a sourced ROS 2 install).
 
 A folder or link that cannot be looked at (a loop of links, no permission) is passed over as
-if it were not there. Inside :func:`recording_manifests`, every ``package.xml`` read on the
-way is noted, so that a caller can tell which files a robot's reading depended on.
+if it were not there. Inside :func:`fishbot_urdf.inputs.recording_inputs`, every
+``package.xml`` read on the way is noted, and so is the manifest of the package found (found
+by its place, as under AMENT_PREFIX_PATH, or named with ``packages``, it is not read): a
+caller can tell which files a robot's reading depended on.
 """
 
 from __future__ import annotations
@@ -21,49 +23,20 @@ from __future__ import annotations
 import os
 import sys
 from collections import deque
-from collections.abc import Callable, Iterable, Iterator, Mapping
-from contextlib import contextmanager
-from contextvars import ContextVar
+from collections.abc import Callable, Iterator, Mapping
 from pathlib import Path
 from xml.parsers import expat
 
 from .errors import FishbotUrdfError, InputError
-from .inputs import deadline, read_input
+from .inputs import deadline, note_inputs, read_input, recording_inputs
 
 __all__ = [
     "PackageFinder",
     "PackageNotFoundError",
     "find_package",
     "package_name",
-    "recording_manifests",
     "resolve_package_uri",
 ]
-
-_MANIFESTS: ContextVar[list[str] | None] = ContextVar("fishbot_urdf_manifests", default=None)
-
-
-@contextmanager
-def recording_manifests() -> Iterator[list[str]]:
-    """Note every ``package.xml`` read to find a package inside the ``with`` (this thread or
-    task only), in the list it gives, in the order read; a package a `PackageFinder` knew
-    already adds the manifests its answer came from. Recordings may nest: an inner one's
-    manifests are the outer one's too."""
-    outer = _MANIFESTS.get()
-    read: list[str] = []
-    token = _MANIFESTS.set(read)
-    try:
-        yield read
-    finally:
-        _MANIFESTS.reset(token)
-        if outer is not None:
-            outer.extend(read)
-
-
-def _note(manifests: Iterable[str]) -> None:
-    recording = _MANIFESTS.get()
-    if recording is not None:
-        recording.extend(manifests)
-
 
 _IGNORE_MARKERS = ("COLCON_IGNORE", "AMENT_IGNORE", "CATKIN_IGNORE")
 _SKIP_DIRS = frozenset(("build", "install", "log", "node_modules", "__pycache__"))
@@ -107,7 +80,6 @@ def package_name(package_xml: str | Path) -> str | None:
         data = read_input(package_xml)
     except InputError:
         return None
-    _note((str(package_xml),))
     return _name_in(data)
 
 
@@ -220,7 +192,7 @@ class PackageFinder:
         """``packages`` and ``environ`` are those of `find_package`."""
         self.packages: Mapping[str, str | Path] = dict(packages or {})
         self.environ = environ
-        # Each answer, with the manifests it was read from.
+        # Each answer, with the manifests it depends on (see `recording_inputs`).
         self._found: dict[
             tuple[str, str | None], tuple[Path | PackageNotFoundError, tuple[str, ...]]
         ] = {}
@@ -236,7 +208,7 @@ class PackageFinder:
         known = self._found.get(key)
         if known is None:
             found: Path | PackageNotFoundError
-            with recording_manifests() as read:
+            with recording_inputs() as read:
                 try:
                     found = find_package(
                         name, near=near, packages=self.packages, environ=self.environ
@@ -246,7 +218,7 @@ class PackageFinder:
             self._found[key] = (found, tuple(read))
         else:
             found, manifests = known
-            _note(manifests)
+            note_inputs(manifests)
         if isinstance(found, PackageNotFoundError):
             raise PackageNotFoundError(found.package, found.searched, given=found.given)
         return found
@@ -284,7 +256,7 @@ def _candidates(
     searched: list[str],
 ) -> Iterator[Path]:
     if name in packages:
-        yield Path(os.path.abspath(packages[name]))
+        yield _by_place(Path(os.path.abspath(packages[name])))
     given = ", ".join(sorted(packages))
     searched.append(f"the packages given ({given or 'none'})")
 
@@ -308,7 +280,7 @@ def _candidates(
         share = prefix / "share" / name
         marker = prefix / "share" / "ament_index" / "resource_index" / "packages" / name
         if os.path.isfile(marker) or os.path.isfile(share / "package.xml"):
-            yield share
+            yield _by_place(share)
     searched.append("AMENT_PREFIX_PATH" + _shown(env.get("AMENT_PREFIX_PATH", "")))
 
     if start is not None:
@@ -324,9 +296,18 @@ def _candidates(
         searched.append("ament_index_python (not installed)")
     else:
         try:
-            yield Path(os.path.abspath(share_directory(name)))
+            yield _by_place(Path(os.path.abspath(share_directory(name))))
         except Exception:  # its PackageNotFoundError, or a broken install
             searched.append("ament_index_python")
+
+
+def _by_place(folder: Path) -> Path:
+    """A package found by its place, whose manifest was not read: noted all the same (see
+    `fishbot_urdf.inputs.recording_inputs`), as what the answer stands on."""
+    manifest = folder / "package.xml"
+    if os.path.isfile(manifest):
+        note_inputs((str(manifest),))
+    return folder
 
 
 _AMENT = "ament_index_python.packages"

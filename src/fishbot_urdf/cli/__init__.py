@@ -8,6 +8,7 @@ problem, 130 interrupted (Ctrl-C), 143 terminated (SIGTERM).
 from __future__ import annotations
 
 import contextlib
+import errno
 import gc
 import importlib
 import os
@@ -15,7 +16,7 @@ import signal
 import sys
 import threading
 from collections.abc import Sequence
-from typing import NoReturn
+from typing import IO, NoReturn
 
 import click
 
@@ -138,9 +139,10 @@ def main(argv: Sequence[str] | None = None) -> NoReturn:
 
 
 def _run(argv: Sequence[str] | None) -> NoReturn:
-    for name in ("stdout", "stderr"):  # closed by the caller (`>&-`): output goes nowhere
-        if getattr(sys, name) is None:
-            setattr(sys, name, open(os.devnull, "w", encoding="utf-8"))  # noqa: SIM115
+    if sys.stdout is None:  # closed by the caller (`>&-`)
+        sys.stdout = _closed_stdout()
+    if sys.stderr is None:  # closed too: what would be said there goes nowhere
+        sys.stderr = open(os.devnull, "w", encoding="utf-8")  # noqa: SIM115
     if threading.current_thread() is threading.main_thread():
         signal.signal(signal.SIGTERM, _terminate)
     try:
@@ -160,7 +162,31 @@ def _run(argv: Sequence[str] | None) -> NoReturn:
         sys.exit(exc.exit_code)
     except BrokenPipeError:
         _quiet_exit(0)
+    except OSError as exc:
+        if exc.errno not in _UNWRITABLE:
+            raise
+        # click's own output (help, version) that cannot be written: one line, as any
+        from ._common import EXIT_USAGE, report_unwritten  # (see _quiet_exit)
+
+        report_unwritten(exc)
+        _quiet_exit(EXIT_USAGE)
     sys.exit(0)
+
+
+# Why a write to standard output fails: closed (`>&-`), a full disk, a device's error.
+_UNWRITABLE = (errno.EBADF, errno.ENOSPC, errno.EIO)
+
+
+def _closed_stdout() -> IO[str]:
+    """A standard output for one the caller closed, on which every write fails as on the
+    closed one (EBADF: the command says so and exits 2, if it has anything to write). Its
+    descriptor, 1, is held on os.devnull opened for reading, so that no file the command
+    opens takes that number and gets what is written to standard output."""
+    held = os.open(os.devnull, os.O_RDONLY)
+    if held != 1:  # (0 when standard input is closed too)
+        os.dup2(held, 1)
+        os.close(held)
+    return open(1, "w", encoding="utf-8", closefd=False)
 
 
 def _end_process(code: object) -> NoReturn:

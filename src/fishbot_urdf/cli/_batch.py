@@ -31,9 +31,8 @@ from ..diagnostics import Kind, has_errors
 from ..diagnostics import escape_line_controls as shown
 from ..errors import FishbotUrdfError
 from ..graph import tree_text
-from ..inputs import max_seconds, time_limit
+from ..inputs import max_seconds, recording_inputs, time_limit
 from ..model import JointType
-from ..packages import recording_manifests
 from ..parsing import is_xacro_path
 from ..report import FileReport
 from ._checking import check_input, read_files
@@ -90,7 +89,7 @@ class Outcome:
         tree: Its tree as text (checked in another process).
         inputs: The files it was read from, never to be written over (with ``-o FILE``:
             the file, what it includes, its meshes, the package.xml files read to find
-            its packages).
+            its packages; for a file that could not be read, what was read before).
     """
 
     status: int
@@ -289,18 +288,20 @@ def _away(name: str, config: Config, run: Run) -> Outcome | None:
 def outcome(name: str, config: Config, run: Run) -> Outcome:
     """Check one file (``-``: standard input), within a time limit of its own: as long as
     the command's (``--timeout``), from now."""
-    with time_limit(max_seconds()), recording_manifests() as manifests:
+    with time_limit(max_seconds()), recording_inputs() as read:
         try:
             result = check_input(name, run.args, run.finder, config)
         except FishbotUrdfError as exc:
             if exc.path is None:  # a time limit: about the file all the same
                 exc.path = "<stdin>" if name == "-" else name
+            # What was read before it stopped (includes, package.xml files) is an input too.
+            partial = (*read_files(name, None), *read) if run.meshes else ()
             if run.fmt == "text":
-                return Outcome(status_of(exc), findings=(fail(exc),))
-            return Outcome(status_of(exc), report=_failure(exc, config))
+                return Outcome(status_of(exc), findings=(fail(exc),), inputs=partial)
+            return Outcome(status_of(exc), report=_failure(exc, config), inputs=partial)
         inputs: list[Source] = []
         if run.meshes:  # -o FILE: nothing read may be written over
-            inputs = [*read_files(name, result, None), *manifests]
+            inputs = [*read_files(name, result), *read]
     if run.skip_includes and _is_include(result):
         skipped = None if run.fmt == "text" else _skipped(result, config)
         return Outcome(EXIT_OK, report=skipped, inputs=tuple(inputs))

@@ -58,18 +58,16 @@ STDIN = 0
 check - -o robot.urdf < robot.urdf` is refused)."""
 
 
-def read_files(name: str, result: CheckResult | None, config: Config | None) -> list[Source]:
-    """What a command read for FILE ``name``, never to be written over: the file (standard
-    input for -, when that is a file), every file its reading read (includes, YAML), the
-    mesh files it names that are there (as its analysis found them), and the configuration
-    file. The package.xml files read on the way are `manifests_read`'s."""
+def read_files(name: str, result: CheckResult | None) -> list[Source]:
+    """What a command made from FILE ``name``, never to be written over: the file (standard
+    input for -, when that is a file), every file its reading read (includes, YAML), and
+    the mesh files it names that are there (as its analysis found them), opened or not.
+    Every other file read on the way (configuration, package.xml) is `inputs_read`'s."""
     found: list[Source] = [STDIN] if name == "-" else [name]
     if result is not None:
         found.extend(result.files)
         if result.analysis is not None:
             found.extend(map(str, result.analysis.mesh_paths.found(result.analysis.robot)))
-    if config is not None and config.path is not None:
-        found.append(config.path)
     return found
 
 

@@ -20,11 +20,12 @@ from ..inputs import (
     InputTooLargeError,
     max_bytes,
     max_seconds,
+    recording_inputs,
     size_limit,
     time_limit,
     trusting_expressions,
 )
-from ..packages import PackageNotFoundError, recording_manifests
+from ..packages import PackageNotFoundError
 from ._hints import command_hint, error_hint
 
 if TYPE_CHECKING:
@@ -140,10 +141,11 @@ def xacro_args(items: Sequence[str]) -> dict[str, str]:
         raise click.BadParameter(escape_controls(exc.message), param_hint="ARGS") from None
 
 
-def manifests_read() -> list[str]:
-    """Every package.xml that the command reads from now on to find a package (for
-    ``$(find)`` and ``package://``), added to the list as they are read: inputs too."""
-    return click.get_current_context().with_resource(recording_manifests())
+def inputs_read() -> list[str]:
+    """Every file the command reads from now on (the robot, its includes and YAML files,
+    the configuration files looked at, the package.xml files of its packages, the meshes
+    it opens), added to the list as they are read: an output is never written over one."""
+    return click.get_current_context().with_resource(recording_inputs())
 
 
 def stdin_urdf() -> bytes:
@@ -154,11 +156,19 @@ def stdin_urdf() -> bytes:
         raise InputError(
             "standard input is closed (give a FILE, or pipe the robot in)", path="<stdin>"
         )
+    chunks: list[bytes] = []
+    left = limit + 1  # within the size limit, as files are; read in parts, as they are
     try:
-        data = stream.read(limit + 1)  # within the size limit, as files are
+        while left > 0:
+            chunk = stream.read(min(left, 1 << 20))
+            if not chunk:
+                break
+            chunks.append(chunk)
+            left -= len(chunk)
     except (OSError, ValueError) as exc:  # not readable, or closed since
         reason = getattr(exc, "strerror", None) or str(exc)
         raise InputError(f"cannot read: {reason}", path="<stdin>") from exc
+    data = b"".join(chunks)
     if len(data) > limit:
         raise InputTooLargeError("<stdin>", None, limit)
     if b"xmlns:xacro" in data[:4096] or b"<xacro:" in data:
@@ -184,15 +194,17 @@ def write_chunks(chunks: Iterable[str]) -> None:
 
 
 def to_stdout(data: bytes, *, flush: bool = True) -> None:
-    """Write to stdout; when the reader has gone (`fishbot check big.urdf | head`), stop
-    quietly with status 0 rather than let click turn the broken pipe into status 1."""
+    """Write to stdout. When the reader has gone (`fishbot check big.urdf | head`), the
+    rest of the output goes nowhere, quietly, and the command goes on to its own end and
+    status: the reader chose to stop, and the robot's findings still go to stderr. Output
+    that cannot be written (standard output closed, a full disk) is one line and exit 2."""
     try:
         sys.stdout.buffer.write(data)
         if flush:
             sys.stdout.buffer.flush()
     except BrokenPipeError:
-        stop_quietly()
-    except OSError as exc:  # a full disk, a closed terminal: one line, no traceback
+        discard_stdout()
+    except OSError as exc:  # closed (`>&-`), a full disk: one line, no traceback
         report_unwritten(exc)
         stop_quietly(EXIT_USAGE)
 
@@ -202,13 +214,20 @@ def report_unwritten(exc: OSError) -> None:
     emit_findings([fail(InputError(f"cannot write: {exc.strerror}", path="<stdout>"))])
 
 
-def stop_quietly(status: int = EXIT_OK) -> NoReturn:
-    """Exit; nothing more may reach a closed pipe, not even the flush at exit."""
+def discard_stdout() -> None:
+    """From now on, what goes to stdout goes nowhere (the reader has gone, or it failed):
+    nothing more may reach it, not even the flush at exit."""
     try:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
     except (OSError, ValueError):
         pass  # stdout is no real file (a test runner's buffer)
+
+
+def stop_quietly(status: int = EXIT_OK) -> NoReturn:
+    """Exit, with nothing more sent to stdout (see `discard_stdout`)."""
+    discard_stdout()
     sys.exit(status)
 
 
@@ -281,7 +300,7 @@ def limit_options() -> Callable[[Wrapped], Wrapped]:
             trust_expressions: bool,
             **kwargs: Any,
         ) -> Any:
-            limit = max_bytes() if max_size is None else max(1, int(max_size * 1024 * 1024))
+            limit = max_bytes() if max_size is None else _bytes(max_size)
             seconds = max_seconds() if timeout is None else timeout
             with size_limit(limit), time_limit(seconds), trusting_expressions(trust_expressions):
                 return function(*args, **kwargs)
@@ -307,6 +326,13 @@ def limit_options() -> Callable[[Wrapped], Wrapped]:
         return size(seconds(trust(run)))  # type: ignore[return-value]
 
     return decorate
+
+
+def _bytes(mebibytes: float) -> int:
+    """``--max-size`` in bytes: at least 1, and at most what a process can hold (a larger
+    limit is no limit, and a number beyond it overflows what reads are counted in)."""
+    size = mebibytes * 1024 * 1024
+    return sys.maxsize if size >= sys.maxsize else max(1, int(size))
 
 
 class Number(click.ParamType):  # type: ignore[type-arg]

@@ -16,6 +16,7 @@ import click
 from ..config import Config, check_selectors, check_severities, find_config, load_config
 from ..diagnostics import Severity, shown_path
 from ..errors import ConfigError, FishbotUrdfError
+from ..inputs import recording_inputs
 from ..output import AtomicFile, write_atomic
 from ..packages import PackageFinder
 from ..report import github_annotations, json_report, sarif_report
@@ -294,16 +295,18 @@ def check(
     )
     found: dict[str, Config] = {}
     folders: dict[Path, Path | None] = {}
-    try:  # every configuration first: a wrong one stops everything, before any output
-        configs = [options.config_for(name, found, folders) for name in names]
-    except FishbotUrdfError as exc:
-        stop_on(exc)
+    # every configuration first: a wrong one stops everything, before any output
+    with recording_inputs() as looked_at:
+        try:
+            configs = [options.config_for(name, found, folders) for name in names]
+        except FishbotUrdfError as exc:
+            stop_on(exc)
 
     status = EXIT_OK
     reports: list[FileReport] = []
     # Never written over: the files checked (standard input, when it is a file), what
-    # they read, the configuration files.
-    inputs: list[Source] = [name for name in (*names, *found) if name and name != "-"]
+    # they read, the configuration files read (pyproject.toml files without a table too).
+    inputs: list[Source] = [name for name in (*names, *looked_at) if name and name != "-"]
     if "-" in names:
         inputs.append(STDIN)
     sink = _tree_file(output, inputs) if fmt == "text" else None

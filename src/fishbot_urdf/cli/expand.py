@@ -23,8 +23,8 @@ from ._common import (
     EXIT_INVALID,
     EXIT_OK,
     emit_findings,
+    inputs_read,
     limit_options,
-    manifests_read,
     package_option,
     packages_option,
     stop_on,
@@ -80,7 +80,7 @@ def expand(
 
     values = xacro_args(args)
     packages = packages_option(package_items)
-    manifests = manifests_read()
+    read = inputs_read()
     try:
         expansion = run(file, args=values, packages=packages)
         findings = [xacro_warning(message, file) for message in expansion.messages]
@@ -99,7 +99,7 @@ def expand(
             meshes = [] if deps else _mesh_files(expansion, packages)
             # Never over what was read: the file, its includes and YAML files, the meshes
             # it names, the package.xml files its packages were found by.
-            inputs = [file, *expansion.dependencies, *meshes, *manifests]
+            inputs = [file, *expansion.dependencies, *meshes, *read]
             write_atomic(output, text, inputs=inputs)
     except FishbotUrdfError as exc:
         stop_on(exc)

@@ -2,26 +2,30 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 import sys
 from collections.abc import Sequence
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 import click
 
 from ..diagnostics import escape_controls, has_errors
 from ..drawing.dot import draw
-from ..errors import FishbotUrdfError
-from ..output import refuse_inputs, write_atomic
+from ..errors import FishbotUrdfError, InputError
+from ..output import AtomicFile
 from ._checking import check_input, nearest_config, read_files
 from ._common import (
     EXIT_INVALID,
     EXIT_OK,
     emit_findings,
+    fail,
+    inputs_read,
     limit_options,
-    manifests_read,
     package_option,
     packages_option,
+    status_of,
     stop_on,
     to_stdout,
     xacro_args,
@@ -95,7 +99,7 @@ def graph(
     values = xacro_args([a for a in args if ":=" in a])
     packages = packages_option(package_items)
     outputs = None if output is None else _graph_output(output, fmt)
-    manifests = manifests_read()
+    read = inputs_read()
     config = nearest_config(file)
     try:
         result = check_input(file, values, packages, config)
@@ -105,19 +109,37 @@ def graph(
     if result.analysis is None:
         sys.exit(EXIT_INVALID)
     status = EXIT_INVALID if has_errors(result.diagnostics, strict=config.strict) else EXIT_OK
-    if outputs is None:
-        outputs = _graph_pair(names[0] if names else _file_name(result.analysis.robot.name), fmt)
+    named = outputs is not None or bool(names)  # else named after the robot, by the command
     try:
-        inputs = [*read_files(file, result, config), *manifests]
-        _draw_all(result.analysis, outputs, detail, inputs)
+        if outputs is None:
+            stem = names[0] if names else _file_name(result.analysis.robot.name, fmt)
+            outputs = _graph_pair(stem, fmt)
+        inputs = [*read_files(file, result), *read]
+        _draw_all(result.analysis, outputs, detail, inputs, through_links=named)
+    except InputError as exc:
+        if named:
+            stop_on(exc)
+        # A name the command made itself, that it may not write: the user names one.
+        emit_findings([replace(fail(exc), hint="name the output: give OUT or -o FILE")])
+        sys.exit(status_of(exc))
     except FishbotUrdfError as exc:
         stop_on(exc)
     sys.exit(status)
 
 
-def _file_name(robot: str) -> str:
-    if not robot or robot in (".", "..") or "/" in robot or "\\" in robot:
-        raise click.UsageError(f"the robot's name {robot!r} is no file name: give OUT or -o FILE")
+def _file_name(robot: str, fmt: str | None) -> str:
+    """The robot's name as the stem of the files written in the current folder, if it is a
+    plain file name there (no folder in it, not . or ..).
+
+    Raises:
+        InputError: It is not.
+    """
+    separators = {"/", "\\", os.sep, os.altsep or os.sep, "\0"}
+    if not robot or robot in (".", "..") or any(c in separators for c in robot):
+        raise InputError(
+            f"the robot's name {robot!r} is no file name in the current folder",
+            path="<output>" if robot in ("", ".", "..") else f"{robot}.{fmt or 'gv'}",
+        )
     return robot
 
 
@@ -143,21 +165,31 @@ def _graph_output(output: str, fmt: str | None) -> list[tuple[str, str]]:
 
 
 def _draw_all(
-    robot: Analysis, outputs: list[tuple[str, str]], detail: bool, inputs: Sequence[Source]
+    robot: Analysis,
+    outputs: list[tuple[str, str]],
+    detail: bool,
+    inputs: Sequence[Source],
+    *,
+    through_links: bool,
 ) -> None:
     """Write each output, saying "Created file" only for files really written; none when
-    one of them is an input."""
-    for path, _ in outputs:
-        if path != "-":
-            refuse_inputs(path, inputs)
-    for path, fmt in outputs:
-        try:
-            data = draw(robot, fmt, detail=detail)
-        except FishbotUrdfError as exc:
-            exc.path = path  # the finding is about the file that could not be made
-            raise
-        if path == "-":
-            to_stdout(data)
-            continue
-        write_atomic(path, data, inputs=inputs)
-        to_stdout(f"Created file {escape_controls(path)}\n".encode("utf-8", "surrogateescape"))
+    one of them may not be written (an input; without ``through_links``, a link)."""
+    with contextlib.ExitStack() as stack:
+        files = {
+            path: stack.enter_context(AtomicFile(path, inputs=inputs, through_links=through_links))
+            for path, _ in outputs
+            if path != "-"
+        }
+        for path, fmt in outputs:
+            try:
+                data = draw(robot, fmt, detail=detail)
+            except FishbotUrdfError as exc:
+                exc.path = path  # the finding is about the file that could not be made
+                raise
+            if path == "-":
+                to_stdout(data)
+                continue
+            files[path].write(data)
+            files[path].commit(inputs)
+            shown = escape_controls(path)
+            to_stdout(f"Created file {shown}\n".encode("utf-8", "surrogateescape"))

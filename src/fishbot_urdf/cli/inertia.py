@@ -14,7 +14,7 @@ import click
 
 from ..catalog.physics import MISSING_INERTIAL
 from ..diagnostics import escape_controls
-from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
+from ..errors import ArgumentError, FishbotUrdfError, InertiaUnderflowError, UnknownNameError
 from ..inertia import (
     box_inertia,
     cylinder_inertia,
@@ -37,10 +37,10 @@ from ._common import (
     emit_findings,
     fail,
     format_option,
+    inputs_read,
     joint_option,
     joint_positions,
     limit_options,
-    manifests_read,
     package_option,
     packages_option,
     stop_on,
@@ -157,7 +157,8 @@ def box(size: Vector3, mass: float, xyz: Vector3, rpy: Vector3, fmt: str) -> Non
     Example:
       fishbot inertia box --mass 0.01 --size 0.02 0.1 0.02
     """
-    _print(box_inertia(mass, *size, _origin(xyz, rpy)), fmt)
+    origin = _origin(xyz, rpy)
+    _print(lambda: box_inertia(mass, *size, origin), fmt)
 
 
 @inertia.command()
@@ -176,7 +177,8 @@ def cylinder(
     Example:
       fishbot inertia cylinder --mass 0.1 --radius 0.032 --length 0.04 --rpy 1.57079 0 0
     """
-    _print(cylinder_inertia(mass, radius, length, _origin(xyz, rpy)), fmt)
+    origin = _origin(xyz, rpy)
+    _print(lambda: cylinder_inertia(mass, radius, length, origin), fmt)
 
 
 @inertia.command()
@@ -189,7 +191,8 @@ def sphere(radius: float, mass: float, xyz: Vector3, rpy: Vector3, fmt: str) -> 
     Example:
       fishbot inertia sphere --mass 0.02 --radius 0.016
     """
-    _print(sphere_inertia(mass, radius, _origin(xyz, rpy)), fmt)
+    origin = _origin(xyz, rpy)
+    _print(lambda: sphere_inertia(mass, radius, origin), fmt)
 
 
 def _origin(xyz: Vector3, rpy: Vector3) -> Any:
@@ -204,7 +207,13 @@ def _origin(xyz: Vector3, rpy: Vector3) -> Any:
     return Origin(xyz=tuple(xyz), rpy=tuple(rpy))  # type: ignore[arg-type]
 
 
-def _print(inertial: Inertial, fmt: str) -> None:
+def _print(make: Callable[[], Inertial], fmt: str) -> None:
+    """Print the inertial ``make`` gives; one too large or too small for floats is a bad
+    value on the command line (exit 2), as a size of 0 is."""
+    try:
+        inertial = make()
+    except InertiaUnderflowError as exc:
+        raise click.UsageError(exc.message) from None
     tensor = inertial.inertia
     if not all(math.isfinite(getattr(tensor, f)) for f in ("ixx", "iyy", "izz")):
         raise click.UsageError("the moments overflow: give the sizes in metres")
@@ -290,7 +299,7 @@ def robot(
     values = xacro_args(args)
     packages = packages_option(package_items)
     positions = joint_positions(joint_items)
-    manifests = manifests_read()
+    read = inputs_read()
     config = nearest_config(file)
     try:
         result = check_input(file, values, packages, config)
@@ -305,7 +314,7 @@ def robot(
             sys.exit(EXIT_INVALID)
         # The copy is never written over anything read (the mesh files listed here are
         # those the filling opens, by the same analysis: no package.xml is read after).
-        inputs = [*read_files(file, result, config), *manifests]
+        inputs = [*read_files(file, result), *read]
         sys.exit(_fill(result, output or "-", density, _link_masses(masses), inputs))
     emit_findings(result.diagnostics)
     if result.analysis is None:

@@ -18,10 +18,10 @@ from ._common import (
     EXIT_INVALID,
     EXIT_OK,
     emit_findings,
+    inputs_read,
     joint_option,
     joint_positions,
     limit_options,
-    manifests_read,
     package_option,
     packages_option,
     stop_on,
@@ -106,7 +106,7 @@ def render(
     values = xacro_args(args)
     positions = joint_positions(joint_items)
     packages = packages_option(package_items)
-    manifests = manifests_read()
+    read = inputs_read()
     config = nearest_config(file)
     refusal = "nothing written: fix the errors above first"
     result = posable_input(file, values, packages, refusal, config=config)
@@ -132,7 +132,7 @@ def render(
             to_stdout(png)
         else:
             # Never over what was read: the robot's files, its meshes, the configuration.
-            inputs = [*read_files(file, result, config), *manifests]
+            inputs = [*read_files(file, result), *read]
             write_atomic(output, png, inputs=inputs)
     except FishbotUrdfError as exc:
         if exc.path is None:  # the picture's own bound: about the picture asked for

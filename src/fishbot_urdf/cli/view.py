@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any
 import click
 
 from ..config import Config
-from ..diagnostics import Diagnostic
+from ..diagnostics import Diagnostic, escape_controls
 from ..drawing.viewer import Viewer
 from ..errors import ArgumentError, FishbotUrdfError, RobotError, UnknownNameError
 from ._checking import (
@@ -33,6 +33,7 @@ from ._common import (
     packages_option,
     status_of,
     stop_on,
+    to_stdout,
     xacro_args,
 )
 
@@ -122,10 +123,10 @@ def view(
         terminal.drawn()
     else:  # set, within their joints' ranges, once the robot is read
         viewer.values.update(positions)
-    click.echo(f"fishbot view: {viewer.url} (Ctrl-C stops)")
     # Off for the commands that end (see main); on, rarely, for the reloads to come.
     gc.set_threshold(_COLLECT_EVERY, *gc.get_threshold()[1:])
     try:
+        _say(f"fishbot view: {viewer.url} (Ctrl-C stops)")
         while True:
             time.sleep(3600)
     finally:
@@ -153,7 +154,7 @@ class _Terminal:
             return
         if self.failed:
             self.failed = False
-            click.echo(f"fishbot view: {self.file} is read again: the page shows it")
+            _say(f"fishbot view: {self.file} is read again: the page shows it")
         self.drawn()
 
     def drawn(self) -> None:
@@ -165,3 +166,8 @@ class _Terminal:
         if found != self.said:
             emit_findings(found)
             self.said = found
+
+
+def _say(line: str) -> None:
+    """A line on stdout, as every command writes there (a closed stdout is an error)."""
+    to_stdout(f"{escape_controls(line)}\n".encode("utf-8", "surrogateescape"))

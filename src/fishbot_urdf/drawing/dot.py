@@ -12,6 +12,7 @@ import os
 import shutil
 import signal
 import subprocess
+import time
 import warnings
 from collections.abc import Iterator
 from pathlib import Path
@@ -141,8 +142,7 @@ def pipe_dot(text: str, format: str, *, timeout: float | None = None) -> bytes:
     except OSError as exc:
         raise ToolError(f"dot could not be started: {exc.strerror}", tool="dot") from exc
     try:
-        data: bytes
-        data, errors = process.communicate(text.encode("utf-8", "surrogateescape"), timeout=timeout)
+        data, errors = _communicate(process, text.encode("utf-8", "surrogateescape"), timeout)
     except subprocess.TimeoutExpired as exc:
         _stop(process)
         raise ToolTimeoutError(
@@ -158,6 +158,27 @@ def pipe_dot(text: str, format: str, *, timeout: float | None = None) -> bytes:
         reason = lines[0] if lines else f"exit status {process.returncode}"
         raise ToolError(f"dot could not render {format.upper()}: {reason}", tool="dot")
     return data
+
+
+_LONGEST_WAIT = 86_400.0
+"""Seconds: the longest single wait for `dot`. The system's wait counts milliseconds in a C
+int (24.8 days at most): a longer one overflows, so a longer timeout is waited in parts."""
+
+
+def _communicate(process: Any, payload: bytes, timeout: float) -> tuple[bytes, bytes]:
+    """``process.communicate(payload, timeout=timeout)``, waited in parts of at most
+    `_LONGEST_WAIT`, so that any timeout holds (inf: none)."""
+    end = time.monotonic() + timeout
+    given: bytes | None = payload
+    while True:
+        try:
+            wait = min(max(end - time.monotonic(), 0.0), _LONGEST_WAIT)
+            out, err = process.communicate(given, timeout=wait)
+            return out, err
+        except subprocess.TimeoutExpired:
+            if time.monotonic() >= end:
+                raise
+            given = None  # sent already: the next wait goes on with the rest
 
 
 def _stop(process: Any) -> None:

@@ -11,13 +11,14 @@ from __future__ import annotations
 import io
 import math
 import os
+import sys
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from ..analysis.meshpaths import MeshPaths
-from ..errors import ArgumentError, ShapeError, ToolNotFoundError
+from ..errors import ArgumentError, InertiaUnderflowError, ShapeError, ToolNotFoundError
 from ..inputs import read_input
 from ..model import (
     ZERO3,
@@ -63,21 +64,58 @@ def box_inertia(m: float, w: float, h: float, d: float, origin: Origin = _AT_LIN
     """The inertial of a solid box of mass ``m`` (kg) and sides ``w``, ``h``, ``d`` (m).
 
     The sides are along x, y and z, as ``<box size="w h d"/>``: ixx = m/12 (h^2 + d^2),
-    iyy = m/12 (w^2 + d^2), izz = m/12 (w^2 + h^2) (kg*m^2)."""
-    return _diagonal(m, _box(m, w, h, d), origin)
+    iyy = m/12 (w^2 + d^2), izz = m/12 (w^2 + h^2) (kg*m^2).
+
+    Raises:
+        InertiaUnderflowError: A moment that is positive comes out 0 or subnormal (a box
+            of sides 1e-200 m)."""
+    moments = _box(m, w, h, d)
+    _representable("box", (("x", w), ("y", h), ("z", d)), m, moments, ((h, d), (w, d), (w, h)))
+    return _diagonal(m, moments, origin)
 
 
 def cylinder_inertia(m: float, r: float, h: float, origin: Origin = _AT_LINK) -> Inertial:
     """The inertial of a solid cylinder of mass ``m`` (kg), radius ``r`` and height ``h`` (m).
 
     The height is along its z axis, as ``<cylinder radius="r" length="h"/>``:
-    ixx = iyy = m/12 (3 r^2 + h^2), izz = m/2 r^2 (kg*m^2)."""
-    return _diagonal(m, _cylinder(m, r, h), origin)
+    ixx = iyy = m/12 (3 r^2 + h^2), izz = m/2 r^2 (kg*m^2).
+
+    Raises:
+        InertiaUnderflowError: A moment that is positive comes out 0 or subnormal."""
+    moments = _cylinder(m, r, h)
+    _representable("cylinder", (("radius", r), ("length", h)), m, moments, ((r, h), (r, h), (r,)))
+    return _diagonal(m, moments, origin)
 
 
 def sphere_inertia(m: float, r: float, origin: Origin = _AT_LINK) -> Inertial:
-    """A solid sphere of mass ``m`` (kg) and radius ``r`` (m): 2/5 m r^2 about every axis."""
-    return _diagonal(m, _sphere(m, r), origin)
+    """A solid sphere of mass ``m`` (kg) and radius ``r`` (m): 2/5 m r^2 about every axis.
+
+    Raises:
+        InertiaUnderflowError: The moment comes out 0 or subnormal (a radius of 1e-200 m)."""
+    moments = _sphere(m, r)
+    _representable("sphere", (("radius", r),), m, moments, ((r,), (r,), (r,)))
+    return _diagonal(m, moments, origin)
+
+
+_SMALLEST = sys.float_info.min
+"""The smallest normal float (2.2e-308): below it a number keeps fewer digits, down to 0."""
+
+
+def _representable(
+    shape: str,
+    sizes: tuple[tuple[str, float], ...],
+    m: float,
+    moments: Vector3,
+    lengths: tuple[tuple[float, ...], ...],
+) -> None:
+    """Refuse moments that are positive (a positive mass, and a length they are made of
+    that is not 0) but come out 0 or subnormal: a tensor of zeros that no simulator takes.
+
+    Raises:
+        InertiaUnderflowError: One does."""
+    for moment, made_of in zip(moments, lengths, strict=True):
+        if m > 0 and any(length != 0 for length in made_of) and abs(moment) < _SMALLEST:
+            raise InertiaUnderflowError(shape, sizes, m, moments)
 
 
 def solid_moments(shape: Box | Cylinder | Sphere, mass: float) -> Vector3:
@@ -128,6 +166,7 @@ def geometry_inertia(
     Raises:
         ArgumentError: The geometry is not a box, cylinder, sphere or mesh.
         ShapeError: The mesh is not closed.
+        InertiaUnderflowError: The shape is too small for its moments to be floats.
         PackageNotFoundError: The mesh's package is not found.
         MeshNotFoundError: The mesh's file is not found.
         ToolNotFoundError: The geometry is a mesh and trimesh is not installed.
@@ -342,6 +381,8 @@ def mesh_inertia(
 
     Raises:
         ShapeError: The mesh is not closed, or cannot be read as a mesh.
+        InertiaUnderflowError: The mesh is so small that its volume or a moment comes out
+            0 or subnormal.
         InputError: The file cannot be read.
         ToolNotFoundError: trimesh is not installed.
     """
@@ -350,6 +391,11 @@ def mesh_inertia(
     frame = Pose.of(origin)
     unit = tuple(tuple(density * v + 0.0 for v in row) for row in solid.inertia)
     tensor = rotate_tensor(frame.rotation, unit)  # type: ignore[arg-type]
+    diagonal = (tensor[0][0], tensor[1][1], tensor[2][2])
+    if mass > 0 and (abs(solid.volume) < _SMALLEST or min(map(abs, diagonal)) < _SMALLEST):
+        raise InertiaUnderflowError(
+            "mesh", (("across", solid.extent),), mass, diagonal, path=str(path)
+        )
     centre = frame.apply(solid.centre)
     return Inertial(mass=mass, inertia=_inertia(tensor), origin=Origin(xyz=centre))
 
