@@ -12,7 +12,9 @@ process: :func:`size_limit` and :func:`time_limit` change them for the code insi
 every long piece of work (expanding, globbing an include, loading YAML, reading,
 matching suppression comments, analysing, rendering, Graphviz's `dot`) asks
 :func:`deadline` and stops with a :class:`TimeLimitError` once it has passed. Outside a
-``with``, each piece of work gets :data:`DEFAULT_MAX_SECONDS` from when it starts.
+``with``, each piece of work gets :data:`DEFAULT_MAX_SECONDS` from when it starts. The
+folders a xacro expansion may read beyond the robot's own (:func:`allowing_reads`) and
+whether it runs expressions as Python (:func:`trusting_expressions`) are the context's too.
 """
 
 from __future__ import annotations
@@ -21,7 +23,7 @@ import errno
 import os
 import stat
 import time
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from contextlib import AbstractContextManager, contextmanager
 from contextvars import ContextVar
 from pathlib import Path
@@ -35,10 +37,12 @@ __all__ = [
     "Deadline",
     "InputTooLargeError",
     "TimeLimitError",
+    "allowing_reads",
     "deadline",
     "max_bytes",
     "max_seconds",
     "read_input",
+    "reads_allowed",
     "size_limit",
     "time_limit",
     "trusting_expressions",
@@ -55,6 +59,7 @@ _LIMIT: ContextVar[int] = ContextVar("fishbot_urdf_max_bytes", default=DEFAULT_M
 _SECONDS: ContextVar[float] = ContextVar("fishbot_urdf_max_seconds", default=DEFAULT_MAX_SECONDS)
 _END: ContextVar[float | None] = ContextVar("fishbot_urdf_deadline", default=None)
 _TRUST: ContextVar[bool] = ContextVar("fishbot_urdf_trust_expressions", default=False)
+_READS: ContextVar[tuple[str, ...]] = ContextVar("fishbot_urdf_allowed_reads", default=())
 
 
 class TimeLimitError(LimitError):
@@ -155,6 +160,21 @@ def trusting_expressions(trust: bool = True) -> AbstractContextManager[None]:
 def trusts_expressions() -> bool:
     """Whether expansions here run expressions as Python (see :func:`trusting_expressions`)."""
     return _TRUST.get()
+
+
+def allowing_reads(folders: Iterable[str | Path]) -> AbstractContextManager[None]:
+    """Inside the ``with`` (this thread or task only), xacro expansions that do not run
+    expressions as Python may also read the files in ``folders`` and below them, besides
+    the robot's own tree, the packages ``$(find)`` finds and the folders of an enclosing
+    ``with`` (see :mod:`fishbot_urdf.expansion`). A relative folder is taken from the
+    current folder now, and links in it are resolved now."""
+    added = tuple(os.path.realpath(folder) for folder in folders)
+    return _holding(_READS, tuple(dict.fromkeys((*_READS.get(), *added))))
+
+
+def reads_allowed() -> tuple[str, ...]:
+    """The folders :func:`allowing_reads` allows here, links resolved."""
+    return _READS.get()
 
 
 @contextmanager

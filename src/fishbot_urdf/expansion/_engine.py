@@ -24,6 +24,7 @@ from ._errors import SOURCE_KEY, Explaining, limited, source
 from ._files import Globbing, YamlError, load_yaml_bounded
 from ._interpreter import evaluate
 from ._result import Expansion, ExpansionLimitError, XacroError
+from ._scope import ReadOutsideError, ReadScope
 
 
 class _Overgrown(FishbotUrdfError):
@@ -83,6 +84,7 @@ class Run(Explaining):
         packages: dict[str, str | Path],
         *,
         trust: bool = False,
+        reads: ReadScope,
     ) -> None:
         import xacro  # type: ignore[import-untyped]
         import xacro.substitution_args as subst  # type: ignore[import-untyped]
@@ -90,6 +92,7 @@ class Run(Explaining):
         self.xacro, self.subst = xacro, subst
         self.path, self.args, self.packages = path, args, packages
         self.trust = trust  # expressions run as Python, as xacro runs them
+        self.reads = reads  # where files may be read; $(find) adds each package found
         self.node: Any = None  # the element being worked on
         self.calls: list[tuple[str, Location | None]] = []  # macro calls, outermost first
         self.symbols: Any = None  # the symbol table of a failed expression
@@ -121,7 +124,7 @@ class Run(Explaining):
         if not self.trust:
             self._patch(x, "safe_eval", self._evaluate)
             self._patch(subst, "_eval", self._substitution_eval)
-        self._patch(x, "glob", Globbing(self.deadline))
+        self._patch(x, "glob", Globbing(self.deadline, lambda f, p: self.reads.check_pattern(f, p)))
         self._patch(x, "eval_extension", self._extension(x.eval_extension))
         self._patch(x, "parse", self._parse)
         self._patch(x, "print_location", lambda: None)
@@ -184,6 +187,7 @@ class Run(Explaining):
         x = self.xacro
         symbols = x._global_symbols
         name = x.abs_filename_spec(filename)
+        self.reads.check(name)
         x.filestack.append(name)
         try:
             try:
@@ -305,13 +309,16 @@ class Run(Explaining):
     def _find(self, package: str) -> str:
         stack = self.xacro.filestack
         near = stack[-1] if stack and stack[-1] else self.path
-        return str(find_package(package, near=near, packages=self.packages))
+        found = find_package(package, near=near, packages=self.packages)
+        self.reads = self.reads.including(found)
+        return str(found)
 
     def _parse(self, inp: Any, filename: str | None = None) -> Any:
         if inp is not None:
             return minidom.parseString(inp) if isinstance(inp, str) else inp
         assert filename is not None
         full = os.path.join(self.xacro.root_dir, filename)
+        self.reads.check(full)
         try:
             data = read_input(full)
         except InputError as exc:
@@ -425,6 +432,8 @@ class Run(Explaining):
                 where=source(self.node),
                 calls=self._calls()[:3],
             ) from exc
+        except ReadOutsideError as exc:  # an include, or its pattern
+            raise exc.located(source(self.node), self._calls()) from exc
         except FishbotUrdfError:
             raise
         except Exception as exc:  # xacro stumbling on what the file gave it
