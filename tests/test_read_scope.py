@@ -292,7 +292,8 @@ def test_allow_read_lets_a_folder_be_read(place: Path) -> None:
     robot = _write(place, _robot('<xacro:include filename="../../outside/part.xacro"/>'))
     _refused(robot)
     assert 'name="shared_link"' in expand(robot, allow_read=["outside"]).text
-    with allowing_reads([place / "outside"]):
+    assert 'name="shared_link"' in expand(robot, allow_read="outside").text  # one folder
+    with allowing_reads(place / "outside"):
         assert reads_allowed() == (_real(place / "outside"),)
         assert 'name="shared_link"' in expand(robot).text
         with allowing_reads([place / "elsewhere"]):  # adds to the enclosing one

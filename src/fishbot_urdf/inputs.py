@@ -162,13 +162,16 @@ def trusts_expressions() -> bool:
     return _TRUST.get()
 
 
-def allowing_reads(folders: Iterable[str | Path]) -> AbstractContextManager[None]:
+def allowing_reads(
+    folders: str | os.PathLike[str] | Iterable[str | os.PathLike[str]],
+) -> AbstractContextManager[None]:
     """Inside the ``with`` (this thread or task only), xacro expansions that do not run
-    expressions as Python may also read the files in ``folders`` and below them, besides
-    the robot's own tree, the packages ``$(find)`` finds and the folders of an enclosing
-    ``with`` (see :mod:`fishbot_urdf.expansion`). A relative folder is taken from the
-    current folder now, and links in it are resolved now."""
-    added = tuple(os.path.realpath(folder) for folder in folders)
+    expressions as Python may also read the files in ``folders`` (one, or several) and below
+    them, besides the robot's own tree, the packages ``$(find)`` finds and the folders of an
+    enclosing ``with`` (see :mod:`fishbot_urdf.expansion`). A relative folder is taken from
+    the current folder now, and links in it are resolved now."""
+    given = [folders] if isinstance(folders, str | os.PathLike) else folders
+    added = tuple(os.path.realpath(folder) for folder in given)
     return _holding(_READS, tuple(dict.fromkeys((*_READS.get(), *added))))
 
 

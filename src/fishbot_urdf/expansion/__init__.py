@@ -78,7 +78,7 @@ def expand(
     packages: Mapping[str, str | Path] | None = None,
     *,
     trust_expressions: bool | None = None,
-    allow_read: Iterable[str | Path] = (),
+    allow_read: str | os.PathLike[str] | Iterable[str | os.PathLike[str]] = (),
 ) -> Expansion:
     """Expand a xacro file to URDF.
 
@@ -90,7 +90,7 @@ def expand(
         trust_expressions: Evaluate expressions with Python's ``eval``, as ROS's xacro
             does, running the file's code (default: as :func:`trusting_expressions` says,
             else no). It also lifts the limit on what may be read.
-        allow_read: Folders the expansion may read files in, besides the robot's tree
+        allow_read: A folder, or folders, the expansion may read files in, besides the robot's tree
             (see :func:`robot_tree`), the folders of the packages ``$(find)`` resolves and
             those of :func:`allowing_reads`. A relative folder is taken from the current
             folder.
@@ -116,7 +116,11 @@ def expand(
     from ._engine import Run  # xacro, minidom and the interpreter load here: ~15 ms
 
     trust = trusts_expressions() if trust_expressions is None else trust_expressions
-    reads = ReadScope.anywhere() if trust else ReadScope.of(name, (*reads_allowed(), *allow_read))
+    if trust:
+        reads = ReadScope.anywhere()
+    else:
+        given = [allow_read] if isinstance(allow_read, str | os.PathLike) else allow_read
+        reads = ReadScope.of(name, (*reads_allowed(), *given))
     with _LOCK, Run(name, dict(args or {}), dict(packages or {}), trust=trust, reads=reads) as run:
         return run.expand()
 

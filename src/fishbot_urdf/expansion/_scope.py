@@ -48,6 +48,8 @@ class ReadOutsideError(XacroError):
         pattern: The include pattern that reaches the folder ``file``, or None.
     """
 
+    rule = "xacro-read-outside"
+
     def __init__(
         self,
         file: str,
@@ -111,7 +113,7 @@ class ReadScope:
         return cls(None)
 
     @classmethod
-    def of(cls, robot: str | Path, allowed: Iterable[str | Path] = ()) -> ReadScope:
+    def of(cls, robot: str | Path, allowed: Iterable[str | os.PathLike[str]] = ()) -> ReadScope:
         """The robot file's tree (found from the file as named, and from the file its links
         lead to), and the folders ``allowed``."""
         named = os.path.realpath(robot_tree(robot))
@@ -119,7 +121,7 @@ class ReadScope:
         folders = (named, real, *(os.path.realpath(folder) for folder in allowed))
         return cls(named, tuple(dict.fromkeys(folders)))
 
-    def including(self, package: str | Path) -> ReadScope:
+    def including(self, package: str | os.PathLike[str]) -> ReadScope:
         """This scope and the folder of a package ``$(find)`` resolved."""
         if self.tree is None:
             return self
