@@ -753,11 +753,6 @@ def test_control_characters_in_a_file_name_are_written_visibly(
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="control characters in a file name")
-@pytest.mark.xfail(
-    strict=True,
-    reason="the banner is written by the expansion (expansion/_engine.py: xacro's "
-    "process_file names the file as given), which escapes nothing yet",
-)
 def test_control_characters_in_a_file_name_are_written_visibly_in_the_banner(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:

@@ -333,7 +333,8 @@ def test_an_empty_selection_still_prints_the_tree(arm: Path) -> None:
         (
             '[project]\nname = "x"\n\n[tool.fishbot]\nignroe = ["physics"]\n',
             "pyproject.toml:5: error: unknown key 'ignroe' (did you mean 'ignore'? keys: "
-            "select, extend-select, ignore, severity, strict, ground-tolerance) [config]",
+            "select, extend-select, ignore, severity, strict, ground-tolerance, allow-read) "
+            "[config]",
         ),
         (
             '[tool.fishbot]\nselect = "physics"\n',

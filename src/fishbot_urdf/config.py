@@ -3,7 +3,9 @@ fishbot.toml, found upward from the checked file, and options on top.
 
 Keys (the same as the command-line options): ``select``, ``extend-select`` and ``ignore``
 (lists of rule ids, family names, or ``ALL``), ``severity`` (a table: rule id -> ``error``,
-``warning`` or ``note``), ``strict`` (warnings fail too) and ``ground-tolerance`` (mm).
+``warning`` or ``note``), ``strict`` (warnings fail too), ``ground-tolerance`` (mm) and
+``allow-read`` (folders, from the configuration file's own, that xacro files may read in
+besides the robot's tree: see :mod:`fishbot_urdf.expansion`).
 
 Selections are resolved as ruff resolves them: within one layer (the file, then the command
 line) the more specific name wins (a rule id over a family, a family over ``ALL``; an
@@ -14,6 +16,7 @@ change what the earlier layers chose.
 
 from __future__ import annotations
 
+import os
 import re
 import sys
 from collections.abc import Callable, Iterable, Mapping
@@ -47,7 +50,15 @@ CONFIG_FILES = ("fishbot.toml", "pyproject.toml")
 """The files searched for in each folder, in this order (pyproject.toml only counts when it
 has a ``[tool.fishbot]`` table)."""
 
-_KEYS = ("select", "extend-select", "ignore", "severity", "strict", "ground-tolerance")
+_KEYS = (
+    "select",
+    "extend-select",
+    "ignore",
+    "severity",
+    "strict",
+    "ground-tolerance",
+    "allow-read",
+)
 _ALL = "ALL"
 _LEVELS = tuple(s.value for s in Severity)
 # A line that opens [tool.fishbot] (or a table in it), or sets a tool.fishbot key.
@@ -81,6 +92,9 @@ class Config:
         strict: Warnings fail a robot too.
         ground_tolerance: How far (mm) the lowest collision point may be from the ground,
             or None for the default (2 mm).
+        allow_read: Folders xacro files may read in besides the robot's tree and the
+            packages ``$(find)`` finds (see :mod:`fishbot_urdf.expansion`); a file's are
+            absolute, from its folder. A relative one is taken from the current folder.
         path: The file the configuration was read from, if any.
         overrides: Layers of choices laid over this one, in order (`updated` adds one).
         enabled: The ids of the rules that apply, resolved from all of the above.
@@ -92,6 +106,7 @@ class Config:
     severity: Mapping[str, Severity] = field(default_factory=lambda: MappingProxyType({}))
     strict: bool = False
     ground_tolerance: float | None = None
+    allow_read: tuple[str, ...] = ()
     path: str | None = None
     overrides: tuple[Selection, ...] = ()
     enabled: frozenset[str] = field(init=False, repr=False, compare=False)
@@ -311,6 +326,10 @@ def _from_table(table: dict[str, Any], path: str) -> Config:
         or not 0 <= tolerance < float("inf")
     ):
         raise _wrong(path, "ground-tolerance", "a number of millimetres, >= 0")
+    folders = table.get("allow-read", [])
+    if not isinstance(folders, list) or not all(isinstance(f, str) and f for f in folders):
+        raise _wrong(path, "allow-read", "a list of folders")
+    here = os.path.dirname(os.path.abspath(path))
     return Config(
         select=lists["select"] if "select" in table else None,
         extend_select=lists["extend-select"],
@@ -318,6 +337,7 @@ def _from_table(table: dict[str, Any], path: str) -> Config:
         severity={rule: Severity(level) for rule, level in given.items()},
         strict=strict,
         ground_tolerance=None if tolerance is None else float(tolerance),
+        allow_read=tuple(os.path.normpath(os.path.join(here, f)) for f in folders),
         path=path,
     )
 

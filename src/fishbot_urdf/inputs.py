@@ -13,7 +13,9 @@ process: :func:`size_limit` and :func:`time_limit` change them for the code insi
 every long piece of work (expanding, globbing an include, loading YAML, reading,
 matching suppression comments, analysing, rendering, Graphviz's `dot`) asks
 :func:`deadline` and stops with a :class:`TimeLimitError` once it has passed. Outside a
-``with``, each piece of work gets :data:`DEFAULT_MAX_SECONDS` from when it starts.
+``with``, each piece of work gets :data:`DEFAULT_MAX_SECONDS` from when it starts. The
+folders a xacro expansion may read beyond the robot's own (:func:`allowing_reads`) and
+whether it runs expressions as Python (:func:`trusting_expressions`) are the context's too.
 """
 
 from __future__ import annotations
@@ -36,11 +38,13 @@ __all__ = [
     "Deadline",
     "InputTooLargeError",
     "TimeLimitError",
+    "allowing_reads",
     "deadline",
     "max_bytes",
     "max_seconds",
     "note_inputs",
     "read_input",
+    "reads_allowed",
     "recording_inputs",
     "size_limit",
     "time_limit",
@@ -59,6 +63,7 @@ _SECONDS: ContextVar[float] = ContextVar("fishbot_urdf_max_seconds", default=DEF
 _END: ContextVar[float | None] = ContextVar("fishbot_urdf_deadline", default=None)
 _TRUST: ContextVar[bool] = ContextVar("fishbot_urdf_trust_expressions", default=False)
 _READ: ContextVar[list[str] | None] = ContextVar("fishbot_urdf_inputs_read", default=None)
+_READS: ContextVar[tuple[str, ...]] = ContextVar("fishbot_urdf_allowed_reads", default=())
 
 
 class TimeLimitError(LimitError):
@@ -159,6 +164,24 @@ def trusting_expressions(trust: bool = True) -> AbstractContextManager[None]:
 def trusts_expressions() -> bool:
     """Whether expansions here run expressions as Python (see :func:`trusting_expressions`)."""
     return _TRUST.get()
+
+
+def allowing_reads(
+    folders: str | os.PathLike[str] | Iterable[str | os.PathLike[str]],
+) -> AbstractContextManager[None]:
+    """Inside the ``with`` (this thread or task only), xacro expansions that do not run
+    expressions as Python may also read the files in ``folders`` (one, or several) and below
+    them, besides the robot's own tree, the packages ``$(find)`` finds and the folders of an
+    enclosing ``with`` (see :mod:`fishbot_urdf.expansion`). A relative folder is taken from
+    the current folder now, and links in it are resolved now."""
+    given = [folders] if isinstance(folders, str | os.PathLike) else folders
+    added = tuple(os.path.realpath(folder) for folder in given)
+    return _holding(_READS, tuple(dict.fromkeys((*_READS.get(), *added))))
+
+
+def reads_allowed() -> tuple[str, ...]:
+    """The folders :func:`allowing_reads` allows here, links resolved."""
+    return _READS.get()
 
 
 @contextmanager

@@ -20,6 +20,7 @@ from .diagnostics import (
     sort_key,
     without_consequences,
 )
+from .inputs import allowing_reads
 from .model import Robot
 from .packages import PackageFinder
 from .parsing import is_xacro_path, read
@@ -85,18 +86,21 @@ def check_file(
     xacro source. ``packages`` may be a `fishbot_urdf.packages.PackageFinder`, which keeps
     where each mesh package was found for the next files. ``config`` selects the rules, sets
     their severities and the ground tolerance (default: every rule, at its default
-    severity). ``fishbot: ignore[RULE]`` comments in the file (and in a xacro file's
+    severity), and says which folders a xacro file may read in besides its own tree
+    (``allow_read``). ``fishbot: ignore[RULE]`` comments in the file (and in a xacro file's
     includes) silence findings.
 
     Raises:
         InputError: The file cannot be read.
         XmlSyntaxError: The file is not well-formed XML.
-        XacroError: The xacro file cannot be expanded.
+        XacroError: The xacro file cannot be expanded (a ReadOutsideError when it reads
+            outside the folders it may read).
         PackageNotFoundError: The xacro file names a package that is not found.
     """
     config = config or Config()
     folders = packages.packages if isinstance(packages, PackageFinder) else packages
-    parsed = read(source, path=path, args=args, packages=folders)
+    with allowing_reads(config.allow_read):
+        parsed = read(source, path=path, args=args, packages=folders)
     found = list(parsed.diagnostics)
     analysis = None
     if parsed.robot is not None:

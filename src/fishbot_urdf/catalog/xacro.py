@@ -318,3 +318,36 @@ XACRO_UNSAFE = Rule(
     language="xacro",
     fatal=True,
 )
+XACRO_READ_OUTSIDE = Rule(
+    "xacro-read-outside",
+    E,
+    Family.XACRO,
+    summary="A xacro file reads a file outside the robot's tree and the folders allowed.",
+    explanation="A xacro file names the files it reads, and one from a stranger can name "
+    "`~/.ssh/id_rsa` as easily as `wheel.urdf.xacro`: ROS's xacro reads it, and the error it "
+    "then gives (not XML, not YAML) can print its lines. Unless `--trust-expressions` is "
+    "given, fishbot reads an include, the folders of an include pattern and a "
+    "`xacro.load_yaml` file only inside the robot's tree (the git repository that holds the "
+    "robot file, else its ROS package, else its folder), the packages `$(find)` finds, and "
+    "the folders allowed by `--allow-read DIR` or `allow-read` in `[tool.fishbot]`, links "
+    "resolved. The error names the file and the tree, never what the file holds. Name a "
+    "file of another package with `$(find pkg)/...`, move the file into the tree, or allow "
+    "its folder.",
+    bad="""\
+<robot name="fishbot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="../../common/wheel.urdf.xacro"/>
+  <link name="base_link"/>
+  <xacro:wheel side="left"/>
+</robot>
+""",
+    good="""\
+<robot name="fishbot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="wheel.urdf.xacro"/>
+  <link name="base_link"/>
+  <xacro:wheel side="left"/>
+</robot>
+""",
+    consumers=_XACRO,
+    language="xacro",
+    fatal=True,
+)

@@ -18,6 +18,7 @@ from ..errors import ConfigError, FishbotUrdfError, InputError, LimitError, Tool
 from ..expansion import ExpansionLimitError, parse_args
 from ..inputs import (
     InputTooLargeError,
+    allowing_reads,
     max_bytes,
     max_seconds,
     recording_inputs,
@@ -288,8 +289,9 @@ def joint_positions(items: Sequence[str]) -> dict[str, float]:
 
 
 def limit_options() -> Callable[[Wrapped], Wrapped]:
-    """``--max-size MIB`` and ``--timeout SECONDS``: the command runs within those limits
-    (see :mod:`fishbot_urdf.inputs`)."""
+    """``--max-size MIB`` and ``--timeout SECONDS``: the command runs within those limits;
+    ``--trust-expressions``, and ``--allow-read DIR`` (repeatable): what its xacro
+    expansions may do (see :mod:`fishbot_urdf.inputs`)."""
 
     def decorate(function: Wrapped) -> Wrapped:
         @functools.wraps(function)
@@ -298,11 +300,17 @@ def limit_options() -> Callable[[Wrapped], Wrapped]:
             max_size: float | None,
             timeout: float | None,
             trust_expressions: bool,
+            allow_read: tuple[str, ...],
             **kwargs: Any,
         ) -> Any:
             limit = max_bytes() if max_size is None else _bytes(max_size)
             seconds = max_seconds() if timeout is None else timeout
-            with size_limit(limit), time_limit(seconds), trusting_expressions(trust_expressions):
+            with (
+                size_limit(limit),
+                time_limit(seconds),
+                trusting_expressions(trust_expressions),
+                allowing_reads(allow_read),
+            ):
                 return function(*args, **kwargs)
 
         size = click.option(
@@ -323,7 +331,17 @@ def limit_options() -> Callable[[Wrapped], Wrapped]:
             help="Run xacro expressions as Python, as ROS's xacro does: the file's code runs "
             "with your rights. Only for files you trust (default: an allowlist).",
         )
-        return size(seconds(trust(run)))  # type: ignore[return-value]
+        reads = click.option(
+            "--allow-read",
+            "allow_read",
+            multiple=True,
+            type=click.Path(exists=True, file_okay=False),
+            metavar="DIR",
+            help="Let xacro files read in DIR too (repeatable): they read only in the "
+            "robot's tree (its git repository, else its package, else its folder) and the "
+            "packages $(find) finds.",
+        )
+        return size(seconds(trust(reads(run))))  # type: ignore[return-value]
 
     return decorate
 

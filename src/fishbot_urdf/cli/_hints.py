@@ -20,7 +20,7 @@ from ..catalog.physics import (
 from ..catalog.setup import FILL_SKIPPED, FillFacts
 from ..diagnostics import Diagnostic
 from ..errors import FishbotUrdfError, ToolTimeoutError
-from ..expansion import ExpansionLimitError, XacroError
+from ..expansion import ExpansionLimitError, ReadOutsideError, XacroError
 from ..expansion._errors import TRUST_HINT
 from ..inputs import InputTooLargeError, TimeLimitError
 from ..packages import PackageNotFoundError
@@ -131,6 +131,11 @@ def error_hint(exc: FishbotUrdfError) -> tuple[str, str | None] | None:
         return exc.message, exc.hint or "raise the limits with --timeout SECONDS and --max-size MIB"
     if isinstance(exc, TimeLimitError):
         return exc.message, "allow it longer with --timeout SECONDS"
+    if isinstance(exc, ReadOutsideError):
+        return exc.message, (
+            "if the robot should read it, allow a folder that holds it with --allow-read DIR "
+            "or allow-read in [tool.fishbot]"
+        )
     if isinstance(exc, XacroError) and exc.hint and exc.hint.endswith(TRUST_HINT):
         opt_in = "or, for a file you trust, run its code as Python with --trust-expressions"
         return exc.message, exc.hint.removesuffix(TRUST_HINT) + opt_in

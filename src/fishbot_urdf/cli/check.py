@@ -247,7 +247,7 @@ def check(
 
     Rules are chosen by [tool.fishbot] in the nearest pyproject.toml, or a fishbot.toml,
     above each file (keys select, extend-select, ignore, severity, strict,
-    ground-tolerance), then by the options: --select replaces the file's selection, the
+    ground-tolerance, allow-read), then by the options: --select replaces the file's selection, the
     other options add to it. A comment <!-- fishbot: ignore[RULE, ...] --> right before an
     element silences RULE for it and everything inside it (before the root element, for
     the whole file). `fishbot rules` lists the rules. FILE may be - to read standard input

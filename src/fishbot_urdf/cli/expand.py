@@ -14,6 +14,7 @@ if TYPE_CHECKING:
     from ..expansion import Expansion
 from dataclasses import replace
 
+from ..config import Config, find_config, load_config
 from ..diagnostics import Severity
 from ..expansion import declared_args
 from ..expansion import expand as run
@@ -65,7 +66,10 @@ def expand(
     --package first, then the package.xml above the file, ROS_PACKAGE_PATH,
     AMENT_PREFIX_PATH, the colcon workspace around the file, and ament_index_python.
     Errors point at the xacro source and the macro calls that led there. An argument that
-    no <xacro:arg> declares is a warning (xacro ignores it silently). Exit status: 0 done,
+    no <xacro:arg> declares is a warning (xacro ignores it silently). Files are read only
+    in the robot's tree (its git repository, else its package, else its folder), the
+    packages $(find) finds, and the folders of --allow-read and of allow-read in the
+    nearest [tool.fishbot] (or fishbot.toml), unless --trust-expressions. Exit status: 0 done,
     1 xacro refuses the input (or, with --strict, warns), 2 a file could not be read or
     written, a package was not found, or the command line is wrong.
 
@@ -74,6 +78,7 @@ def expand(
       fishbot expand robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
       fishbot expand robot.urdf.xacro use_gpu:=false -o build/robot.urdf
       fishbot expand robot.urdf.xacro --package my_description=src/my_description
+      fishbot expand robot.urdf.xacro --allow-read ../shared_descriptions
       fishbot expand robot.urdf.xacro --deps
       fishbot expand --strict robot.urdf.xacro use_sim:=true
     """
@@ -82,7 +87,9 @@ def expand(
     packages = packages_option(package_items)
     read = inputs_read()
     try:
-        expansion = run(file, args=values, packages=packages)
+        found = find_config(file)
+        config = Config() if found is None else load_config(found)
+        expansion = run(file, args=values, packages=packages, allow_read=config.allow_read)
         findings = [xacro_warning(message, file) for message in expansion.messages]
         if values:
             findings += unknown_args(values, declared_args(expansion), file)
@@ -98,8 +105,10 @@ def expand(
         else:
             meshes = [] if deps else _mesh_files(expansion, packages)
             # Never over what was read: the file, its includes and YAML files, the meshes
-            # it names, the package.xml files its packages were found by.
+            # it names, the package.xml files its packages were found by, the configuration.
             inputs = [file, *expansion.dependencies, *meshes, *read]
+            if found is not None:
+                inputs.append(str(found))
             write_atomic(output, text, inputs=inputs)
     except FishbotUrdfError as exc:
         stop_on(exc)

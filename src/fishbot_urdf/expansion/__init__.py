@@ -12,7 +12,10 @@ several threads run side by side, each on its own copy. The hooks:
   clones a macro call makes), so errors and findings point at the xacro source, with the
   chain of macro calls that led there;
 - ``$(dirname)`` works (xacro 2.1.1 never tells it the current file);
-- ``<xacro:attribute>`` with a number value is written out (xacro 2.1.1 crashes on it).
+- ``<xacro:attribute>`` with a number value is written out (xacro 2.1.1 crashes on it);
+- unless expressions run as Python, files are read only inside the robot's tree, the folders
+  of the packages ``$(find)`` resolves, and the folders allowed (``allow_read``, or
+  :func:`allowing_reads`): see ``_scope``.
 """
 
 from __future__ import annotations
@@ -20,20 +23,30 @@ from __future__ import annotations
 import os
 import re
 import stat
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from pathlib import Path
 
 from ..errors import ArgumentError, InputError
-from ..inputs import read_input, trusting_expressions, trusts_expressions
+from ..inputs import (
+    allowing_reads,
+    read_input,
+    reads_allowed,
+    trusting_expressions,
+    trusts_expressions,
+)
 from ._result import Expansion, ExpansionLimitError, XacroError
+from ._scope import ReadOutsideError, ReadScope, robot_tree
 
 __all__ = [
     "Expansion",
     "ExpansionLimitError",
+    "ReadOutsideError",
     "XacroError",
+    "allowing_reads",
     "declared_args",
     "expand",
     "parse_args",
+    "robot_tree",
     "trusting_expressions",
 ]
 
@@ -63,6 +76,7 @@ def expand(
     packages: Mapping[str, str | Path] | None = None,
     *,
     trust_expressions: bool | None = None,
+    allow_read: str | os.PathLike[str] | Iterable[str | os.PathLike[str]] = (),
 ) -> Expansion:
     """Expand a xacro file to URDF.
 
@@ -73,12 +87,19 @@ def expand(
             :mod:`fishbot_urdf.packages` for the rest of the search).
         trust_expressions: Evaluate expressions with Python's ``eval``, as ROS's xacro
             does, running the file's code (default: as :func:`trusting_expressions` says,
-            else no).
+            else no). It also lifts the limit on what may be read.
+        allow_read: A folder, or folders, the expansion may read files in, besides the robot's tree
+            (see :func:`robot_tree`), the folders of the packages ``$(find)`` resolves and
+            those of :func:`allowing_reads`. A relative folder is taken from the current
+            folder.
 
     Raises:
         InputError: The file cannot be read, or is not a regular file (a FIFO, a device),
             or is bigger than the size limit (see :mod:`fishbot_urdf.inputs`).
         PackageNotFoundError: ``$(find NAME)`` names a package no place knows.
+        ReadOutsideError: Expressions do not run as Python, and the file reads a file
+            (or an include pattern looks in a folder) outside the folders above, links
+            resolved.
         XacroError: xacro refuses the input (the message says where and why).
     """
     name = str(path)
@@ -93,7 +114,12 @@ def expand(
     from ._engine import Run  # xacro, minidom and the interpreter load here: ~15 ms
 
     trust = trusts_expressions() if trust_expressions is None else trust_expressions
-    return Run(name, dict(args or {}), dict(packages or {}), trust=trust).expand()
+    if trust:
+        reads = ReadScope.anywhere()
+    else:
+        given = [allow_read] if isinstance(allow_read, str | os.PathLike) else allow_read
+        reads = ReadScope.of(name, (*reads_allowed(), *given))
+    return Run(name, dict(args or {}), dict(packages or {}), trust=trust, reads=reads).expand()
 
 
 # How a xacro file declares or reads an argument: <xacro:arg name="..."> (any prefix),

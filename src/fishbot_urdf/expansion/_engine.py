@@ -5,6 +5,7 @@ from __future__ import annotations
 import contextvars
 import io
 import os
+import re
 import sys
 import threading
 from collections.abc import Callable, Iterator
@@ -15,6 +16,7 @@ from xml.parsers.expat import ExpatError
 
 from ..diagnostics import shown_path
 from ..errors import FishbotUrdfError, InputError, LimitError
+from ..escaping import escape_controls
 from ..inputs import read_input
 from ..location import Location, MacroLocation, calls_of
 from ..packages import PackageNotFoundError, find_package
@@ -25,6 +27,7 @@ from ._files import Globbing, YamlError, load_yaml_bounded
 from ._instance import Xacro, load_xacro
 from ._interpreter import evaluate
 from ._result import Expansion, XacroError
+from ._scope import ReadOutsideError, ReadScope
 
 
 class _Keeper:
@@ -92,9 +95,11 @@ class Run(Explaining):
         packages: dict[str, str | Path],
         *,
         trust: bool = False,
+        reads: ReadScope,
     ) -> None:
         self.path, self.args, self.packages = path, args, packages
         self.trust = trust  # expressions run as Python, as xacro runs them
+        self.reads = reads  # where files may be read; $(find) adds each package found
         self.node: Any = None  # the element being worked on
         self.calls: list[tuple[str, Location | None]] = []  # macro calls, outermost first
         self.symbols: Any = None  # the symbol table of a failed expression
@@ -132,7 +137,7 @@ class Run(Explaining):
         # keeps its depth the xacro command's.
         x.grab_property = self._property(x.grab_property)
         x.reqd_attrs = self._attributes(x.reqd_attrs)
-        x.glob = Globbing(self.budget)
+        x.glob = Globbing(self.budget, lambda f, p: self.reads.check_pattern(f, p))
         x.eval_extension = self._extension(x.eval_extension)
         x.parse = self._parse
         x.print_location = lambda: None
@@ -166,6 +171,7 @@ class Run(Explaining):
         x = self.xacro
         symbols = x._global_symbols
         name = x.abs_filename_spec(filename)
+        self.reads.check(name)
         x.filestack.append(name)
         try:
             try:
@@ -288,13 +294,16 @@ class Run(Explaining):
     def _find(self, package: str) -> str:
         stack = self.xacro.filestack
         near = stack[-1] if stack and stack[-1] else self.path
-        return str(find_package(package, near=near, packages=self.packages))
+        found = find_package(package, near=near, packages=self.packages)
+        self.reads = self.reads.including(found)
+        return str(found)
 
     def _parse(self, inp: Any, filename: str | None = None) -> Any:
         if inp is not None:
             return minidom.parseString(inp) if isinstance(inp, str) else inp
         assert filename is not None
         full = os.path.join(self.xacro.root_dir, filename)
+        self.reads.check(full)
         try:
             data = read_input(full)
         except InputError as exc:
@@ -373,6 +382,7 @@ class Run(Explaining):
         """xacro's processing of the file, and the document written out."""
         document = self.xacro.process_file(self.path, mappings=dict(self.args))
         _stringify_attributes(self.given_attributes)
+        _escape_banner(document, self.path)
         return document, document.toprettyxml(indent="  ")
 
     def expand(self) -> Expansion:
@@ -408,6 +418,8 @@ class Run(Explaining):
             ) from exc
         except LimitError as exc:  # the budget, the deadline, or too many files globbed
             raise limited(exc, source(self.node), self._calls()) from exc
+        except ReadOutsideError as exc:  # an include, or its pattern
+            raise exc.located(source(self.node), self._calls()) from exc
         except FishbotUrdfError:
             raise
         except Exception as exc:  # xacro stumbling on what the file gave it
@@ -472,6 +484,20 @@ class _Worker(threading.Thread):
             self.outcome = self.context.run(self.work)
         except BaseException as exc:  # handed to the caller's thread, raised there
             self.failure = exc
+
+
+def _escape_banner(document: Any, path: str) -> None:
+    """The file's name in the banner xacro writes at the top, its control characters written
+    visibly as in every finding (a terminal escape or a character XML refuses would pass
+    raw); an ordinary name is left as xacro writes it."""
+    shown = escape_controls(path)
+    if shown == path:
+        return
+    written = re.sub(r"-+", "-", path)  # as xacro shortens dashes, for XML's comments
+    for node in document.childNodes:
+        if node.nodeType == node.COMMENT_NODE and written in node.data:
+            node.data = node.data.replace(f"{written:<30}", f"{re.sub(r'-+', '-', shown):<30}", 1)
+            return
 
 
 def _stringify_attributes(elements: list[Any]) -> None:

@@ -18,6 +18,7 @@ from ..wording import closest, listing
 from ._bounds import UnsafeExpression
 from ._interpreter import parsed
 from ._result import ExpansionLimitError, XacroError
+from ._scope import ReadOutsideError
 
 _XACRO_NS = "http://www.ros.org/wiki/xacro"
 # A number with a unit after it ("1kg", "0.5 m", "90deg"): the number, then the unit.
@@ -151,6 +152,8 @@ class Explaining:
             )
         if isinstance(inner, PackageNotFoundError):
             return self._located(inner)
+        if isinstance(inner, ReadOutsideError):  # a YAML file
+            return inner.located(where, calls)
         if isinstance(inner, UnsafeExpression):
             return unsafe(inner, where, calls)
         if isinstance(inner, LimitError):

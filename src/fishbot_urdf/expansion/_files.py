@@ -1,7 +1,8 @@
 """The files an expansion reaches by pattern or by YAML, within the deadline and the bounds.
 
 ``<xacro:include filename="parts/*.xacro"/>`` is globbed one folder at a time, the deadline
-looked at before each, so a pattern over ``/proc/*/*/...`` stops with the time limit. A
+looked at before each, so a pattern over ``/proc/*/*/...`` stops with the time limit, and
+each folder asked first whether it may be looked in (see ``_scope``). A
 YAML file's aliases are counted before its values are built: 272 bytes of aliases to
 aliases name billions of items, which writing out or walking would then go through.
 """
@@ -34,23 +35,31 @@ class Globbing:
     """Stands in for the ``glob`` module in xacro: ``glob(pattern)`` within the expansion's
     budget (its deadline, and a cancellation)."""
 
-    def __init__(self, budget: Budget) -> None:
+    def __init__(self, budget: Budget, looking: Callable[[str, str], None] | None = None) -> None:
         self.budget = budget
+        # Called with a folder and the pattern before the folder is looked in; raises to
+        # refuse it.
+        self.looking = looking
 
     def glob(self, pattern: str) -> list[str]:
         """The paths ``pattern`` matches, as :func:`glob.glob` finds them (hidden names only
         for a part that starts with a dot; no ``**``)."""
         root, parts = _split(pattern)
+        magic = next((i for i, part in enumerate(parts) if glob.has_magic(part)), len(parts))
+        if self.looking is not None:  # the folder the pattern starts from, there or not
+            self.looking(os.path.join(root, *parts[:magic]), pattern)
         found = [root]
         for index, part in enumerate(parts):
             last = index == len(parts) - 1
-            found = self._step(found, part, last)
+            found = self._step(found, part, last, pattern if index >= magic else None)
         return found
 
-    def _step(self, bases: list[str], part: str, last: bool) -> list[str]:
+    def _step(self, bases: list[str], part: str, last: bool, pattern: str | None) -> list[str]:
         matched: list[str] = []
         for base in bases:
             self.budget.check()
+            if pattern is not None and self.looking is not None:
+                self.looking(base, pattern)
             if not part:  # a doubled or trailing separator
                 matched.append(os.path.join(base, ""))
                 continue

@@ -17,8 +17,10 @@ class XacroError(FishbotUrdfError):
         rule: ``xacro-include`` (an include names no file), ``xacro-undefined`` (a name,
             macro, parameter or argument that is not defined), ``xacro-namespace`` (the
             ``xacro:`` prefix is not declared), ``xacro-syntax`` (not well-formed XML),
-            ``xacro-circular`` (properties defined by each other), or ``xacro-error``
-            (anything else xacro refuses).
+            ``xacro-circular`` (properties defined by each other), ``xacro-unsafe`` (an
+            expression the allowlist refuses), ``xacro-read-outside`` (a file outside the
+            folders the expansion may read), or ``xacro-error`` (anything else xacro
+            refuses).
         hint: What to do, or the closest defined names.
         calls: The macro calls that led to the error, innermost first, as
             (macro name, where it was called).
