@@ -171,6 +171,17 @@ class Explaining:
                 )
         if isinstance(inner, NameError):
             return self._undefined_name(inner, exc, where, calls)
+        if isinstance(inner, MemoryError | RecursionError):  # xacro's own parse, trusted
+            expression = str(exc.suffix or "").strip().removeprefix("when evaluating expression ")
+            return ExpansionLimitError(
+                f"expression {_shown(expression.strip(chr(39)))} nests deeper than Python's "
+                "parser can read"
+                if expression
+                else f"xacro ran out of {'memory' if isinstance(inner, MemoryError) else 'stack'}",
+                hint="write it with fewer nested brackets and operators" if expression else None,
+                where=where,
+                calls=calls,
+            )
         if isinstance(inner, TypeError | ValueError | ArithmeticError):
             expression = str(exc.suffix or "").strip().removeprefix("when evaluating expression ")
             if expression:
@@ -228,7 +239,8 @@ class Explaining:
                 "its parameters: " + ", ".join(_params(macro)),
                 outer_calls,
             )
-        return XacroError(text or repr(outer), where=where, calls=calls)
+        said = text or (type(inner).__name__ if inner is not None else "xacro failed")
+        return XacroError(said, where=where, calls=calls)
 
     def _undefined_name(
         self,
@@ -363,9 +375,12 @@ def unsafe(
         )
     if inner.too_long:
         message = f"expression {shown} takes {inner.what}, more than a xacro expression may"
-        return ExpansionLimitError(
-            message, hint="a robot description needs no loop that long", where=where, calls=calls
+        hint = (
+            "write it with fewer nested brackets and operators"
+            if "nesting" in inner.what
+            else "a robot description needs no loop that long"
         )
+        return ExpansionLimitError(message, hint=hint, where=where, calls=calls)
     else:
         message = f"expression {shown} uses {inner.what}, which xacro expressions may not here"
         hint = (
@@ -409,7 +424,16 @@ def _missing_include(
 ) -> XacroError:
     target = Path(str(error.filename if error.filename is not None else spec))
     folder = target.parent
-    if target.is_dir():
+    if isinstance(error, PermissionError) or not _looked_at(target):
+        return XacroError(
+            f"cannot read included file {shown_path(str(target))}: "
+            f"{error.strerror or 'permission denied'}",
+            rule="xacro-include",
+            hint="give the user running the command the right to read it, or include another",
+            where=where,
+            calls=calls,
+        )
+    if _is_folder(target):
         return XacroError(
             f"included path {shown_path(str(target))} is a folder, not a file",
             rule="xacro-include",
@@ -426,7 +450,7 @@ def _missing_include(
             where=where,
             calls=calls,
         )
-    if not folder.is_dir():
+    if not _is_folder(folder):
         return XacroError(
             f"included file {shown_path(str(target))} does not exist",
             rule="xacro-include",
@@ -434,7 +458,10 @@ def _missing_include(
             where=where,
             calls=calls,
         )
-    close = closest(target.name, (p.name for p in folder.iterdir() if p.is_file()))
+    try:
+        close = closest(target.name, (p.name for p in folder.iterdir() if p.is_file()))
+    except OSError:  # a folder that may not be listed
+        close = None
     hint = f"did you mean '{close}'?" if close else None
     return XacroError(
         f"included file {shown_path(str(target))} does not exist",
@@ -466,3 +493,21 @@ def _table_names(table: Any) -> list[str]:
 
 def _params(macro: Any) -> list[str]:
     return [p.lstrip("*") for p in macro.params]
+
+
+def _looked_at(path: Path) -> bool:
+    """Whether the system lets ``path`` be looked at (its folders may be searched)."""
+    try:
+        path.lstat()
+    except FileNotFoundError:
+        return True
+    except OSError:
+        return False
+    return True
+
+
+def _is_folder(path: Path) -> bool:
+    try:
+        return path.is_dir()
+    except OSError:
+        return False

@@ -132,7 +132,10 @@ def evaluate(
         LimitError: The budget ran out (TimeLimitError: the deadline passed).
         Exception: What Python raises for the same expression (NameError, TypeError, ...).
     """
-    tree = parsed(expression)
+    try:
+        tree = parsed(expression)
+    except (MemoryError, RecursionError):  # Python's parser gives up on deep nesting
+        raise UnsafeExpression(expression, _TOO_DEEP, too_long=True) from None
     if allowed is None:
         allowed = allowed_callables(getattr(globals, "root", globals))
     run = _Evaluation(globals, locals, builtins or {}, allowed, budget or Budget())
@@ -150,6 +153,9 @@ def evaluate(
         raise UnsafeExpression(expression, "an expression nested this deep") from None
     finally:
         stack.pop()
+
+
+_TOO_DEEP = "more nesting than Python's parser can read"
 
 
 class _Frame:
