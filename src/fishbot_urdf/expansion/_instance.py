@@ -58,8 +58,8 @@ def load_xacro(
     *,
     trust: bool,
     message: Callable[..., None],
-    evaluate: Callable[[str, Any, Any], Any] | None = None,
-    substitution_eval: Callable[[str, dict[str, Any]], str] | None = None,
+    evaluate: Callable[[str, Any, Any], Any],
+    substitution_eval: Callable[[str, dict[str, Any]], str],
 ) -> Xacro:
     """A new copy of xacro.
 
@@ -71,8 +71,6 @@ def load_xacro(
         evaluate: xacro's ``safe_eval(expression, globals, locals)`` (untrusted only).
         substitution_eval: ``substitution_args._eval(text, context)`` (untrusted only).
     """
-    if not trust and (evaluate is None or substitution_eval is None):
-        raise ValueError("an untrusted copy of xacro needs its evaluators")
     modules: dict[str, types.ModuleType] = {}
     names = _builtins(modules, trust)
     for name in _OWN:
@@ -117,8 +115,6 @@ def _builtins(own: dict[str, types.ModuleType], trust: bool) -> dict[str, Any]:
             return own[name]
         if level == 1 and name in _SHARED:
             return _shared(name)
-        if level != 0:
-            raise ImportError(f"xacro imports .{name}, which its copy does not hold")
         return builtins.__import__(name, globals, locals, fromlist, level)
 
     if not trust:
@@ -147,6 +143,6 @@ def _code(name: str) -> types.CodeType:
     import system caches it."""
     spec = importlib.util.find_spec(f"xacro.{name}" if name else "xacro")
     if spec is None or spec.loader is None:
-        raise ImportError(f"xacro{'.' + name if name else ''} is not installed")
+        raise FishbotUrdfError(f"xacro{'.' + name if name else ''} is not installed")
     code: types.CodeType = spec.loader.get_code(spec.name)  # type: ignore[attr-defined]
     return code
