@@ -48,7 +48,10 @@ def test_the_same_floats_as_the_xacro_macros(tmp_path: Path) -> None:
         '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
         f'<xacro:include filename="{COMMON}"/>{links}{joints}</robot>'
     )
-    robot = fishbot_urdf.load(source)
+    from fishbot_urdf.inputs import allowing_reads
+
+    with allowing_reads(COMMON.parent):  # the fishbot's macros, outside this robot's folder
+        robot = fishbot_urdf.load(source)
     assert [link.inertial for link in robot.links] == expected
 
 
