@@ -70,8 +70,7 @@ CASES = {
     ),
     # A format width taken from an argument.
     "format": _robot(
-        '<xacro:property name="t" value="{0:>{1}}"/>'
-        "<link name=\"${t.format('x', 10**9)}\"/>"
+        '<xacro:property name="t" value="{0:>{1}}"/><link name="${t.format(\'x\', 10**9)}"/>'
     ),
     # Divisions of big numbers, each taking a quarter of a second.
     "division": _robot(

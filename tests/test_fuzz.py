@@ -95,6 +95,12 @@ EXPRESSIONS = [
     "${1/0}", "${nope}", "${'a' * 3}", "${python.len('ab')}", "${math.sqrt(-1)}",
     "${[1, 2][5]}", "${10**400}", "${1e308 * 10}", "${xacro.arg('x')}", "$(arg nope)",
     "$(find nothing_here)", "$(eval 1 +)", "${(lambda: 1)()}", "${{}}", "${",
+    # what the budget of a whole document stops, and the reads outside the robot's tree
+    "${xacro.load_yaml('/etc/passwd')}", "${xacro.load_yaml('../../../../etc/hostname')}",
+    "${python.any(python.map(python.abs, python.range(10**7)))}", "${(3**630000) // 7**178000}",
+    "${[2**999999 + i for i in python.range(300)]}", "${'-' * 100000}", "${" + "-" * 5000 + "1}",
+    "${python.str.format('{0:' + '>' + '{1' + '}' + '}', 'x', 10**9)}",
+    "${(lambda: ().__class__)() if python.repr(lambda: 0) != '&lt;lambda&gt;' else 1}",
 ]  # fmt: skip
 
 

@@ -257,3 +257,29 @@ def test_a_trusted_and_an_untrusted_expansion_side_by_side(tmp_path: Path) -> No
     assert not untrusted_canary.exists()
     assert "l_safe_200" in texts["untrusted"]
     assert "l_0_200" in texts["trusted"]  # os.system's status, written out
+
+
+def test_the_imported_xacro_is_never_changed_and_an_untrusted_copy_has_no_eval(
+    tmp_path: Path,
+) -> None:
+    import xacro  # type: ignore[import-untyped]
+    import xacro.substitution_args  # type: ignore[import-untyped]
+
+    from fishbot_urdf.expansion._instance import EvaluatorRefused, load_xacro
+
+    before = (xacro.safe_eval, xacro.substitution_args._eval, xacro._global_symbols)
+    robot = _hostile(tmp_path, tmp_path / "never.canary", depth=2)
+    expand(robot)
+    expand(robot, trust_expressions=True)
+    assert (xacro.safe_eval, xacro.substitution_args._eval, xacro._global_symbols) == before
+
+    def nothing(*args: object) -> str:
+        return ""
+
+    own = load_xacro(trust=False, message=nothing, evaluate=nothing, substitution_eval=nothing)
+    assert own.xacro.safe_eval is nothing and own.subst._eval is nothing
+    names = vars(own.xacro)["__builtins__"]
+    for name in ("eval", "exec", "compile"):
+        with pytest.raises(EvaluatorRefused):
+            names[name]("1")
+    assert own.xacro is not xacro and own.subst is not xacro.substitution_args

@@ -36,6 +36,7 @@ __all__ = [
     "find_package",
     "package_name",
     "resolve_package_uri",
+    "upward_folders",
 ]
 
 _IGNORE_MARKERS = ("COLCON_IGNORE", "AMENT_IGNORE", "CATKIN_IGNORE")
@@ -263,7 +264,7 @@ def _candidates(
     # (os.path rather than pathlib: this runs for every package a robot names)
     start = os.path.dirname(os.path.realpath(near)) if near is not None else None
     if start is not None:
-        for folder in _upwards(start):
+        for folder in upward_folders(start):
             manifest = os.path.join(folder, "package.xml")
             if os.path.isfile(manifest) and package_name(manifest) == name:
                 yield Path(folder)
@@ -332,7 +333,7 @@ def _ament_lookup() -> Callable[[str], str] | None:
     return get_package_share_directory  # type: ignore[no-any-return]
 
 
-def _upwards(folder: str) -> Iterator[str]:
+def upward_folders(folder: str) -> Iterator[str]:
     """``folder`` and each folder above it, up to the root."""
     while True:
         yield folder
@@ -352,7 +353,7 @@ def _shown(value: str) -> str:
 
 def _workspace_src(start: str) -> Path | None:
     """The ``src`` folder of the nearest colcon workspace holding ``start``."""
-    for folder in _upwards(start):
+    for folder in upward_folders(start):
         if os.path.basename(folder) == "src" and os.path.dirname(folder) != folder:
             return Path(folder)
         src = os.path.join(folder, "src")

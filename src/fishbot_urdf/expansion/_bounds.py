@@ -315,7 +315,8 @@ def binary_steps(kind: type[ast.operator], a: Any, b: Any) -> int:
         if kind in (ast.FloorDiv, ast.Mod, ast.Div):
             return da * db // _DIVIDE + 1
         if kind is ast.Pow:
-            made = max(0, b) * da  # the digits of the result; its last squaring dominates
+            # the digits of the result; its last squaring dominates
+            made = max(0, b) * abs(a).bit_length() // _DIGIT + 1
             return made * made // (2 * _MULTIPLY) + 1
         return (da + db) // 64 + 1
     return _items_made(kind, a, b) // 64 + 1

@@ -26,16 +26,18 @@ class XacroError(FishbotUrdfError):
             (macro name, where it was called).
     """
 
+    rule = "xacro-error"
+
     def __init__(
         self,
         message: str,
         *,
-        rule: str = "xacro-error",
+        rule: str | None = None,
         hint: str | None = None,
         where: Location | None = None,
         calls: tuple[tuple[str, Location | None], ...] = (),
     ) -> None:
-        self.rule = rule
+        self.rule = type(self).rule if rule is None else rule
         self.hint = hint
         self.calls = calls
         for name, site in calls:
@@ -54,16 +56,7 @@ class ExpansionLimitError(XacroError):
     than the time limit (see :mod:`fishbot_urdf.inputs`), or one expression would pass a
     bound of its own. Its rule is ``limit``."""
 
-    def __init__(
-        self,
-        message: str,
-        *,
-        rule: str = "limit",
-        hint: str | None = None,
-        where: Location | None = None,
-        calls: tuple[tuple[str, Location | None], ...] = (),
-    ) -> None:
-        super().__init__(message, rule=rule, hint=hint, where=where, calls=calls)
+    rule = "limit"
 
 
 @dataclass(frozen=True, slots=True)

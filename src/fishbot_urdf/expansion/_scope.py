@@ -25,6 +25,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 from ..location import Location
+from ..packages import upward_folders
 from ._result import XacroError
 
 __all__ = ["READ_HINT", "ReadOutsideError", "ReadScope", "robot_tree"]
@@ -88,7 +89,7 @@ def robot_tree(robot: str | Path) -> str:
     holds a ``package.xml``; else the robot file's own folder. Links are not resolved."""
     folder = os.path.dirname(os.path.abspath(robot))
     for marker, there in ((".git", os.path.lexists), ("package.xml", os.path.isfile)):
-        for above in _upwards(folder):
+        for above in upward_folders(folder):
             if there(os.path.join(above, marker)):
                 return above
     return folder
@@ -164,12 +165,3 @@ class ReadScope:
             if path == top or path.startswith(top.rstrip(os.sep) + os.sep):
                 return True
         return False
-
-
-def _upwards(folder: str) -> Iterable[str]:
-    while True:
-        yield folder
-        parent = os.path.dirname(folder)
-        if parent == folder:
-            return
-        folder = parent
