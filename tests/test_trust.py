@@ -9,6 +9,7 @@ property: the expansion stops with one located error and the canary never appear
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import pytest
 from click.testing import CliRunner
@@ -350,6 +351,41 @@ def test_an_element_without_its_name_is_one_located_error(
         == f'robot.xacro:2:1: error: {message} (write it: {tag}="...">) [xacro-error]\n'
     )
     assert robot.exists()
+
+
+def test_an_include_the_system_will_not_let_be_looked_at_is_one_line(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # As a user who may not search a folder sees it (root may search any, so the refusal
+    # is made here): opening and looking at the file are both refused.
+    import errno
+    import os
+
+    locked = str(tmp_path / "locked" / "x.xacro")
+    _expand_in(
+        tmp_path,
+        {"robot.xacro": _robot('<xacro:include filename="locked/x.xacro"/>')},
+        monkeypatch,
+    )
+
+    def refusing_for(function: Any) -> Any:
+        def run(path: Any, *args: Any, **kwargs: Any) -> Any:
+            if isinstance(path, str | os.PathLike) and os.path.abspath(path) == locked:
+                raise PermissionError(errno.EACCES, "Permission denied", os.fspath(path))
+            return function(path, *args, **kwargs)
+
+        return run
+
+    with monkeypatch.context() as refusing:
+        for name in ("open", "lstat", "stat"):
+            refusing.setattr(os, name, refusing_for(getattr(os, name)))
+        result = CliRunner().invoke(cli, ["expand", "robot.xacro"])
+    assert result.exit_code == 1, (result.output, result.exception)
+    assert result.stderr == (
+        "robot.xacro:2:1: error: cannot read included file locked/x.xacro: Permission denied "
+        "(give the user running the command the right to read it, or include another) "
+        "[xacro-include]\n"
+    )
 
 
 @pytest.mark.skipif(not hasattr(__import__("os"), "mkfifo"), reason="this system has no FIFOs")
