@@ -774,3 +774,20 @@ def test_a_signal_stops_an_expansion_within_a_second(
     assert process.returncode != 0
     assert waited < 1.0, waited  # what the limits promise of a signal, not a speed
     assert b"Traceback" not in said
+
+
+@pytest.mark.parametrize("trust", [False, True])
+@pytest.mark.parametrize("expression", ["-" * 100_000 + "1", "not " * 50_000 + "1"])
+def test_an_expression_nested_deeper_than_python_reads_is_one_limit_line(
+    expression: str, trust: bool, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # Python's parser gives up with a MemoryError, which xacro wraps with no message.
+    _expand_in(tmp_path, {"robot.xacro": _robot(f'<link name="${{{expression}}}"/>')}, monkeypatch)
+    options = ["--trust-expressions"] if trust else []
+    result = CliRunner().invoke(cli, ["expand", "robot.xacro", *options])
+    assert result.exit_code == 2
+    shown = expression[:57]
+    assert result.stderr.startswith(f"robot.xacro:2:1: error: expression ${{{shown}...}} ")
+    assert "parser can read" in result.stderr
+    assert result.stderr.endswith("(write it with fewer nested brackets and operators) [limit]\n")
+    assert result.stderr.count("\n") == 1
