@@ -1,8 +1,10 @@
 """MkDocs hooks: the pages the site makes, as it builds, from the project itself.
 
-- the home page is README.md (its links into docs/ made relative to the site);
+- the home page is README.md (its links into docs/ made relative to the site), shown
+  without the side bars so that its pictures have the page's width;
 - the rule list and one page per rule come from the rule registry (`fishbot_urdf.catalog`),
-  the text `fishbot rules --format markdown` prints;
+  the text `fishbot rules --format markdown` prints, and the navigation lists those pages by
+  family;
 - the API page lists every name of `fishbot_urdf.__all__` with its one-line summary, then
   each one's reference from its docstring (mkdocstrings).
 
@@ -53,6 +55,28 @@ SECTIONS = {
 }
 
 
+# Family names the navigation writes in capitals; the others are capitalised.
+ACRONYMS = {"xml": "XML", "urdf": "URDF"}
+
+
+def on_config(config: MkDocsConfig) -> MkDocsConfig:
+    """The navigation's Rules entry becomes the list of rules, by family, each under its id,
+    so that every generated rule page is in the navigation."""
+    nav = config.nav or []
+    for index, entry in enumerate(nav):
+        if isinstance(entry, dict) and entry.get("Rules") == "rules/index.md":
+            nav[index] = {"Rules": [{"All rules": "rules/index.md"}, *_rule_sections()]}
+    return config
+
+
+def _rule_sections() -> list[dict[str, list[dict[str, str]]]]:
+    families: dict[str, list[dict[str, str]]] = {}
+    for rule in all_rules():
+        title = ACRONYMS.get(rule.family.value, rule.family.value.capitalize())
+        families.setdefault(title, []).append({rule.id: f"rules/{rule.id}.md"})
+    return [{title: entries} for title, entries in families.items()]
+
+
 def on_files(files: Files, config: MkDocsConfig) -> Files:
     """One page per rule, rules/ID.md, from the registry."""
     for rule in all_rules():
@@ -62,6 +86,8 @@ def on_files(files: Files, config: MkDocsConfig) -> Files:
 
 def on_page_markdown(markdown: str, page: Page, config: MkDocsConfig, files: Files) -> str:
     if page.file.src_uri == "index.md":
+        # The page's whole width for the pictures: the link tree is 1,700 pixels wide.
+        page.meta["hide"] = ["navigation", "toc"]
         return _home()
     if page.file.src_uri == "rules/index.md":
         return _linked_rule_table(with_rule_table(markdown, all_rules()))

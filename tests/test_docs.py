@@ -31,6 +31,7 @@ import subprocess
 import sys
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import pytest
 import yaml
@@ -426,3 +427,52 @@ def test_each_command_has_its_page(site: Path) -> None:
     assert commands == {"check", "expand", "graph", "inertia", "render", "rules", "tf", "view"}
     for command in commands:
         assert f"fishbot {command}" in _text(_html(site, f"commands/{command}"))
+
+
+def test_every_rule_page_is_in_the_navigation(site: Path) -> None:
+    """No page is left for the search box alone: the navigation lists each rule's page,
+    under its family."""
+    nav = _html(site, "commands/check").split('class="md-content"', 1)[0]
+    for rule in all_rules():
+        assert f'href="../../rules/{rule.id}/"' in nav, rule.id
+    families = _text(nav)
+    for family in ("XML", "Structure", "Joints", "Meshes", "Physics", "Xacro"):
+        assert f" {family} " in families, family
+
+
+def _browse(site: Path, page: str, script: str) -> Any:
+    """What ``script`` returns on ``page`` of the site, open in headless Chromium at a
+    laptop's window size (1280 x 900)."""
+    from test_view import headless_chromium
+
+    driver = headless_chromium()
+    try:
+        driver.set_window_size(1280, 900)
+        driver.get((site / page).as_uri())
+        return driver.execute_script(script)
+    finally:
+        driver.quit()
+
+
+def test_the_home_page_shows_the_link_tree_large_enough_to_read(site: Path) -> None:
+    # Graphviz's labels are 14-point text: drawn at less than 60% they are 8 pixels high.
+    width, natural = _browse(
+        site,
+        "index.html",
+        "const img = [...document.images].find(i => i.src.endsWith('fishbot-graph.png'));"
+        "return [img.getBoundingClientRect().width, img.naturalWidth];",
+    )
+    assert natural > 1000
+    assert width >= 0.6 * natural
+
+
+@pytest.mark.parametrize("page", ["index.html", "commands/check/index.html"])
+def test_long_lines_of_code_wrap_instead_of_running_off_the_page(site: Path, page: str) -> None:
+    blocks, beyond = _browse(
+        site,
+        page,
+        "const codes = [...document.querySelectorAll('pre > code')];"
+        "return [codes.length, codes.filter(c => c.scrollWidth > c.clientWidth + 1).length];",
+    )
+    assert blocks > 3
+    assert beyond == 0
