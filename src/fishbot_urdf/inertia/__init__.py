@@ -21,10 +21,13 @@ from ._solids import (
 )
 
 if TYPE_CHECKING:
+    from ._macros import InertialSuggestion, InertiaMacro, inertia_macros, suggest_inertials
     from ._table import LinkMass, MassTable, inertial_dict, mass_table
 
 __all__ = [
     "Filling",
+    "InertiaMacro",
+    "InertialSuggestion",
     "LinkMass",
     "MassProperties",
     "MassTable",
@@ -33,6 +36,7 @@ __all__ = [
     "cylinder_inertia",
     "fill_inertials",
     "geometry_inertia",
+    "inertia_macros",
     "inertial_dict",
     "link_inertial",
     "mass_properties",
@@ -41,6 +45,7 @@ __all__ = [
     "principal_moments",
     "solid_moments",
     "sphere_inertia",
+    "suggest_inertials",
     "volume",
 ]
 
@@ -51,4 +56,8 @@ def __getattr__(name: str) -> Any:
         from . import _table  # (~4 ms, and `check` never needs it)
 
         return getattr(_table, name)
+    if name in ("InertiaMacro", "InertialSuggestion", "inertia_macros", "suggest_inertials"):
+        from . import _macros  # (the writer and the expansion: only --fill needs them)
+
+        return getattr(_macros, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
