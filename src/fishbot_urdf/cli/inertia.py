@@ -13,29 +13,24 @@ from typing import TYPE_CHECKING, Any
 import click
 
 from ..catalog.physics import MISSING_INERTIAL
-from ..diagnostics import escape_controls
 from ..errors import ArgumentError, FishbotUrdfError, InertiaUnderflowError, UnknownNameError
 from ..inertia import (
     box_inertia,
     cylinder_inertia,
-    fill_inertials,
     inertial_dict,
     mass_table,
     sphere_inertia,
 )
 from ..model import Origin
-from ..output import write_atomic
 from ..wording import closest
-from ..write import add_inertials, inertial_xml
+from ..write import inertial_xml
 from ._checking import check_input, nearest_config, read_files
 from ._common import (
     EXIT_INVALID,
     EXIT_OK,
-    EXIT_USAGE,
     Number,
     Wrapped,
     emit_findings,
-    fail,
     format_option,
     inputs_read,
     joint_option,
@@ -47,11 +42,10 @@ from ._common import (
     to_stdout,
     xacro_args,
 )
+from ._filling import link_masses, suggest
 
 if TYPE_CHECKING:
-    from ..lint import CheckResult
     from ..model import Inertial, Vector3
-    from ..output import Source
 
 _SHAPES = ("box", "cylinder", "sphere")
 
@@ -284,16 +278,14 @@ def robot(
     """
     if any(":=" not in a for a in args):
         raise click.UsageError(f"unexpected argument {next(a for a in args if ':=' not in a)!r}")
-    if fill and output is None:
-        raise click.UsageError("--fill writes a copy: give -o OUT (the input is never changed)")
     if not fill and (output is not None or density is not None or masses):
         raise click.UsageError("-o, --density and --mass go with --fill")
     if fill and density is None and not masses:
         raise click.UsageError("--fill needs --density KG_PER_M3 or --mass LINK=KG")
     if fill and joint_items:
         raise click.UsageError("--fill writes each link's own inertial: it takes no --joint")
-    if fill and fmt == "json":
-        raise click.UsageError("--fill writes a URDF: it takes no --format")
+    if fill and output is not None and fmt == "json":
+        raise click.UsageError("--fill -o writes a URDF: it takes no --format")
     if file == "-" and args:
         raise click.UsageError("name:=value arguments are for a .xacro file, not standard input")
     values = xacro_args(args)
@@ -314,8 +306,11 @@ def robot(
             sys.exit(EXIT_INVALID)
         # The copy is never written over anything read (the mesh files listed here are
         # those the filling opens, by the same analysis: no package.xml is read after).
+        wanted = link_masses(masses)
+        if output is None:
+            sys.exit(suggest(file, result, fmt, density, wanted, values, packages, config))
         inputs = [*read_files(file, result), *read]
-        sys.exit(_fill(result, output or "-", density, _link_masses(masses), inputs))
+        sys.exit(fill(result, output, density, wanted, inputs))
     emit_findings(result.diagnostics)
     if result.analysis is None:
         sys.exit(EXIT_INVALID)
@@ -334,59 +329,3 @@ def robot(
     else:
         to_stdout(table.to_text().encode("utf-8", "surrogateescape"))
     sys.exit(EXIT_INVALID if not result.ok else EXIT_OK)
-
-
-def _link_masses(items: Sequence[str]) -> dict[str, float]:
-    """``--mass LINK=KG`` values as a mapping."""
-    wanted: dict[str, float] = {}
-    for item in items:
-        name, sep, kg = item.partition("=")
-        try:
-            mass = float(kg)
-        except ValueError:
-            mass = -1.0
-        if not sep or not name or not mass > 0 or not math.isfinite(mass):
-            raise click.BadParameter(f"{item!r} is not LINK=KG with KG > 0", param_hint="--mass")
-        if name in wanted:
-            raise click.BadParameter(f"link {name!r} is given twice", param_hint="--mass")
-        wanted[name] = mass
-    return wanted
-
-
-def _fill(
-    result: CheckResult,
-    output: str,
-    density: float | None,
-    masses: dict[str, float],
-    inputs: Sequence[Source],
-) -> int:
-    """Write the copy with the missing inertials (never over one of ``inputs``); the exit
-    status."""
-    assert result.analysis is not None  # (its mesh_paths find the meshes, as check found them)
-    try:
-        filling = fill_inertials(result.analysis, density=density, masses=masses)
-    except (ArgumentError, UnknownNameError) as exc:  # a --mass naming a wrong link
-        raise click.BadParameter(exc.message, param_hint="--mass") from None
-    emit_findings(filling.skipped)
-    computed = filling.inertials
-    if filling.skipped and not computed:
-        click.echo("nothing written: no link could be filled", err=True)
-        return EXIT_INVALID
-    try:
-        text = add_inertials(result.data, computed, path=result.path)
-        if output == "-":
-            to_stdout(text.encode("utf-8", "surrogateescape"))
-        else:
-            write_atomic(output, text, inputs=inputs)
-    except FishbotUrdfError as exc:
-        emit_findings([fail(exc)])
-        return EXIT_USAGE
-    where = "the URDF to standard output" if output == "-" else output
-    if computed:
-        count = f"{len(computed)} link" + ("s" if len(computed) > 1 else "")
-        names = ", ".join(f"{n} ({computed[n].mass:g} kg)" for n in computed)
-        said = f"<inertial> added to {count}: {names}"
-    else:
-        said = "no link needed an <inertial>"
-    click.echo(escape_controls(f"Wrote {where}: {said}"), err=True)
-    return EXIT_INVALID if filling.skipped else EXIT_OK

@@ -6,6 +6,7 @@ from typing import Any
 from xml.dom import minidom
 
 from ..errors import LimitError
+from ..location import Location
 from ._errors import source
 from ._result import MacroDefinition
 
@@ -57,3 +58,14 @@ class MacroTable:
         except Exception:  # xacro refuses the call, or an expression fails: it made nothing
             return None
         return "".join(child.toxml() for child in holder.childNodes)
+
+    def written(self, where: Location) -> dict[str, str] | None:
+        """The attributes, as written (``${...}`` unexpanded), of the element of a macro's
+        body that is written at ``where``; None when no top-level macro's body holds one."""
+        for macro in self._macros.values():
+            if not isinstance(macro, self._xacro.Macro):
+                continue
+            for element in macro.body.getElementsByTagName("*"):
+                if source(element) == where:
+                    return {name: value for name, value in element.attributes.items()}
+        return None

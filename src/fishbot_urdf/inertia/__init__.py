@@ -21,7 +21,13 @@ from ._solids import (
 )
 
 if TYPE_CHECKING:
-    from ._macros import InertialSuggestion, InertiaMacro, inertia_macros, suggest_inertials
+    from ._macros import (
+        InertialSuggestion,
+        InertiaMacro,
+        inertia_macros,
+        suggest_inertials,
+        xacro_suggestions,
+    )
     from ._table import LinkMass, MassTable, inertial_dict, mass_table
 
 __all__ = [
@@ -47,7 +53,17 @@ __all__ = [
     "sphere_inertia",
     "suggest_inertials",
     "volume",
+    "xacro_suggestions",
 ]
+
+
+_MACROS = (
+    "InertiaMacro",
+    "InertialSuggestion",
+    "inertia_macros",
+    "suggest_inertials",
+    "xacro_suggestions",
+)
 
 
 def __getattr__(name: str) -> Any:
@@ -56,7 +72,7 @@ def __getattr__(name: str) -> Any:
         from . import _table  # (~4 ms, and `check` never needs it)
 
         return getattr(_table, name)
-    if name in ("InertiaMacro", "InertialSuggestion", "inertia_macros", "suggest_inertials"):
+    if name in _MACROS:
         from . import _macros  # (the writer and the expansion: only --fill needs them)
 
         return getattr(_macros, name)

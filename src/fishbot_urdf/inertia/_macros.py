@@ -6,6 +6,7 @@ from __future__ import annotations
 import itertools
 import math
 import os
+import re
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -14,8 +15,8 @@ from typing import TYPE_CHECKING, Any
 from ..analysis import Analysis, of
 from ..errors import FishbotUrdfError
 from ..expansion import MacroDefinition, probe_macros
-from ..location import Location, calls_of
-from ..model import Box, Cylinder, Inertial, Link, Origin, Robot, Sphere
+from ..location import Location, MacroLocation, calls_of
+from ..model import Box, Collision, Cylinder, Inertial, Link, Origin, Robot, Sphere
 from ..parsing import parse
 from ..write import inertial_xml
 from ._solids import box_inertia, cylinder_inertia, sphere_inertia
@@ -23,7 +24,13 @@ from ._solids import box_inertia, cylinder_inertia, sphere_inertia
 if TYPE_CHECKING:
     from ..expansion import MacroTable
 
-__all__ = ["InertiaMacro", "InertialSuggestion", "inertia_macros", "suggest_inertials"]
+__all__ = [
+    "InertiaMacro",
+    "InertialSuggestion",
+    "inertia_macros",
+    "suggest_inertials",
+    "xacro_suggestions",
+]
 
 # The solids a macro may write, by how many values a call gives (the mass, then the sizes),
 # and the closed form each is held to.
@@ -194,6 +201,9 @@ class InertialSuggestion:
             to 6 significant digits; a position or rotation only when not zero).
         plain_because: Why the <inertial> is written out rather than a macro's call (None
             for a call).
+        written: For a link a macro made whose sizes (or position, rotation) are written
+            there with expressions: the call's arguments as written in the macro's body
+            (``r="${radius}"``), which fit every call of it; else empty.
     """
 
     link: str
@@ -203,6 +213,7 @@ class InertialSuggestion:
     macro: InertiaMacro | None = None
     arguments: tuple[tuple[str, str], ...] = ()
     plain_because: str | None = None
+    written: tuple[tuple[str, str], ...] = ()
 
     @property
     def made_by(self) -> tuple[tuple[str, Location], ...]:
@@ -216,8 +227,12 @@ class InertialSuggestion:
         line break either way)."""
         if self.macro is None:
             return inertial_xml(self.inertial)
-        given = " ".join(f'{name}="{value}"' for name, value in self.arguments)
-        return f"<xacro:{self.macro.name} {given}/>\n"
+        return _call(self.macro, self.arguments)
+
+    @property
+    def written_text(self) -> str | None:
+        """The call with the arguments as written in the macro's body, if there are any."""
+        return _call(self.macro, self.written) if self.macro and self.written else None
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready dict of every field."""
@@ -239,6 +254,8 @@ class InertialSuggestion:
             else {"name": macro.name, "shape": macro.shape, "source": place(macro.source)},
             "arguments": dict(self.arguments) if macro is not None else None,
             "text": self.text,
+            "written": dict(self.written) if self.written else None,
+            "written_text": self.written_text,
             "plain_because": self.plain_because,
             "inertial": inertial_dict(self.inertial),
         }
@@ -248,6 +265,7 @@ def suggest_inertials(
     robot: Robot | Analysis,
     inertials: Mapping[str, Inertial],
     macros: Sequence[InertiaMacro] = (),
+    written: Mapping[Location, Mapping[str, str]] | None = None,
 ) -> tuple[InertialSuggestion, ...]:
     """What to write in each link of ``inertials`` (as ``fill_inertials`` computed them):
     a call of one of ``macros`` (:func:`inertia_macros`) when the link's one collision is a
@@ -257,13 +275,65 @@ def suggest_inertials(
         robot: The robot, or its analysis.
         inertials: Link name -> the inertial computed for it.
         macros: The robot's inertia macros (none for a URDF).
+        written: The attributes of elements as written in macro bodies, by where they
+            are (what :func:`xacro_suggestions` reads), for the calls in the macro's terms.
     """
     links = of(robot).links
-    return tuple(_suggestion(links[name], inertial, macros) for name, inertial in inertials.items())
+    return tuple(
+        _suggestion(links[name], inertial, macros, written or {})
+        for name, inertial in inertials.items()
+    )
+
+
+def xacro_suggestions(
+    path: str | Path,
+    robot: Robot | Analysis,
+    inertials: Mapping[str, Inertial],
+    args: Mapping[str, str] | None = None,
+    packages: Mapping[str, str | Path] | None = None,
+    *,
+    trust_expressions: bool | None = None,
+    allow_read: str | os.PathLike[str] | Iterable[str | os.PathLike[str]] = (),
+) -> tuple[InertialSuggestion, ...]:
+    """:func:`suggest_inertials` for the robot of a xacro file, with its own inertia macros
+    (as :func:`inertia_macros` finds them) and, for a link a macro made, its collision's
+    sizes as written in the macro's body: one more expansion of the file.
+
+    Args:
+        path: The xacro file ``robot`` was read from; the other arguments are
+            :func:`fishbot_urdf.expand`'s.
+
+    Raises:
+        The errors of :func:`fishbot_urdf.expand`.
+    """
+    links = of(robot).links
+    places: list[Location] = []
+    for name in inertials:
+        for collision in links[name].collisions:
+            for part in (collision.geometry, collision.origin):
+                if isinstance(part.source, MacroLocation):
+                    places.append(part.source)
+
+    def probe(table: MacroTable) -> tuple[tuple[InertiaMacro, ...], dict[Location, Any]]:
+        found = {where: table.written(where) for where in places}
+        return _recognised(table), {k: v for k, v in found.items() if v is not None}
+
+    macros, written = probe_macros(
+        path,
+        probe,
+        args,
+        packages,
+        trust_expressions=trust_expressions,
+        allow_read=allow_read,
+    )
+    return suggest_inertials(robot, inertials, macros, written)
 
 
 def _suggestion(
-    link: Link, inertial: Inertial, macros: Sequence[InertiaMacro]
+    link: Link,
+    inertial: Inertial,
+    macros: Sequence[InertiaMacro],
+    written: Mapping[Location, Mapping[str, str]],
 ) -> InertialSuggestion:
     line = _line(link)
     if len(link.collisions) != 1:
@@ -290,9 +360,57 @@ def _suggestion(
             arguments.append((macro.xyz, _texts(origin.xyz)))
         if macro.rpy is not None and any(origin.rpy):
             arguments.append((macro.rpy, _texts(origin.rpy)))
-        return InertialSuggestion(link.name, inertial, link.source, line, macro, tuple(arguments))
+        return InertialSuggestion(
+            link.name,
+            inertial,
+            link.source,
+            line,
+            macro,
+            tuple(arguments),
+            written=_as_written(arguments, macro, collision, written),
+        )
     why = f"{fitting[0].name} takes no position or rotation, and the {shape} is moved"
     return InertialSuggestion(link.name, inertial, link.source, line, plain_because=why)
+
+
+def _as_written(
+    arguments: list[tuple[str, str]],
+    macro: InertiaMacro,
+    collision: Collision,
+    written: Mapping[Location, Mapping[str, str]],
+) -> tuple[tuple[str, str], ...]:
+    """``arguments`` with the sizes, position and rotation as the macro's body writes them,
+    when one of them is an expression there (else none: the numbers are what is written)."""
+    geometry = written.get(collision.geometry.source) if collision.geometry.source else None
+    origin = written.get(collision.origin.source) if collision.origin.source else None
+    texts: dict[str, str] = {}
+    if geometry is not None:
+        if isinstance(collision.geometry, Box):
+            sides = _TOKEN.findall(geometry.get("size", ""))
+            if len(sides) == 3:
+                texts.update(zip(macro.sizes, sides, strict=True))
+        else:
+            cylinder = isinstance(collision.geometry, Cylinder)
+            keys = ("radius", "length") if cylinder else ("radius",)
+            for param, key in zip(macro.sizes, keys, strict=True):
+                if key in geometry:
+                    texts[param] = geometry[key]
+    if origin is not None:
+        for param, key in ((macro.xyz, "xyz"), (macro.rpy, "rpy")):
+            if param is not None and key in origin:
+                texts[param] = origin[key]
+    if not any("${" in text for text in texts.values()):
+        return ()
+    return tuple((name, texts.get(name, value)) for name, value in arguments)
+
+
+# One number or expression of a list of them: a `${...}` may hold spaces.
+_TOKEN = re.compile(r"(?:\$\{[^}]*\}|[^\s$]|\$(?!\{))+")
+
+
+def _call(macro: InertiaMacro, arguments: Iterable[tuple[str, str]]) -> str:
+    given = " ".join(f'{name}="{value}"' for name, value in arguments)
+    return f"<xacro:{macro.name} {given}/>\n"
 
 
 def _solid(geometry: object) -> tuple[str | None, tuple[float, ...]]:
