@@ -123,34 +123,35 @@ def suggest(
         }
         to_stdout((json.dumps(report, indent=2) + "\n").encode("utf-8", "surrogateescape"))
     else:
-        text = "".join(_block(s) for s in suggestions)
+        xacro = file != "-" and is_xacro_path(file)
+        text = "".join(_block(s, xacro) for s in suggestions)
         to_stdout(text.encode("utf-8", "surrogateescape"))
         if not suggestions and not filling.skipped:
             click.echo("no link needs an <inertial>", err=True)
     return EXIT_INVALID if filling.skipped else EXIT_OK
 
 
-def _block(suggestion: InertialSuggestion) -> str:
+def _block(suggestion: InertialSuggestion, xacro: bool) -> str:
     """One suggestion: a GCC-style note on the link, then what to write, indented."""
     where = suggestion.source
-    place = "" if where is None else f"{where.path}:{where.line}:{where.column}: "
-    mass = f"{suggestion.inertial.mass:.6g} kg"
+    place = "" if where is None else f"{_site(where)}: "
+    at = "inside the <link>"
+    if suggestion.line is not None:
+        at = f"at line {suggestion.line}, {at}"
     calls = suggestion.made_by
-    if suggestion.line is None:
-        at = "inside the <link>"
-    else:
-        at = f"at line {suggestion.line}, inside the <link>"
     if calls:
         name, site = calls[0]
-        at += f" in the body of macro {name} (which made it in the call at {_site(site)})"
-    why = f" ({suggestion.plain_because})" if suggestion.plain_because else ""
-    head = f"{place}note: link '{suggestion.link}' has no <inertial>; for {mass}, write{why} {at}:"
+        at += f", in the body of macro {name} (called at {_site(site)})"
+    mass = f"{suggestion.inertial.mass:.6g} kg"
+    head = f"{place}note: link '{suggestion.link}' has no <inertial>; for {mass}, write {at}:"
     lines = [escape_controls(head)]
     lines += ["  " + escape_controls(line) for line in suggestion.text.splitlines()]
     written = suggestion.written_text
     if written is not None:
         lines.append("  or, with the sizes as the macro's body writes them, to fit every call:")
         lines.append("  " + escape_controls(written.rstrip("\n")))
+    if xacro and suggestion.plain_because:
+        lines.append(escape_controls(f"  (written out: {suggestion.plain_because})"))
     return "\n".join(lines) + "\n"
 
 

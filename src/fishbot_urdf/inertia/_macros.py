@@ -195,7 +195,8 @@ class InertialSuggestion:
         source: Where its ``<link>`` is written (for a link a macro made, in the macro's
             body; ``made_by`` gives the calls).
         line: The line of ``source``'s file to write it at, inside the link (the line of
-            its first child element), or None when the link's place is not known.
+            its first child element), or None when no line is sure to be inside it (its
+            children start on its own line, or are written in another file).
         macro: The robot's inertia macro to call, or None for a plain <inertial>.
         arguments: The call's parameters and their values, in the macro's order (rounded
             to 6 significant digits; a position or rotation only when not zero).
@@ -425,13 +426,13 @@ def _solid(geometry: object) -> tuple[str | None, tuple[float, ...]]:
 
 def _line(link: Link) -> int | None:
     """The line to write a child of ``link`` at: that of its first child element, when it
-    starts on a line of its own in the same file (the line after the start tag, else)."""
+    starts below the <link> in the same file (else None: no line is sure to be inside)."""
     where = link.source
     if where is None:
         return None
     children = [c.source for c in (*link.visuals, *link.collisions) if c.source is not None]
     below = [c.line for c in children if c.path == where.path and c.line > where.line]
-    return min(below) if below else where.line + 1
+    return min(below) if below else None
 
 
 def _text(value: float) -> str:
