@@ -26,7 +26,7 @@ if TYPE_CHECKING:
     from ..location import Location
     from ..output import Source
 
-__all__ = ["fill", "link_masses", "suggest"]
+__all__ = ["link_masses", "suggest", "write_copy"]
 
 
 def link_masses(items: Sequence[str]) -> dict[str, float]:
@@ -54,7 +54,7 @@ def _filling(result: CheckResult, density: float | None, masses: dict[str, float
         raise click.BadParameter(exc.message, param_hint="--mass") from None
 
 
-def fill(
+def write_copy(
     result: CheckResult,
     output: str,
     density: float | None,

@@ -42,7 +42,7 @@ from ._common import (
     to_stdout,
     xacro_args,
 )
-from ._filling import link_masses, suggest
+from ._filling import link_masses, suggest, write_copy
 
 if TYPE_CHECKING:
     from ..model import Inertial, Vector3
@@ -302,15 +302,16 @@ def robot(
         errors = [d for d in result.diagnostics if d.is_error and d.rule != MISSING_INERTIAL.id]
         if result.analysis is None or errors:
             emit_findings(errors or result.diagnostics)
-            click.echo("nothing written: fix the errors above first", err=True)
+            said = "nothing written" if output is not None else "nothing to suggest"
+            click.echo(f"{said}: fix the errors above first", err=True)
             sys.exit(EXIT_INVALID)
+        wanted = link_masses(masses)
+        if output is None:  # what to write in the robot's own files, and where
+            sys.exit(suggest(file, result, fmt, density, wanted, values, packages, config))
         # The copy is never written over anything read (the mesh files listed here are
         # those the filling opens, by the same analysis: no package.xml is read after).
-        wanted = link_masses(masses)
-        if output is None:
-            sys.exit(suggest(file, result, fmt, density, wanted, values, packages, config))
         inputs = [*read_files(file, result), *read]
-        sys.exit(fill(result, output, density, wanted, inputs))
+        sys.exit(write_copy(result, output, density, wanted, inputs))
     emit_findings(result.diagnostics)
     if result.analysis is None:
         sys.exit(EXIT_INVALID)

@@ -20,6 +20,7 @@ from ..model import Box, Collision, Cylinder, Inertial, Link, Origin, Robot, Sph
 from ..parsing import parse
 from ..write import inertial_xml
 from ._solids import box_inertia, cylinder_inertia, sphere_inertia
+from ._table import inertial_dict
 
 if TYPE_CHECKING:
     from ..expansion import MacroTable
@@ -237,7 +238,6 @@ class InertialSuggestion:
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready dict of every field."""
-        from ._table import inertial_dict  # (the table loads only when used)
 
         def place(where: Location | None) -> dict[str, Any] | None:
             if where is None:
@@ -311,9 +311,9 @@ def xacro_suggestions(
     places: list[Location] = []
     for name in inertials:
         for collision in links[name].collisions:
-            for part in (collision.geometry, collision.origin):
-                if isinstance(part.source, MacroLocation):
-                    places.append(part.source)
+            for where in (collision.geometry.source, collision.origin.source):
+                if isinstance(where, MacroLocation):
+                    places.append(where)
 
     def probe(table: MacroTable) -> tuple[tuple[InertiaMacro, ...], dict[Location, Any]]:
         found = {where: table.written(where) for where in places}
@@ -397,9 +397,9 @@ def _as_written(
                 if key in geometry:
                     texts[param] = geometry[key]
     if origin is not None:
-        for param, key in ((macro.xyz, "xyz"), (macro.rpy, "rpy")):
-            if param is not None and key in origin:
-                texts[param] = origin[key]
+        for place, key in ((macro.xyz, "xyz"), (macro.rpy, "rpy")):
+            if place is not None and key in origin:
+                texts[place] = origin[key]
     if not any("${" in text for text in texts.values()):
         return ()
     return tuple((name, texts.get(name, value)) for name, value in arguments)
@@ -430,8 +430,12 @@ def _line(link: Link) -> int | None:
     where = link.source
     if where is None:
         return None
-    children = [c.source for c in (*link.visuals, *link.collisions) if c.source is not None]
-    below = [c.line for c in children if c.path == where.path and c.line > where.line]
+    children = [v.source for v in link.visuals] + [c.source for c in link.collisions]
+    below = [
+        child.line
+        for child in children
+        if child is not None and child.path == where.path and child.line > where.line
+    ]
     return min(below) if below else None
 
 
