@@ -1,5 +1,4 @@
-"""A xacro robot's own inertia macros (common_inertia.xacro's kind), found by calling them,
-and what to write in a link that has no <inertial>: a call of one, or the <inertial>."""
+"""A xacro robot's own inertia macros, found by calling them, and what to write in a link."""
 
 from __future__ import annotations
 
@@ -78,16 +77,16 @@ def inertia_macros(
     trust_expressions: bool | None = None,
     allow_read: str | os.PathLike[str] | Iterable[str | os.PathLike[str]] = (),
 ) -> tuple[InertiaMacro, ...]:
-    """The macros of a xacro robot that write the <inertial> of a box, cylinder or sphere,
-    whatever their names and their parameters' names.
+    """The macros of a xacro robot that write a box's, cylinder's or sphere's <inertial>.
 
-    Each top-level macro with two, three or four parameters without a default is called with
-    distinct values; it is one of them when what it makes is one <inertial> equal to a
-    solid's closed form (:func:`box_inertia`, :func:`cylinder_inertia`,
-    :func:`sphere_inertia`, in metres and kilograms) for some order of those values: that
-    order names its mass and size parameters. An optional parameter is its position
-    (rotation) parameter when a value given to it comes out as the inertial's origin xyz
-    (rpy). A macro that takes a diameter, or other units, is not one.
+    They are found whatever their names and their parameters' names: each top-level macro
+    with two, three or four parameters without a default is called with distinct values
+    (2, 3, 5, 7); it is one of them when what it makes is one <inertial> equal to a solid's
+    closed form (:func:`box_inertia`, :func:`cylinder_inertia`, :func:`sphere_inertia`, in
+    metres and kilograms) for some order of those values: that order names its mass and
+    size parameters. An optional parameter is its position (rotation) parameter when a
+    value given to it comes out as the inertial's origin xyz (rpy). A macro that takes a
+    diameter, or other units, is not one.
 
     Args:
         path: The xacro file; the other arguments are :func:`fishbot_urdf.expand`'s.
@@ -268,9 +267,11 @@ def suggest_inertials(
     macros: Sequence[InertiaMacro] = (),
     written: Mapping[Location, Mapping[str, str]] | None = None,
 ) -> tuple[InertialSuggestion, ...]:
-    """What to write in each link of ``inertials`` (as ``fill_inertials`` computed them):
-    a call of one of ``macros`` (:func:`inertia_macros`) when the link's one collision is a
-    box, cylinder or sphere that the macro can place, else the <inertial> itself.
+    """What to write in each link of ``inertials``, and at which line.
+
+    For each link of ``inertials`` (as :func:`fill_inertials` computed them): a call of one
+    of ``macros`` (:func:`inertia_macros`) when the link's one collision is a box, cylinder
+    or sphere that the macro can place, else the <inertial> itself.
 
     Args:
         robot: The robot, or its analysis.
@@ -296,9 +297,11 @@ def xacro_suggestions(
     trust_expressions: bool | None = None,
     allow_read: str | os.PathLike[str] | Iterable[str | os.PathLike[str]] = (),
 ) -> tuple[InertialSuggestion, ...]:
-    """:func:`suggest_inertials` for the robot of a xacro file, with its own inertia macros
-    (as :func:`inertia_macros` finds them) and, for a link a macro made, its collision's
-    sizes as written in the macro's body: one more expansion of the file.
+    """What to write in each link of a xacro robot's ``inertials``: its own macros' calls.
+
+    :func:`suggest_inertials` with the robot's own inertia macros (as
+    :func:`inertia_macros` finds them) and, for a link a macro made, its collision's sizes
+    as written in the macro's body: one more expansion of the file.
 
     Args:
         path: The xacro file ``robot`` was read from; the other arguments are
