@@ -80,10 +80,12 @@ def inertia() -> None:
     `fishbot inertia box|cylinder|sphere` prints the <inertial> of a uniform solid, the
     same numbers as the fishbot's common_inertia.xacro. `fishbot inertia ROBOT` prints each
     link's mass, centre of mass and principal moments with the checks that concern it, and
-    the whole robot's mass, centre of mass and inertia at the zero configuration; with
-    --fill -o OUT it writes a copy in which every link that has collision shapes but no
-    <inertial> gets one. Exit status: 0 done, 1 the robot has errors, 2 a file could not be
-    read or written, or the command line is wrong.
+    the whole robot's mass, centre of mass and inertia at the zero configuration. With
+    --fill, for every link that has collision shapes but no <inertial>, it says what to
+    write and at which line of which file (a call of a xacro robot's own inertia macro, or
+    the <inertial>); with --fill -o OUT it writes a copy in which each gets one. Exit
+    status: 0 done, 1 the robot has errors, 2 a file could not be read or written, or the
+    command line is wrong.
 
     \b
     Examples:
@@ -93,6 +95,7 @@ def inertia() -> None:
       fishbot inertia robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
       fishbot inertia robot.urdf --format json
       fishbot inertia arm.urdf -j shoulder=90deg -j elbow=-0.5
+      fishbot inertia robot.urdf.xacro --fill --mass base_link=1
       fishbot inertia robot.urdf --fill --density 1000 -o robot_filled.urdf
       fishbot inertia robot.urdf --fill --mass base_link=1 --mass wheel=0.1 -o out.urdf
 
@@ -100,6 +103,7 @@ def inertia() -> None:
     Options for ROBOT (a URDF or xacro file, - for standard input):
       name:=value          xacro arguments
       --format text|json   a table, or JSON
+      --fill               what to write in each link without an <inertial>, and where
       --fill -o OUT        write a copy with the missing inertials (- is stdout)
       --density KG_PER_M3  the density of every filled link
       --mass LINK=KG       the mass of one filled link (repeatable)
@@ -231,8 +235,15 @@ class _RobotCommand(click.Command):
 @click.argument("file", type=click.Path(allow_dash=True))
 @click.argument("args", nargs=-1, metavar="[name:=value]...")
 @format_option(("text", "json"), "text: a table; json: the same numbers for programs.")
-@click.option("--fill", is_flag=True, help="Write a copy with the missing inertials (needs -o).")
-@click.option("-o", "--output", metavar="OUT", help="Where --fill writes; - is standard output.")
+@click.option(
+    "--fill",
+    is_flag=True,
+    help="Say what to write in each link without an <inertial>, and where (a call of the "
+    "robot's own inertia macro, or the <inertial>); with -o, write a copy with them.",
+)
+@click.option(
+    "-o", "--output", metavar="OUT", help="With --fill: write the filled copy there (- is stdout)."
+)
 @click.option(
     "--density",
     type=_MASS,
@@ -264,16 +275,27 @@ def robot(
     One line per link: mass, centre of mass (in the link's own frame), principal moments,
     and the `fishbot check` rules that concern it; then the robot's total mass, centre of
     mass (in the root link's frame) and principal moments, with every joint at zero or
-    where -j puts it. With --fill -o OUT, a copy in which each link with
-    collision shapes and no <inertial> gets one. Exit status: 0 done, 1 the robot has
-    errors or --fill left a link out, 2 a file could not be read or written, or the
-    command line is wrong.
+    where -j puts it.
+
+    With --fill (and --density or --mass), for each link with collision shapes and no
+    <inertial>: FILE:LINE:COL of its <link> (in a macro's body, with the call that made
+    it), the line to write at, and what to write there: for a xacro robot that includes
+    box/cylinder/sphere inertia macros (found by calling them, whatever their names), the
+    call of its own macro with the mass and the collision's sizes; else the <inertial>.
+    --format json gives the same. With --fill -o OUT, a copy in which each such link gets
+    its <inertial>. Exit status: 0 done, 1 the robot has errors or --fill left a link out,
+    2 a file could not be read or written, or the command line is wrong.
 
     \b
     Examples:
       fishbot inertia robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
       fishbot inertia robot.urdf --format json
       fishbot inertia arm.urdf -j shoulder=90deg -j elbow=-0.5
+      fishbot inertia robot.urdf.xacro --fill --mass base_link=1
+        (prints, e.g.:
+         base.urdf.xacro:24:5: note: link 'base_link' has no <inertial>; for 1 kg, write
+         at line 25, inside the <link>, in the body of macro base_xacro (called at ...):
+           <xacro:cylinder_inertia m="1" r="0.1" h="0.12"/>)
       fishbot inertia robot.urdf --fill --density 1000 -o robot_filled.urdf
     """
     if any(":=" not in a for a in args):
