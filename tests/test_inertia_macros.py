@@ -183,3 +183,31 @@ def test_the_call_as_written_in_the_macros_body(tmp_path: Path) -> None:
         made.written_text == '<xacro:box_inertia m="0.01" w="${size}" h="${size}" d="${size}"/>\n'
     )
     assert [name for name, _ in made.made_by] == ["imu_xacro"]
+
+
+def test_a_collision_another_macro_writes_gives_no_line_and_no_expressions(
+    tmp_path: Path,
+) -> None:
+    # tube's ${r} and ${h} mean nothing in arm's body, where the call would go; and tube's
+    # <collision>, though below arm's <link> in the file, is not inside it.
+    links = """  <xacro:macro name="arm" params="len">
+    <link name="arm">
+      <xacro:tube r="0.02" h="${len}"/>
+    </link>
+    <joint name="j" type="continuous"><parent link="base"/><child link="arm"/></joint>
+  </xacro:macro>
+  <xacro:macro name="tube" params="r h">
+    <collision>
+      <geometry><cylinder radius="${r}" length="${h}"/></geometry>
+    </collision>
+  </xacro:macro>
+  <xacro:arm len="0.3"/>
+"""
+    robot = _robot(tmp_path, NOTES, links)
+    analysis = fishbot_urdf.check_file(robot).analysis
+    assert analysis is not None
+    filled = fill_inertials(analysis, masses={"arm": 0.5}).inertials
+    (made,) = xacro_suggestions(robot, analysis, filled)
+    assert made.text == '<xacro:cylinder_inertia m="0.5" r="0.02" h="0.3"/>\n'
+    assert (made.source, made.line, made.written) == ((str(robot), 5, 5), None, ())
+    assert [name for name, _ in made.made_by] == ["arm"]

@@ -371,7 +371,7 @@ def _suggestion(
             line,
             macro,
             tuple(arguments),
-            written=_as_written(arguments, macro, collision, written),
+            written=_as_written(arguments, macro, collision, link.source, written),
         )
     why = f"{fitting[0].name} takes no position or rotation, and the {shape} is moved"
     return InertialSuggestion(link.name, inertial, link.source, line, plain_because=why)
@@ -381,12 +381,14 @@ def _as_written(
     arguments: list[tuple[str, str]],
     macro: InertiaMacro,
     collision: Collision,
+    where: Location | None,
     written: Mapping[Location, Mapping[str, str]],
 ) -> tuple[tuple[str, str], ...]:
-    """``arguments`` with the sizes, position and rotation as the macro's body writes them,
-    when one of them is an expression there (else none: the numbers are what is written)."""
-    geometry = written.get(collision.geometry.source) if collision.geometry.source else None
-    origin = written.get(collision.origin.source) if collision.origin.source else None
+    """``arguments`` with the sizes, position and rotation as the macro's body that has
+    the <link> at ``where`` writes them, when one of them is an expression there (else
+    none: the numbers are what is written)."""
+    geometry = _written_beside(collision.geometry.source, where, written)
+    origin = _written_beside(collision.origin.source, where, written)
     texts: dict[str, str] = {}
     if geometry is not None:
         if isinstance(collision.geometry, Box):
@@ -406,6 +408,16 @@ def _as_written(
     if not any("${" in text for text in texts.values()):
         return ()
     return tuple((name, texts.get(name, value)) for name, value in arguments)
+
+
+def _written_beside(
+    part: Location | None, link: Location | None, written: Mapping[Location, Mapping[str, str]]
+) -> Mapping[str, str] | None:
+    """The attributes as written of the element at ``part``, if it is written beside the
+    <link> (its expressions then mean there what they mean in the element)."""
+    if part is None or link is None or not _beside(part, link):
+        return None
+    return written.get(part)
 
 
 # One number or expression of a list of them: a `${...}` may hold spaces.
@@ -429,7 +441,7 @@ def _solid(geometry: object) -> tuple[str | None, tuple[float, ...]]:
 
 def _line(link: Link) -> int | None:
     """The line to write a child of ``link`` at: that of its first child element, when it
-    starts below the <link> in the same file (else None: no line is sure to be inside)."""
+    starts below the <link> in the same text (else None: no line is sure to be inside)."""
     where = link.source
     if where is None:
         return None
@@ -437,9 +449,16 @@ def _line(link: Link) -> int | None:
     below = [
         child.line
         for child in children
-        if child is not None and child.path == where.path and child.line > where.line
+        if child is not None and _beside(child, where) and child.line > where.line
     ]
     return min(below) if below else None
+
+
+def _beside(where: Location, link: Location) -> bool:
+    """Whether ``where`` is in the same text as the <link> at ``link``: the same file, and
+    made by the same macro calls (an element a macro called inside the link made is written
+    in that macro's body, elsewhere, even in the same file)."""
+    return where.path == link.path and calls_of(where) == calls_of(link)
 
 
 def _text(value: float) -> str:
