@@ -468,6 +468,27 @@ def test_fill_without_output_on_a_xacro_without_inertia_macros(tmp_path: Path) -
     )
 
 
+def test_fill_without_output_on_a_full_robot_and_on_standard_input() -> None:
+    full = run(str(XACRO), "--fill", "--density", "1000")
+    assert (full.exit_code, full.stdout, full.stderr) == (0, "", "no link needs an <inertial>\n")
+    data = (PHYSICS / "missing_inertial.urdf").read_bytes()
+    piped = run("-", "--fill", "--mass", "left_wheel_link=0.1", stdin=data)
+    assert piped.exit_code == 0, piped.output
+    assert piped.stdout.startswith(
+        "<stdin>:19:3: note: link 'left_wheel_link' has no <inertial>; for 0.1 kg, write at "
+        "line 20, inside the <link>:\n  <inertial>\n"
+    )
+
+
+def test_the_missing_inertial_hint_names_fill() -> None:
+    result = CliRunner().invoke(cli, ["check", str(PHYSICS / "missing_inertial.urdf")])
+    assert result.exit_code == 1
+    assert (
+        "`fishbot inertia ROBOT --fill --mass LINK=KG` says what to write and where, and with "
+        "-o OUT writes a filled copy) [missing-inertial]" in result.stderr
+    )
+
+
 def test_fill_without_output_skips_as_fill_does() -> None:
     result = run(str(PHYSICS / "missing_inertial.urdf"), "--fill", "--mass", "base_link=1")
     assert result.exit_code == 2
