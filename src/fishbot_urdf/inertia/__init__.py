@@ -21,13 +21,8 @@ from ._solids import (
 )
 
 if TYPE_CHECKING:
-    from ._macros import (
-        InertialSuggestion,
-        InertiaMacro,
-        inertia_macros,
-        suggest_inertials,
-        xacro_suggestions,
-    )
+    from ._macros import InertiaMacro, inertia_macros
+    from ._suggestions import InertialSuggestion, suggest_inertials, xacro_suggestions
     from ._table import LinkMass, MassTable, inertial_dict, mass_table
 
 __all__ = [
@@ -57,13 +52,8 @@ __all__ = [
 ]
 
 
-_MACROS = (
-    "InertiaMacro",
-    "InertialSuggestion",
-    "inertia_macros",
-    "suggest_inertials",
-    "xacro_suggestions",
-)
+_MACROS = ("InertiaMacro", "inertia_macros")
+_SUGGESTIONS = ("InertialSuggestion", "suggest_inertials", "xacro_suggestions")
 
 
 def __getattr__(name: str) -> Any:
@@ -73,7 +63,11 @@ def __getattr__(name: str) -> Any:
 
         return getattr(_table, name)
     if name in _MACROS:
-        from . import _macros  # (the writer and the expansion: only --fill needs them)
+        from . import _macros  # (the expansion's probe: only --fill needs it)
 
         return getattr(_macros, name)
+    if name in _SUGGESTIONS:
+        from . import _suggestions  # (the writer too: only --fill needs them)
+
+        return getattr(_suggestions, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
