@@ -14,6 +14,7 @@ import subprocess
 import sys
 import time
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -129,3 +130,28 @@ def test_the_budget_is_shared_by_every_expression(tmp_path: Path) -> None:
     assert caught.value.message.startswith("the expansion would make more than 8.0 MiB in all")
     with size_limit(64 * 1024 * 1024):
         assert expand(robot).text.count("x" * 1000000) == 20
+
+
+def test_a_probes_calls_spend_the_expansions_budget(tmp_path: Path) -> None:
+    # A macro that makes a million-character name is fine called once; a probe that calls
+    # it twenty times spends the same budget as the document and is stopped with it.
+    from fishbot_urdf.expansion import ExpansionLimitError, probe_macros
+    from fishbot_urdf.inputs import size_limit
+
+    robot = tmp_path / "robot.xacro"
+    robot.write_text(
+        _robot(
+            '<xacro:macro name="big" params="i"><link name="${\'x\' * 1000000}${i}"/>'
+            '</xacro:macro><xacro:big i="0"/>'
+        )
+    )
+
+    def probe(table: Any) -> list[str | None]:
+        return [table.call("big", {"i": str(i)}) for i in range(1, 20)]
+
+    with size_limit(8 * 1024 * 1024), pytest.raises(ExpansionLimitError) as caught:
+        probe_macros(robot, probe)
+    assert caught.value.message.startswith("the expansion would make more than 8.0 MiB in all")
+    with size_limit(64 * 1024 * 1024):
+        made = probe_macros(robot, probe)
+    assert all(text is not None and "x" * 1000000 in text for text in made)

@@ -273,7 +273,7 @@ def test_fill_from_xacro_writes_the_expanded_urdf(tmp_path: Path) -> None:
     [
         (["--fill", "-o", "x.urdf"], "--density"),
         (["--density", "1"], "go with --fill"),
-        (["--fill", "--density", "1"], "give -o OUT"),
+        (["--fill", "--density", "1", "-o", "x.urdf", "--format", "json"], "no --format"),
         (["--fill", "--mass", "left_wheel=1", "-o", "x.urdf"], "did you mean 'left_wheel_link'"),
         (["--fill", "--mass", "base_link=1", "-o", "x.urdf"], "already has an <inertial>"),
         (["--fill", "--mass", "base_footprint=1", "-o", "x.urdf"], "no <collision> shape"),
@@ -307,6 +307,196 @@ def test_fill_skips_a_mesh_and_says_so(tmp_path: Path) -> None:
     assert "[fill-skipped]" in result.stderr
     assert "nothing written: no link could be filled" in result.stderr
     assert not out.exists()
+
+
+def _fishbot_without(tmp_path: Path, name: str, call: str) -> tuple[Path, Path]:
+    """A copy of the fishbot package with ``call`` taken out of its file ``name``: the
+    robot, and the file."""
+    copy = tmp_path / "fishbot"
+    shutil.copytree(FISHBOT, copy)
+    edited = copy / "urdf" / "fishbot" / name
+    text = edited.read_text()
+    assert call in text
+    edited.write_text(text.replace(call, ""))
+    return copy / "urdf" / "fishbot" / "fishbot.urdf.xacro", edited
+
+
+def _pasted(path: Path, line: int, text: str) -> None:
+    """``text`` written into ``path`` at ``line`` (the line there and those below move down)."""
+    lines = path.read_text().splitlines(keepends=True)
+    lines.insert(line - 1, text)
+    path.write_text("".join(lines))
+
+
+def _same_inertial(made: fishbot_urdf.Inertial | None, wanted: fishbot_urdf.Inertial) -> None:
+    assert made is not None
+    assert made.origin.xyz == pytest.approx(wanted.origin.xyz)
+    assert made.origin.rpy == pytest.approx(wanted.origin.rpy)
+    assert made.mass == pytest.approx(wanted.mass, rel=1e-5)
+    for moment in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"):
+        got, expected = getattr(made.inertia, moment), getattr(wanted.inertia, moment)
+        assert got == pytest.approx(expected, rel=1e-5, abs=1e-15)
+
+
+def test_fill_without_output_says_which_macro_call_to_write_and_where(tmp_path: Path) -> None:
+    call = '<xacro:cylinder_inertia m="${mass}" r="${radius}" h="${length}"/>'
+    robot, base = _fishbot_without(tmp_path, "base.urdf.xacro", call)
+    before = base.read_bytes()
+    result = run(str(robot), "--fill", "--mass", "base_link=1.5")
+    assert result.exit_code == 0, result.output
+    assert result.stderr == ""
+    assert base.read_bytes() == before  # nothing is written
+    # base.urdf.xacro: <link name="base_link"> is line 24 of the macro base_xacro, which
+    # fishbot.urdf.xacro calls on its line 53.
+    assert result.stdout == (
+        f"{base}:24:5: note: link 'base_link' has no <inertial>; for 1.5 kg, write at line 25, "
+        f"inside the <link>, in the body of macro base_xacro (called at {robot}:53:3):\n"
+        '  <xacro:cylinder_inertia m="1.5" r="0.1" h="0.12"/>\n'
+        "  or, with the sizes as the macro's body writes them, to fit every call:\n"
+        '  <xacro:cylinder_inertia m="1.5" r="${radius}" h="${length}"/>\n'
+    )
+    # The numbers by hand: a solid cylinder of radius 0.1 m and height 0.12 m about its
+    # centre, 1/12 m (3 r^2 + h^2) across its axis and 1/2 m r^2 along it.
+    data = json.loads(
+        run(str(robot), "--fill", "--mass", "base_link=1.5", "--format", "json").stdout
+    )
+    (made,) = data["suggestions"]
+    assert made["macro"]["name"] == "cylinder_inertia"
+    assert made["arguments"] == {"m": "1.5", "r": "0.1", "h": "0.12"}
+    assert (made["source"]["path"], made["source"]["line"], made["line"]) == (str(base), 24, 25)
+    assert made["made_by"] == [
+        {"macro": "base_xacro", "call": {"path": str(robot), "line": 53, "column": 3}}
+    ]
+    moments = made["inertial"]["inertia"]
+    assert moments["ixx"] == pytest.approx(1.5 / 12 * (3 * 0.1**2 + 0.12**2))
+    assert moments["iyy"] == pytest.approx(1.5 / 12 * (3 * 0.1**2 + 0.12**2))
+    assert moments["izz"] == pytest.approx(1.5 / 2 * 0.1**2)
+    assert made["inertial"]["mass"] == 1.5
+    # Pasted there, the call gives what -o writes.
+    out = tmp_path / "filled.urdf"
+    assert run(str(robot), "--fill", "--mass", "base_link=1.5", "-o", str(out)).exit_code == 0
+    wanted = _inertial_of(out, "base_link")
+    assert wanted is not None
+    _pasted(base, made["line"], "      " + made["text"])
+    _same_inertial(_inertial_of(robot, "base_link"), wanted)
+    again = run(str(robot), "--fill", "--mass", "base_link=1.5")
+    assert again.exit_code == 2  # base_link has its inertial now
+    assert "already has an <inertial>" in again.output
+
+
+def test_fill_without_output_turns_a_wheels_inertia_with_it(tmp_path: Path) -> None:
+    call = """<xacro:cylinder_inertia m="${mass}" r="${radius}" h="${length}"
+                              xyz="0.0 0.0 0.0" rpy="1.57079 0.0 0.0"/>"""
+    robot, wheel = _fishbot_without(tmp_path, "actuator/wheel.urdf.xacro", call)
+    result = run(str(robot), "--fill", "--density", "1000")
+    assert result.exit_code == 0, result.output
+    mass = 1000 * math.pi * 0.032**2 * 0.04  # kg: 0.128680 to six digits
+    assert f"{mass:.6g}" == "0.12868"
+    block = (
+        "note: link '{side}_wheel_link' has no <inertial>; for 0.12868 kg, write at line 12, "
+        "inside the <link>, in the body of macro wheel_xacro (called at {robot}:{line}:3):\n"
+        '  <xacro:cylinder_inertia m="0.12868" r="0.032" h="0.04" rpy="1.57079 0 0"/>\n'
+        "  or, with the sizes as the macro's body writes them, to fit every call:\n"
+        '  <xacro:cylinder_inertia m="0.12868" r="${{radius}}" h="${{length}}" '
+        'rpy="1.57079 0.0 0.0"/>\n'
+    )
+    assert result.stdout == (
+        f"{wheel}:11:5: "
+        + block.format(side="left", robot=robot, line=60)
+        + f"{wheel}:11:5: "
+        + block.format(side="right", robot=robot, line=62)
+    )
+    out = tmp_path / "filled.urdf"
+    assert run(str(robot), "--fill", "--density", "1000", "-o", str(out)).exit_code == 0
+    _pasted(
+        wheel,
+        12,
+        '      <xacro:cylinder_inertia m="0.12868" r="0.032" h="0.04" rpy="1.57079 0 0"/>\n',
+    )
+    for side in ("left", "right"):
+        wanted = _inertial_of(out, f"{side}_wheel_link")
+        assert wanted is not None
+        assert wanted.mass == pytest.approx(mass)
+        _same_inertial(_inertial_of(robot, f"{side}_wheel_link"), wanted)
+    # The real xacro command reads the pasted call as this expansion does.
+    done = xacro_command(robot, packages={"fishbot_description": tmp_path / "fishbot"})
+    assert done.returncode == 0, done.stderr
+    expanded = fishbot_urdf.parse(done.stdout)
+    _same_inertial(expanded.link("left_wheel_link").inertial, wanted)
+
+
+def test_fill_without_output_on_a_urdf_gives_the_inertial_block() -> None:
+    robot = PHYSICS / "missing_inertial.urdf"
+    result = run(str(robot), "--fill", "--mass", "left_wheel_link=0.1")
+    assert result.exit_code == 0, result.output
+    expected = cylinder_inertia(0.1, 0.032, 0.04, fishbot_urdf.Origin(rpy=(1.57079, 0.0, 0.0)))
+    assert result.stdout == (
+        f"{robot}:19:3: note: link 'left_wheel_link' has no <inertial>; for 0.1 kg, write at "
+        "line 20, inside the <link>:\n"
+        + "".join(f"  {line}\n" for line in fishbot_urdf.inertial_xml(expected).splitlines())
+    )
+    data = json.loads(
+        run(str(robot), "--fill", "--mass", "left_wheel_link=0.1", "--format", "json").stdout
+    )
+    (made,) = data["suggestions"]
+    assert (made["macro"], made["arguments"], made["line"]) == (None, None, 20)
+    assert made["text"] == fishbot_urdf.inertial_xml(expected)
+
+
+def test_fill_without_output_on_a_xacro_without_inertia_macros(tmp_path: Path) -> None:
+    robot = tmp_path / "r.urdf.xacro"
+    robot.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:property name="side" value="0.2"/>\n'
+        '  <link name="a"/>\n'
+        '  <link name="b">\n'
+        "    <collision>\n"
+        '      <geometry><box size="${side} 0.1 0.1"/></geometry>\n'
+        "    </collision>\n"
+        "  </link>\n"
+        '  <joint name="j" type="continuous"><parent link="a"/><child link="b"/></joint>\n'
+        "</robot>\n"
+    )
+    result = run(str(robot), "--fill", "--mass", "b=2")
+    assert result.exit_code == 0, result.output
+    expected = box_inertia(2.0, 0.2, 0.1, 0.1)
+    assert result.stdout == (
+        f"{robot}:4:3: note: link 'b' has no <inertial>; for 2 kg, write at line 5, inside the "
+        "<link>:\n"
+        + "".join(f"  {line}\n" for line in fishbot_urdf.inertial_xml(expected).splitlines())
+        + "  (written out: no inertia macros)\n"
+    )
+
+
+def test_fill_without_output_on_a_full_robot_and_on_standard_input() -> None:
+    full = run(str(XACRO), "--fill", "--density", "1000")
+    assert (full.exit_code, full.stdout, full.stderr) == (0, "", "no link needs an <inertial>\n")
+    data = (PHYSICS / "missing_inertial.urdf").read_bytes()
+    piped = run("-", "--fill", "--mass", "left_wheel_link=0.1", stdin=data)
+    assert piped.exit_code == 0, piped.output
+    assert piped.stdout.startswith(
+        "<stdin>:19:3: note: link 'left_wheel_link' has no <inertial>; for 0.1 kg, write at "
+        "line 20, inside the <link>:\n  <inertial>\n"
+    )
+
+
+def test_the_missing_inertial_hint_names_fill() -> None:
+    result = CliRunner().invoke(cli, ["check", str(PHYSICS / "missing_inertial.urdf")])
+    assert result.exit_code == 1
+    assert (
+        "`fishbot inertia ROBOT --fill --mass LINK=KG` says what to write and where, and with "
+        "-o OUT writes a filled copy) [missing-inertial]" in result.stderr
+    )
+
+
+def test_fill_without_output_skips_as_fill_does() -> None:
+    result = run(str(PHYSICS / "missing_inertial.urdf"), "--fill", "--mass", "base_link=1")
+    assert result.exit_code == 2
+    assert "already has an <inertial>" in result.output
+    mesh = run(str(PHYSICS / "triangle.urdf"), "--fill", "--density", "1000")
+    assert mesh.exit_code == 1
+    assert "nothing to suggest: fix the errors above first" in mesh.stderr
+    assert mesh.stdout == ""
 
 
 def test_box_inertia_is_the_one_fill_uses_for_a_box(tmp_path: Path) -> None:

@@ -14,6 +14,7 @@ import fishbot_urdf
 from fishbot_urdf.cli import cli
 from fishbot_urdf.expansion import XacroError, expand, parse_args
 from fishbot_urdf.expansion._errors import shown_path
+from fishbot_urdf.location import Location
 
 FISHBOT_XACRO = FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"
 NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
@@ -1181,3 +1182,65 @@ def test_an_expression_python_cannot_compute_is_quoted(tmp_path: Path) -> None:
     )
     assert (error.rule, error.line) == ("xacro-error", 3)
     assert error.message == "${1 / n} cannot be computed: it divides by zero (division by zero)"
+
+
+def test_probe_macros_calls_the_top_levels_macros_with_its_properties(tmp_path: Path) -> None:
+    from fishbot_urdf.expansion import probe_macros
+
+    _write(
+        tmp_path,
+        {
+            "parts.xacro": f"""<robot {NS}>
+  <xacro:macro name="plate" params="w *body side:=1">
+    <plate w="${{w * scale}}" side="${{side}}"/>
+  </xacro:macro>
+</robot>
+""",
+            "r.urdf.xacro": f"""<robot name="r" {NS}>
+  <xacro:property name="scale" value="10"/>
+  <xacro:include filename="parts.xacro"/>
+  <xacro:include filename="parts.xacro" ns="inner"/>
+  <link name="a"/>
+</robot>
+""",
+        },
+    )
+    seen = probe_macros(
+        tmp_path / "r.urdf.xacro",
+        lambda table: (
+            table.definitions,
+            table.call("plate", {"w": "2"}),
+            table.call("plate", {}),  # w is missing: xacro refuses it
+            table.call("nothing", {}),
+            table.written(Location(shown_path(str(tmp_path / "parts.xacro")), 3, 5)),
+        ),
+    )
+    (plate,), made, missing, unknown, written = seen
+    # The macro of the include without a namespace only; the block parameter is no value.
+    assert (plate.name, plate.params, plate.required) == ("plate", ("w", "*body", "side"), ("w",))
+    assert plate.optional == frozenset({"side"})
+    assert (plate.source.path, plate.source.line) == (shown_path(str(tmp_path / "parts.xacro")), 2)
+    assert made is None  # a block parameter was not given
+    assert (missing, unknown) == (None, None)
+    assert written == {"w": "${w * scale}", "side": "${side}"}
+
+
+def test_probe_macros_gives_what_a_call_makes(tmp_path: Path) -> None:
+    from fishbot_urdf.expansion import probe_macros
+
+    _write(
+        tmp_path,
+        {
+            "r.urdf.xacro": f"""<robot name="r" {NS}>
+  <xacro:property name="scale" value="10"/>
+  <xacro:macro name="plate" params="w side:=1">
+    <plate w="${{w * scale}}" side="${{side}}"/>
+  </xacro:macro>
+  <link name="a"/>
+</robot>
+"""
+        },
+    )
+    made = probe_macros(tmp_path / "r.urdf.xacro", lambda t: t.call("plate", {"w": "2"}))
+    assert made is not None
+    assert made.split() == ["<plate", 'side="1"', 'w="20"/>']

@@ -41,6 +41,8 @@ if TYPE_CHECKING:
     from .graph import chain, leaves, root, subtree, to_networkx, tree_text
     from .inertia import (
         Filling,
+        InertialSuggestion,
+        InertiaMacro,
         LinkMass,
         MassProperties,
         MassTable,
@@ -49,13 +51,16 @@ if TYPE_CHECKING:
         cylinder_inertia,
         fill_inertials,
         geometry_inertia,
+        inertia_macros,
         link_inertial,
         mass_properties,
         mass_table,
         mesh_inertia,
         principal_moments,
         sphere_inertia,
+        suggest_inertials,
         volume,
+        xacro_suggestions,
     )
     from .kinematics import (
         Kinematics,
@@ -115,8 +120,10 @@ __all__ = [
     "FishbotUrdfError",
     "Geometry",
     "Inertia",
+    "InertiaMacro",
     "InertiaUnderflowError",
     "Inertial",
+    "InertialSuggestion",
     "InputError",
     "Joint",
     "JointType",
@@ -169,6 +176,7 @@ __all__ = [
     "forward_kinematics",
     "geometry_inertia",
     "github_annotations",
+    "inertia_macros",
     "inertial_xml",
     "jacobian",
     "joint_positions",
@@ -192,6 +200,7 @@ __all__ = [
     "sarif_report",
     "sphere_inertia",
     "subtree",
+    "suggest_inertials",
     "to_dot",
     "to_mermaid",
     "to_networkx",
@@ -200,6 +209,7 @@ __all__ = [
     "transform",
     "tree_text",
     "volume",
+    "xacro_suggestions",
 ]
 
 _WHERE = {
@@ -222,8 +232,10 @@ _WHERE = {
     "FishbotUrdfError": "errors",
     "Geometry": "model",
     "Inertia": "model",
-    "Inertial": "model",
+    "InertiaMacro": "inertia",
     "InertiaUnderflowError": "errors",
+    "Inertial": "model",
+    "InertialSuggestion": "inertia",
     "InputError": "errors",
     "Joint": "model",
     "JointType": "model",
@@ -275,6 +287,7 @@ _WHERE = {
     "forward_kinematics": "kinematics",
     "geometry_inertia": "inertia",
     "github_annotations": "report",
+    "inertia_macros": "inertia",
     "inertial_xml": "write",
     "jacobian": "kinematics",
     "joint_positions": "kinematics",
@@ -298,6 +311,7 @@ _WHERE = {
     "sarif_report": "report",
     "sphere_inertia": "inertia",
     "subtree": "graph",
+    "suggest_inertials": "inertia",
     "to_dot": "drawing.dot",
     "to_mermaid": "drawing.mermaid",
     "to_networkx": "graph",
@@ -306,6 +320,7 @@ _WHERE = {
     "transform": "kinematics",
     "tree_text": "graph",
     "volume": "inertia",
+    "xacro_suggestions": "inertia",
 }
 
 

@@ -211,8 +211,10 @@ MISSING_INERTIAL = Rule(
     "it 1 kg and an inertia of 1 `kg*m^2` about each axis, and MuJoCo computes one from the "
     "collision shapes at the density of water. robot_state_publisher and RViz only place frames "
     "and do not care. Links held by fixed joints count with what they are fixed to, so a sensor "
-    "frame needs none. Add an `<inertial>`: `fishbot inertia ROBOT --fill --density KG_PER_M3 -o "
-    "OUT` computes them from the collision shapes.",
+    "frame needs none. Add an `<inertial>`: `fishbot inertia ROBOT --fill --mass LINK=KG` (or "
+    "`--density KG_PER_M3`) computes it from the collision shapes and says what to write in the "
+    "link and where (for a xacro robot, the call of its own inertia macro); with `-o OUT` it "
+    "writes a copy with them.",
     bad="""\
 <robot name="fishbot">
   <link name="base_link"/>

@@ -140,8 +140,9 @@ FILL_SKIPPED = Rule(
     explanation="`fishbot inertia ROBOT --fill` computes an `<inertial>` for each link that has "
     "collision shapes and none. A link it cannot compute is left as it is, with this error: it "
     "has no `--mass` and there is no `--density`, its mesh is open (so it has no volume) or in a "
-    "package not found, or trimesh is not installed for a mesh. The other links are filled and "
-    "written all the same, and the exit status is 1. Give the link a mass, close the mesh, or "
+    "package not found, or trimesh is not installed for a mesh. The other links are filled (and "
+    "written with `-o`, or what to write in them said without) all the same, and the exit status "
+    "is 1. Give the link a mass, close the mesh, or "
     "name its package with `--package`.",
     bad="""\
 fishbot inertia fishbot.urdf --fill -o filled.urdf --mass left_wheel_link=0.1

@@ -71,7 +71,10 @@ def _tolerance(facts: object) -> str | None:
 
 
 def _fill(facts: object) -> str:
-    return "`fishbot inertia ROBOT --fill --density KG_PER_M3 -o OUT` writes one"
+    return (
+        "`fishbot inertia ROBOT --fill --mass LINK=KG` says what to write and where, and "
+        "with -o OUT writes a filled copy"
+    )
 
 
 def _moments(facts: object) -> str | None:

@@ -13,29 +13,24 @@ from typing import TYPE_CHECKING, Any
 import click
 
 from ..catalog.physics import MISSING_INERTIAL
-from ..diagnostics import escape_controls
 from ..errors import ArgumentError, FishbotUrdfError, InertiaUnderflowError, UnknownNameError
 from ..inertia import (
     box_inertia,
     cylinder_inertia,
-    fill_inertials,
     inertial_dict,
     mass_table,
     sphere_inertia,
 )
 from ..model import Origin
-from ..output import write_atomic
 from ..wording import closest
-from ..write import add_inertials, inertial_xml
+from ..write import inertial_xml
 from ._checking import check_input, nearest_config, read_files
 from ._common import (
     EXIT_INVALID,
     EXIT_OK,
-    EXIT_USAGE,
     Number,
     Wrapped,
     emit_findings,
-    fail,
     format_option,
     inputs_read,
     joint_option,
@@ -47,11 +42,10 @@ from ._common import (
     to_stdout,
     xacro_args,
 )
+from ._filling import link_masses, suggest, write_copy
 
 if TYPE_CHECKING:
-    from ..lint import CheckResult
     from ..model import Inertial, Vector3
-    from ..output import Source
 
 _SHAPES = ("box", "cylinder", "sphere")
 
@@ -86,10 +80,12 @@ def inertia() -> None:
     `fishbot inertia box|cylinder|sphere` prints the <inertial> of a uniform solid, the
     same numbers as the fishbot's common_inertia.xacro. `fishbot inertia ROBOT` prints each
     link's mass, centre of mass and principal moments with the checks that concern it, and
-    the whole robot's mass, centre of mass and inertia at the zero configuration; with
-    --fill -o OUT it writes a copy in which every link that has collision shapes but no
-    <inertial> gets one. Exit status: 0 done, 1 the robot has errors, 2 a file could not be
-    read or written, or the command line is wrong.
+    the whole robot's mass, centre of mass and inertia at the zero configuration. With
+    --fill, for every link that has collision shapes but no <inertial>, it says what to
+    write and at which line of which file (a call of a xacro robot's own inertia macro, or
+    the <inertial>); with --fill -o OUT it writes a copy in which each gets one. Exit
+    status: 0 done, 1 the robot has errors, 2 a file could not be read or written, or the
+    command line is wrong.
 
     \b
     Examples:
@@ -99,6 +95,7 @@ def inertia() -> None:
       fishbot inertia robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
       fishbot inertia robot.urdf --format json
       fishbot inertia arm.urdf -j shoulder=90deg -j elbow=-0.5
+      fishbot inertia robot.urdf.xacro --fill --mass base_link=1
       fishbot inertia robot.urdf --fill --density 1000 -o robot_filled.urdf
       fishbot inertia robot.urdf --fill --mass base_link=1 --mass wheel=0.1 -o out.urdf
 
@@ -106,6 +103,7 @@ def inertia() -> None:
     Options for ROBOT (a URDF or xacro file, - for standard input):
       name:=value          xacro arguments
       --format text|json   a table, or JSON
+      --fill               what to write in each link without an <inertial>, and where
       --fill -o OUT        write a copy with the missing inertials (- is stdout)
       --density KG_PER_M3  the density of every filled link
       --mass LINK=KG       the mass of one filled link (repeatable)
@@ -237,8 +235,15 @@ class _RobotCommand(click.Command):
 @click.argument("file", type=click.Path(allow_dash=True))
 @click.argument("args", nargs=-1, metavar="[name:=value]...")
 @format_option(("text", "json"), "text: a table; json: the same numbers for programs.")
-@click.option("--fill", is_flag=True, help="Write a copy with the missing inertials (needs -o).")
-@click.option("-o", "--output", metavar="OUT", help="Where --fill writes; - is standard output.")
+@click.option(
+    "--fill",
+    is_flag=True,
+    help="Say what to write in each link without an <inertial>, and where (a call of the "
+    "robot's own inertia macro, or the <inertial>); with -o, write a copy with them.",
+)
+@click.option(
+    "-o", "--output", metavar="OUT", help="With --fill: write the filled copy there (- is stdout)."
+)
 @click.option(
     "--density",
     type=_MASS,
@@ -270,30 +275,39 @@ def robot(
     One line per link: mass, centre of mass (in the link's own frame), principal moments,
     and the `fishbot check` rules that concern it; then the robot's total mass, centre of
     mass (in the root link's frame) and principal moments, with every joint at zero or
-    where -j puts it. With --fill -o OUT, a copy in which each link with
-    collision shapes and no <inertial> gets one. Exit status: 0 done, 1 the robot has
-    errors or --fill left a link out, 2 a file could not be read or written, or the
-    command line is wrong.
+    where -j puts it.
+
+    With --fill (and --density or --mass), for each link with collision shapes and no
+    <inertial>: FILE:LINE:COL of its <link> (in a macro's body, with the call that made
+    it), the line to write at, and what to write there: for a xacro robot that includes
+    box/cylinder/sphere inertia macros (found by calling them, whatever their names), the
+    call of its own macro with the mass and the collision's sizes; else the <inertial>.
+    --format json gives the same. With --fill -o OUT, a copy in which each such link gets
+    its <inertial>. Exit status: 0 done, 1 the robot has errors or --fill left a link out,
+    2 a file could not be read or written, or the command line is wrong.
 
     \b
     Examples:
       fishbot inertia robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
       fishbot inertia robot.urdf --format json
       fishbot inertia arm.urdf -j shoulder=90deg -j elbow=-0.5
+      fishbot inertia robot.urdf.xacro --fill --mass base_link=1
+        (prints, e.g.:
+         base.urdf.xacro:24:5: note: link 'base_link' has no <inertial>; for 1 kg, write
+         at line 25, inside the <link>, in the body of macro base_xacro (called at ...):
+           <xacro:cylinder_inertia m="1" r="0.1" h="0.12"/>)
       fishbot inertia robot.urdf --fill --density 1000 -o robot_filled.urdf
     """
     if any(":=" not in a for a in args):
         raise click.UsageError(f"unexpected argument {next(a for a in args if ':=' not in a)!r}")
-    if fill and output is None:
-        raise click.UsageError("--fill writes a copy: give -o OUT (the input is never changed)")
     if not fill and (output is not None or density is not None or masses):
         raise click.UsageError("-o, --density and --mass go with --fill")
     if fill and density is None and not masses:
         raise click.UsageError("--fill needs --density KG_PER_M3 or --mass LINK=KG")
     if fill and joint_items:
         raise click.UsageError("--fill writes each link's own inertial: it takes no --joint")
-    if fill and fmt == "json":
-        raise click.UsageError("--fill writes a URDF: it takes no --format")
+    if fill and output is not None and fmt == "json":
+        raise click.UsageError("--fill -o writes a URDF: it takes no --format")
     if file == "-" and args:
         raise click.UsageError("name:=value arguments are for a .xacro file, not standard input")
     values = xacro_args(args)
@@ -310,12 +324,16 @@ def robot(
         errors = [d for d in result.diagnostics if d.is_error and d.rule != MISSING_INERTIAL.id]
         if result.analysis is None or errors:
             emit_findings(errors or result.diagnostics)
-            click.echo("nothing written: fix the errors above first", err=True)
+            said = "nothing written" if output is not None else "nothing to suggest"
+            click.echo(f"{said}: fix the errors above first", err=True)
             sys.exit(EXIT_INVALID)
+        wanted = link_masses(masses)
+        if output is None:  # what to write in the robot's own files, and where
+            sys.exit(suggest(file, result, fmt, density, wanted, values, packages, config))
         # The copy is never written over anything read (the mesh files listed here are
         # those the filling opens, by the same analysis: no package.xml is read after).
         inputs = [*read_files(file, result), *read]
-        sys.exit(_fill(result, output or "-", density, _link_masses(masses), inputs))
+        sys.exit(write_copy(result, output, density, wanted, inputs))
     emit_findings(result.diagnostics)
     if result.analysis is None:
         sys.exit(EXIT_INVALID)
@@ -334,59 +352,3 @@ def robot(
     else:
         to_stdout(table.to_text().encode("utf-8", "surrogateescape"))
     sys.exit(EXIT_INVALID if not result.ok else EXIT_OK)
-
-
-def _link_masses(items: Sequence[str]) -> dict[str, float]:
-    """``--mass LINK=KG`` values as a mapping."""
-    wanted: dict[str, float] = {}
-    for item in items:
-        name, sep, kg = item.partition("=")
-        try:
-            mass = float(kg)
-        except ValueError:
-            mass = -1.0
-        if not sep or not name or not mass > 0 or not math.isfinite(mass):
-            raise click.BadParameter(f"{item!r} is not LINK=KG with KG > 0", param_hint="--mass")
-        if name in wanted:
-            raise click.BadParameter(f"link {name!r} is given twice", param_hint="--mass")
-        wanted[name] = mass
-    return wanted
-
-
-def _fill(
-    result: CheckResult,
-    output: str,
-    density: float | None,
-    masses: dict[str, float],
-    inputs: Sequence[Source],
-) -> int:
-    """Write the copy with the missing inertials (never over one of ``inputs``); the exit
-    status."""
-    assert result.analysis is not None  # (its mesh_paths find the meshes, as check found them)
-    try:
-        filling = fill_inertials(result.analysis, density=density, masses=masses)
-    except (ArgumentError, UnknownNameError) as exc:  # a --mass naming a wrong link
-        raise click.BadParameter(exc.message, param_hint="--mass") from None
-    emit_findings(filling.skipped)
-    computed = filling.inertials
-    if filling.skipped and not computed:
-        click.echo("nothing written: no link could be filled", err=True)
-        return EXIT_INVALID
-    try:
-        text = add_inertials(result.data, computed, path=result.path)
-        if output == "-":
-            to_stdout(text.encode("utf-8", "surrogateescape"))
-        else:
-            write_atomic(output, text, inputs=inputs)
-    except FishbotUrdfError as exc:
-        emit_findings([fail(exc)])
-        return EXIT_USAGE
-    where = "the URDF to standard output" if output == "-" else output
-    if computed:
-        count = f"{len(computed)} link" + ("s" if len(computed) > 1 else "")
-        names = ", ".join(f"{n} ({computed[n].mass:g} kg)" for n in computed)
-        said = f"<inertial> added to {count}: {names}"
-    else:
-        said = "no link needed an <inertial>"
-    click.echo(escape_controls(f"Wrote {where}: {said}"), err=True)
-    return EXIT_INVALID if filling.skipped else EXIT_OK

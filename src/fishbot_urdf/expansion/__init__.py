@@ -23,8 +23,9 @@ from __future__ import annotations
 import os
 import re
 import stat
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
+from typing import TYPE_CHECKING, Any, TypeVar, cast
 
 from ..errors import ArgumentError, InputError
 from ..inputs import (
@@ -34,21 +35,29 @@ from ..inputs import (
     trusting_expressions,
     trusts_expressions,
 )
-from ._result import Expansion, ExpansionLimitError, XacroError
+from ._result import Expansion, ExpansionLimitError, MacroDefinition, XacroError
 from ._scope import ReadOutsideError, ReadScope, robot_tree
+
+if TYPE_CHECKING:
+    from ._engine import Run
+    from ._macros import MacroTable as MacroTable
 
 __all__ = [
     "Expansion",
     "ExpansionLimitError",
+    "MacroDefinition",
     "ReadOutsideError",
     "XacroError",
     "allowing_reads",
     "declared_args",
     "expand",
     "parse_args",
+    "probe_macros",
     "robot_tree",
     "trusting_expressions",
 ]
+
+T = TypeVar("T")
 
 
 def parse_args(items: list[str] | tuple[str, ...]) -> dict[str, str]:
@@ -102,6 +111,38 @@ def expand(
             resolved.
         XacroError: xacro refuses the input (the message says where and why).
     """
+    return _run(path, args, packages, trust_expressions, allow_read).expand()
+
+
+def probe_macros(
+    path: str | Path,
+    probe: Callable[[MacroTable], T],
+    args: Mapping[str, str] | None = None,
+    packages: Mapping[str, str | Path] | None = None,
+    *,
+    trust_expressions: bool | None = None,
+    allow_read: str | os.PathLike[str] | Iterable[str | os.PathLike[str]] = (),
+) -> T:
+    """Expand a xacro file as :func:`expand` does, then hand its top-level macros to
+    ``probe``, which may call them (:meth:`MacroTable.call`) as the file's top level would,
+    within the same limits; what ``probe`` gives.
+
+    Raises:
+        The errors of :func:`expand`.
+    """
+    run = _run(path, args, packages, trust_expressions, allow_read, probe)
+    run.expand()
+    return cast("T", run.probed)
+
+
+def _run(
+    path: str | Path,
+    args: Mapping[str, str] | None,
+    packages: Mapping[str, str | Path] | None,
+    trust_expressions: bool | None,
+    allow_read: str | os.PathLike[str] | Iterable[str | os.PathLike[str]],
+    probe: Callable[[MacroTable], Any] | None = None,
+) -> Run:
     name = str(path)
     try:
         folder = stat.S_ISDIR(os.stat(name).st_mode)
@@ -119,7 +160,7 @@ def expand(
     else:
         given = [allow_read] if isinstance(allow_read, str | os.PathLike) else allow_read
         reads = ReadScope.of(name, (*reads_allowed(), *given))
-    return Run(name, dict(args or {}), dict(packages or {}), trust=trust, reads=reads).expand()
+    return Run(name, dict(args or {}), dict(packages or {}), trust=trust, reads=reads, probe=probe)
 
 
 # How a xacro file declares or reads an argument: <xacro:arg name="..."> (any prefix),

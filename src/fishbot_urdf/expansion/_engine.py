@@ -26,6 +26,7 @@ from ._errors import SOURCE_KEY, Explaining, limited, source
 from ._files import Globbing, YamlError, load_yaml_bounded
 from ._instance import Xacro, load_xacro
 from ._interpreter import evaluate
+from ._macros import MacroTable
 from ._result import Expansion, XacroError
 from ._scope import ReadOutsideError, ReadScope
 
@@ -96,8 +97,12 @@ class Run(Explaining):
         *,
         trust: bool = False,
         reads: ReadScope,
+        probe: Callable[[MacroTable], Any] | None = None,
     ) -> None:
         self.path, self.args, self.packages = path, args, packages
+        self.probe = probe  # called with the top-level macros once the walk is done
+        self.probed: Any = None  # what it gave
+        self._top: tuple[Any, Any] | None = None  # the top level's macros and symbols
         self.trust = trust  # expressions run as Python, as xacro runs them
         self.reads = reads  # where files may be read; $(find) adds each package found
         self.node: Any = None  # the element being worked on
@@ -147,6 +152,17 @@ class Run(Explaining):
         subst._eval_find = self._find
         subst._eval_dict["find"] = self._find
         x.init_stacks(None)
+        if self.probe is not None:
+            walk = x.eval_all
+
+            def top(node: Any, macros: Any, symbols: Any) -> Any:
+                # The first call is process_doc's, with the top level's tables; the walk
+                # below it is xacro's own, frame for frame.
+                x.eval_all = walk
+                self._top = (macros, symbols)
+                return walk(node, macros, symbols)
+
+            x.eval_all = top
 
     def _fresh_symbols(self) -> dict[str, Any]:
         x = self.xacro
@@ -381,6 +397,8 @@ class Run(Explaining):
     def _walk(self) -> tuple[Any, str]:
         """xacro's processing of the file, and the document written out."""
         document = self.xacro.process_file(self.path, mappings=dict(self.args))
+        if self.probe is not None and self._top is not None:
+            self.probed = self.probe(MacroTable(self.xacro, *self._top))
         _stringify_attributes(self.given_attributes)
         _escape_banner(document, self.path)
         return document, document.toprettyxml(indent="  ")

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from ..errors import FishbotUrdfError
 from ..location import Location
 
-__all__ = ["Expansion", "ExpansionLimitError", "XacroError"]
+__all__ = ["Expansion", "ExpansionLimitError", "MacroDefinition", "XacroError"]
 
 
 class XacroError(FishbotUrdfError):
@@ -77,6 +77,28 @@ class Expansion:
     dependencies: tuple[str, ...]
     sources: tuple[Location, ...]
     messages: tuple[str, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class MacroDefinition:
+    """A macro defined at a document's top level (or by an include without a namespace).
+
+    Attributes:
+        name: Its name, as a call writes it after ``xacro:``.
+        params: Its parameters, in order (a block parameter keeps its ``*``).
+        optional: Those of ``params`` that have a default.
+        source: Where its ``<xacro:macro>`` is written.
+    """
+
+    name: str
+    params: tuple[str, ...]
+    optional: frozenset[str]
+    source: Location | None
+
+    @property
+    def required(self) -> tuple[str, ...]:
+        """The parameters a call must give: those without a default, blocks aside."""
+        return tuple(p for p in self.params if p not in self.optional and not p.startswith("*"))
 
 
 def _place(site: Location | None) -> str:

@@ -21,10 +21,14 @@ from ._solids import (
 )
 
 if TYPE_CHECKING:
+    from ._macros import InertiaMacro, inertia_macros
+    from ._suggestions import InertialSuggestion, suggest_inertials, xacro_suggestions
     from ._table import LinkMass, MassTable, inertial_dict, mass_table
 
 __all__ = [
     "Filling",
+    "InertiaMacro",
+    "InertialSuggestion",
     "LinkMass",
     "MassProperties",
     "MassTable",
@@ -33,6 +37,7 @@ __all__ = [
     "cylinder_inertia",
     "fill_inertials",
     "geometry_inertia",
+    "inertia_macros",
     "inertial_dict",
     "link_inertial",
     "mass_properties",
@@ -41,8 +46,14 @@ __all__ = [
     "principal_moments",
     "solid_moments",
     "sphere_inertia",
+    "suggest_inertials",
     "volume",
+    "xacro_suggestions",
 ]
+
+
+_MACROS = ("InertiaMacro", "inertia_macros")
+_SUGGESTIONS = ("InertialSuggestion", "suggest_inertials", "xacro_suggestions")
 
 
 def __getattr__(name: str) -> Any:
@@ -51,4 +62,12 @@ def __getattr__(name: str) -> Any:
         from . import _table  # (~4 ms, and `check` never needs it)
 
         return getattr(_table, name)
+    if name in _MACROS:
+        from . import _macros  # (the expansion's probe: only --fill needs it)
+
+        return getattr(_macros, name)
+    if name in _SUGGESTIONS:
+        from . import _suggestions  # (the writer too: only --fill needs them)
+
+        return getattr(_suggestions, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,0 +1,71 @@
+"""The macros a document defines at its top level, and calls of them made after its walk."""
+
+from __future__ import annotations
+
+from typing import Any
+from xml.dom import minidom
+
+from ..errors import LimitError
+from ..location import Location
+from ._errors import source
+from ._result import MacroDefinition
+
+__all__ = ["MacroTable"]
+
+
+class MacroTable:
+    """The top-level macros of a document just expanded, to be called as the document's own
+    top level would call them (its properties in scope), within the expansion's budget.
+
+    Handed to the ``probe`` of :func:`fishbot_urdf.expansion.probe_macros`; it is only good
+    while the probe runs.
+    """
+
+    def __init__(self, xacro: Any, macros: Any, symbols: Any) -> None:
+        self._xacro, self._macros, self._symbols = xacro, macros, symbols
+        self.definitions: tuple[MacroDefinition, ...] = tuple(
+            MacroDefinition(
+                name,
+                tuple(macro.params),
+                frozenset(macro.defaultmap),
+                source(macro.body),
+            )
+            for name, macro in macros.items()
+            if isinstance(macro, xacro.Macro)  # (a namespace holds the macros of an include)
+        )
+
+    def call(self, name: str, values: dict[str, str]) -> str | None:
+        """What ``<xacro:NAME key="value" .../>`` makes, as XML text (its elements one after
+        the other), or None when xacro refuses the call (a parameter missing or unknown,
+        an expression that fails on the values).
+
+        Raises:
+            LimitError: The expansion's budget or time ran out.
+        """
+        x = self._xacro
+        document = minidom.Document()
+        holder = document.createElement("robot")
+        holder.setAttribute("xmlns:xacro", "http://www.ros.org/wiki/xacro")
+        document.appendChild(holder)
+        call = document.createElement(f"xacro:{name}")
+        for key, value in values.items():
+            call.setAttribute(key, value)
+        holder.appendChild(call)
+        try:
+            x.eval_all(holder, self._macros, x.Table(self._symbols))
+        except LimitError:
+            raise
+        except Exception:  # xacro refuses the call, or an expression fails: it made nothing
+            return None
+        return "".join(child.toxml() for child in holder.childNodes)
+
+    def written(self, where: Location) -> dict[str, str] | None:
+        """The attributes, as written (``${...}`` unexpanded), of the element of a macro's
+        body that is written at ``where``; None when no top-level macro's body holds one."""
+        for macro in self._macros.values():
+            if not isinstance(macro, self._xacro.Macro):
+                continue
+            for element in macro.body.getElementsByTagName("*"):
+                if source(element) == where:
+                    return {name: value for name, value in element.attributes.items()}
+        return None
