@@ -1,6 +1,9 @@
 """A robot as triangles to draw: every visual (or collision) shape, tessellated or read from
 its mesh file, placed by the forward kinematics at a joint configuration, in the root
-link's frame. `fishbot render` rasterises a scene; `fishbot view` sends one to the browser.
+link's frame; and, on request, what RViz's "Mass Properties" and link axes show: each
+link's mass as a ball of lead at its centre of mass, its inertia as the equivalent box on
+its principal axes (`fishbot_urdf.inertia.equivalent_box`), and its frame as three axes.
+`fishbot render` rasterises a scene; `fishbot view` sends one to the browser.
 
 numpy is imported when a scene is built. Mesh files are found by the analysis's
 ``mesh_paths`` (`fishbot_urdf.analysis.meshpaths`: the files `check` finds) and read from STL
@@ -11,7 +14,8 @@ its bounding box when its size is known (the vertices found in an STL or OBJ fil
 COLLADA file's positions), else left out; so is a shape whose coordinates, scaled and posed,
 are not finite or lie farther than :data:`FARTHEST` from the root. Each is a finding in
 ``Scene.findings``, of the mesh rule it breaks (``shape-not-drawn`` for a shape too far);
-a scene with nothing to draw at all is one more, an error (``nothing-drawn``).
+a scene with nothing to draw at all is one more, an error (``nothing-drawn``). An inertia
+that has no equivalent box (RViz draws none either) is a ``shape-not-drawn`` warning.
 """
 
 from __future__ import annotations
@@ -19,7 +23,7 @@ from __future__ import annotations
 import math
 import re
 import warnings
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -36,25 +40,52 @@ from ..catalog.meshes import (
 )
 from ..catalog.setup import TOOL_MISSING
 from ..diagnostics import Diagnostic, Kind, Severity, Subject, sort_key
-from ..errors import FishbotUrdfError, LimitError, ShapeError, ToolNotFoundError
+from ..errors import ArgumentError, FishbotUrdfError, LimitError, ShapeError, ToolNotFoundError
+from ..inertia import equivalent_box, mass_sphere_diameter
 from ..inputs import deadline, read_input
 from ..kinematics import Kinematics
 from ..meshfile import mesh_bounds, mesh_triangles
-from ..model import Box, Cylinder, Geometry, Link, Material, Mesh, Origin, Robot, Sphere
+from ..model import (
+    Box,
+    Cylinder,
+    Geometry,
+    Inertial,
+    Link,
+    Material,
+    Mesh,
+    Origin,
+    Robot,
+    Sphere,
+)
 from ..rules.meshes import unresolved
 from ..spatial import rpy_matrix
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
-__all__ = ["FARTHEST", "Part", "Scene", "build_scene"]
+__all__ = ["AXES_SHARE", "FARTHEST", "LAYERS", "Part", "Scene", "build_scene"]
 
 FARTHEST = 1e9
 """The farthest a drawn shape's corner may lie from the root, in metres: farther than any
 robot reaches, and near enough that drawing it (its normals are squares of its sizes) stays
 within floating point."""
 
+LAYERS = ("visual", "collision", "mass", "inertia", "frames")
+"""What a scene can show: the visual shapes, the collision shapes, each link's mass sphere
+and inertia box, and each link's frame as axes."""
+
+AXES_SHARE = 0.1
+"""A link frame's axes are this share of the robot's size (the diagonal of the box around
+what is drawn of it, or around its links' origins when nothing is) long: small beside a
+robot of any size. A robot of one point gets RViz's axes, 0.1 m long."""
+
 GREY = (0.7, 0.7, 0.72, 1.0)  # RViz draws a visual without a material in a light grey
+COLLISION = (0.55, 0.7, 0.85, 1.0)
+MASS = (1.0, 0.0, 0.0, 1.0)  # RViz's mass sphere and inertia box: opaque red
+INERTIA = (1.0, 0.0, 0.0, 1.0)
+_AXES = ((1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), (0.0, 0.0, 1.0, 1.0))  # x, y, z: as RViz
+_AXIS_WIDTH = 0.1  # of an axis' length
+_RVIZ_AXES = 0.1  # metres: RViz's axes' length, for a robot of no size
 _SEGMENTS = 48  # around a cylinder or sphere
 
 
@@ -68,6 +99,7 @@ class Part:
         color: Red, green, blue, alpha, each 0..1.
         local: The same triangles in the link's frame (what a viewer poses itself).
         pose: The link's 4x4 pose in the root frame.
+        layer: What it shows, one of :data:`LAYERS`.
     """
 
     link: str
@@ -75,6 +107,7 @@ class Part:
     color: tuple[float, float, float, float]
     local: NDArray[Any] = field(repr=False)
     pose: NDArray[Any] = field(repr=False)
+    layer: str = "visual"
 
 
 @dataclass(frozen=True)
@@ -85,14 +118,18 @@ class Scene:
         parts: The shapes, in link order.
         findings: One warning for each shape drawn as its bounding box, or not at all, at
             its element, with the rule it breaks; and, when no shape at all is drawn, an
-            error of rule ``nothing-drawn`` at the robot (its ``data``: ``kind``,
-            ``visual`` or ``collision``, and the robot's ``visuals`` and ``collisions``).
+            error of rule ``nothing-drawn`` at the robot (its ``data``: ``kind``, the
+            layers asked for, such as ``visual``, ``collision`` or ``mass,inertia``, and
+            the robot's ``visuals`` and ``collisions``).
         poses: Every link's 4x4 pose in the root frame, by name.
+        axes_length: How long a link frame's axes are drawn (m): :data:`AXES_SHARE` of
+            the robot's size.
     """
 
     parts: tuple[Part, ...]
     findings: tuple[Diagnostic, ...]
     poses: Mapping[str, NDArray[Any]]
+    axes_length: float = _RVIZ_AXES
 
     @property
     def warnings(self) -> tuple[str, ...]:
@@ -122,6 +159,7 @@ def build_scene(
     collision: bool = False,
     packages: Mapping[str, str | Path] | None = None,
     path: str | None = None,
+    show: Collection[str] | None = None,
 ) -> Scene:
     """The robot's visual (or ``collision``) shapes posed at configuration ``q`` (see
     `fishbot_urdf.Kinematics`; None: every joint at zero). Mesh files are found by the
@@ -129,12 +167,22 @@ def build_scene(
     beside (default: the analysis's), ``packages`` where ``package://`` names are found (as
     for ``$(find)``; default: the analysis's).
 
+    ``show`` picks what is drawn among :data:`LAYERS` (``collision`` adds the collision
+    shapes to it): ``mass``, for each link with an ``<inertial>``, a sphere of the diameter
+    `fishbot_urdf.inertia.mass_sphere_diameter` gives at its centre of mass; ``inertia``,
+    the box `fishbot_urdf.inertia.equivalent_box` gives, centred there and turned onto the
+    principal axes (in the frame of the inertial's origin); ``frames``, each link's x, y
+    and z axes in red, green and blue, :attr:`Scene.axes_length` long. Default: the visuals
+    (with ``collision``: the collision shapes alone).
+
     Raises:
         StructureError: The robot has no single root.
-        UnknownNameError, ArgumentError: ``q`` names an unknown joint or a bad value.
+        UnknownNameError, ArgumentError: ``q`` names an unknown joint or a bad value;
+            ``show`` names no layer.
     """
     import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
+    layers = _layers(show, collision)
     analysis = of(robot, packages)
     if path is not None and path != analysis.path:
         analysis = replace(analysis, path=path)
@@ -151,64 +199,177 @@ def build_scene(
         if link.name not in poses:
             continue
         pose = poses[link.name]
-        shapes: list[tuple[Geometry, Origin, Material | None]]
-        if collision:
-            shapes = [(c.geometry, c.origin, None) for c in link.collisions]
-        else:
-            shapes = [(v.geometry, v.origin, v.material) for v in link.visuals]
-        loader.unresolved(link, [geometry for geometry, _, _ in shapes])
-        for geometry, origin, material in shapes:
+        shapes: list[tuple[Geometry, Origin, Material | None, str]] = []
+        if "visual" in layers:
+            shapes += [(v.geometry, v.origin, v.material, "visual") for v in link.visuals]
+        if "collision" in layers:
+            shapes += [(c.geometry, c.origin, None, "collision") for c in link.collisions]
+        loader.unresolved(link, [geometry for geometry, _, _, _ in shapes])
+        for geometry, origin, material, layer in shapes:
             local = loader.triangles(link, geometry)
             if local is None or not len(local):
                 continue
-            with np.errstate(over="ignore", invalid="ignore"):
-                placed = _apply(np, _origin_matrix(np, origin), local)
-                world = _apply(np, pose, placed)
-                near_enough = bool((np.abs(world) <= FARTHEST).all())  # False for nan
-            if not near_enough:
-                loader.report(
-                    SHAPE_NOT_DRAWN,
-                    link,
-                    geometry,
-                    "is not drawn: its corners are not finite numbers, or lie farther than "
-                    f"{FARTHEST:g} m from the root",
-                    "a scale, a size or an origin holds a wild number",
-                )
+            placed = _placed(np, loader, link, geometry, _origin_matrix(np, origin), local, pose)
+            if placed is None:
                 continue
-            color = (0.55, 0.7, 0.85, 1.0) if collision else _color(material, materials)
-            parts.append(Part(link.name, world, color, placed, pose))
+            color = COLLISION if layer == "collision" else _color(material, materials)
+            parts.append(Part(link.name, _apply(np, pose, placed), color, placed, pose, layer))
+        parts += _marks(np, loader, link, pose, layers)
+    length = _axes_length(np, parts, poses)
+    if "frames" in layers:
+        parts += [part for link in kin.links for part in _frame(np, link, poses[link], length)]
     if not parts:
-        loader.findings.append(_nothing_drawn(analysis, collision))
-    return Scene(tuple(parts), tuple(sorted(loader.findings, key=sort_key)), poses)
+        loader.findings.append(_nothing_drawn(analysis, layers))
+    findings = tuple(sorted(loader.findings, key=sort_key))
+    return Scene(tuple(parts), findings, poses, length)
 
 
-def _nothing_drawn(analysis: Analysis, collision: bool) -> Diagnostic:
-    """The error of a scene with no shape in it: the robot has none of the kind asked for,
+def _layers(show: Collection[str] | None, collision: bool) -> tuple[str, ...]:
+    """The layers asked for, in :data:`LAYERS` order."""
+    if show is None:
+        return ("collision",) if collision else ("visual",)
+    if isinstance(show, str):
+        show = (show,)
+    for layer in show:
+        if layer not in LAYERS:
+            raise ArgumentError(
+                f"nothing to show called {layer!r} ({', '.join(LAYERS)})", name="show"
+            )
+    asked = {*show, *(("collision",) if collision else ())}
+    return tuple(layer for layer in LAYERS if layer in asked)
+
+
+def _placed(
+    np: Any,
+    loader: _Loader,
+    link: Link,
+    shape: Geometry | Inertial,
+    origin: Any,
+    local: Any,
+    pose: Any,
+) -> Any:
+    """A shape's triangles in its link's frame, or None (with a finding) when, posed, a
+    corner would not be finite or lie farther than :data:`FARTHEST` from the root."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        placed = _apply(np, origin, local)
+        near_enough = bool((np.abs(_apply(np, pose, placed)) <= FARTHEST).all())  # False: nan
+    if near_enough:
+        return placed
+    loader.report(
+        SHAPE_NOT_DRAWN,
+        link,
+        shape,
+        "is not drawn: its corners are not finite numbers, or lie farther than "
+        f"{FARTHEST:g} m from the root",
+        "a scale, a size or an origin holds a wild number",
+    )
+    return None
+
+
+def _marks(np: Any, loader: _Loader, link: Link, pose: Any, layers: tuple[str, ...]) -> list[Part]:
+    """A link's mass sphere and inertia box, as RViz draws them (see `build_scene`)."""
+    inertial = link.inertial
+    if inertial is None or not ("mass" in layers or "inertia" in layers):
+        return []
+    marks: list[tuple[Any, Any, tuple[float, float, float, float], str]] = []
+    frame = _origin_matrix(np, inertial.origin)  # the centre of mass, the inertia's axes
+    if "mass" in layers:
+        diameter = mass_sphere_diameter(inertial.mass)
+        if diameter > 0.0 and math.isfinite(diameter):  # (no mass: RViz's ball of size 0)
+            at = np.eye(4)
+            at[:3, 3] = frame[:3, 3]  # a ball: only where it is matters
+            marks.append((_sphere(np, diameter / 2), at, MASS, "mass"))
+    if "inertia" in layers:
+        box = equivalent_box(inertial)
+        if box is None:
+            loader.report(
+                SHAPE_NOT_DRAWN,
+                link,
+                inertial,
+                "has no inertia box drawn: its inertia is no solid's (not positive definite, "
+                "or a principal moment larger than the other two together), and RViz draws "
+                "none either",
+                "compute the inertia again, from the part's shape",
+            )
+        elif min(box.size) > 0.0:
+            turn = np.eye(4)
+            turn[:3, :3] = np.array(box.axes)
+            marks.append((_box(np, *box.size), frame @ turn, INERTIA, "inertia"))
+    parts = []
+    for local, where, color, layer in marks:
+        placed = _placed(np, loader, link, inertial, where, local, pose)
+        if placed is not None:
+            parts.append(Part(link.name, _apply(np, pose, placed), color, placed, pose, layer))
+    return parts
+
+
+def _axes_length(np: Any, parts: list[Part], poses: Mapping[str, Any]) -> float:
+    """:data:`AXES_SHARE` of the diagonal of the box around what is drawn (around the
+    links' origins when nothing is), or RViz's 0.1 m for a robot of no size."""
+    points = [p.triangles.reshape(-1, 3) for p in parts]
+    if not points:
+        points = [np.array([pose[:3, 3] for pose in poses.values()]).reshape(-1, 3)]
+    every = np.concatenate(points)
+    diagonal = float(np.linalg.norm(every.max(axis=0) - every.min(axis=0))) if len(every) else 0.0
+    return AXES_SHARE * diagonal if diagonal > 0.0 else _RVIZ_AXES
+
+
+def _frame(np: Any, link: str, pose: Any, length: float) -> list[Part]:
+    """A link's x, y and z axes as thin boxes from its origin, in red, green and blue."""
+    width = _AXIS_WIDTH * length
+    parts = []
+    for axis, color in enumerate(_AXES):
+        sides = [width, width, width]
+        sides[axis] = length
+        centre = np.zeros(3)
+        centre[axis] = length / 2
+        local = _box(np, *sides) + centre
+        parts.append(Part(link, _apply(np, pose, local), color, local, pose, "frames"))
+    return parts
+
+
+def _nothing_drawn(analysis: Analysis, layers: tuple[str, ...]) -> Diagnostic:
+    """The error of a scene with no shape in it: the robot has none of the kinds asked for,
     or none of them could be drawn (each said by a warning of its own)."""
     robot = analysis.robot
     visuals = sum(len(link.visuals) for link in robot.links)
     collisions = sum(len(link.collisions) for link in robot.links)
-    kind, count = ("collision", collisions) if collision else ("visual", visuals)
+    inertials = sum(link.inertial is not None for link in robot.links)
+    counts = {"visual": visuals, "collision": collisions, "inertial": inertials}
+    tags = list(dict.fromkeys(_TAGS[layer] for layer in layers))
+    count = sum(counts[tag] for tag in tags)
+    kind = " or ".join(tags)
     if count:
-        many = f"none of its {count} {kind} shapes can be drawn"
-        what = many if count > 1 else f"its only {kind} shape cannot be drawn"
+        noun = "inertial" if tags == ["inertial"] else f"{kind} shape"
+        many = f"none of its {count} {noun}s can be drawn"
+        what = many if count > 1 else f"its only {noun} cannot be drawn"
         hint = None  # the warnings before it say why
     else:
-        what, hint = f"no link has a {kind} shape", f"give a link a <{kind}>"
+        elements = " or ".join(_ELEMENTS[tag] for tag in tags)
+        what, hint = f"no link has {elements}", f"give a link {_ARTICLES[tags[0]]} <{tags[0]}>"
     return NOTHING_DRAWN.report(
         f"robot {robot.name!r}: {what}: there is nothing to draw",
         robot.source,
         path=analysis.path,
         subject=Subject(Kind.ROBOT, robot.name),
         hint=hint,
-        data=NothingDrawnFacts(kind=kind, visuals=visuals, collisions=collisions),
+        data=NothingDrawnFacts(kind=",".join(layers), visuals=visuals, collisions=collisions),
     )
 
 
-def _shown(geometry: Geometry) -> str:
-    if isinstance(geometry, Mesh):
-        return f"mesh {geometry.filename!r}"
-    return type(geometry).__name__.lower()
+_TAGS = {"visual": "visual", "collision": "collision", "mass": "inertial", "inertia": "inertial"}
+_ELEMENTS = {
+    "visual": "a visual shape",
+    "collision": "a collision shape",
+    "inertial": "an <inertial>",
+}
+_ARTICLES = {"visual": "a", "collision": "a", "inertial": "an"}
+
+
+def _shown(shape: Geometry | Inertial) -> str:
+    if isinstance(shape, Mesh):
+        return f"mesh {shape.filename!r}"
+    return type(shape).__name__.lower()
 
 
 def _apply(np: Any, matrix: Any, triangles: Any) -> Any:
@@ -246,7 +407,9 @@ class _Loader:
         self.findings: list[Diagnostic] = []
         self.missing: set[str] = set()  # packages not found, said once
 
-    def report(self, rule: Rule, link: Link, shape: Geometry, what: str, hint: str | None) -> None:
+    def report(
+        self, rule: Rule, link: Link, shape: Geometry | Inertial, what: str, hint: str | None
+    ) -> None:
         self.findings.append(
             rule.report(
                 f"link {link.name!r}: {_shown(shape)} {what}",
