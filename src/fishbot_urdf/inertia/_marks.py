@@ -45,7 +45,8 @@ def mass_sphere_diameter(mass: float) -> float:
     """The diameter (m) of a ball of lead (:data:`LEAD_DENSITY`) of ``mass`` kg:
     ``2 * cbrt(3 m / (4 pi 11340))``. A negative mass gives the ball of its size (RViz
     scales its sphere by a negative diameter, which draws the same ball); 0 gives 0."""
-    return 2.0 * (0.75 * abs(mass) / (math.pi * LEAD_DENSITY)) ** (1.0 / 3.0)
+    volume = abs(mass) / LEAD_DENSITY
+    return 2.0 * float((0.75 * volume / math.pi) ** (1.0 / 3.0))  # (math.cbrt: 3.11 on)
 
 
 def equivalent_box(inertial: Inertial) -> EquivalentBox | None:
