@@ -73,13 +73,16 @@ def view(
     joint_items: Sequence[str],
     package_items: Sequence[str],
 ) -> None:
-    """Show FILE (URDF or xacro) in a web browser: visuals in their colours, collision
-    shapes on a toggle, link frames as axes, and a slider per moving joint within its
-    limits (mimic joints follow). The robot reloads when FILE or a file it includes
-    changes, keeping the sliders. A change that breaks the robot is printed as check
-    prints its errors and shown on the page, which keeps the robot read last until the
-    file is fixed; a robot broken from the start is served as a page of its errors, and
-    shown once fixed. Prints the URL to open; Ctrl-C stops. Only pages served on --host
+    """Show FILE (URDF or xacro) in a web browser: visuals in their colours, link frames as
+    axes, and a slider per moving joint within its limits, from the root outwards (mimic
+    joints follow). Toggles show the visuals, the collision shapes, each link's mass (a red
+    ball of lead at its centre of mass) and inertia (the red box of uniform density with the
+    same mass and principal moments), and the link frames, as RViz's robot model does; untick
+    Visual to see the mass and inertia inside the robot. The robot reloads when FILE or a
+    file it includes changes, keeping the sliders. A change that breaks the robot is
+    printed as check prints its errors and shown on the page, which keeps the robot read
+    last until the file is fixed; a robot broken from the start is served as a page of its
+    errors, and shown once fixed. Prints the URL to open; Ctrl-C stops. Only pages served on --host
     and --port may talk to the viewer. --timeout and --max-size bound each (re)load of
     the robot. Needs `pip install 'fishbot-urdf[view]'`.
 
