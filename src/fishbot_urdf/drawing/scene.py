@@ -20,7 +20,6 @@ that has no equivalent box (RViz draws none either) is a ``shape-not-drawn`` war
 
 from __future__ import annotations
 
-import math
 import re
 import warnings
 from collections.abc import Collection, Mapping
@@ -41,7 +40,6 @@ from ..catalog.meshes import (
 from ..catalog.setup import TOOL_MISSING
 from ..diagnostics import Diagnostic, Kind, Severity, Subject, sort_key
 from ..errors import ArgumentError, FishbotUrdfError, LimitError, ShapeError, ToolNotFoundError
-from ..inertia import equivalent_box, mass_sphere_diameter
 from ..inputs import deadline, read_input
 from ..kinematics import Kinematics
 from ..meshfile import mesh_bounds, mesh_triangles
@@ -58,7 +56,8 @@ from ..model import (
     Sphere,
 )
 from ..rules.meshes import unresolved
-from ..spatial import rpy_matrix
+from ._marks import AXES_SHARE, axes, axes_length, inertial_marks
+from ._shapes import apply, box, cylinder, origin_matrix, sphere
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
@@ -74,19 +73,8 @@ LAYERS = ("visual", "collision", "mass", "inertia", "frames")
 """What a scene can show: the visual shapes, the collision shapes, each link's mass sphere
 and inertia box, and each link's frame as axes."""
 
-AXES_SHARE = 0.1
-"""A link frame's axes are this share of the robot's size (the diagonal of the box around
-what is drawn of it, or around its links' origins when nothing is) long: small beside a
-robot of any size. A robot of one point gets RViz's axes, 0.1 m long."""
-
 GREY = (0.7, 0.7, 0.72, 1.0)  # RViz draws a visual without a material in a light grey
 COLLISION = (0.55, 0.7, 0.85, 1.0)
-MASS = (1.0, 0.0, 0.0, 1.0)  # RViz's mass sphere and inertia box: opaque red
-INERTIA = (1.0, 0.0, 0.0, 1.0)
-_AXES = ((1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), (0.0, 0.0, 1.0, 1.0))  # x, y, z: as RViz
-_AXIS_WIDTH = 0.1  # of an axis' length
-_RVIZ_AXES = 0.1  # metres: RViz's axes' length, for a robot of no size
-_SEGMENTS = 48  # around a cylinder or sphere
 
 
 @dataclass(frozen=True)
@@ -129,7 +117,7 @@ class Scene:
     parts: tuple[Part, ...]
     findings: tuple[Diagnostic, ...]
     poses: Mapping[str, NDArray[Any]]
-    axes_length: float = _RVIZ_AXES
+    axes_length: float = 0.1
 
     @property
     def warnings(self) -> tuple[str, ...]:
@@ -209,15 +197,22 @@ def build_scene(
             local = loader.triangles(link, geometry)
             if local is None or not len(local):
                 continue
-            placed = _placed(np, loader, link, geometry, _origin_matrix(np, origin), local, pose)
+            placed = _placed(np, loader, link, geometry, origin_matrix(np, origin), local, pose)
             if placed is None:
                 continue
             color = COLLISION if layer == "collision" else _color(material, materials)
-            parts.append(Part(link.name, _apply(np, pose, placed), color, placed, pose, layer))
-        parts += _marks(np, loader, link, pose, layers)
-    length = _axes_length(np, parts, poses)
+            parts.append(Part(link.name, apply(np, pose, placed), color, placed, pose, layer))
+        if link.inertial is not None and ("mass" in layers or "inertia" in layers):
+            parts += _inertial_parts(np, loader, link, link.inertial, pose, layers)
+    points = [part.triangles.reshape(-1, 3) for part in parts]
+    origins = np.array([pose[:3, 3] for pose in poses.values()]).reshape(-1, 3)
+    length = axes_length(np, np.concatenate(points) if points else origins)
     if "frames" in layers:
-        parts += [part for link in kin.links for part in _frame(np, link, poses[link], length)]
+        for name in kin.links:
+            pose = poses[name]
+            for mark in axes(np, length):
+                world = apply(np, pose, mark.triangles)
+                parts.append(Part(name, world, mark.color, mark.triangles, pose, mark.layer))
     if not parts:
         loader.findings.append(_nothing_drawn(analysis, layers))
     findings = tuple(sorted(loader.findings, key=sort_key))
@@ -251,8 +246,8 @@ def _placed(
     """A shape's triangles in its link's frame, or None (with a finding) when, posed, a
     corner would not be finite or lie farther than :data:`FARTHEST` from the root."""
     with np.errstate(over="ignore", invalid="ignore"):
-        placed = _apply(np, origin, local)
-        near_enough = bool((np.abs(_apply(np, pose, placed)) <= FARTHEST).all())  # False: nan
+        placed = apply(np, origin, local)
+        near_enough = bool((np.abs(apply(np, pose, placed)) <= FARTHEST).all())  # False: nan
     if near_enough:
         return placed
     loader.report(
@@ -266,65 +261,32 @@ def _placed(
     return None
 
 
-def _marks(np: Any, loader: _Loader, link: Link, pose: Any, layers: tuple[str, ...]) -> list[Part]:
+def _inertial_parts(
+    np: Any,
+    loader: _Loader,
+    link: Link,
+    inertial: Inertial,
+    pose: Any,
+    layers: tuple[str, ...],
+) -> list[Part]:
     """A link's mass sphere and inertia box, as RViz draws them (see `build_scene`)."""
-    inertial = link.inertial
-    if inertial is None or not ("mass" in layers or "inertia" in layers):
-        return []
-    marks: list[tuple[Any, Any, tuple[float, float, float, float], str]] = []
-    frame = _origin_matrix(np, inertial.origin)  # the centre of mass, the inertia's axes
-    if "mass" in layers:
-        diameter = mass_sphere_diameter(inertial.mass)
-        if diameter > 0.0 and math.isfinite(diameter):  # (no mass: RViz's ball of size 0)
-            at = np.eye(4)
-            at[:3, 3] = frame[:3, 3]  # a ball: only where it is matters
-            marks.append((_sphere(np, diameter / 2), at, MASS, "mass"))
-    if "inertia" in layers:
-        box = equivalent_box(inertial)
-        if box is None:
-            loader.report(
-                SHAPE_NOT_DRAWN,
-                link,
-                inertial,
-                "has no inertia box drawn: its inertia is no solid's (not positive definite, "
-                "or a principal moment larger than the other two together), and RViz draws "
-                "none either",
-                "compute the inertia again, from the part's shape",
-            )
-        elif min(box.size) > 0.0:
-            turn = np.eye(4)
-            turn[:3, :3] = np.array(box.axes)
-            marks.append((_box(np, *box.size), frame @ turn, INERTIA, "inertia"))
+    marks, no_box = inertial_marks(np, inertial, layers)
+    if no_box:
+        loader.report(
+            SHAPE_NOT_DRAWN,
+            link,
+            inertial,
+            "has no inertia box drawn: its inertia is no solid's (not positive definite, "
+            "or a principal moment larger than the other two together), and RViz draws "
+            "none either",
+            "compute the inertia again, from the part's shape",
+        )
     parts = []
-    for local, where, color, layer in marks:
-        placed = _placed(np, loader, link, inertial, where, local, pose)
-        if placed is not None:
-            parts.append(Part(link.name, _apply(np, pose, placed), color, placed, pose, layer))
-    return parts
-
-
-def _axes_length(np: Any, parts: list[Part], poses: Mapping[str, Any]) -> float:
-    """:data:`AXES_SHARE` of the diagonal of the box around what is drawn (around the
-    links' origins when nothing is), or RViz's 0.1 m for a robot of no size."""
-    points = [p.triangles.reshape(-1, 3) for p in parts]
-    if not points:
-        points = [np.array([pose[:3, 3] for pose in poses.values()]).reshape(-1, 3)]
-    every = np.concatenate(points)
-    diagonal = float(np.linalg.norm(every.max(axis=0) - every.min(axis=0))) if len(every) else 0.0
-    return AXES_SHARE * diagonal if diagonal > 0.0 else _RVIZ_AXES
-
-
-def _frame(np: Any, link: str, pose: Any, length: float) -> list[Part]:
-    """A link's x, y and z axes as thin boxes from its origin, in red, green and blue."""
-    width = _AXIS_WIDTH * length
-    parts = []
-    for axis, color in enumerate(_AXES):
-        sides = [width, width, width]
-        sides[axis] = length
-        centre = np.zeros(3)
-        centre[axis] = length / 2
-        local = _box(np, *sides) + centre
-        parts.append(Part(link, _apply(np, pose, local), color, local, pose, "frames"))
+    for mark in marks:
+        local = _placed(np, loader, link, inertial, np.eye(4), mark.triangles, pose)
+        if local is not None:
+            world = apply(np, pose, local)
+            parts.append(Part(link.name, world, mark.color, local, pose, mark.layer))
     return parts
 
 
@@ -370,17 +332,6 @@ def _shown(shape: Geometry | Inertial) -> str:
     if isinstance(shape, Mesh):
         return f"mesh {shape.filename!r}"
     return type(shape).__name__.lower()
-
-
-def _apply(np: Any, matrix: Any, triangles: Any) -> Any:
-    return triangles @ matrix[:3, :3].T + matrix[:3, 3]
-
-
-def _origin_matrix(np: Any, origin: Origin) -> Any:
-    out = np.eye(4)
-    out[:3, :3] = np.array(rpy_matrix(origin.rpy))
-    out[:3, 3] = origin.xyz
-    return out
 
 
 def _color(
@@ -437,11 +388,11 @@ class _Loader:
         import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
         if isinstance(geometry, Box):
-            return _box(np, *geometry.size)
+            return box(np, *geometry.size)
         if isinstance(geometry, Cylinder):
-            return _cylinder(np, geometry.radius, geometry.length)
+            return cylinder(np, geometry.radius, geometry.length)
         if isinstance(geometry, Sphere):
-            return _sphere(np, geometry.radius)
+            return sphere(np, geometry.radius)
         if isinstance(geometry, Mesh):
             path = self.paths.get(geometry.filename)
             if not path.found or path.file is None:
@@ -467,14 +418,14 @@ class _Loader:
         if triangles is not None:
             with np.errstate(over="ignore", invalid="ignore"):
                 return triangles * factors  # (not finite: left out by build_scene)
-        box = _bounds_of(np, file)
-        if box is not None:
+        bounds = _bounds_of(np, file)
+        if bounds is not None:
             with np.errstate(over="ignore", invalid="ignore"):
-                box = box[0] * factors, box[1] * factors
-            if not (np.abs(box) <= FARTHEST).all():  # garbage read as numbers: no size
-                box = None
+                bounds = bounds[0] * factors, bounds[1] * factors
+            if not (np.abs(bounds) <= FARTHEST).all():  # garbage read as numbers: no size
+                bounds = None
         reason = getattr(failure, "message", None) or str(failure) or type(failure).__name__
-        drawn = "nor its size: not drawn" if box is None else "drawn as its bounding box"
+        drawn = "nor its size: not drawn" if bounds is None else "drawn as its bounding box"
         kind = file.suffix.lower()
         rule: Rule = MESH_INVALID
         hint = "export the mesh again" if kind in (".stl", ".obj") else None
@@ -483,10 +434,10 @@ class _Loader:
         elif kind not in (".stl", ".obj", ".dae"):
             rule, hint = MESH_FORMAT, "export it as STL or OBJ"
         self.report(rule, link, mesh, f"cannot be read ({reason}), {drawn}", hint)
-        if box is None:
+        if bounds is None:
             return None
-        low, high = box
-        return _box(np, *(high - low)) + (low + high) / 2
+        low, high = bounds
+        return box(np, *(high - low)) + (low + high) / 2
 
 
 def _read_mesh(np: Any, file: Path) -> Any:
@@ -540,50 +491,3 @@ def _bounds_of(np: Any, file: Path) -> tuple[Any, Any] | None:
     if not np.isfinite(points).all():
         return None
     return points.min(axis=0), points.max(axis=0)
-
-
-def _box(np: Any, x: float, y: float, z: float) -> Any:
-    c = np.array([[i, j, k] for i in (-0.5, 0.5) for j in (-0.5, 0.5) for k in (-0.5, 0.5)])
-    c = c * np.array([x, y, z])
-    faces = [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1)]
-    faces += [(2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]
-    return c[np.array(faces)]
-
-
-def _cylinder(np: Any, radius: float, length: float) -> Any:
-    angles = np.linspace(0.0, 2 * math.pi, _SEGMENTS + 1)
-    ring = np.stack([radius * np.cos(angles), radius * np.sin(angles)], axis=1)
-    half = length / 2
-    out = []
-    for k in range(_SEGMENTS):
-        (x0, y0), (x1, y1) = ring[k], ring[k + 1]
-        out.append([[x0, y0, -half], [x1, y1, -half], [x1, y1, half]])
-        out.append([[x0, y0, -half], [x1, y1, half], [x0, y0, half]])
-        out.append([[0, 0, half], [x0, y0, half], [x1, y1, half]])
-        out.append([[0, 0, -half], [x1, y1, -half], [x0, y0, -half]])
-    return np.array(out, dtype=float)
-
-
-def _sphere(np: Any, radius: float) -> Any:
-    rows = _SEGMENTS // 2
-    theta = np.linspace(0.0, math.pi, rows + 1)
-    phi = np.linspace(0.0, 2 * math.pi, _SEGMENTS + 1)
-    grid = (
-        np.stack(
-            [
-                np.outer(np.sin(theta), np.cos(phi)),
-                np.outer(np.sin(theta), np.sin(phi)),
-                np.outer(np.cos(theta), np.ones_like(phi)),
-            ],
-            axis=-1,
-        )
-        * radius
-    )
-    out = []
-    for i in range(rows):
-        for j in range(_SEGMENTS):
-            a, b = grid[i, j], grid[i, j + 1]
-            c, d = grid[i + 1, j], grid[i + 1, j + 1]
-            out.append([a, c, d])
-            out.append([a, d, b])
-    return np.array(out, dtype=float)
