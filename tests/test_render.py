@@ -145,6 +145,12 @@ def test_a_mesh_is_read_and_one_that_cannot_be_is_its_bounding_box(tmp_path: Pat
         (["--size", "10x10"], "is not WIDTHxHEIGHT", 2),
         (["-j", "nothing=1"], "no joint 'nothing'", 2),
         (["-j", "imu_joint=1"], "joint 'imu_joint' is fixed: it takes no position", 2),
+        (
+            ["--show", "mass,weight"],
+            "Invalid value for --show: 'weight' is not one of visual, collision, mass, inertia, "
+            "frames",
+            2,
+        ),
     ],
 )
 def test_wrong_options(tmp_path: Path, args: list[str], said: str, code: int) -> None:
@@ -640,3 +646,13 @@ def test_show_frames_draws_each_links_axes_small_beside_a_small_arm(tmp_path: Pa
     # would make the picture ten times as wide.
     axes = 0.1 * math.sqrt(0.01**2 + 0.01**2 + 0.06**2)
     assert aspect(framed) / aspect(plain) == pytest.approx((0.005 + axes) / 0.01, rel=0.05)
+
+
+def test_the_library_names_the_layers_it_can_show() -> None:
+    with pytest.raises(fishbot_urdf.ArgumentError) as caught:
+        build_scene(fishbot_urdf.load(FISHBOT / "urdf" / "first_robot.urdf"), show=("weight",))
+    assert caught.value.message == (
+        "nothing to show called 'weight' (visual, collision, mass, inertia, frames)"
+    )
+    scene = build_scene(fishbot_urdf.load(XACRO), show=("mass",), collision=True)
+    assert {part.layer for part in scene.parts} == {"mass", "collision"}
