@@ -654,5 +654,7 @@ def test_the_library_names_the_layers_it_can_show() -> None:
     assert caught.value.message == (
         "nothing to show called 'weight' (visual, collision, mass, inertia, frames)"
     )
+    with pytest.raises(fishbot_urdf.ArgumentError, match="nothing to show: name one of"):
+        build_scene(fishbot_urdf.load(XACRO), show=())
     scene = build_scene(fishbot_urdf.load(XACRO), show=("mass",), collision=True)
     assert {part.layer for part in scene.parts} == {"mass", "collision"}

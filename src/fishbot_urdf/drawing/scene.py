@@ -231,6 +231,8 @@ def _layers(show: Collection[str] | None, collision: bool) -> tuple[str, ...]:
                 f"nothing to show called {layer!r} ({', '.join(LAYERS)})", name="show"
             )
     asked = {*show, *(("collision",) if collision else ())}
+    if not asked:
+        raise ArgumentError(f"nothing to show: name one of {', '.join(LAYERS)}", name="show")
     return tuple(layer for layer in LAYERS if layer in asked)
 
 
