@@ -33,7 +33,7 @@ from ..inputs import max_seconds, time_limit
 from ..kinematics import Kinematics
 from ..model import JointType
 from ..spatial import quaternion
-from ._camera import aim, framing
+from ._camera import aim, corners, framing
 from ._controls import Input as _Input
 from ._controls import dropped as _dropped
 from ._controls import position as _position
@@ -270,9 +270,7 @@ class Viewer:
         origins = poses[:, :3, 3]
         tips = origins[:, None, :] + axes * poses[:, :3, :3].transpose(0, 2, 1)  # x, y, z
         every = np.concatenate([*parts, origins, tips.reshape(-1, 3)])
-        low, high = every.min(axis=0), every.max(axis=0)
-        corners = [[(low, high)[k >> i & 1][i] for i in range(3)] for k in range(8)]
-        self._points = np.array(corners, dtype=np.float32)
+        self._points = corners(np, every).astype(np.float32)
         aim(self.server.initial_camera, framing(np, self._points))  # for a square view
         for client in self.server.get_clients().values():
             self._greet(client)
