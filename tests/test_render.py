@@ -658,3 +658,24 @@ def test_the_library_names_the_layers_it_can_show() -> None:
         build_scene(fishbot_urdf.load(XACRO), show=())
     scene = build_scene(fishbot_urdf.load(XACRO), show=("mass",), collision=True)
     assert {part.layer for part in scene.parts} == {"mass", "collision"}
+
+
+def test_an_inertial_of_wild_numbers_is_warned_of_not_a_numpy_warning(tmp_path: Path) -> None:
+    robot = tmp_path / "wild.urdf"
+    robot.write_text(
+        '<robot name="wild"><link name="a"><visual><geometry><box size="0.1 0.1 0.1"/>'
+        '</geometry></visual><inertial><mass value="1e300"/><inertia ixx="1e300" ixy="1e200" '
+        'ixz="0" iyy="1e300" iyz="0" izz="1e300"/></inertial></link></robot>',
+        encoding="utf-8",
+    )
+    out = tmp_path / "wild.png"
+    result = CliRunner().invoke(
+        cli, ["render", str(robot), "-o", str(out), "--show", "visual,mass,inertia"]
+    )
+    # ixx iyy - ixy^2 overflows (inf - inf): no box, as RViz's doubles find none either; the
+    # ball of 1e300 kg of lead is 1e98 m across, farther than anything is drawn.
+    assert result.exit_code == 0
+    lines = result.stderr.splitlines()
+    assert len(lines) == 2 and all(line.endswith("[shape-not-drawn]") for line in lines)
+    assert "has no inertia box drawn" in lines[0] and "is not drawn" in lines[1]
+    assert out.exists()

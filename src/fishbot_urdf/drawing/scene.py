@@ -272,7 +272,8 @@ def _inertial_parts(
     layers: tuple[str, ...],
 ) -> list[Part]:
     """A link's mass sphere and inertia box, as RViz draws them (see `build_scene`)."""
-    marks, no_box = inertial_marks(np, inertial, layers)
+    with np.errstate(over="ignore", invalid="ignore"):  # (not finite: _placed says so)
+        marks, no_box = inertial_marks(np, inertial, layers)
     if no_box:
         loader.report(
             SHAPE_NOT_DRAWN,

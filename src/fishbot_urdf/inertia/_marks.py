@@ -67,7 +67,7 @@ def equivalent_box(inertial: Inertial) -> EquivalentBox | None:
         return None
     if not (mass > 0.0 and i.ixx > 0.0 and i.ixx * i.iyy - i.ixy * i.ixy > 0.0):
         return None
-    if _determinant(m) <= 0.0:
+    if not _determinant(m) > 0.0:  # (nan, where products overflow: no box either)
         return None
     largest = max(i.ixx, i.iyy, i.izz)
     if all(abs(p) <= _ON_AXES * largest for p in (i.ixy, i.ixz, i.iyz)):
