@@ -411,3 +411,78 @@ def test_a_mesh_whose_inertia_underflows(tmp_path: Path) -> None:
     with pytest.raises(fishbot_urdf.InertiaUnderflowError) as caught:
         mesh_inertia(mesh, 12.0, scale=(1e-160, 1e-160, 1e-160))
     assert (caught.value.shape, caught.value.path) == ("mesh", str(mesh))
+
+
+# -- the mass sphere and inertia box RViz draws (rviz_default_plugins' robot link) ---------
+
+
+def test_the_mass_sphere_is_a_ball_of_lead() -> None:
+    from fishbot_urdf.inertia import mass_sphere_diameter
+
+    # 1 kg of lead (11340 kg/m^3) is 8.818e-5 m^3: a ball of radius 0.027612 m.
+    volume = 1.0 / 11340.0
+    assert mass_sphere_diameter(1.0) == pytest.approx(2 * (3 * volume / (4 * math.pi)) ** (1 / 3))
+    assert mass_sphere_diameter(1.0) == pytest.approx(0.0552242, rel=1e-6)
+    assert mass_sphere_diameter(0.0) == 0.0
+
+
+def test_the_inertia_box_of_a_box_is_the_box() -> None:
+    from fishbot_urdf.inertia import equivalent_box
+
+    box = equivalent_box(box_inertia(2.0, 0.3, 0.2, 0.1))
+    assert box is not None
+    assert box.size == pytest.approx((0.3, 0.2, 0.1))
+    assert box.axes == ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+
+
+def test_the_inertia_box_of_the_fishbot_body() -> None:
+    from fishbot_urdf.inertia import equivalent_box
+
+    # A cylinder of 1 kg, radius 0.1, length 0.12: ixx = iyy = (3 r^2 + h^2) / 12 = 0.0037,
+    # izz = r^2 / 2 = 0.005; the box's sides sqrt(6 (iyy + izz - ixx) / m) = sqrt(0.03)
+    # across and sqrt(6 (2 * 0.0037 - 0.005)) = 0.12 along its axis.
+    box = equivalent_box(cylinder_inertia(1.0, 0.1, 0.12))
+    assert box is not None
+    assert box.size == pytest.approx((math.sqrt(0.03), math.sqrt(0.03), 0.12))
+
+
+def test_the_inertia_box_lies_on_the_principal_axes() -> None:
+    from fishbot_urdf.inertia import equivalent_box
+
+    # A 0.4 x 0.2 x 0.1 box of 3 kg turned 30 degrees about z: its inertia written in the
+    # link's axes has ixy; the box found is the box, turned back.
+    moments = np.diag([3 / 12 * (0.04 + 0.01), 3 / 12 * (0.16 + 0.01), 3 / 12 * (0.16 + 0.04)])
+    c, s = math.cos(math.pi / 6), math.sin(math.pi / 6)
+    turn = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+    tensor = turn @ moments @ turn.T
+    inertial = fishbot_urdf.Inertial(
+        mass=3.0,
+        inertia=fishbot_urdf.Inertia(
+            ixx=tensor[0, 0], ixy=tensor[0, 1], ixz=0.0, iyy=tensor[1, 1], iyz=0.0, izz=tensor[2, 2]
+        ),
+    )
+    box = equivalent_box(inertial)
+    assert box is not None
+    axes = np.array(box.axes)
+    for side, axis in zip(box.size, axes.T, strict=True):
+        along = np.abs(turn.T @ axis)  # the axis in the box's own frame: one of x, y, z
+        k = int(np.argmax(along))
+        assert along[k] == pytest.approx(1.0)
+        assert side == pytest.approx((0.4, 0.2, 0.1)[k])
+
+
+@pytest.mark.parametrize(
+    ("mass", "moments"),
+    [
+        (1.0, (-1e-3, 1e-3, 1e-3)),  # a negative moment
+        (0.0, (1e-3, 1e-3, 1e-3)),  # no mass
+        (1.0, (1e-3, 1e-3, 3e-3)),  # one moment larger than the other two together
+        (1.0, (0.0, 0.0, 0.0)),
+    ],
+)
+def test_an_inertia_no_solid_has_has_no_box(mass: float, moments: tuple[float, ...]) -> None:
+    from fishbot_urdf.inertia import equivalent_box
+
+    ixx, iyy, izz = moments
+    inertia = fishbot_urdf.Inertia(ixx=ixx, iyy=iyy, izz=izz)
+    assert equivalent_box(fishbot_urdf.Inertial(mass=mass, inertia=inertia)) is None

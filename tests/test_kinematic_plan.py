@@ -315,3 +315,28 @@ def test_both_evaluators_agree_on_every_corpus_robot(path: Path) -> None:
             np.testing.assert_allclose(
                 numpy_poses[b, i], np.array(pose.matrix()), rtol=0, atol=1e-12
             )
+
+
+def test_the_variables_outwards_follow_the_tree_not_the_file() -> None:
+    # Joints written from the tip back to the root, a floating joint among them.
+    def joint(name: str, parent: str, child: str, kind: JointType) -> Joint:
+        return Joint(name, kind, parent, child, axis=(0.0, 0.0, 1.0))
+
+    robot = Robot(
+        "arm",
+        links=tuple(Link(n) for n in ("base", "upper", "fore", "hand", "free")),
+        joints=(
+            joint("wrist", "fore", "hand", JointType.REVOLUTE),
+            joint("loose", "base", "free", JointType.FLOATING),
+            joint("elbow", "upper", "fore", JointType.CONTINUOUS),
+            joint("shoulder", "base", "upper", JointType.CONTINUOUS),
+        ),
+    )
+    plan = analyse(robot).plan
+    assert plan.variables[0] == "wrist"
+    outwards = plan.outwards()
+    assert sorted(outwards) == sorted(plan.variables)
+    assert outwards.index("shoulder") < outwards.index("elbow") < outwards.index("wrist")
+    loose = [name for name in outwards if name.startswith("loose.")]
+    assert loose == [name for name in plan.variables if name.startswith("loose.")]
+    assert outwards.index(loose[-1]) - outwards.index(loose[0]) == len(loose) - 1  # together

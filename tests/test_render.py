@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+import math
 from pathlib import Path
 
 import numpy as np
@@ -144,6 +145,12 @@ def test_a_mesh_is_read_and_one_that_cannot_be_is_its_bounding_box(tmp_path: Pat
         (["--size", "10x10"], "is not WIDTHxHEIGHT", 2),
         (["-j", "nothing=1"], "no joint 'nothing'", 2),
         (["-j", "imu_joint=1"], "joint 'imu_joint' is fixed: it takes no position", 2),
+        (
+            ["--show", "mass,weight"],
+            "Invalid value for --show: 'weight' is not one of visual, collision, mass, inertia, "
+            "frames",
+            2,
+        ),
     ],
 )
 def test_wrong_options(tmp_path: Path, args: list[str], said: str, code: int) -> None:
@@ -469,3 +476,206 @@ def test_the_library_picture_poses_the_joints_and_refuses_nothing_to_draw(
     [finding] = info.value.diagnostics
     assert (finding.rule, finding.severity.value) == ("nothing-drawn", "error")
     assert not out.exists()
+
+
+# -- what RViz's "Mass Properties" show: a ball of lead and the box of the same inertia ---
+
+
+def _red(pixels: np.ndarray) -> np.ndarray:
+    """Where the picture is RViz's mass and inertia red (shaded, not blended with white)."""
+    r, g, b = (pixels[..., i] for i in range(3))
+    return (r > 70) & (g < 40) & (b < 40)
+
+
+def _runs(row: np.ndarray) -> list[tuple[int, int]]:
+    """The first and last column of each run of True in a row."""
+    padded = np.concatenate([[False], row, [False]]).astype(int)
+    starts = np.nonzero(np.diff(padded) == 1)[0]
+    ends = np.nonzero(np.diff(padded) == -1)[0] - 1
+    return list(zip(starts.tolist(), ends.tolist(), strict=True))
+
+
+def _render(tmp_path: Path, robot: Path, *options: str) -> np.ndarray:
+    out = tmp_path / "out.png"
+    result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(out), *options])
+    assert (result.exit_code, result.output) == (0, ""), result.stderr
+    return _pixels(out.read_bytes())
+
+
+def test_the_fishbots_inertia_boxes_are_sized_as_rviz_sizes_them(tmp_path: Path) -> None:
+    pixels = _render(tmp_path, XACRO, "--show", "mass,inertia", "--view", "front")
+    red = _red(pixels)
+    assert red.mean() > 0.1
+    assert not (_red(_render(tmp_path, XACRO, "--view", "front"))).any()  # not by default
+    # Seen from the front (+x, orthographic), y to the right and z up. base_link is a
+    # cylinder of 1 kg, r = 0.1 m, h = 0.12 m: ixx = iyy = m (3 r^2 + h^2) / 12 = 0.0037,
+    # izz = m r^2 / 2 = 0.005. Its box: sqrt(6 (iyy + izz - ixx) / m) = sqrt(0.03) = 0.1732 m
+    # wide (y), sqrt(6 (ixx + iyy - izz) / m) = 0.12 m high (z). Each wheel (0.1 kg,
+    # r = 0.032, h = 0.04, its axis along y) has a box 0.04 m wide in y, at y = +-0.1:
+    # the rows where the wheels' boxes meet the body's are 0.24 m wide (all red, from
+    # y = -0.12 to 0.12); the body's rows above the wheels, 0.1732 m.
+    widths = [end - start + 1 for row in red for start, end in _runs(row)]
+    widest = max(widths)
+    body = max(set(widths), key=widths.count)  # the most common width: the body's box
+    assert body / widest == pytest.approx(math.sqrt(0.03) / 0.24, rel=0.02)
+    # The body's box is 0.12 m high: its rows of that width, from the box's top down to
+    # where the wheels' boxes begin (their axes at z = -0.06, 0.0554 m high: z = -0.0323).
+    rows = [i for i, row in enumerate(red) if body in [e - s + 1 for s, e in _runs(row)]]
+    metres = 0.24 / widest
+    assert (max(rows) - min(rows) + 1) * metres == pytest.approx(0.06 + 0.0323, abs=0.004)
+    # Centred on the robot, which is symmetric about y = 0.
+    columns = np.nonzero(red.any(axis=0))[0]
+    wide_row = next(row for row in red if red.shape[1] > 0 and row.sum() == widest)
+    body_row = red[rows[len(rows) // 2]]
+    middle = (columns.min() + columns.max()) / 2
+    assert np.nonzero(body_row)[0].mean() == pytest.approx(middle, abs=1.5)
+    assert np.nonzero(wide_row)[0].mean() == pytest.approx(middle, abs=1.5)
+
+
+def test_the_fishbots_mass_is_a_ball_of_lead(tmp_path: Path) -> None:
+    red = _red(_render(tmp_path, XACRO, "--show", "mass", "--view", "front"))
+
+    # A ball of lead (11340 kg/m^3) of mass m has the diameter 2 (3 m / (4 pi 11340))^(1/3):
+    # base_link's 1 kg, 0.0552 m; each wheel's 0.1 kg, 0.0256 m, at y = +-0.1, so the
+    # picture is 0.2 + 0.0256 m wide.
+    def diameter(mass: float) -> float:
+        return float(2 * (3 * mass / (4 * math.pi * 11340)) ** (1 / 3))
+
+    columns = np.nonzero(red.any(axis=0))[0]
+    across = columns.max() - columns.min() + 1
+    metres = (0.2 + diameter(0.1)) / across
+    middle = round((columns.min() + columns.max()) / 2)
+    # The body's ball: the widest run of red through the middle column.
+    body = max(e - s + 1 for row in red if row[middle] for s, e in _runs(row) if s <= middle <= e)
+    assert body * metres == pytest.approx(diameter(1.0), abs=2.5 * metres)
+
+
+WRONG_INERTIAL = """\
+<robot name="wrong">
+  <material name="green"><color rgba="0 1 0 1"/></material>
+  <link name="body">
+    <visual>
+      <geometry><cylinder radius="0.05" length="0.2"/></geometry>
+      <material name="green"/>
+    </visual>
+    <inertial>
+      <!-- the cylinder's own inertia, but its centre of mass written 0.3 m off the shape -->
+      <origin xyz="0.3 0 0"/>
+      <mass value="1"/>
+      <inertia ixx="0.00395833" ixy="0" ixz="0" iyy="0.00395833" iyz="0" izz="0.00125"/>
+    </inertial>
+  </link>
+</robot>
+"""
+
+
+def test_an_inertial_off_its_shape_is_seen_off_it(tmp_path: Path) -> None:
+    robot = tmp_path / "wrong.urdf"
+    robot.write_text(WRONG_INERTIAL, encoding="utf-8")
+    pixels = _render(tmp_path, robot, "--show", "visual,inertia", "--view", "top")
+    r, g, b = (pixels[..., i] for i in range(3))
+    green = (g > 70) & (r < 40) & (b < 40)
+    red = _red(pixels)
+    assert green.any() and red.any()
+    # From the top: x is up the picture. The shape is a disc 0.1 m across at x = 0; the
+    # box of its inertia (ixx = iyy = m (3 r^2 + h^2) / 12, izz = m r^2 / 2) is
+    # sqrt(6 (iyy + izz - ixx) / m) = sqrt(0.0075) = 0.0866 m square, centred 0.3 m up.
+    green_rows, red_rows = np.nonzero(green.any(axis=1))[0], np.nonzero(red.any(axis=1))[0]
+    metres = 0.1 / (green_rows.max() - green_rows.min() + 1)
+    apart = (green_rows.min() + green_rows.max()) / 2 - (red_rows.min() + red_rows.max()) / 2
+    assert apart * metres == pytest.approx(0.3, abs=0.01)
+    assert (red_rows.max() - red_rows.min() + 1) * metres == pytest.approx(0.0866, abs=0.006)
+    assert red_rows.max() < green_rows.min()  # wholly off the shape
+    red_columns, green_columns = np.nonzero(red.any(axis=0))[0], np.nonzero(green.any(axis=0))[0]
+    assert (red_columns.min() + red_columns.max()) / 2 == pytest.approx(
+        (green_columns.min() + green_columns.max()) / 2, abs=1.5
+    )
+
+
+def test_an_inertia_no_solid_has_is_a_warning_and_no_box(tmp_path: Path) -> None:
+    robot = tmp_path / "wrong.urdf"
+    robot.write_text(WRONG_INERTIAL.replace('izz="0.00125"', 'izz="0.01"'), encoding="utf-8")
+    out = tmp_path / "out.png"
+    result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(out), "--show", "inertia"])
+    # izz = 0.01 > ixx + iyy: no box has these moments; RViz draws none, and says so.
+    assert result.exit_code == 1  # nothing else to draw
+    assert (
+        f"{robot}:8:5: warning: link 'body': inertial has no inertia box drawn: its inertia is "
+        "no solid's (not positive definite, or a principal moment larger than the other two "
+        "together), and RViz draws none either (compute the inertia again, from the part's "
+        "shape) [shape-not-drawn]"
+    ) in result.stderr.splitlines()
+    assert not out.exists()
+    result = CliRunner().invoke(
+        cli, ["render", str(robot), "-o", str(out), "--show", "visual,inertia"]
+    )
+    assert result.exit_code == 0 and "[shape-not-drawn]" in result.stderr
+    assert not _red(_pixels(out.read_bytes())).any()
+
+
+def test_show_frames_draws_each_links_axes_small_beside_a_small_arm(tmp_path: Path) -> None:
+    arm = tmp_path / "arm.urdf"
+    link = (
+        '<link name="{0}"><visual><origin xyz="0 0 0.01"/>'
+        '<geometry><box size="0.01 0.01 0.02"/></geometry><material name="grey"/></visual></link>'
+    )
+    arm.write_text(
+        '<robot name="small"><material name="grey"><color rgba="0.5 0.5 0.5 1"/></material>'
+        + "".join(link.format(name) for name in ("a", "b", "c"))
+        + '<joint name="j1" type="revolute"><parent link="a"/><child link="b"/>'
+        '<origin xyz="0 0 0.02"/><axis xyz="0 1 0"/>'
+        '<limit lower="-2" upper="2" effort="1" velocity="1"/></joint>'
+        '<joint name="j2" type="revolute"><parent link="b"/><child link="c"/>'
+        '<origin xyz="0 0 0.02"/><axis xyz="0 1 0"/>'
+        '<limit lower="-2" upper="2" effort="1" velocity="1"/></joint></robot>',
+        encoding="utf-8",
+    )
+    plain = _render(tmp_path, arm, "--view", "side")
+    framed = _render(tmp_path, arm, "--show", "visual,frames", "--view", "side")
+    r, g, b = (framed[..., i] for i in range(3))
+    assert ((r > 70) & (g < 40) & (b < 40)).any()  # the x axes: drawn
+    assert not ((plain[..., 0] > 70) & (plain[..., 1] < 40)).any()
+
+    def aspect(pixels: np.ndarray) -> float:
+        rows, columns = np.nonzero((pixels < 250).any(axis=2))
+        return float((columns.max() - columns.min() + 1) / (rows.max() - rows.min() + 1))
+
+    # From the side (+y), x to the left: the arm is 1 cm wide and 6 cm high. Its axes are
+    # a tenth of its size (the diagonal of its box, sqrt(0.01^2 + 0.01^2 + 0.06^2) m),
+    # 6.2 mm long: each x axis reaches 1.2 mm past the arm's side, where RViz's 10 cm axes
+    # would make the picture ten times as wide.
+    axes = 0.1 * math.sqrt(0.01**2 + 0.01**2 + 0.06**2)
+    assert aspect(framed) / aspect(plain) == pytest.approx((0.005 + axes) / 0.01, rel=0.05)
+
+
+def test_the_library_names_the_layers_it_can_show() -> None:
+    with pytest.raises(fishbot_urdf.ArgumentError) as caught:
+        build_scene(fishbot_urdf.load(FISHBOT / "urdf" / "first_robot.urdf"), show=("weight",))
+    assert caught.value.message == (
+        "nothing to show called 'weight' (visual, collision, mass, inertia, frames)"
+    )
+    with pytest.raises(fishbot_urdf.ArgumentError, match="nothing to show: name one of"):
+        build_scene(fishbot_urdf.load(XACRO), show=())
+    scene = build_scene(fishbot_urdf.load(XACRO), show=("mass",), collision=True)
+    assert {part.layer for part in scene.parts} == {"mass", "collision"}
+
+
+def test_an_inertial_of_wild_numbers_is_warned_of_not_a_numpy_warning(tmp_path: Path) -> None:
+    robot = tmp_path / "wild.urdf"
+    robot.write_text(
+        '<robot name="wild"><link name="a"><visual><geometry><box size="0.1 0.1 0.1"/>'
+        '</geometry></visual><inertial><mass value="1e300"/><inertia ixx="1e300" ixy="1e200" '
+        'ixz="0" iyy="1e300" iyz="0" izz="1e300"/></inertial></link></robot>',
+        encoding="utf-8",
+    )
+    out = tmp_path / "wild.png"
+    result = CliRunner().invoke(
+        cli, ["render", str(robot), "-o", str(out), "--show", "visual,mass,inertia"]
+    )
+    # ixx iyy - ixy^2 overflows (inf - inf): no box, as RViz's doubles find none either; the
+    # ball of 1e300 kg of lead is 1e98 m across, farther than anything is drawn.
+    assert result.exit_code == 0
+    lines = result.stderr.splitlines()
+    assert len(lines) == 2 and all(line.endswith("[shape-not-drawn]") for line in lines)
+    assert "has no inertia box drawn" in lines[0] and "is not drawn" in lines[1]
+    assert out.exists()

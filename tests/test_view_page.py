@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from conftest import REQUIRE_TOOLS
+from conftest import FISHBOT, REQUIRE_TOOLS
 
 if not REQUIRE_TOOLS:  # on a user's machine without the [view] extra: skipped, with a reason
     pytest.importorskip("viser", reason="fishbot view needs the [view] extra")
@@ -180,3 +180,134 @@ def _follow(process: Any, driver: Any, robot: Path, port: int, first_errors: lis
     _wait(lambda: "The robot cannot be read." in _text(driver))
     assert "The robot read last is shown" in _text(driver)
     assert _magenta(_settled(driver)) > 0.005
+
+
+def _red(pixels: np.ndarray) -> np.ndarray:
+    """Where the page shows RViz's mass and inertia red (or an x axis, when frames show)."""
+    r, g, b = (pixels[..., i].astype(int) for i in range(3))
+    return (r > 120) & (g < 60) & (b < 60) & _canvas(pixels)
+
+
+def _tick(driver: Any, label: str) -> None:
+    """Click the checkbox of ``label``, as a person would."""
+    box = driver.find_element(
+        By.XPATH, f"//*[normalize-space(text())='{label}']/following::input[@type='checkbox'][1]"
+    )
+    box.click()
+
+
+def _box_of(where: np.ndarray) -> tuple[int, int, int, int]:
+    rows, columns = np.nonzero(where)
+    return int(rows.min()), int(rows.max()), int(columns.min()), int(columns.max())
+
+
+def test_mass_and_inertia_show_as_rviz_shows_them(driver: Any) -> None:
+    shown = Viewer(_loader(FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"), port=_free_port())
+    try:
+        _open(driver, shown.url)
+        body = _settled(driver)
+        r, g, b = (body[..., i].astype(int) for i in range(3))
+        robot = _box_of((b > r + 60) & (b > g + 60))  # the blue body
+        # As the notes do it in RViz: the visuals off (and the frames, whose x axes are red)...
+        _tick(driver, "Visual")
+        _tick(driver, "Link frames")
+        _wait(lambda: not _red(_settled(driver)).any())
+        # ... then Mass: a red ball of lead per link, inside the robot's outline.
+        _tick(driver, "Mass")
+        balls = _wait(lambda: (lambda p: p if _red(p).mean() > 0.001 else None)(_settled(driver)))
+        top, bottom, left, right = _box_of(_red(balls))
+        assert robot[0] - 5 <= top and bottom <= robot[1] + 40  # (the wheels hang lower)
+        assert robot[2] - 40 <= left and right <= robot[3] + 40
+        # ... then Inertia: the boxes, bigger than the balls (the body's: 0.17 m across,
+        # its ball 0.055 m).
+        _tick(driver, "Inertia")
+        both = _wait(
+            lambda: (lambda p: p if _red(p).mean() > 4 * _red(balls).mean() else None)(
+                _settled(driver)
+            )
+        )
+        assert _red(both).any()
+        _tick(driver, "Mass")
+        _tick(driver, "Inertia")
+        _wait(lambda: not _red(_settled(driver)).any())
+    finally:
+        shown.close()
+
+
+def test_the_first_view_frames_the_whole_robot_and_its_axes(driver: Any) -> None:
+    shown = Viewer(_loader(FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"), port=_free_port())
+    try:
+        _open(driver, shown.url)
+        pixels = _settled(driver)
+        height, width = pixels.shape[:2]
+        # Between the note at the top left and the controls at the top right: the laser's
+        # z axis, the robot's highest point, stays clear of the top edge.
+        drawn = (pixels < 235).any(axis=2)
+        middle = drawn[:, int(0.3 * width) : int(0.7 * width)]
+        top, bottom, _, _ = _box_of(middle)
+        assert top > 0.03 * height and bottom < 0.9 * height
+    finally:
+        shown.close()
+
+
+TINY_ARM = """\
+<robot name="tiny">
+  <material name="grey"><color rgba="0.5 0.5 0.5 1"/></material>
+  {links}
+  <!-- written from the tip back to the root -->
+  <joint name="wrist" type="revolute"><parent link="forearm"/><child link="hand"/>
+    <origin xyz="0 0 0.005"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/>
+  </joint>
+  <joint name="elbow" type="revolute"><parent link="upper"/><child link="forearm"/>
+    <origin xyz="0 0 0.005"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/>
+  </joint>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>
+    <origin xyz="0 0 0.005"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/>
+  </joint>
+</robot>
+"""
+TINY_LINK = (
+    '<link name="{0}"><visual><origin xyz="0 0 0.0025"/><geometry><box size="0.002 0.002 0.005"/>'
+    '</geometry><material name="grey"/></visual></link>'
+)
+
+
+def test_a_tiny_arm_has_small_axes_and_its_sliders_root_first(driver: Any, tmp_path: Path) -> None:
+    robot = tmp_path / "tiny.urdf"
+    links = "".join(TINY_LINK.format(n) for n in ("hand", "forearm", "upper", "base"))
+    robot.write_text(TINY_ARM.format(links=links), encoding="utf-8")
+    shown = Viewer(_loader(robot), port=_free_port())
+    try:
+        _open(driver, shown.url)
+        # The sliders come from the root outwards, as tf lists the joints.
+        text = _text(driver)
+        assert text.index("shoulder") < text.index("elbow") < text.index("wrist")
+        arm = _settled(driver)
+        _tick(driver, "Visual")
+        axes = _wait(lambda: (lambda p: p if _is_grey_free(p) else None)(_settled(driver)))
+        # An arm of four links 5 mm tall: each frame's axes are a tenth of its size (the
+        # diagonal of its box, 2 cm: 2 mm), shorter than a link, where the viewer's old
+        # axes (6 mm, its least) or RViz's (10 cm) outgrew the parts.
+        spread = np.abs(arm.astype(int) - arm[..., :1].astype(int)).max(axis=2)
+        top, bottom, _, _ = _box_of((spread < 8) & (arm[..., 0] < 200) & _canvas(arm))
+        _, _, left, right = _box_of((axes < 235).any(axis=2) & _canvas(axes))
+        assert right - left < (bottom - top) / 4
+    finally:
+        shown.close()
+
+
+def _is_grey_free(pixels: np.ndarray) -> bool:
+    spread = np.abs(pixels.astype(int) - pixels[..., :1].astype(int)).max(axis=2)
+    return not ((spread < 8) & (pixels[..., 0] < 200) & _canvas(pixels)).any()
+
+
+def _canvas(pixels: np.ndarray) -> np.ndarray:
+    """The middle of the page, where the robot is: clear of the note on its left, the
+    controls on its right and the axes in its corner."""
+    height, width = pixels.shape[:2]
+    inside = np.zeros((height, width), dtype=bool)
+    inside[:, int(0.27 * width) : int(0.7 * width)] = True
+    return inside

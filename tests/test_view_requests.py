@@ -245,7 +245,7 @@ def test_a_good_slider_value_moves_its_link(viewer: Viewer, page: ClientConnecti
 def test_only_a_value_of_a_control_may_change(
     viewer: Viewer, page: ClientConnection, caplog: pytest.LogCaptureFixture
 ) -> None:
-    frames = control_id(viewer._show_frames)
+    frames = control_id(viewer._toggles["frames"])
     with caplog.at_level(logging.WARNING):
         _send(page, control_id(viewer._sliders["shoulder"]), {"min": -5})
         _send(page, frames, {"value": "abc"})
@@ -258,11 +258,11 @@ def test_only_a_value_of_a_control_may_change(
         "checkbox 'Link frames': dropped 'abc' sent by the page (not true or false)",
     ]
     assert viewer._sliders["shoulder"].min == -1
-    assert viewer._show_frames.value is True
+    assert viewer._toggles["frames"].value is True
     _send(page, frames, {"value": False})
-    _wait(lambda: viewer._show_frames.value is False)
+    _wait(lambda: viewer._toggles["frames"].value is False)
     _send(page, frames, {"value": True})
-    _wait(lambda: viewer._show_frames.value is True)
+    _wait(lambda: viewer._toggles["frames"].value is True)
 
 
 def test_set_takes_a_position_within_the_range_only(viewer: Viewer) -> None:

@@ -67,3 +67,11 @@ def test_the_camera_sees_every_point_and_fills_the_view(aspect: float) -> None:
     assert reach == pytest.approx(FILL, abs=1e-6)  # in view, as near as can be
     assert (x.max() + x.min()) / 2 == pytest.approx(0, abs=0.01)  # centred
     assert (y.max() + y.min()) / 2 == pytest.approx(0, abs=0.01)
+
+
+def test_the_corners_of_the_box_around_points() -> None:
+    from fishbot_urdf.drawing._camera import corners
+
+    points = np.array([[0.0, 1.0, -2.0], [3.0, -1.0, 0.5], [1.0, 0.0, 0.0]])
+    found = {tuple(c) for c in corners(np, points).tolist()}
+    assert found == {(x, y, z) for x in (0.0, 3.0) for y in (-1.0, 1.0) for z in (-2.0, 0.5)}

@@ -107,6 +107,20 @@ class Plan:
     columns: Mapping[str, int]
     mimics: Mapping[str, Follows | None]
 
+    def outwards(self) -> tuple[str, ...]:
+        """``variables`` from the roots outwards: each joint's columns where its child comes
+        in ``links`` (as tf lists the joints), not in file order; those of joints no root
+        reaches last, in file order."""
+        firsts = list(self.columns.values())
+        # (no joints: one end for none, which strict zipping would refuse)
+        ends = dict(zip(self.joints, [*firsts[1:], len(self.variables)], strict=False))
+        order: list[str] = []
+        for name in dict.fromkeys(step.joint.name for step in self.steps):
+            if name in ends:
+                order.extend(self.variables[self.columns[name] : ends[name]])
+        placed = set(order)
+        return (*order, *(name for name in self.variables if name not in placed))
+
 
 def build(
     robot: Robot,

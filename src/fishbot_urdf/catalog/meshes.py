@@ -155,13 +155,17 @@ SHAPE_NOT_DRAWN = Rule(
     W,
     Family.MESHES,
     summary="A shape `fishbot render` and `fishbot view` cannot draw: its corners, posed, are "
-    "not finite or lie farther than 1e9 m from the root.",
+    "not finite or lie farther than 1e9 m from the root; or an inertia no box has.",
     explanation="render and view pose every shape at the joint configuration asked for, and "
     "leave out one whose corners are not finite numbers or lie farther than 1e9 m from the "
     "root: no robot reaches that far, and drawing it would overflow. Such a shape comes from "
     "a scale, a size or an origin with a wild number (an exponent mistyped, a unit mistaken), "
     "or a mesh file whose numbers are garbage. The picture is drawn without it and the command "
-    "succeeds; fix the number.",
+    "succeeds; fix the number. Asked to show each link's inertia (`--show inertia`, the "
+    "viewer's Inertia toggle), they draw the box of uniform density with the link's mass and "
+    "principal moments, as RViz does; an inertia that is not positive definite, or whose "
+    "largest principal moment is more than the other two together, is no solid's and has no "
+    "such box: RViz leaves it out, and so do they, with this warning.",
     bad="""\
 # far.urdf places a box 1e10 m from its link
 fishbot render far.urdf -o far.png
@@ -179,7 +183,8 @@ class NothingDrawnFacts(Facts):
     """The facts of a `nothing-drawn` finding."""
 
     kind: str
-    """The kind of shape asked for: ``visual`` or ``collision``."""
+    """What was asked to be drawn: ``visual`` or ``collision``, or the layers asked for,
+    joined by commas (``mass,inertia``)."""
     visuals: int
     """The robot's visual shapes."""
     collisions: int

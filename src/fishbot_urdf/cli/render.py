@@ -9,7 +9,7 @@ import click
 
 from ..diagnostics import Severity
 from ..drawing.picture import render_png
-from ..drawing.scene import build_scene
+from ..drawing.scene import LAYERS, build_scene
 from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
 from ..kinematics import Kinematics
 from ..output import write_atomic
@@ -30,6 +30,18 @@ from ._common import (
 )
 
 _VIEWS = ("iso", "front", "side", "top")
+
+
+def _show(text: str | None) -> tuple[str, ...] | None:
+    if text is None:
+        return None
+    layers = tuple(item.strip() for item in text.split(","))
+    for layer in layers:
+        if layer not in LAYERS:
+            raise click.BadParameter(
+                f"{layer!r} is not one of {', '.join(LAYERS)}", param_hint="--show"
+            )
+    return layers
 
 
 def _size(text: str) -> tuple[int, int]:
@@ -62,6 +74,14 @@ def _size(text: str) -> tuple[int, int]:
 )
 @click.option("--collision", is_flag=True, help="Draw the collision shapes, not the visuals.")
 @click.option(
+    "--show",
+    "show_text",
+    metavar="LIST",
+    help="What to draw, comma-separated (default: visual): visual, collision, mass (a ball "
+    "of lead of each link's mass at its centre of mass), inertia (the box of uniform density "
+    "with each link's inertia), frames (each link's axes); both as RViz draws them.",
+)
+@click.option(
     "--size",
     "size_text",
     default="800x600",
@@ -78,6 +98,7 @@ def render(
     output: str,
     view: str,
     collision: bool,
+    show_text: str | None,
     size_text: str,
     joint_items: Sequence[str],
     package_items: Sequence[str],
@@ -87,8 +108,12 @@ def render(
     meshes are found as `fishbot check` finds them and read from STL and OBJ (other formats
     with `pip install 'fishbot-urdf[mesh]'`); one that cannot be read is drawn as its
     bounding box, and what is not drawn as it is is a warning; findings are printed as
-    check prints them. A robot with no shape to draw (no visuals, or none that can be drawn)
-    is an error [nothing-drawn]: no blank picture is written. Exit status: 0 written (errors
+    check prints them. --show picks what is drawn, as RViz's robot model shows it: the
+    visuals, the collision shapes (--collision is --show collision), each link's mass as a
+    red ball of lead at its centre of mass, its inertia as the red box of uniform density
+    with the same mass and principal moments, and its frame as red, green and blue axes.
+    A robot with no shape to draw (no visuals, or none that can be drawn) is an error
+    [nothing-drawn]: no blank picture is written. Exit status: 0 written (errors
     that leave the shape as it is, such as a fault in an <inertial>, do not stop it), 1 the
     robot has errors that leave its shape or tree in doubt, or nothing to draw (nothing is
     written), 2 a file could not be read or written, a joint or position is wrong, or the
@@ -99,8 +124,10 @@ def render(
       fishbot render robots/fishbot/urdf/fishbot/fishbot.urdf.xacro -o fishbot.png
       fishbot render arm.urdf -o arm.png --view side -j shoulder=45deg --size 1200x900
       fishbot render robot.urdf.xacro -o collision.png --collision
+      fishbot render robot.urdf.xacro -o inertia.png --show mass,inertia
     """
     width, height = _size(size_text)
+    show = _show(show_text)
     if file == "-" and args:
         raise click.UsageError("name:=value arguments are for a .xacro file, not standard input")
     values = xacro_args(args)
@@ -116,7 +143,7 @@ def render(
         check_joint_names(result.analysis, positions, kinematics.variables)
         q = kinematics.configuration(positions)
         # The analysis finds the meshes (with the packages given), as check does.
-        scene = build_scene(result.analysis, q, collision=collision)
+        scene = build_scene(result.analysis, q, collision=collision, show=show)
     except (UnknownNameError, ArgumentError) as exc:
         raise click.BadParameter(exc.message, param_hint="--joint") from None
     except FishbotUrdfError as exc:

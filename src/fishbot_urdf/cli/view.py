@@ -4,8 +4,10 @@ joint_state_publisher_gui without ROS)."""
 from __future__ import annotations
 
 import gc
+import sys
 import time
 from collections.abc import Sequence
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 import click
@@ -13,7 +15,13 @@ import click
 from ..config import Config
 from ..diagnostics import Diagnostic, escape_controls
 from ..drawing.viewer import Viewer
-from ..errors import ArgumentError, FishbotUrdfError, RobotError, UnknownNameError
+from ..errors import (
+    ArgumentError,
+    FishbotUrdfError,
+    RobotError,
+    ToolNotFoundError,
+    UnknownNameError,
+)
 from ._checking import (
     check_input,
     check_joint_names,
@@ -65,13 +73,16 @@ def view(
     joint_items: Sequence[str],
     package_items: Sequence[str],
 ) -> None:
-    """Show FILE (URDF or xacro) in a web browser: visuals in their colours, collision
-    shapes on a toggle, link frames as axes, and a slider per moving joint within its
-    limits (mimic joints follow). The robot reloads when FILE or a file it includes
-    changes, keeping the sliders. A change that breaks the robot is printed as check
-    prints its errors and shown on the page, which keeps the robot read last until the
-    file is fixed; a robot broken from the start is served as a page of its errors, and
-    shown once fixed. Prints the URL to open; Ctrl-C stops. Only pages served on --host
+    """Show FILE (URDF or xacro) in a web browser: visuals in their colours, link frames as
+    axes, and a slider per moving joint within its limits, from the root outwards (mimic
+    joints follow). Toggles show the visuals, the collision shapes, each link's mass (a red
+    ball of lead at its centre of mass) and inertia (the red box of uniform density with the
+    same mass and principal moments), and the link frames, as RViz's robot model does; untick
+    Visual to see the mass and inertia inside the robot. The robot reloads when FILE or a
+    file it includes changes, keeping the sliders. A change that breaks the robot is
+    printed as check prints its errors and shown on the page, which keeps the robot read
+    last until the file is fixed; a robot broken from the start is served as a page of its
+    errors, and shown once fixed. Prints the URL to open; Ctrl-C stops. Only pages served on --host
     and --port may talk to the viewer. --timeout and --max-size bound each (re)load of
     the robot. Needs `pip install 'fishbot-urdf[view]'`.
 
@@ -106,7 +117,10 @@ def view(
             wait=lambda exc: status_of(exc) == EXIT_INVALID,  # the robot's fault: fixable
             report=terminal.report,
         )
-    except FishbotUrdfError as exc:  # cannot serve there, viser missing, a limit reached
+    except ToolNotFoundError as exc:  # viser: the setup's fault, not the robot's
+        emit_findings([_not_installed(exc)])
+        sys.exit(status_of(exc))  # 2, as render and graph without Graphviz's dot
+    except FishbotUrdfError as exc:  # cannot serve there, a limit reached
         stop_on(exc)
     terminal.viewer = viewer
     if viewer.error is None:
@@ -166,6 +180,18 @@ class _Terminal:
         if found != self.said:
             emit_findings(found)
             self.said = found
+
+
+def _not_installed(exc: ToolNotFoundError) -> Diagnostic:
+    """The line for viser not installed: about the command and the setup, not the input."""
+    return replace(
+        fail(exc),
+        path="fishbot view",
+        subject=None,
+        message=f"setup: the {exc.tool} package, an optional part of fishbot-urdf that the "
+        "viewer needs, is not installed",
+        hint=f"install it: {exc.hint}",
+    )
 
 
 def _say(line: str) -> None:

@@ -7,7 +7,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-__all__ = ["EYE", "FILL", "FOV", "Framing", "aim", "framing"]
+__all__ = ["EYE", "FILL", "FOV", "Framing", "aim", "corners", "framing"]
 
 EYE = (1.0, 0.75, 0.65)  # the direction the camera looks from: front left, above (as RViz)
 FILL = 0.85  # of the view's height the robot's farthest point from the middle reaches
@@ -70,6 +70,14 @@ def framing(np: Any, points: Any, aspect: float = 1.0, fov: float = FOV) -> Fram
         far=100 * max(size, distance),
         fov=fov,
     )
+
+
+def corners(np: Any, points: Any) -> Any:
+    """The eight corners (8, 3) of the box around ``points`` (N, 3): framed, they keep the
+    whole box in view, whatever is inside it."""
+    low, high = points.min(axis=0), points.max(axis=0)
+    picks = np.array([[k >> i & 1 for i in range(3)] for k in range(8)], dtype=bool)
+    return np.where(picks, high, low)
 
 
 def aim(camera: Any, view: Framing) -> None:

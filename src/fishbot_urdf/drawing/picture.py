@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import struct
 import zlib
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -72,15 +72,18 @@ def picture(
     positions: Mapping[str, float] | None = None,
     collision: bool = False,
     packages: Mapping[str, str | Path] | None = None,
+    show: Collection[str] | None = None,
 ) -> bytes:
     """A shaded 3D picture of the robot as PNG bytes, as `fishbot render` draws it.
 
     The visuals in their materials' colours (or, with ``collision``, the collision shapes)
     posed at ``positions`` (radians or metres by joint name; the rest at zero, mimic
     joints following), seen from ``view`` (``iso``, ``front``, ``side`` or ``top``), on a
-    ``width`` x ``height`` picture. Meshes are found as `check` finds them (``packages``:
-    folders of ROS packages by name, for ``package://`` names); what cannot be drawn as it
-    is is left out or drawn as its box, as `build_scene` says in its findings. With
+    ``width`` x ``height`` picture; ``show`` draws other layers (``visual``, ``collision``,
+    ``mass``, ``inertia``, ``frames``: see `build_scene`). Meshes are found as `check` finds
+    them (``packages``: folders of ROS packages by name, for ``package://`` names); what
+    cannot be drawn as it is is left out or drawn as its box, as `build_scene` says in its
+    findings. With
     ``path``, the PNG is also written there, whole or not at all, and never over a file the
     robot was read from (the link/joint graph is `render_graph`'s).
 
@@ -92,13 +95,13 @@ def picture(
             the ``nothing-drawn`` error among them (no blank picture is made).
         StructureError: The robot has no single root.
         UnknownNameError, ArgumentError: ``positions`` names an unknown joint or holds a
-            position out of its limits; ``view`` or a size is wrong.
+            position out of its limits; ``view``, a size or a layer is wrong.
         PictureLimitError: The picture would pass :data:`MAX_PIXELS` or :data:`MAX_COVER`.
         InputError: ``path`` cannot be written, or is a file the robot was read from.
     """
     analysis = of(robot, packages)
     q = Kinematics(analysis).configuration(positions)
-    scene = build_scene(analysis, q, collision=collision)
+    scene = build_scene(analysis, q, collision=collision, show=show)
     if any(finding.is_error for finding in scene.findings):
         raise RobotError(scene.findings, path=analysis.path)
     data = render_png(scene, view, width, height)

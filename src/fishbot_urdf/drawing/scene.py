@@ -1,6 +1,9 @@
 """A robot as triangles to draw: every visual (or collision) shape, tessellated or read from
 its mesh file, placed by the forward kinematics at a joint configuration, in the root
-link's frame. `fishbot render` rasterises a scene; `fishbot view` sends one to the browser.
+link's frame; and, on request, what RViz's "Mass Properties" and link axes show: each
+link's mass as a ball of lead at its centre of mass, its inertia as the equivalent box on
+its principal axes (`fishbot_urdf.inertia.equivalent_box`), and its frame as three axes.
+`fishbot render` rasterises a scene; `fishbot view` sends one to the browser.
 
 numpy is imported when a scene is built. Mesh files are found by the analysis's
 ``mesh_paths`` (`fishbot_urdf.analysis.meshpaths`: the files `check` finds) and read from STL
@@ -11,15 +14,15 @@ its bounding box when its size is known (the vertices found in an STL or OBJ fil
 COLLADA file's positions), else left out; so is a shape whose coordinates, scaled and posed,
 are not finite or lie farther than :data:`FARTHEST` from the root. Each is a finding in
 ``Scene.findings``, of the mesh rule it breaks (``shape-not-drawn`` for a shape too far);
-a scene with nothing to draw at all is one more, an error (``nothing-drawn``).
+a scene with nothing to draw at all is one more, an error (``nothing-drawn``). An inertia
+that has no equivalent box (RViz draws none either) is a ``shape-not-drawn`` warning.
 """
 
 from __future__ import annotations
 
-import math
 import re
 import warnings
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -36,26 +39,42 @@ from ..catalog.meshes import (
 )
 from ..catalog.setup import TOOL_MISSING
 from ..diagnostics import Diagnostic, Kind, Severity, Subject, sort_key
-from ..errors import FishbotUrdfError, LimitError, ShapeError, ToolNotFoundError
+from ..errors import ArgumentError, FishbotUrdfError, LimitError, ShapeError, ToolNotFoundError
 from ..inputs import deadline, read_input
 from ..kinematics import Kinematics
 from ..meshfile import mesh_bounds, mesh_triangles
-from ..model import Box, Cylinder, Geometry, Link, Material, Mesh, Origin, Robot, Sphere
+from ..model import (
+    Box,
+    Cylinder,
+    Geometry,
+    Inertial,
+    Link,
+    Material,
+    Mesh,
+    Origin,
+    Robot,
+    Sphere,
+)
 from ..rules.meshes import unresolved
-from ..spatial import rpy_matrix
+from ._marks import AXES_SHARE, axes, axes_length, inertial_marks
+from ._shapes import apply, box, cylinder, origin_matrix, sphere
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
-__all__ = ["FARTHEST", "Part", "Scene", "build_scene"]
+__all__ = ["AXES_SHARE", "FARTHEST", "LAYERS", "Part", "Scene", "build_scene"]
 
 FARTHEST = 1e9
 """The farthest a drawn shape's corner may lie from the root, in metres: farther than any
 robot reaches, and near enough that drawing it (its normals are squares of its sizes) stays
 within floating point."""
 
+LAYERS = ("visual", "collision", "mass", "inertia", "frames")
+"""What a scene can show: the visual shapes, the collision shapes, each link's mass sphere
+and inertia box, and each link's frame as axes."""
+
 GREY = (0.7, 0.7, 0.72, 1.0)  # RViz draws a visual without a material in a light grey
-_SEGMENTS = 48  # around a cylinder or sphere
+COLLISION = (0.55, 0.7, 0.85, 1.0)
 
 
 @dataclass(frozen=True)
@@ -68,6 +87,7 @@ class Part:
         color: Red, green, blue, alpha, each 0..1.
         local: The same triangles in the link's frame (what a viewer poses itself).
         pose: The link's 4x4 pose in the root frame.
+        layer: What it shows, one of :data:`LAYERS`.
     """
 
     link: str
@@ -75,6 +95,7 @@ class Part:
     color: tuple[float, float, float, float]
     local: NDArray[Any] = field(repr=False)
     pose: NDArray[Any] = field(repr=False)
+    layer: str = "visual"
 
 
 @dataclass(frozen=True)
@@ -85,14 +106,18 @@ class Scene:
         parts: The shapes, in link order.
         findings: One warning for each shape drawn as its bounding box, or not at all, at
             its element, with the rule it breaks; and, when no shape at all is drawn, an
-            error of rule ``nothing-drawn`` at the robot (its ``data``: ``kind``,
-            ``visual`` or ``collision``, and the robot's ``visuals`` and ``collisions``).
+            error of rule ``nothing-drawn`` at the robot (its ``data``: ``kind``, the
+            layers asked for, such as ``visual``, ``collision`` or ``mass,inertia``, and
+            the robot's ``visuals`` and ``collisions``).
         poses: Every link's 4x4 pose in the root frame, by name.
+        axes_length: How long a link frame's axes are drawn (m): :data:`AXES_SHARE` of
+            the robot's size.
     """
 
     parts: tuple[Part, ...]
     findings: tuple[Diagnostic, ...]
     poses: Mapping[str, NDArray[Any]]
+    axes_length: float = 0.1
 
     @property
     def warnings(self) -> tuple[str, ...]:
@@ -122,6 +147,7 @@ def build_scene(
     collision: bool = False,
     packages: Mapping[str, str | Path] | None = None,
     path: str | None = None,
+    show: Collection[str] | None = None,
 ) -> Scene:
     """The robot's visual (or ``collision``) shapes posed at configuration ``q`` (see
     `fishbot_urdf.Kinematics`; None: every joint at zero). Mesh files are found by the
@@ -129,12 +155,22 @@ def build_scene(
     beside (default: the analysis's), ``packages`` where ``package://`` names are found (as
     for ``$(find)``; default: the analysis's).
 
+    ``show`` picks what is drawn among :data:`LAYERS` (``collision`` adds the collision
+    shapes to it): ``mass``, for each link with an ``<inertial>``, a sphere of the diameter
+    `fishbot_urdf.inertia.mass_sphere_diameter` gives at its centre of mass; ``inertia``,
+    the box `fishbot_urdf.inertia.equivalent_box` gives, centred there and turned onto the
+    principal axes (in the frame of the inertial's origin); ``frames``, each link's x, y
+    and z axes in red, green and blue, :attr:`Scene.axes_length` long. Default: the visuals
+    (with ``collision``: the collision shapes alone).
+
     Raises:
         StructureError: The robot has no single root.
-        UnknownNameError, ArgumentError: ``q`` names an unknown joint or a bad value.
+        UnknownNameError, ArgumentError: ``q`` names an unknown joint or a bad value;
+            ``show`` names no layer.
     """
     import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
+    layers = _layers(show, collision)
     analysis = of(robot, packages)
     if path is not None and path != analysis.path:
         analysis = replace(analysis, path=path)
@@ -151,75 +187,154 @@ def build_scene(
         if link.name not in poses:
             continue
         pose = poses[link.name]
-        shapes: list[tuple[Geometry, Origin, Material | None]]
-        if collision:
-            shapes = [(c.geometry, c.origin, None) for c in link.collisions]
-        else:
-            shapes = [(v.geometry, v.origin, v.material) for v in link.visuals]
-        loader.unresolved(link, [geometry for geometry, _, _ in shapes])
-        for geometry, origin, material in shapes:
+        shapes: list[tuple[Geometry, Origin, Material | None, str]] = []
+        if "visual" in layers:
+            shapes += [(v.geometry, v.origin, v.material, "visual") for v in link.visuals]
+        if "collision" in layers:
+            shapes += [(c.geometry, c.origin, None, "collision") for c in link.collisions]
+        loader.unresolved(link, [geometry for geometry, _, _, _ in shapes])
+        for geometry, origin, material, layer in shapes:
             local = loader.triangles(link, geometry)
             if local is None or not len(local):
                 continue
-            with np.errstate(over="ignore", invalid="ignore"):
-                placed = _apply(np, _origin_matrix(np, origin), local)
-                world = _apply(np, pose, placed)
-                near_enough = bool((np.abs(world) <= FARTHEST).all())  # False for nan
-            if not near_enough:
-                loader.report(
-                    SHAPE_NOT_DRAWN,
-                    link,
-                    geometry,
-                    "is not drawn: its corners are not finite numbers, or lie farther than "
-                    f"{FARTHEST:g} m from the root",
-                    "a scale, a size or an origin holds a wild number",
-                )
+            placed = _placed(np, loader, link, geometry, origin_matrix(np, origin), local, pose)
+            if placed is None:
                 continue
-            color = (0.55, 0.7, 0.85, 1.0) if collision else _color(material, materials)
-            parts.append(Part(link.name, world, color, placed, pose))
+            color = COLLISION if layer == "collision" else _color(material, materials)
+            parts.append(Part(link.name, apply(np, pose, placed), color, placed, pose, layer))
+        if link.inertial is not None and ("mass" in layers or "inertia" in layers):
+            parts += _inertial_parts(np, loader, link, link.inertial, pose, layers)
+    points = [part.triangles.reshape(-1, 3) for part in parts]
+    origins = np.array([pose[:3, 3] for pose in poses.values()]).reshape(-1, 3)
+    length = axes_length(np, np.concatenate(points) if points else origins)
+    if "frames" in layers:
+        for name in kin.links:
+            pose = poses[name]
+            for mark in axes(np, length):
+                world = apply(np, pose, mark.triangles)
+                parts.append(Part(name, world, mark.color, mark.triangles, pose, mark.layer))
     if not parts:
-        loader.findings.append(_nothing_drawn(analysis, collision))
-    return Scene(tuple(parts), tuple(sorted(loader.findings, key=sort_key)), poses)
+        loader.findings.append(_nothing_drawn(analysis, layers))
+    findings = tuple(sorted(loader.findings, key=sort_key))
+    return Scene(tuple(parts), findings, poses, length)
 
 
-def _nothing_drawn(analysis: Analysis, collision: bool) -> Diagnostic:
-    """The error of a scene with no shape in it: the robot has none of the kind asked for,
+def _layers(show: Collection[str] | None, collision: bool) -> tuple[str, ...]:
+    """The layers asked for, in :data:`LAYERS` order."""
+    if show is None:
+        return ("collision",) if collision else ("visual",)
+    if isinstance(show, str):
+        show = (show,)
+    for layer in show:
+        if layer not in LAYERS:
+            raise ArgumentError(
+                f"nothing to show called {layer!r} ({', '.join(LAYERS)})", name="show"
+            )
+    asked = {*show, *(("collision",) if collision else ())}
+    if not asked:
+        raise ArgumentError(f"nothing to show: name one of {', '.join(LAYERS)}", name="show")
+    return tuple(layer for layer in LAYERS if layer in asked)
+
+
+def _placed(
+    np: Any,
+    loader: _Loader,
+    link: Link,
+    shape: Geometry | Inertial,
+    origin: Any,
+    local: Any,
+    pose: Any,
+) -> Any:
+    """A shape's triangles in its link's frame, or None (with a finding) when, posed, a
+    corner would not be finite or lie farther than :data:`FARTHEST` from the root."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        placed = apply(np, origin, local)
+        near_enough = bool((np.abs(apply(np, pose, placed)) <= FARTHEST).all())  # False: nan
+    if near_enough:
+        return placed
+    loader.report(
+        SHAPE_NOT_DRAWN,
+        link,
+        shape,
+        "is not drawn: its corners are not finite numbers, or lie farther than "
+        f"{FARTHEST:g} m from the root",
+        "a scale, a size or an origin holds a wild number",
+    )
+    return None
+
+
+def _inertial_parts(
+    np: Any,
+    loader: _Loader,
+    link: Link,
+    inertial: Inertial,
+    pose: Any,
+    layers: tuple[str, ...],
+) -> list[Part]:
+    """A link's mass sphere and inertia box, as RViz draws them (see `build_scene`)."""
+    with np.errstate(over="ignore", invalid="ignore"):  # (not finite: _placed says so)
+        marks, no_box = inertial_marks(np, inertial, layers)
+    if no_box:
+        loader.report(
+            SHAPE_NOT_DRAWN,
+            link,
+            inertial,
+            "has no inertia box drawn: its inertia is no solid's (not positive definite, "
+            "or a principal moment larger than the other two together), and RViz draws "
+            "none either",
+            "compute the inertia again, from the part's shape",
+        )
+    parts = []
+    for mark in marks:
+        local = _placed(np, loader, link, inertial, np.eye(4), mark.triangles, pose)
+        if local is not None:
+            world = apply(np, pose, local)
+            parts.append(Part(link.name, world, mark.color, local, pose, mark.layer))
+    return parts
+
+
+def _nothing_drawn(analysis: Analysis, layers: tuple[str, ...]) -> Diagnostic:
+    """The error of a scene with no shape in it: the robot has none of the kinds asked for,
     or none of them could be drawn (each said by a warning of its own)."""
     robot = analysis.robot
     visuals = sum(len(link.visuals) for link in robot.links)
     collisions = sum(len(link.collisions) for link in robot.links)
-    kind, count = ("collision", collisions) if collision else ("visual", visuals)
+    inertials = sum(link.inertial is not None for link in robot.links)
+    counts = {"visual": visuals, "collision": collisions, "inertial": inertials}
+    tags = list(dict.fromkeys(_TAGS[layer] for layer in layers))
+    count = sum(counts[tag] for tag in tags)
+    kind = " or ".join(tags)
     if count:
-        many = f"none of its {count} {kind} shapes can be drawn"
-        what = many if count > 1 else f"its only {kind} shape cannot be drawn"
+        noun = "inertial" if tags == ["inertial"] else f"{kind} shape"
+        many = f"none of its {count} {noun}s can be drawn"
+        what = many if count > 1 else f"its only {noun} cannot be drawn"
         hint = None  # the warnings before it say why
     else:
-        what, hint = f"no link has a {kind} shape", f"give a link a <{kind}>"
+        elements = " or ".join(_ELEMENTS[tag] for tag in tags)
+        what, hint = f"no link has {elements}", f"give a link {_ARTICLES[tags[0]]} <{tags[0]}>"
     return NOTHING_DRAWN.report(
         f"robot {robot.name!r}: {what}: there is nothing to draw",
         robot.source,
         path=analysis.path,
         subject=Subject(Kind.ROBOT, robot.name),
         hint=hint,
-        data=NothingDrawnFacts(kind=kind, visuals=visuals, collisions=collisions),
+        data=NothingDrawnFacts(kind=",".join(layers), visuals=visuals, collisions=collisions),
     )
 
 
-def _shown(geometry: Geometry) -> str:
-    if isinstance(geometry, Mesh):
-        return f"mesh {geometry.filename!r}"
-    return type(geometry).__name__.lower()
+_TAGS = {"visual": "visual", "collision": "collision", "mass": "inertial", "inertia": "inertial"}
+_ELEMENTS = {
+    "visual": "a visual shape",
+    "collision": "a collision shape",
+    "inertial": "an <inertial>",
+}
+_ARTICLES = {"visual": "a", "collision": "a", "inertial": "an"}
 
 
-def _apply(np: Any, matrix: Any, triangles: Any) -> Any:
-    return triangles @ matrix[:3, :3].T + matrix[:3, 3]
-
-
-def _origin_matrix(np: Any, origin: Origin) -> Any:
-    out = np.eye(4)
-    out[:3, :3] = np.array(rpy_matrix(origin.rpy))
-    out[:3, 3] = origin.xyz
-    return out
+def _shown(shape: Geometry | Inertial) -> str:
+    if isinstance(shape, Mesh):
+        return f"mesh {shape.filename!r}"
+    return type(shape).__name__.lower()
 
 
 def _color(
@@ -246,7 +361,9 @@ class _Loader:
         self.findings: list[Diagnostic] = []
         self.missing: set[str] = set()  # packages not found, said once
 
-    def report(self, rule: Rule, link: Link, shape: Geometry, what: str, hint: str | None) -> None:
+    def report(
+        self, rule: Rule, link: Link, shape: Geometry | Inertial, what: str, hint: str | None
+    ) -> None:
         self.findings.append(
             rule.report(
                 f"link {link.name!r}: {_shown(shape)} {what}",
@@ -274,11 +391,11 @@ class _Loader:
         import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
         if isinstance(geometry, Box):
-            return _box(np, *geometry.size)
+            return box(np, *geometry.size)
         if isinstance(geometry, Cylinder):
-            return _cylinder(np, geometry.radius, geometry.length)
+            return cylinder(np, geometry.radius, geometry.length)
         if isinstance(geometry, Sphere):
-            return _sphere(np, geometry.radius)
+            return sphere(np, geometry.radius)
         if isinstance(geometry, Mesh):
             path = self.paths.get(geometry.filename)
             if not path.found or path.file is None:
@@ -304,14 +421,14 @@ class _Loader:
         if triangles is not None:
             with np.errstate(over="ignore", invalid="ignore"):
                 return triangles * factors  # (not finite: left out by build_scene)
-        box = _bounds_of(np, file)
-        if box is not None:
+        bounds = _bounds_of(np, file)
+        if bounds is not None:
             with np.errstate(over="ignore", invalid="ignore"):
-                box = box[0] * factors, box[1] * factors
-            if not (np.abs(box) <= FARTHEST).all():  # garbage read as numbers: no size
-                box = None
+                bounds = bounds[0] * factors, bounds[1] * factors
+            if not (np.abs(bounds) <= FARTHEST).all():  # garbage read as numbers: no size
+                bounds = None
         reason = getattr(failure, "message", None) or str(failure) or type(failure).__name__
-        drawn = "nor its size: not drawn" if box is None else "drawn as its bounding box"
+        drawn = "nor its size: not drawn" if bounds is None else "drawn as its bounding box"
         kind = file.suffix.lower()
         rule: Rule = MESH_INVALID
         hint = "export the mesh again" if kind in (".stl", ".obj") else None
@@ -320,10 +437,10 @@ class _Loader:
         elif kind not in (".stl", ".obj", ".dae"):
             rule, hint = MESH_FORMAT, "export it as STL or OBJ"
         self.report(rule, link, mesh, f"cannot be read ({reason}), {drawn}", hint)
-        if box is None:
+        if bounds is None:
             return None
-        low, high = box
-        return _box(np, *(high - low)) + (low + high) / 2
+        low, high = bounds
+        return box(np, *(high - low)) + (low + high) / 2
 
 
 def _read_mesh(np: Any, file: Path) -> Any:
@@ -377,50 +494,3 @@ def _bounds_of(np: Any, file: Path) -> tuple[Any, Any] | None:
     if not np.isfinite(points).all():
         return None
     return points.min(axis=0), points.max(axis=0)
-
-
-def _box(np: Any, x: float, y: float, z: float) -> Any:
-    c = np.array([[i, j, k] for i in (-0.5, 0.5) for j in (-0.5, 0.5) for k in (-0.5, 0.5)])
-    c = c * np.array([x, y, z])
-    faces = [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1)]
-    faces += [(2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]
-    return c[np.array(faces)]
-
-
-def _cylinder(np: Any, radius: float, length: float) -> Any:
-    angles = np.linspace(0.0, 2 * math.pi, _SEGMENTS + 1)
-    ring = np.stack([radius * np.cos(angles), radius * np.sin(angles)], axis=1)
-    half = length / 2
-    out = []
-    for k in range(_SEGMENTS):
-        (x0, y0), (x1, y1) = ring[k], ring[k + 1]
-        out.append([[x0, y0, -half], [x1, y1, -half], [x1, y1, half]])
-        out.append([[x0, y0, -half], [x1, y1, half], [x0, y0, half]])
-        out.append([[0, 0, half], [x0, y0, half], [x1, y1, half]])
-        out.append([[0, 0, -half], [x1, y1, -half], [x0, y0, -half]])
-    return np.array(out, dtype=float)
-
-
-def _sphere(np: Any, radius: float) -> Any:
-    rows = _SEGMENTS // 2
-    theta = np.linspace(0.0, math.pi, rows + 1)
-    phi = np.linspace(0.0, 2 * math.pi, _SEGMENTS + 1)
-    grid = (
-        np.stack(
-            [
-                np.outer(np.sin(theta), np.cos(phi)),
-                np.outer(np.sin(theta), np.sin(phi)),
-                np.outer(np.cos(theta), np.ones_like(phi)),
-            ],
-            axis=-1,
-        )
-        * radius
-    )
-    out = []
-    for i in range(rows):
-        for j in range(_SEGMENTS):
-            a, b = grid[i, j], grid[i, j + 1]
-            c, d = grid[i + 1, j], grid[i + 1, j + 1]
-            out.append([a, c, d])
-            out.append([a, d, b])
-    return np.array(out, dtype=float)

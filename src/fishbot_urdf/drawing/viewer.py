@@ -1,6 +1,8 @@
 """The robot in a web browser, as RViz with joint_state_publisher_gui shows it: visuals in
-their colours, collision shapes on a toggle, every link's frame as axes, one slider per
-moving joint within its limits (mimic joints follow), reloaded when the robot's files change.
+their colours, and on toggles the collision shapes, each link's mass and inertia as RViz's
+"Mass Properties" show them (`fishbot_urdf.drawing.scene`) and its frame as axes; one slider
+per moving joint within its limits (mimic joints follow), from the root outwards; reloaded
+when the robot's files change.
 
 Built on viser (``pip install 'fishbot-urdf[view]'``), a maintained web 3D viewer that
 serves its page and talks to it over a websocket. `Viewer` owns one viser server; the
@@ -31,7 +33,7 @@ from ..inputs import max_seconds, time_limit
 from ..kinematics import Kinematics
 from ..model import JointType
 from ..spatial import quaternion
-from ._camera import aim, framing
+from ._camera import aim, corners, framing
 from ._controls import Input as _Input
 from ._controls import dropped as _dropped
 from ._controls import position as _position
@@ -41,9 +43,20 @@ from ._notes import failure_note, findings_of, viewed
 from ._serving import ServeError, authority, control_id, serve, shown
 from .scene import Scene, build_scene
 
-__all__ = ["ServeError", "Viewer"]
+__all__ = ["TOGGLES", "ServeError", "Viewer"]
 
 _log = logging.getLogger(__name__)
+
+TOGGLES = {
+    "visual": "Visual",
+    "collision": "Collision shapes",
+    "mass": "Mass",
+    "inertia": "Inertia",
+    "frames": "Link frames",
+}
+"""The page's checkboxes, by the scene's layer each shows: the visuals and the link frames
+start ticked. Mass and Inertia are RViz's "Mass Properties" (a ball of lead of the link's
+mass, the box of its inertia, both red); untick Visual to see them inside the robot."""
 
 
 class Viewer:
@@ -105,7 +118,7 @@ class Viewer:
         self._turns: frozenset[str] = frozenset()  # continuous joints: an angle wraps round
         self._inputs: dict[str, _Input] = {}  # the page's controls by viser's id
         self._frames: dict[str, Any] = {}
-        self._collisions: list[Any] = []
+        self._shown: dict[str, list[Any]] = {}  # the page's meshes by layer
         self._nodes: list[Any] = []
         self._stamps: dict[str, float] = {}
         self._stop = threading.Event()
@@ -115,13 +128,15 @@ class Viewer:
         self.server = serve(host, port, self._accepts)
         try:
             gui = self.server.gui
-            self._show_collision = gui.add_checkbox("Collision shapes", initial_value=False)
-            self._show_collision.on_update(lambda _: self._toggle())
-            self._show_frames = gui.add_checkbox("Link frames", initial_value=True)
-            self._show_frames.on_update(lambda _: self._toggle())
+            self._toggles = {
+                layer: gui.add_checkbox(label, initial_value=layer in ("visual", "frames"))
+                for layer, label in TOGGLES.items()
+            }
+            for toggle in self._toggles.values():
+                toggle.on_update(lambda _: self._toggle())
             self._switches = {
-                control_id(self._show_collision): _Input("Collision shapes", toggle=True),
-                control_id(self._show_frames): _Input("Link frames", toggle=True),
+                control_id(self._toggles[layer]): _Input(label, toggle=True)
+                for layer, label in TOGGLES.items()
             }
             self._inputs = dict(self._switches)
             self._trouble = gui.add_markdown("", order=-1.0, visible=False)
@@ -171,38 +186,40 @@ class Viewer:
         with self._lock, time_limit(max_seconds()):
             analysis, files = self._load()
             kinematics = Kinematics(analysis)
-            visual = build_scene(analysis, collision=False, packages=self._packages)
+            visual = build_scene(analysis, packages=self._packages)
             collision = build_scene(analysis, collision=True, packages=self._packages)
+            marks = build_scene(analysis, show=("mass", "inertia"), packages=self._packages)
             for node in self._nodes:
                 node.remove()
             for slider in self._sliders.values():
                 slider.remove()
-            self._nodes, self._collisions, self._frames, self._sliders = [], [], {}, {}
+            self._nodes, self._frames, self._sliders = [], {}, {}
+            self._shown = {layer: [] for layer in TOGGLES}
             self._kinematics = kinematics
-            scale = _frame_size(np, visual)
+            length = visual.axes_length if visual.parts else collision.axes_length
             for link in kinematics.links:
                 frame = self.server.scene.add_frame(
                     _node(link),
-                    show_axes=self._show_frames.value,
-                    axes_length=scale,
-                    axes_radius=scale / 20,
+                    show_axes=self._toggles["frames"].value,
+                    axes_length=length,
+                    axes_radius=length / 20,
                 )
                 self._frames[link] = frame
                 self._nodes.append(frame)  # removing a frame removes what hangs below it
-            for kind, scene in (("visual", visual), ("collision", collision)):
+            for scene in (visual, collision, marks):
                 for index, part in enumerate(scene.parts):
                     mesh = self._mesh(
                         np,
-                        f"{_node(part.link)}/{kind}_{index}",
+                        f"{_node(part.link)}/{part.layer}_{index}",
                         part,
-                        visible=kind == "visual" or self._show_collision.value,
+                        visible=self._toggles[part.layer].value,
                     )
-                    if kind == "collision":
-                        self._collisions.append(mesh)
+                    self._shown[part.layer].append(mesh)
+            # (an inertia with no box is left out unsaid: check's findings say why)
             self.findings = viewed(visual, collision)
             if self._points is None:
-                self._frame(np, visual)
-            ranges = {name: slider_range(analysis, name) for name in kinematics.variables}
+                self._frame(np, (visual, collision), length)
+            ranges = {name: slider_range(analysis, name) for name in analysis.plan.outwards()}
             inputs = dict(self._switches)
             for name, (low, high) in ranges.items():
                 value = float(min(max(self.values.get(name, 0.0), low), high))
@@ -243,13 +260,17 @@ class Viewer:
             visible=visible,
         )
 
-    def _frame(self, np: Any, scene: Scene) -> None:
+    def _frame(self, np: Any, scenes: Sequence[Scene], axes: float) -> None:
         """Point the camera at the robot: the pages open already too (the robot was not
-        there to be seen before), each framed for its own view's width."""
-        parts = [part.triangles.reshape(-1, 3) for part in scene.parts]
-        if not parts:  # nothing drawn: the link frames are
-            parts = [np.array([pose[:3, 3] for pose in scene.poses.values()])]
-        self._points = np.concatenate(parts).astype(np.float32)
+        there to be seen before), each framed for its own view's width. What is framed is
+        the box around the robot: its visual and collision shapes, and its link frames'
+        axes (``axes`` long), whatever is toggled on."""
+        parts = [part.triangles.reshape(-1, 3) for scene in scenes for part in scene.parts]
+        poses = np.array(list(scenes[0].poses.values())).reshape(-1, 4, 4)
+        origins = poses[:, :3, 3]
+        tips = origins[:, None, :] + axes * poses[:, :3, :3].transpose(0, 2, 1)  # x, y, z
+        every = np.concatenate([*parts, origins, tips.reshape(-1, 3)])
+        self._points = corners(np, every).astype(np.float32)
         aim(self.server.initial_camera, framing(np, self._points))  # for a square view
         for client in self.server.get_clients().values():
             self._greet(client)
@@ -364,10 +385,11 @@ class Viewer:
 
     def _toggle(self) -> None:
         with self._lock:
-            for mesh in self._collisions:
-                mesh.visible = self._show_collision.value
+            for layer, meshes in self._shown.items():
+                for mesh in meshes:
+                    mesh.visible = self._toggles[layer].value
             for frame in self._frames.values():
-                frame.show_axes = self._show_frames.value
+                frame.show_axes = self._toggles["frames"].value
 
     # -- watching -------------------------------------------------------------------------
     def _watch(self) -> None:
@@ -398,11 +420,6 @@ def _stamp(path: str) -> float:
 def _node(link: str) -> str:
     """A viser scene path for a link (``/`` would nest it)."""
     return "/robot/" + link.replace("/", "_")
-
-
-def _frame_size(np: Any, scene: Any) -> float:
-    low, high = scene.bounds()
-    return float(max(np.max(high - low), 0.05)) / 8
 
 
 def _wxyz(m: Any) -> tuple[float, float, float, float]:

@@ -1,11 +1,12 @@
 """Inertia: the closed forms of uniform solids (the fishbot's common_inertia.xacro), closed
-meshes, a robot's mass properties and mass table, and inertials filled in from collision
-shapes."""
+meshes, a robot's mass properties and mass table, inertials filled in from collision
+shapes, and the mass sphere and inertia box RViz draws for an inertial."""
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
+from ._marks import LEAD_DENSITY, EquivalentBox, equivalent_box, mass_sphere_diameter
 from ._robot import Filling, fill_inertials, link_inertial, mass_properties
 from ._solids import (
     MassProperties,
@@ -26,6 +27,8 @@ if TYPE_CHECKING:
     from ._table import LinkMass, MassTable, inertial_dict, mass_table
 
 __all__ = [
+    "LEAD_DENSITY",
+    "EquivalentBox",
     "Filling",
     "InertiaMacro",
     "InertialSuggestion",
@@ -35,12 +38,14 @@ __all__ = [
     "box_inertia",
     "combine",
     "cylinder_inertia",
+    "equivalent_box",
     "fill_inertials",
     "geometry_inertia",
     "inertia_macros",
     "inertial_dict",
     "link_inertial",
     "mass_properties",
+    "mass_sphere_diameter",
     "mass_table",
     "mesh_inertia",
     "principal_moments",
