@@ -38,6 +38,44 @@ def test_check_reads_stdin() -> None:
     assert run("check", "-", stdin=FIRST.read_bytes()) == (0, FIRST_TREE, "")
 
 
+UNUSED_ARG = (
+    f"{FIRST}: warning: argument 'use_sim' is given, but a URDF file takes no arguments "
+    "(name:=value is for a .xacro file: it was not used) [xacro-unknown-arg]\n"
+)
+
+
+@pytest.mark.parametrize(
+    "command",
+    [
+        ["check", "-q", "FILE", "use_sim:=true"],
+        ["graph", "FILE", "use_sim:=true", "-o", "-"],
+        ["inertia", "FILE", "use_sim:=true"],
+        ["tf", "FILE", "base_link", "imu_link", "use_sim:=true"],
+        ["render", "FILE", "use_sim:=true", "-o", "robot.png"],
+    ],
+    ids=lambda c: c[0],
+)
+def test_an_argument_given_with_a_urdf_file_is_a_warning_that_it_was_not_used(
+    command: list[str], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    result = CliRunner().invoke(cli, [str(FIRST) if a == "FILE" else a for a in command])
+    assert (result.exit_code, result.stderr) == (0, UNUSED_ARG)
+
+
+def test_arguments_go_to_the_xacro_files_checked_with_a_urdf_file() -> None:
+    xacro = FISHBOT / "urdf" / "first_robot.urdf.xacro"
+    status, _, err = run("check", "-q", str(FIRST), str(xacro), "use_sim:=true")
+    assert (status, err) == (
+        0,
+        f"{xacro}: warning: argument 'use_sim' is given, but no <xacro:arg> declares it and "
+        "nothing reads it (the files declare no arguments) [xacro-unknown-arg]\n",
+    )
+    piped = run("check", "-q", "-", "use_sim:=true", stdin=FIRST.read_bytes())
+    assert piped == (0, "", UNUSED_ARG.replace(str(FIRST), "<stdin>"))
+    assert run("check", "-q", "--strict", str(FIRST), "use_sim:=true") == (1, "", UNUSED_ARG)
+
+
 def test_findings_go_to_stderr_and_exit_1() -> None:
     path = DATA / "invalid" / "undefined_parent.urdf"
     status, out, err = run("check", str(path))

@@ -133,8 +133,9 @@ XACRO_UNKNOWN_ARG = Rule(
     "is built without the arm, the sensor or the simulation tags that were asked for. Spell the "
     "argument as the file declares it; `--strict` makes this an error for CI. `tf`, `render` "
     "and `view` warn too, and when the argument is named as a joint they say that `-j "
-    "NAME=VALUE` places joints; a URDF file takes no arguments, and for one they warn only of "
-    "joints' names.",
+    "NAME=VALUE` places joints. A URDF file reads no arguments: every command warns of each "
+    "one given with it (`check` only when none of the files it checks is a `.xacro` file, "
+    "which takes them).",
     bad="""\
 # fishbot.urdf.xacro declares <xacro:arg name="use_sim" default="false"/>
 fishbot check --strict --package fishbot_description=src/fishbot_description \\
