@@ -76,6 +76,28 @@ def test_arguments_go_to_the_xacro_files_checked_with_a_urdf_file() -> None:
     assert run("check", "-q", "--strict", str(FIRST), "use_sim:=true") == (1, "", UNUSED_ARG)
 
 
+def test_a_xacro_substitution_left_in_a_urdf_says_to_expand_its_source(tmp_path: Path) -> None:
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="a"/><link name="b"/>\n'
+        '<joint name="j" type="$(arg joint_type)"><parent link="a"/><child link="b"/>\n'
+        '<origin xyz="0 ${wheel_y} 0"/></joint></robot>\n',
+        encoding="utf-8",
+    )
+    expand = (
+        "(this is a xacro substitution left unexpanded: run xacro or `fishbot expand` on the "
+        ".xacro file it came from, or give that file instead)"
+    )
+    assert run("check", "-q", str(robot)) == (
+        1,
+        "",
+        f"{robot}:2:17: error: joint 'j': type '$(arg joint_type)' is not a URDF joint type "
+        f"{expand} [joint-type]\n"
+        f"{robot}:3:9: error: joint 'j': <origin xyz=\"0 ${{wheel_y}} 0\">: '${{wheel_y}}' is "
+        f"not a number {expand} [bad-number]\n",
+    )
+
+
 def test_findings_go_to_stderr_and_exit_1() -> None:
     path = DATA / "invalid" / "undefined_parent.urdf"
     status, out, err = run("check", str(path))

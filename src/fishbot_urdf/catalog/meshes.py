@@ -48,6 +48,9 @@ class MeshNotFoundFacts(Facts):
     """The file that programs look for, and is not there."""
     beside_writer: str | None = None
     """The file of that name beside the xacro file that wrote the name, when there is one."""
+    unexpanded: str | None = None
+    """The xacro substitution the name holds (``$(arg model)``), left unexpanded, when it
+    holds one."""
 
 
 MESH_NOT_FOUND = Rule(
@@ -64,7 +67,10 @@ MESH_NOT_FOUND = Rule(
     "relative names beside the file they load (RViz reads only `package://` and `file://`). "
     "Among robots shipped in PyPI packages about 7% fail it: packages that "
     "ship a robot without its meshes (fetched later, or left behind when it was copied), "
-    "absolute paths of the author's machine, and a package whose folder is not its name.",
+    "absolute paths of the author's machine, and a package whose folder is not its name. "
+    "A name that holds a xacro substitution (`$(find pkg)`, `$(arg model)`, `${path}`) comes "
+    "from a .xacro file shipped as URDF without running xacro on it: the finding says so "
+    "instead of suggesting another name; run xacro on the .xacro file, or check that file.",
     bad=_ONE_BOX.format(name="meshes/base.stl"),
     good=_ONE_BOX.format(name=_FOUND),
     consumers=_VIEWERS,
