@@ -190,6 +190,13 @@ class NothingDrawnFacts(Facts):
     """The robot's visual shapes."""
     collisions: int
     """The robot's collision shapes."""
+    other_drawable: int = 0
+    """The shapes of the other kind that could be drawn: boxes, cylinders and spheres, and
+    meshes whose file is found."""
+    meshes_not_found: int = 0
+    """The shapes of the kind asked for that are meshes whose file is not found."""
+    packages: tuple[str, ...] = ()
+    """The packages not found that hold meshes of the kind asked for."""
 
 
 NOTHING_DRAWN = Rule(
@@ -203,8 +210,9 @@ NOTHING_DRAWN = Rule(
     "were the robot. `fishbot render` says so and writes nothing, with exit status 1 (a "
     "configuration that ignores the rule, or makes it a warning, gets the blank picture); "
     "`fishbot view` shows the link frames and prints it as a warning. Give a link a "
-    "`<visual>`, draw the collision shapes with `--collision`, or fix the shapes that the "
-    "other warnings say cannot be drawn.",
+    "`<visual>`, draw the collision shapes with `--collision` (offered when some of them "
+    "can be drawn), or fix the shapes that the other warnings say cannot be drawn: most "
+    "often mesh files that are not found, in a package `--package NAME=PATH` locates.",
     bad="""\
 # frames.urdf: base_link and two wheel links, none with a <visual>
 fishbot render frames.urdf -o frames.png

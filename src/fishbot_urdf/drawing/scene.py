@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..analysis import Analysis, of
+from ..analysis.meshpaths import State
 from ..catalog import Rule
 from ..catalog.meshes import (
     MESH_FORMAT,
@@ -178,21 +179,30 @@ def build_scene(
             color = (0.55, 0.7, 0.85, 1.0) if collision else _color(material, materials)
             parts.append(Part(link.name, world, color, placed, pose))
     if not parts:
-        loader.findings.append(_nothing_drawn(analysis, collision))
+        loader.findings.append(_nothing_drawn(analysis, collision, tuple(sorted(loader.missing))))
     return Scene(tuple(parts), tuple(sorted(loader.findings, key=sort_key)), poses)
 
 
-def _nothing_drawn(analysis: Analysis, collision: bool) -> Diagnostic:
+def _nothing_drawn(analysis: Analysis, collision: bool, packages: tuple[str, ...]) -> Diagnostic:
     """The error of a scene with no shape in it: the robot has none of the kind asked for,
-    or none of them could be drawn (each said by a warning of its own)."""
+    or none of them could be drawn (each said by a warning of its own); ``packages``: those
+    not found, that hold its meshes. Its facts say how many shapes of the other kind could
+    be drawn, so that the other kind is offered only when that would draw something."""
     robot = analysis.robot
-    visuals = sum(len(link.visuals) for link in robot.links)
-    collisions = sum(len(link.collisions) for link in robot.links)
-    kind, count = ("collision", collisions) if collision else ("visual", visuals)
-    if count:
-        many = f"none of its {count} {kind} shapes can be drawn"
-        what = many if count > 1 else f"its only {kind} shape cannot be drawn"
-        hint = None  # the warnings before it say why
+    visuals = [v.geometry for link in robot.links for v in link.visuals]
+    collisions = [c.geometry for link in robot.links for c in link.collisions]
+    kind, shapes, others = (
+        ("collision", collisions, visuals) if collision else ("visual", visuals, collisions)
+    )
+    unfound = sum(1 for shape in shapes if not _drawable(analysis, shape))
+    if shapes:
+        many = f"none of its {len(shapes)} {kind} shapes can be drawn"
+        what = many if len(shapes) > 1 else f"its only {kind} shape cannot be drawn"
+        hint = None  # the warnings say why
+        if unfound == len(shapes) > 1:
+            hint = "none of its mesh files is found: each mesh-not-found warning says where"
+        elif unfound == len(shapes):
+            hint = "its mesh file is not found: the mesh-not-found warning says where"
     else:
         what, hint = f"no link has a {kind} shape", f"give a link a <{kind}>"
     return NOTHING_DRAWN.report(
@@ -201,8 +211,23 @@ def _nothing_drawn(analysis: Analysis, collision: bool) -> Diagnostic:
         path=analysis.path,
         subject=Subject(Kind.ROBOT, robot.name),
         hint=hint,
-        data=NothingDrawnFacts(kind=kind, visuals=visuals, collisions=collisions),
+        data=NothingDrawnFacts(
+            kind=kind,
+            visuals=len(visuals),
+            collisions=len(collisions),
+            other_drawable=sum(1 for shape in others if _drawable(analysis, shape)),
+            meshes_not_found=unfound,
+            packages=packages,
+        ),
     )
+
+
+def _drawable(analysis: Analysis, shape: Geometry) -> bool:
+    """A shape a scene could draw, as far as can be told without reading mesh files: a box,
+    cylinder or sphere, or a mesh whose file is found."""
+    if not isinstance(shape, Mesh):
+        return True
+    return bool(shape.filename) and analysis.mesh_paths.get(shape.filename).state is State.FOUND
 
 
 def _shown(geometry: Geometry) -> str:
