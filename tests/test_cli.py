@@ -98,6 +98,65 @@ def test_a_xacro_substitution_left_in_a_urdf_says_to_expand_its_source(tmp_path:
     )
 
 
+FISHBOT_LINKS = ["back_caster_link", "base_footprint", "base_link", "camera_link"]
+FISHBOT_LINKS += ["front_caster_link", "imu_link", "laser_cylinder_link", "laser_link"]
+FISHBOT_LINKS += ["left_wheel_link", "right_wheel_link"]
+
+
+def test_an_undefined_link_lists_the_links_like_it_first_and_counts_the_others(
+    tmp_path: Path,
+) -> None:
+    # A child named without its ROS suffix: the link is offered, and the links like it come
+    # first in the listing (alphabetically, the wheels would be cut off).
+    robot = tmp_path / "fishbot.urdf"
+    links = "".join(f'<link name="{name}"/>' for name in FISHBOT_LINKS)
+    joints = '<joint name="left_wheel_joint" type="continuous"><parent link="base_link"/>'
+    joints += '<child link="left_wheel"/></joint>'
+    joints += '<joint name="imu_joint" type="fixed"><parent link="base_link"/>'
+    joints += '<child link="imu"/></joint>'
+    robot.write_text(f'<robot name="fishbot">\n{links}\n{joints}\n</robot>\n')
+    status, out, err = run("check", "-q", "--select", "undefined-link", str(robot))
+    assert (status, out) == (1, "")
+    assert err == (
+        f"{robot}:3:76: error: joint 'left_wheel_joint': child link 'left_wheel' is not "
+        "defined (did you mean 'left_wheel_link'? links: left_wheel_link, right_wheel_link, "
+        "back_caster_link, base_footprint, base_link, camera_link, front_caster_link, "
+        "imu_link, ... (2 more)) [undefined-link]\n"
+        f"{robot}:3:173: error: joint 'imu_joint': child link 'imu' is not defined (did you "
+        "mean 'imu_link'? links: imu_link, back_caster_link, base_footprint, base_link, "
+        "camera_link, front_caster_link, laser_cylinder_link, laser_link, ... (2 more)) "
+        "[undefined-link]\n"
+    )
+
+
+def test_a_property_that_shares_only_a_word_with_the_misspelt_one_is_not_offered(
+    tmp_path: Path,
+) -> None:
+    robot = tmp_path / "wheel.urdf.xacro"
+    robot.write_text(
+        '<robot name="w" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '<xacro:property name="wheel_name" value="left"/>\n'
+        '<xacro:property name="wheel_length" value="0.04"/>\n'
+        '<link name="${wheel_name}_wheel_link"><visual><geometry>\n'
+        '<cylinder radius="${wheel_radius}" length="${wheel_length}"/>\n'
+        "</geometry></visual></link></robot>\n"
+    )
+    status, _, err = run("expand", str(robot))
+    assert (status, err) == (
+        1,
+        f"{robot}:5:1: error: 'wheel_radius' is not defined in ${{wheel_radius}} (defined "
+        "properties: wheel_name, wheel_length) [xacro-undefined]\n",
+    )
+    # A misspelling of a property defined is offered.
+    robot.write_text(robot.read_text().replace("${wheel_radius}", "${wheel_lenght}"))
+    status, _, err = run("expand", str(robot))
+    assert (status, err) == (
+        1,
+        f"{robot}:5:1: error: 'wheel_lenght' is not defined in ${{wheel_lenght}} (did you "
+        "mean 'wheel_length'?) [xacro-undefined]\n",
+    )
+
+
 def test_findings_go_to_stderr_and_exit_1() -> None:
     path = DATA / "invalid" / "undefined_parent.urdf"
     status, out, err = run("check", str(path))

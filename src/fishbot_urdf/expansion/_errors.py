@@ -476,7 +476,9 @@ def _closest(name: str, candidates: list[str], what: str) -> str | None:
     if not candidates:
         return None
     close = closest(name, candidates)
-    return f"did you mean '{close}'?" if close else f"defined {what}: {listing(candidates)}"
+    return (
+        f"did you mean '{close}'?" if close else f"defined {what}: {listing(candidates, near=name)}"
+    )
 
 
 def _table_names(table: Any) -> list[str]:

@@ -23,7 +23,7 @@ def unknown_args(
         if close:
             hint = f"did you mean {close!r}?"
         elif declared:
-            hint = f"declared: {listing(declared)}"
+            hint = f"declared: {listing(declared, near=name)}"
         else:
             hint = "the files declare no arguments"
         yield XACRO_UNKNOWN_ARG.report(
