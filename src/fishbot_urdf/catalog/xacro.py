@@ -59,8 +59,10 @@ XACRO_INCLUDE = Rule(
     explanation='`<xacro:include filename="...">` reads another file: a relative name is looked '
     "up beside the file that includes it, and `$(find pkg)/...` in a ROS package. When the file "
     "does not exist or cannot be read, xacro stops with `No such file or directory`, and fishbot "
-    "names the closest file in that folder. Correct the name, and use `$(find "
-    "your_package)/urdf/...` for a file of another package.",
+    "names the closest file in that folder. A path made from `$(arg ...)` is named with the "
+    "arguments' values, and those left at their defaults (`none/none_none.xacro` from a top "
+    "file run without its arguments) are the ones to give as `name:=value`. Correct the name, "
+    "and use `$(find your_package)/urdf/...` for a file of another package.",
     bad="""\
 <robot name="fishbot" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:include filename="wheel_urdf.xacro"/>

@@ -42,6 +42,7 @@ class Explaining:
     xacro: Any
     subst: Any
     path: str
+    args: dict[str, str]
     node: Any
     calls: list[tuple[str, Location | None]]
     symbols: Any
@@ -161,7 +162,7 @@ class Explaining:
         if isinstance(inner, OSError) and self.node is not None:
             if self.node.tagName == "xacro:include":
                 spec = self.node.getAttribute("filename")
-                return _missing_include(inner, spec, where, calls)
+                return _missing_include(inner, spec, where, calls, self._made_from_args(spec))
             if getattr(inner, "filename", None):
                 return XacroError(
                     f"cannot read {inner.filename}: {inner.strerror}",
@@ -241,6 +242,28 @@ class Explaining:
             )
         said = text or (type(inner).__name__ if inner is not None else "xacro failed")
         return XacroError(said, where=where, calls=calls)
+
+    def _made_from_args(self, spec: str) -> tuple[str, str] | None:
+        """For an include whose path is made with ``$(arg ...)``: which arguments made it,
+        with what values (those left at their defaults are the likely cause), and what to
+        do."""
+        names = _arg_names(spec)
+        if not names:
+            return None
+        values = self.xacro.substitution_args_context.get("arg", {})
+        defaults = [name for name in names if name not in self.args]
+        given = [name for name in names if name in self.args]
+        if not defaults:
+            held = "argument" if len(given) == 1 else "arguments"
+            return f"its path is made from the {held} given: {_pairs(given, values)}", (
+                "check the value given" if len(given) == 1 else "check the values given"
+            )
+        held = "argument" if len(defaults) == 1 else "arguments"
+        its = "its default" if len(defaults) == 1 else "their defaults"
+        what = f"its path is made from {held} left at {its}: {_pairs(defaults, values)}"
+        if given:
+            what += f", with {_pairs(given, values)} given"
+        return what, "give " + " ".join(f"{name}:=VALUE" for name in defaults)
 
     def _undefined_name(
         self,
@@ -421,7 +444,10 @@ def _missing_include(
     spec: str,
     where: Location | None,
     calls: tuple[tuple[str, Location | None], ...],
+    made: tuple[str, str] | None = None,
 ) -> XacroError:
+    """The error of an include that cannot be read; ``made``: for one whose path is made
+    from arguments, what made it and what to do, said when the file does not exist."""
     target = Path(str(error.filename if error.filename is not None else spec))
     folder = target.parent
     if isinstance(error, PermissionError) or not _looked_at(target):
@@ -451,25 +477,31 @@ def _missing_include(
             calls=calls,
         )
     if not _is_folder(folder):
-        return XacroError(
-            f"included file {shown_path(str(target))} does not exist",
-            rule="xacro-include",
-            hint=f"there is no folder {shown_path(str(folder))}",
-            where=where,
-            calls=calls,
-        )
-    try:
-        close = closest(target.name, (p.name for p in folder.iterdir() if p.is_file()))
-    except OSError:  # a folder that may not be listed
-        close = None
-    hint = f"did you mean '{close}'?" if close else None
-    return XacroError(
-        f"included file {shown_path(str(target))} does not exist",
-        rule="xacro-include",
-        hint=hint,
-        where=where,
-        calls=calls,
-    )
+        hint: str | None = f"there is no folder {shown_path(str(folder))}"
+    else:
+        try:
+            close = closest(target.name, (p.name for p in folder.iterdir() if p.is_file()))
+        except OSError:  # a folder that may not be listed
+            close = None
+        hint = f"did you mean '{close}'?" if close else None
+    message = f"included file {shown_path(str(target))} does not exist"
+    if made is not None:
+        what, fix = made
+        message, hint = f"{message}: {what}", f"{hint}; {fix}" if hint else fix
+    return XacroError(message, rule="xacro-include", hint=hint, where=where, calls=calls)
+
+
+def _arg_names(text: str) -> list[str]:
+    """The arguments ``text`` reads with ``$(arg NAME)``, each once, in order."""
+    return list(dict.fromkeys(_ARG.findall(text)))
+
+
+_ARG = re.compile(r"\$\(arg\s+([^)\s]+)\s*\)")
+
+
+def _pairs(names: list[str], values: dict[str, Any]) -> str:
+    said = [f"{name}:={values.get(name, '')}" for name in names]
+    return said[0] if len(said) == 1 else ", ".join(said[:-1]) + " and " + said[-1]
 
 
 def _closest(name: str, candidates: list[str], what: str) -> str | None:
