@@ -145,7 +145,7 @@ def test_a_property_that_shares_only_a_word_with_the_misspelt_one_is_not_offered
     assert (status, err) == (
         1,
         f"{robot}:5:1: error: 'wheel_radius' is not defined in ${{wheel_radius}} (defined "
-        "properties: wheel_name, wheel_length) [xacro-undefined]\n",
+        "properties: wheel_length, wheel_name) [xacro-undefined]\n",
     )
     # A misspelling of a property defined is offered.
     robot.write_text(robot.read_text().replace("${wheel_radius}", "${wheel_lenght}"))

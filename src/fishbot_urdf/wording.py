@@ -26,16 +26,18 @@ def closest(name: str, candidates: Iterable[str]) -> str | None:
 
 def ranked(name: str, candidates: Iterable[str]) -> list[str]:
     """The candidates like ``name``, most alike first: those `closest` would offer, then
-    those sharing a word with it (``left_wheel`` and ``right_wheel_link``)."""
+    those sharing a word with it (``left_wheel`` and ``right_wheel_link``), those sharing
+    more words and nearer in length first."""
     unique = set(candidates)
     close = _close(name, unique)
     words = set(_words(name)) - _SUFFIXES
-    sharing = sorted(
-        (_distance(name.lower(), c.lower(), len(name) + len(c)), c)
-        for c in unique - set(close)
-        if words & set(_words(c))
-    )
-    return close + [c for _, c in sharing]
+    sharing = []
+    if words:
+        for candidate in unique.difference(close):
+            shared = len(words.intersection(_words(candidate)))
+            if shared:
+                sharing.append((-shared, abs(len(candidate) - len(name)), candidate))
+    return close + [candidate for *_, candidate in sorted(sharing)]
 
 
 def did_you_mean(name: str, candidates: Iterable[str]) -> str:
@@ -51,7 +53,8 @@ def listing(names: Iterable[str], most: int = 8, *, near: str | None = None) -> 
     ordered = sorted(set(names))
     if near is not None:
         first = ranked(near, ordered)
-        ordered = first + [n for n in ordered if n not in set(first)]
+        placed = set(first)
+        ordered = first + [n for n in ordered if n not in placed]
     shown = ", ".join(ordered[:most])
     more = len(ordered) - most
     return f"{shown}, ... ({more} more)" if more > 0 else shown
@@ -67,18 +70,16 @@ def _words(name: str) -> list[str]:
 
 def _stem(name: str) -> str:
     """``name`` in lower case, without a ROS suffix (``imu_link`` -> ``imu``)."""
-    low = name.lower()
-    for suffix in _SUFFIXES:
-        for separator in "_-":
-            end = separator + suffix
-            if low.endswith(end) and len(low) > len(end):
-                return low[: -len(end)]
-    return low
+    return _SUFFIX.sub("", name.lower(), count=1)
+
+
+_SUFFIX = re.compile(r"(?<=.)[_-](?:link|joint|frame)$")
 
 
 def _close(name: str, candidates: Iterable[str]) -> list[str]:
     """The candidates like ``name``, best first (see `closest`)."""
     low, stem = name.lower(), _stem(name)
+    letters = set(low)
     found: list[tuple[int, int, int, str]] = []
     for candidate in set(candidates):
         other = candidate.lower()
@@ -93,6 +94,10 @@ def _close(name: str, candidates: Iterable[str]) -> list[str]:
         # As many edits as one in four letters of the longer, not counting a ROS suffix:
         # two names that share one differ in what comes before it.
         allowed = max(1, max(len(stem), len(other_stem)) // 4)
+        if min(gap, abs(len(other_stem) - len(stem))) > allowed:
+            continue  # each letter more or fewer is an edit
+        if len(letters.symmetric_difference(other)) > 2 * allowed:
+            continue  # an edit brings in, or takes away, at most one letter of each name
         edits = min(_distance(low, other, allowed), _distance(stem, other_stem, allowed))
         if edits <= allowed:
             found.append((2, edits, gap, candidate))
