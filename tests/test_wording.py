@@ -32,6 +32,7 @@ FISHBOT_LINKS = [
         ("base", FISHBOT_LINKS, "base_link"),
         ("imu_frame", FISHBOT_LINKS, "imu_link"),
         ("camera_link", ["camera", "camera_optical"], "camera"),
+        ("imu_frame", ["imx_link", "laser_link"], "imx_link"),  # a misspelling, another suffix
         # Misspellings: a letter changed, left out, put in, two swapped; case.
         ("base_lnk", FISHBOT_LINKS, "base_link"),
         ("lft_wheel_link", FISHBOT_LINKS, "left_wheel_link"),
@@ -102,3 +103,55 @@ def test_one_edit_finds_the_name(name: str, data: st.DataObject) -> None:
     )
     assert closest(edited, [name, "something_else_entirely"]) == name
     assert closest(name + "_link", [name]) == name
+
+
+def _osa(a: str, b: str) -> int:
+    """Optimal string alignment distance, every cell counted (what the matcher bounds)."""
+    d = [[i + j if i * j == 0 else 0 for j in range(len(b) + 1)] for i in range(len(a) + 1)]
+    for i in range(1, len(a) + 1):
+        for j in range(1, len(b) + 1):
+            d[i][j] = min(
+                d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] != b[j - 1])
+            )
+            if i > 1 and j > 1 and a[i - 1] == b[j - 2] and a[i - 2] == b[j - 1]:
+                d[i][j] = min(d[i][j], d[i - 2][j - 2] + 1)
+    return d[len(a)][len(b)]
+
+
+def _stem(name: str) -> str:
+    low = name.lower()
+    for suffix in ("_link", "_joint", "_frame", "-link", "-joint", "-frame"):
+        if low.endswith(suffix) and len(low) > len(suffix):
+            return low[: -len(suffix)]
+    return low
+
+
+def _reference(name: str, candidates: list[str]) -> str | None:
+    found = []
+    for c in set(candidates):
+        gap = abs(len(c) - len(name))
+        if c.lower() == name.lower():
+            found.append((0, 0, gap, c))
+        elif _stem(c) == _stem(name):
+            found.append((1, 0, gap, c))
+        else:
+            allowed = max(1, max(len(_stem(name)), len(_stem(c))) // 4)
+            edits = min(_osa(name.lower(), c.lower()), _osa(_stem(name), _stem(c)))
+            if edits <= allowed:
+                found.append((2, edits, gap, c))
+    return min(found)[3] if found else None
+
+
+_PARTS = st.sampled_from(["imu", "imx", "base", "bsae", "wheel", "whel", "_link", "_frame", "_"])
+
+
+@settings(max_examples=500, deadline=None)
+@given(
+    st.lists(_PARTS, min_size=1, max_size=4).map("".join),
+    st.lists(st.lists(_PARTS, min_size=1, max_size=4).map("".join), max_size=10),
+)
+def test_what_the_matcher_turns_down_unseen_it_would_have_turned_down_seen(
+    name: str, candidates: list[str]
+) -> None:
+    # The length and letter bounds, and the edits counted only so far, change no answer.
+    assert closest(name, candidates) == _reference(name, candidates)

@@ -79,7 +79,7 @@ _SUFFIX = re.compile(r"(?<=.)[_-](?:link|joint|frame)$")
 def _close(name: str, candidates: Iterable[str]) -> list[str]:
     """The candidates like ``name``, best first (see `closest`)."""
     low, stem = name.lower(), _stem(name)
-    letters = set(low)
+    letters, stem_letters = set(low), set(stem)
     found: list[tuple[int, int, int, str]] = []
     for candidate in set(candidates):
         other = candidate.lower()
@@ -96,7 +96,10 @@ def _close(name: str, candidates: Iterable[str]) -> list[str]:
         allowed = max(1, max(len(stem), len(other_stem)) // 4)
         if min(gap, abs(len(other_stem) - len(stem))) > allowed:
             continue  # each letter more or fewer is an edit
-        if len(letters.symmetric_difference(other)) > 2 * allowed:
+        if (
+            len(letters.symmetric_difference(other)) > 2 * allowed
+            and len(stem_letters.symmetric_difference(other_stem)) > 2 * allowed
+        ):
             continue  # an edit brings in, or takes away, at most one letter of each name
         edits = min(_distance(low, other, allowed), _distance(stem, other_stem, allowed))
         if edits <= allowed:
