@@ -639,38 +639,45 @@ def test_an_include_made_from_arguments_names_them_and_their_values(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     monkeypatch.chdir(tmp_path)
-    (tmp_path / "arms" / "urdf" / "ur5").mkdir(parents=True)
+    Path("arms/urdf").mkdir(parents=True)
     Path("arms/package.xml").write_text('<package format="3"><name>arms</name></package>\n')
     Path("arms/urdf/robot.urdf.xacro").write_text(ARMS)
-    Path("arms/urdf/ur5/gripper_ur5.xacro").write_text(
-        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="hand"/></robot>\n'
-    )
-    urdf = "arms/urdf"  # shown relative to the current folder
+    for arm, hand in (("ur5", "gripper"), ("ur10", "vacuum")):
+        Path(f"arms/urdf/{arm}").mkdir()
+        Path(f"arms/urdf/{arm}/{hand}_{arm}.xacro").write_text(
+            f'<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="{hand}"/></robot>\n'
+        )
     given = ["expand", "arms/urdf/robot.urdf.xacro", "--package", "arms=arms"]
 
     def said(*args: str) -> tuple[int, str]:
         result = CliRunner().invoke(cli, [*given, *args])
         return result.exit_code, result.stderr
 
-    # Run with no arguments: the defaults made a folder that is not there.
+    at = "arms/urdf/robot.urdf.xacro:6:3: error: included file arms/urdf"
+    # Run with no arguments: the defaults made a folder that is not there; the values that
+    # name files there are offered.
     assert said() == (
         1,
-        f"arms/urdf/robot.urdf.xacro:6:3: error: included file {urdf}/none/none_none.xacro does "
-        "not exist: its path is made from arguments left at their defaults: arm:=none and "
-        f"hand:=none (there is no folder {urdf}/none; give arm:=VALUE hand:=VALUE) "
-        "[xacro-include]\n",
+        f"{at}/none/none_none.xacro does not exist: its path is made from arguments left at "
+        "their defaults: arm:=none and hand:=none (there is no folder arms/urdf/none; give "
+        "arm:=ur10 hand:=vacuum or arm:=ur5 hand:=gripper) [xacro-include]\n",
     )
     assert said("arm:=ur5") == (
         1,
-        f"arms/urdf/robot.urdf.xacro:6:3: error: included file {urdf}/ur5/none_ur5.xacro does "
-        "not exist: its path is made from argument left at its default: hand:=none, with "
-        "arm:=ur5 given (give hand:=VALUE) [xacro-include]\n",
+        f"{at}/ur5/none_ur5.xacro does not exist: its path is made from argument left at its "
+        "default: hand:=none, with arm:=ur5 given (give hand:=gripper) [xacro-include]\n",
+    )
+    assert said("hand:=claw") == (
+        1,
+        f"{at}/none/claw_none.xacro does not exist: its path is made from argument left at its "
+        "default: arm:=none, with hand:=claw given (there is no folder arms/urdf/none; give "
+        "arm:=VALUE) [xacro-include]\n",
     )
     assert said("arm:=ur6", "hand:=gripper") == (
         1,
-        f"arms/urdf/robot.urdf.xacro:6:3: error: included file {urdf}/ur6/gripper_ur6.xacro "
-        "does not exist: its path is made from the arguments given: arm:=ur6 and "
-        f"hand:=gripper (there is no folder {urdf}/ur6; check the values given) "
+        f"{at}/ur6/gripper_ur6.xacro does not exist: its path is made from the arguments "
+        "given: arm:=ur6 and hand:=gripper (there is no folder arms/urdf/ur6; check the values "
+        "given; files there are named by arm:=ur10 hand:=vacuum or arm:=ur5 hand:=gripper) "
         "[xacro-include]\n",
     )
     assert said("arm:=ur5", "hand:=gripper")[0] == 0

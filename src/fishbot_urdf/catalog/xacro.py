@@ -61,7 +61,8 @@ XACRO_INCLUDE = Rule(
     "does not exist or cannot be read, xacro stops with `No such file or directory`, and fishbot "
     "names the closest file in that folder. A path made from `$(arg ...)` is named with the "
     "arguments' values, and those left at their defaults (`none/none_none.xacro` from a top "
-    "file run without its arguments) are the ones to give as `name:=value`. Correct the name, "
+    "file run without its arguments) are the ones to give as `name:=value`, with the values "
+    "that name files there. Correct the name, "
     "and use `$(find your_package)/urdf/...` for a file of another package.",
     bad="""\
 <robot name="fishbot" xmlns:xacro="http://www.ros.org/wiki/xacro">
