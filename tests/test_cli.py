@@ -38,6 +38,125 @@ def test_check_reads_stdin() -> None:
     assert run("check", "-", stdin=FIRST.read_bytes()) == (0, FIRST_TREE, "")
 
 
+UNUSED_ARG = (
+    f"{FIRST}: warning: argument 'use_sim' is given, but a URDF file takes no arguments "
+    "(name:=value is for a .xacro file: it was not used) [xacro-unknown-arg]\n"
+)
+
+
+@pytest.mark.parametrize(
+    "command",
+    [
+        ["check", "-q", "FILE", "use_sim:=true"],
+        ["graph", "FILE", "use_sim:=true", "-o", "-"],
+        ["inertia", "FILE", "use_sim:=true"],
+        ["tf", "FILE", "base_link", "imu_link", "use_sim:=true"],
+        ["render", "FILE", "use_sim:=true", "-o", "robot.png"],
+    ],
+    ids=lambda c: c[0],
+)
+def test_an_argument_given_with_a_urdf_file_is_a_warning_that_it_was_not_used(
+    command: list[str], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    result = CliRunner().invoke(cli, [str(FIRST) if a == "FILE" else a for a in command])
+    assert (result.exit_code, result.stderr) == (0, UNUSED_ARG)
+
+
+def test_arguments_go_to_the_xacro_files_checked_with_a_urdf_file() -> None:
+    xacro = FISHBOT / "urdf" / "first_robot.urdf.xacro"
+    status, _, err = run("check", "-q", str(FIRST), str(xacro), "use_sim:=true")
+    assert (status, err) == (
+        0,
+        f"{xacro}: warning: argument 'use_sim' is given, but no <xacro:arg> declares it and "
+        "nothing reads it (the files declare no arguments) [xacro-unknown-arg]\n",
+    )
+    piped = run("check", "-q", "-", "use_sim:=true", stdin=FIRST.read_bytes())
+    assert piped == (0, "", UNUSED_ARG.replace(str(FIRST), "<stdin>"))
+    assert run("check", "-q", "--strict", str(FIRST), "use_sim:=true") == (1, "", UNUSED_ARG)
+
+
+def test_a_xacro_substitution_left_in_a_urdf_says_to_expand_its_source(tmp_path: Path) -> None:
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="a"/><link name="b"/>\n'
+        '<joint name="j" type="$(arg joint_type)"><parent link="a"/><child link="b"/>\n'
+        '<origin xyz="0 ${wheel_y} 0"/></joint></robot>\n',
+        encoding="utf-8",
+    )
+    expand = (
+        "(this is a xacro substitution left unexpanded: run xacro or `fishbot expand` on the "
+        ".xacro file it came from, or give that file instead)"
+    )
+    assert run("check", "-q", str(robot)) == (
+        1,
+        "",
+        f"{robot}:2:17: error: joint 'j': type '$(arg joint_type)' is not a URDF joint type "
+        f"{expand} [joint-type]\n"
+        f"{robot}:3:9: error: joint 'j': <origin xyz=\"0 ${{wheel_y}} 0\">: '${{wheel_y}}' is "
+        f"not a number {expand} [bad-number]\n",
+    )
+
+
+FISHBOT_LINKS = ["back_caster_link", "base_footprint", "base_link", "camera_link"]
+FISHBOT_LINKS += ["front_caster_link", "imu_link", "laser_cylinder_link", "laser_link"]
+FISHBOT_LINKS += ["left_wheel_link", "right_wheel_link"]
+
+
+def test_an_undefined_link_lists_the_links_like_it_first_and_counts_the_others(
+    tmp_path: Path,
+) -> None:
+    # A child named without its ROS suffix: the link is offered, and the links like it come
+    # first in the listing (alphabetically, the wheels would be cut off).
+    robot = tmp_path / "fishbot.urdf"
+    links = "".join(f'<link name="{name}"/>' for name in FISHBOT_LINKS)
+    joints = '<joint name="left_wheel_joint" type="continuous"><parent link="base_link"/>'
+    joints += '<child link="left_wheel"/></joint>'
+    joints += '<joint name="imu_joint" type="fixed"><parent link="base_link"/>'
+    joints += '<child link="imu"/></joint>'
+    robot.write_text(f'<robot name="fishbot">\n{links}\n{joints}\n</robot>\n')
+    status, out, err = run("check", "-q", "--select", "undefined-link", str(robot))
+    assert (status, out) == (1, "")
+    assert err == (
+        f"{robot}:3:76: error: joint 'left_wheel_joint': child link 'left_wheel' is not "
+        "defined (did you mean 'left_wheel_link'? links: left_wheel_link, right_wheel_link, "
+        "back_caster_link, base_footprint, base_link, camera_link, front_caster_link, "
+        "imu_link, ... (2 more)) [undefined-link]\n"
+        f"{robot}:3:173: error: joint 'imu_joint': child link 'imu' is not defined (did you "
+        "mean 'imu_link'? links: imu_link, back_caster_link, base_footprint, base_link, "
+        "camera_link, front_caster_link, laser_cylinder_link, laser_link, ... (2 more)) "
+        "[undefined-link]\n"
+    )
+
+
+def test_a_property_that_shares_only_a_word_with_the_misspelt_one_is_not_offered(
+    tmp_path: Path,
+) -> None:
+    robot = tmp_path / "wheel.urdf.xacro"
+    robot.write_text(
+        '<robot name="w" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '<xacro:property name="wheel_name" value="left"/>\n'
+        '<xacro:property name="wheel_length" value="0.04"/>\n'
+        '<link name="${wheel_name}_wheel_link"><visual><geometry>\n'
+        '<cylinder radius="${wheel_radius}" length="${wheel_length}"/>\n'
+        "</geometry></visual></link></robot>\n"
+    )
+    status, _, err = run("expand", str(robot))
+    assert (status, err) == (
+        1,
+        f"{robot}:5:1: error: 'wheel_radius' is not defined in ${{wheel_radius}} (defined "
+        "properties: wheel_length, wheel_name) [xacro-undefined]\n",
+    )
+    # A misspelling of a property defined is offered.
+    robot.write_text(robot.read_text().replace("${wheel_radius}", "${wheel_lenght}"))
+    status, _, err = run("expand", str(robot))
+    assert (status, err) == (
+        1,
+        f"{robot}:5:1: error: 'wheel_lenght' is not defined in ${{wheel_lenght}} (did you "
+        "mean 'wheel_length'?) [xacro-undefined]\n",
+    )
+
+
 def test_findings_go_to_stderr_and_exit_1() -> None:
     path = DATA / "invalid" / "undefined_parent.urdf"
     status, out, err = run("check", str(path))

@@ -196,12 +196,14 @@ def test_a_xacro_argument_named_as_a_joint_says_how_to_place_the_joint() -> None
     checked = CliRunner().invoke(cli, ["check", "-q", str(XACRO), "use_sim:=true"])
     assert (code, checked.exit_code) == (0, 0)
     assert err == checked.stderr != ""
-    # A URDF file takes no arguments at all: a joint's name is worth a word (check says
-    # nothing of the others, and neither does tf).
+    # A URDF file takes no arguments at all: each is a warning, a joint's name with a word
+    # on placing joints.
     urdf = FISHBOT / "urdf" / "first_robot.urdf"
     code, _, err = _tf(str(urdf), "base_link", "imu_link", "imu_joint:=1", "use_sim:=true")
     assert code == 0
     assert err == (
         f"{urdf}: warning: argument 'imu_joint' is given, but a URDF file takes no arguments "
         "('imu_joint' is a fixed joint, which takes no position) [xacro-unknown-arg]\n"
+        f"{urdf}: warning: argument 'use_sim' is given, but a URDF file takes no arguments "
+        "(name:=value is for a .xacro file: it was not used) [xacro-unknown-arg]\n"
     )

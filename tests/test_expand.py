@@ -625,6 +625,65 @@ def test_expand_command_args_and_packages(tmp_path: Path) -> None:
     assert "'oops' is not an argument: write name:=value" in bad_arg.output
 
 
+ARMS = """\
+<?xml version="1.0"?>
+<robot name="arms" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="arm" default="none"/>
+  <xacro:arg name="hand" default="none"/>
+  <link name="base_link"/>
+  <xacro:include filename="$(find arms)/urdf/$(arg arm)/$(arg hand)_$(arg arm).xacro"/>
+</robot>
+"""
+
+
+def test_an_include_made_from_arguments_names_them_and_their_values(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    Path("arms/urdf").mkdir(parents=True)
+    Path("arms/package.xml").write_text('<package format="3"><name>arms</name></package>\n')
+    Path("arms/urdf/robot.urdf.xacro").write_text(ARMS)
+    for arm, hand in (("ur5", "gripper"), ("ur10", "vacuum")):
+        Path(f"arms/urdf/{arm}").mkdir()
+        Path(f"arms/urdf/{arm}/{hand}_{arm}.xacro").write_text(
+            f'<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="{hand}"/></robot>\n'
+        )
+    given = ["expand", "arms/urdf/robot.urdf.xacro", "--package", "arms=arms"]
+
+    def said(*args: str) -> tuple[int, str]:
+        result = CliRunner().invoke(cli, [*given, *args])
+        return result.exit_code, result.stderr
+
+    at = "arms/urdf/robot.urdf.xacro:6:3: error: included file arms/urdf"
+    # Run with no arguments: the defaults made a folder that is not there; the values that
+    # name files there are offered.
+    assert said() == (
+        1,
+        f"{at}/none/none_none.xacro does not exist: its path is made from arguments left at "
+        "their defaults: arm:=none and hand:=none (there is no folder arms/urdf/none; give "
+        "arm:=ur10 hand:=vacuum or arm:=ur5 hand:=gripper) [xacro-include]\n",
+    )
+    assert said("arm:=ur5") == (
+        1,
+        f"{at}/ur5/none_ur5.xacro does not exist: its path is made from argument left at its "
+        "default: hand:=none, with arm:=ur5 given (give hand:=gripper) [xacro-include]\n",
+    )
+    assert said("hand:=claw") == (
+        1,
+        f"{at}/none/claw_none.xacro does not exist: its path is made from argument left at its "
+        "default: arm:=none, with hand:=claw given (there is no folder arms/urdf/none; give "
+        "arm:=VALUE) [xacro-include]\n",
+    )
+    assert said("arm:=ur6", "hand:=gripper") == (
+        1,
+        f"{at}/ur6/gripper_ur6.xacro does not exist: its path is made from the arguments "
+        "given: arm:=ur6 and hand:=gripper (there is no folder arms/urdf/ur6; check the values "
+        "given; files there are named by arm:=ur10 hand:=vacuum or arm:=ur5 hand:=gripper) "
+        "[xacro-include]\n",
+    )
+    assert said("arm:=ur5", "hand:=gripper")[0] == 0
+
+
 def test_expand_command_errors(tmp_path: Path) -> None:
     runner = CliRunner()
     folder = DATA / "xacro" / "missing_include"

@@ -166,6 +166,39 @@ def test_a_package_not_found_is_a_warning_naming_the_places_searched(
     assert _found(package, "package://elsewhere/meshes/a.stl", elsewhere=other) == []
 
 
+LEFT_UNEXPANDED = (
+    "a xacro substitution left unexpanded (run xacro or `fishbot expand` on the .xacro file "
+    "it came from, or give that file instead) [mesh-not-found]"
+)
+
+
+@pytest.mark.parametrize(
+    ("name", "left"),
+    [
+        ("$(find demo)/meshes/base_link.stl", "$(find demo)"),
+        ("package://demo/meshes/$(arg model)/base_link.stl", "$(arg model)"),
+        ("package://elsewhere/meshes/${model}.stl", "${model}"),  # a package not found too
+        ("$(arg mesh)", "$(arg mesh)"),  # no extension either: no word on its format
+    ],
+)
+def test_a_xacro_substitution_left_in_a_mesh_name_is_named_not_another_name_suggested(
+    package: Path, name: str, left: str
+) -> None:
+    robot = package / "urdf" / "robot.urdf"
+    robot.write_text(ROBOT.format(name=name), encoding="utf-8")
+    said = CliRunner().invoke(cli, ["check", "-q", "--isolated", str(robot)])
+    assert (said.exit_code, said.stderr) == (
+        1,
+        f"{robot}:3:23: error: link 'base_link': mesh {name!r} is not found: {left!r} in it is "
+        f"{LEFT_UNEXPANDED}\n",
+    )
+    # A file of that very name is a file like any other.
+    (package / "urdf" / "$(arg mesh)").write_bytes(b"solid s\nendsolid s\n")
+    robot.write_text(ROBOT.format(name="$(arg mesh)"), encoding="utf-8")
+    found = CliRunner().invoke(cli, ["check", "-q", "--isolated", str(robot)]).stderr
+    assert "left unexpanded" not in found
+
+
 @pytest.mark.parametrize(
     ("name", "what"),
     [("../meshes/base_link.step", "is a .step file"), ("../meshes/base_link", "has no file")],

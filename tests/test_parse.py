@@ -259,8 +259,8 @@ def test_a_xacro_substitution_left_in_a_urdf_is_named(attribute: str, rule: str)
     (finding,) = fishbot_urdf.check_file(data, path="r.urdf").diagnostics
     assert finding.rule == rule
     assert finding.hint == (
-        "this is a xacro substitution left unexpanded: check the .xacro file it came from, "
-        "or expand that with xacro first"
+        "this is a xacro substitution left unexpanded: run xacro or `fishbot expand` on the "
+        ".xacro file it came from, or give that file instead"
     )
 
 

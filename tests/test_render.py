@@ -389,8 +389,15 @@ def test_a_robot_whose_shapes_cannot_be_drawn_has_nothing_to_draw(tmp_path: Path
         "robot 'lost': its only visual shape cannot be drawn: there is nothing to draw"
     )
     assert (nothing.hint, dict(nothing.data)) == (
-        None,
-        {"kind": "visual", "visuals": 1, "collisions": 0},
+        "its mesh file is not found: the mesh-not-found warning says where",
+        {
+            "kind": "visual",
+            "visuals": 1,
+            "collisions": 0,
+            "other_drawable": 0,
+            "meshes_not_found": 1,
+            "packages": (),
+        },
     )
     collision = build_scene(fishbot_urdf.load(robot), collision=True)
     [finding] = collision.findings
@@ -400,11 +407,59 @@ def test_a_robot_whose_shapes_cannot_be_drawn_has_nothing_to_draw(tmp_path: Path
     out = tmp_path / "lost.png"
     result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(out), "--collision"])
     assert result.exit_code == 1
-    assert result.stderr.splitlines()[0].endswith(
-        "(give a link a <collision>; without --collision, `fishbot render` draws its 1 visual "
-        "shape) [nothing-drawn]"
+    # Its one visual shape cannot be drawn either: it is not offered.
+    assert result.stderr.splitlines()[0].endswith("(give a link a <collision>) [nothing-drawn]")
+    assert not out.exists()
+
+
+MESHES_NOT_FOUND = """<robot name="lost">
+  <link name="base_link">
+    <visual><geometry><mesh filename="package://lost_description/meshes/base.stl"/></geometry></visual>
+    <collision><geometry><mesh filename="package://lost_description/meshes/base.stl"/></geometry></collision>
+  </link>
+  <link name="wheel_link">
+    <visual><geometry><mesh filename="meshes/wheel.stl"/></geometry></visual>
+    <collision><geometry>{wheel}</geometry></collision>
+  </link>
+  <joint name="j" type="fixed"><parent link="base_link"/><child link="wheel_link"/></joint>
+</robot>
+"""
+
+
+@pytest.mark.parametrize("collision", [False, True])
+def test_meshes_not_found_are_said_and_the_other_kind_offered_only_when_it_draws(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, collision: bool
+) -> None:
+    monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
+    monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
+    robot = tmp_path / "lost.urdf"
+    robot.write_text(MESHES_NOT_FOUND.format(wheel='<mesh filename="meshes/wheel.stl"/>'))
+    out = tmp_path / "lost.png"
+    given = ["render", str(robot), "-o", str(out), *(["--collision"] if collision else [])]
+    result = CliRunner().invoke(cli, given)
+    kind = "collision" if collision else "visual"
+    assert result.exit_code == 1
+    assert result.stderr.splitlines()[0] == (
+        f"{robot}:1:1: error: robot 'lost': none of its 2 {kind} shapes can be drawn: there "
+        "is nothing to draw (none of its mesh files is found: each mesh-not-found warning "
+        "says where; give the folder of its package with --package lost_description=PATH) "
+        "[nothing-drawn]"
     )
     assert not out.exists()
+    # A collision box that can be drawn is offered, but only to a picture of the visuals.
+    robot.write_text(MESHES_NOT_FOUND.format(wheel='<box size="0.1 0.1 0.1"/>'))
+    result = CliRunner().invoke(cli, given)
+    if collision:
+        assert (result.exit_code, out.exists()) == (0, True)
+        assert "[nothing-drawn]" not in result.stderr
+        return
+    assert result.exit_code == 1
+    assert result.stderr.splitlines()[0] == (
+        f"{robot}:1:1: error: robot 'lost': none of its 2 visual shapes can be drawn: there "
+        "is nothing to draw (none of its mesh files is found: each mesh-not-found warning "
+        "says where; give the folder of its package with --package lost_description=PATH; "
+        "`fishbot render --collision` draws 1 of its 2 collision shapes) [nothing-drawn]"
+    )
 
 
 def test_a_configuration_that_ignores_nothing_drawn_gets_the_blank_picture(

@@ -362,7 +362,7 @@ def _known(name: str, key: str, path: str | None, *, allow_groups: bool) -> None
     if allow_groups:
         what, listed = "rule or family", f"families: {', '.join(f.value for f in Family)}"
     else:
-        what, listed = "rule", f"rules: {listing(rules, 6)}"
+        what, listed = "rule", f"rules: {listing(rules, 6, near=name)}"
         if name in families or name == _ALL:
             listed = f"a severity is set per rule, not for {name!r}"
     raise ConfigError(

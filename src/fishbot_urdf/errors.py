@@ -136,7 +136,9 @@ class UnknownNameError(FishbotUrdfError, KeyError):
         self.name = name
         self.known = tuple(sorted(set(known)))
         hint = did_you_mean(name, self.known)
-        listed = f"{kind}s: {listing(self.known)}" if self.known else f"there are no {kind}s"
+        listed = (
+            f"{kind}s: {listing(self.known, near=name)}" if self.known else f"there are no {kind}s"
+        )
         super().__init__(f"no {kind} {name!r} ({hint}{listed})")
 
 

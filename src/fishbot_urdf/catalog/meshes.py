@@ -48,6 +48,9 @@ class MeshNotFoundFacts(Facts):
     """The file that programs look for, and is not there."""
     beside_writer: str | None = None
     """The file of that name beside the xacro file that wrote the name, when there is one."""
+    unexpanded: str | None = None
+    """The xacro substitution the name holds (``$(arg model)``), left unexpanded, when it
+    holds one."""
 
 
 MESH_NOT_FOUND = Rule(
@@ -64,7 +67,10 @@ MESH_NOT_FOUND = Rule(
     "relative names beside the file they load (RViz reads only `package://` and `file://`). "
     "Among robots shipped in PyPI packages about 7% fail it: packages that "
     "ship a robot without its meshes (fetched later, or left behind when it was copied), "
-    "absolute paths of the author's machine, and a package whose folder is not its name.",
+    "absolute paths of the author's machine, and a package whose folder is not its name. "
+    "A name that holds a xacro substitution (`$(find pkg)`, `$(arg model)`, `${path}`) comes "
+    "from a .xacro file shipped as URDF without running xacro on it: the finding says so "
+    "instead of suggesting another name; run xacro on the .xacro file, or check that file.",
     bad=_ONE_BOX.format(name="meshes/base.stl"),
     good=_ONE_BOX.format(name=_FOUND),
     consumers=_VIEWERS,
@@ -189,6 +195,13 @@ class NothingDrawnFacts(Facts):
     """The robot's visual shapes."""
     collisions: int
     """The robot's collision shapes."""
+    other_drawable: int = 0
+    """The shapes of the other kind that could be drawn: boxes, cylinders and spheres, and
+    meshes whose file is found."""
+    meshes_not_found: int = 0
+    """The shapes of the kind asked for that are meshes whose file is not found."""
+    packages: tuple[str, ...] = ()
+    """The packages not found that hold meshes of the kind asked for."""
 
 
 NOTHING_DRAWN = Rule(
@@ -202,8 +215,9 @@ NOTHING_DRAWN = Rule(
     "were the robot. `fishbot render` says so and writes nothing, with exit status 1 (a "
     "configuration that ignores the rule, or makes it a warning, gets the blank picture); "
     "`fishbot view` shows the link frames and prints it as a warning. Give a link a "
-    "`<visual>`, draw the collision shapes with `--collision`, or fix the shapes that the "
-    "other warnings say cannot be drawn.",
+    "`<visual>`, draw the collision shapes with `--collision` (offered when some of them "
+    "can be drawn), or fix the shapes that the other warnings say cannot be drawn: most "
+    "often mesh files that are not found, in a package `--package NAME=PATH` locates.",
     bad="""\
 # frames.urdf: base_link and two wheel links, none with a <visual>
 fishbot render frames.urdf -o frames.png

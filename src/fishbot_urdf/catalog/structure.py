@@ -169,8 +169,9 @@ UNDEFINED_LINK = Rule(
     explanation="A joint connects two links by name, and both must be defined in the robot. "
     "check_urdf fails (`parent link [base] of joint [laser_joint] not found`), and Gazebo, "
     "MuJoCo, Drake and PyBullet refuse the file too. The cause is usually a typo, or a prefix "
-    "that a xacro macro puts on one name and not on the other; fishbot suggests the closest link "
-    "name.",
+    "that a xacro macro puts on one name and not on the other, or a ROS suffix left off "
+    "(`left_wheel` for `left_wheel_link`); fishbot suggests the closest link name and lists the "
+    "links, those most like the name first, and how many more there are.",
     bad="""\
 <robot name="fishbot">
   <link name="base_link"/>

@@ -59,8 +59,11 @@ XACRO_INCLUDE = Rule(
     explanation='`<xacro:include filename="...">` reads another file: a relative name is looked '
     "up beside the file that includes it, and `$(find pkg)/...` in a ROS package. When the file "
     "does not exist or cannot be read, xacro stops with `No such file or directory`, and fishbot "
-    "names the closest file in that folder. Correct the name, and use `$(find "
-    "your_package)/urdf/...` for a file of another package.",
+    "names the closest file in that folder. A path made from `$(arg ...)` is named with the "
+    "arguments' values, and those left at their defaults (`none/none_none.xacro` from a top "
+    "file run without its arguments) are the ones to give as `name:=value`, with the values "
+    "that name files there. Correct the name, "
+    "and use `$(find your_package)/urdf/...` for a file of another package.",
     bad="""\
 <robot name="fishbot" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:include filename="wheel_urdf.xacro"/>
@@ -133,8 +136,9 @@ XACRO_UNKNOWN_ARG = Rule(
     "is built without the arm, the sensor or the simulation tags that were asked for. Spell the "
     "argument as the file declares it; `--strict` makes this an error for CI. `tf`, `render` "
     "and `view` warn too, and when the argument is named as a joint they say that `-j "
-    "NAME=VALUE` places joints; a URDF file takes no arguments, and for one they warn only of "
-    "joints' names.",
+    "NAME=VALUE` places joints. A URDF file reads no arguments: every command warns of each "
+    "one given with it (`check` only when none of the files it checks is a `.xacro` file, "
+    "which takes them).",
     bad="""\
 # fishbot.urdf.xacro declares <xacro:arg name="use_sim" default="false"/>
 fishbot check --strict --package fishbot_description=src/fishbot_description \\

@@ -67,6 +67,8 @@ class Run:
         meshes: An output file is written (``-o FILE``): everything a file's check reads
             (its meshes too) is an input, never to be written over.
         tree: check_urdf's tree is printed (text format, not quiet).
+        urdf_args: A URDF file is given ``args`` too (to be warned that it reads none):
+            no xacro file in the run takes them.
     """
 
     args: dict[str, str]
@@ -75,6 +77,7 @@ class Run:
     skip_includes: bool
     meshes: bool
     tree: bool
+    urdf_args: bool = True
 
 
 @dataclass(frozen=True, slots=True)
@@ -290,7 +293,8 @@ def outcome(name: str, config: Config, run: Run) -> Outcome:
     the command's (``--timeout``), from now."""
     with time_limit(max_seconds()), recording_inputs() as read:
         try:
-            result = check_input(name, run.args, run.finder, config)
+            args = run.args if run.urdf_args or is_xacro_path(name) else {}
+            result = check_input(name, args, run.finder, config)
         except FishbotUrdfError as exc:
             if exc.path is None:  # a time limit: about the file all the same
                 exc.path = "<stdin>" if name == "-" else name

@@ -14,13 +14,12 @@ import click
 from ..catalog import all_rules
 from ..catalog.xacro import XACRO_UNKNOWN_ARG, UnknownArgFacts
 from ..config import Config, find_config, load_config
-from ..diagnostics import Diagnostic, Kind, Subject, sort_key
+from ..diagnostics import Diagnostic
 from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
 from ..lint import CheckResult, check_file
 from ..model import JointType
 from ..output import Source
 from ..packages import PackageFinder
-from ..parsing import is_xacro_path
 from ..rules import Family
 from ..wording import listing
 from ._common import EXIT_INVALID, emit_findings, stdin_urdf, stop_on
@@ -47,9 +46,10 @@ def check_input(
     packages: dict[str, str] | PackageFinder,
     config: Config | None = None,
 ) -> CheckResult:
-    """Read and check FILE (- is standard input, read as URDF)."""
+    """Read and check FILE (- is standard input, read as URDF: ``args`` are warned of)."""
     if name == "-":
-        return check_file(stdin_urdf(), path="<stdin>", packages=packages, config=config)
+        data = stdin_urdf()
+        return check_file(data, path="<stdin>", args=args, packages=packages, config=config)
     return check_file(name, args=args, packages=packages, config=config)
 
 
@@ -122,35 +122,19 @@ def posable_input(
         if refusal:
             click.echo(refusal, err=True)
         sys.exit(EXIT_INVALID)
-    emit_findings(posing_findings(name, result, args, config))
+    emit_findings(posing_findings(result, args))
     return result
 
 
-def posing_findings(
-    name: str, result: CheckResult, args: Mapping[str, str], config: Config
-) -> list[Diagnostic]:
+def posing_findings(result: CheckResult, args: Mapping[str, str]) -> list[Diagnostic]:
     """The findings a command that poses the robot prints, once it can pose it: the check's,
     with a word for each name:=value argument that names a joint (-j places joints; xacro
-    reads name:=value). A URDF file takes no arguments: those that name no joint pass
-    without a word, as check lets them."""
+    reads name:=value), whether no xacro file reads it or the file is URDF, which reads
+    none."""
     analysis = result.analysis
     if not args or analysis is None:
         return list(result.diagnostics)
-    found = [_with_joint_hint(d, analysis, args) for d in result.diagnostics]
-    if not is_xacro_path(name):
-        found += config.apply(
-            XACRO_UNKNOWN_ARG.report(
-                f"argument {arg!r} is given, but a URDF file takes no arguments",
-                None,
-                path=result.path,
-                subject=Subject(Kind.FILE, result.path),
-                hint=_joint_hint(analysis, arg, args[arg]),
-                data=UnknownArgFacts(argument=arg),
-            )
-            for arg in args
-            if arg in analysis.joints
-        )
-    return sorted(found, key=sort_key)
+    return [_with_joint_hint(d, analysis, args) for d in result.diagnostics]
 
 
 def _with_joint_hint(

@@ -96,18 +96,27 @@ def _package(facts: object) -> str | None:
 
 
 def _other_shapes(facts: object) -> str | None:
-    """How to draw the shapes of the other kind, when the robot has some."""
+    """How to say where the packages not found are, and how to draw the shapes of the
+    other kind, when some of them can be drawn."""
     if not isinstance(facts, NothingDrawnFacts):
         return None
-    if facts.kind == "visual" and facts.collisions:
-        return f"`fishbot render --collision` draws its {_shapes(facts.collisions, 'collision')}"
-    if facts.kind == "collision" and facts.visuals:
-        return f"without --collision, `fishbot render` draws its {_shapes(facts.visuals, 'visual')}"
-    return None
+    words: list[str] = []
+    if facts.packages:
+        given = " ".join(f"--package {package}=PATH" for package in facts.packages)
+        folders = "the folder of its package" if len(facts.packages) == 1 else "their folders"
+        words.append(f"give {folders} with {given}")
+    if facts.kind == "visual" and facts.other_drawable:
+        drawn = _shapes(facts.other_drawable, facts.collisions, "collision")
+        words.append(f"`fishbot render --collision` draws {drawn}")
+    if facts.kind == "collision" and facts.other_drawable:
+        drawn = _shapes(facts.other_drawable, facts.visuals, "visual")
+        words.append(f"without --collision, `fishbot render` draws {drawn}")
+    return "; ".join(words) or None
 
 
-def _shapes(count: int, kind: str) -> str:
-    return f"{count} {kind} shape{'s' if count != 1 else ''}"
+def _shapes(count: int, every: int, kind: str) -> str:
+    shapes = f"{kind} shape{'s' if every != 1 else ''}"
+    return f"its {count} {shapes}" if count == every else f"{count} of its {every} {shapes}"
 
 
 # What a finding of each rule can add: chosen by the finding's rule and its typed facts.

@@ -19,6 +19,7 @@ from ..errors import ConfigError, FishbotUrdfError
 from ..inputs import recording_inputs
 from ..output import AtomicFile, write_atomic
 from ..packages import PackageFinder
+from ..parsing import is_xacro_path
 from ..report import github_annotations, json_report, sarif_report
 from ._batch import Run, outcomes, tree_chunks
 from ._checking import STDIN
@@ -317,6 +318,7 @@ def check(
         skip_includes=skip_includes,
         meshes=output not in (None, "-"),
         tree=fmt == "text" and not quiet,
+        urdf_args=not any(map(is_xacro_path, names)),
     )
     with sink if sink is not None else contextlib.nullcontext():
         for done in outcomes(names, configs, run, _usable_processors() if jobs is None else jobs):

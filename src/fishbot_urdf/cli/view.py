@@ -133,7 +133,7 @@ def view(
         except (UnknownNameError, ArgumentError) as exc:
             viewer.close()
             raise click.BadParameter(exc.message, param_hint="--joint") from None
-        emit_findings(posing_findings(file, first, values, config))
+        emit_findings(posing_findings(first, values))
         terminal.drawn()
     else:  # set, within their joints' ranges, once the robot is read
         viewer.values.update(positions)

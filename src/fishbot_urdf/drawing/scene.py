@@ -28,6 +28,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..analysis import Analysis, of
+from ..analysis.meshpaths import State
 from ..catalog import Rule
 from ..catalog.meshes import (
     MESH_FORMAT,
@@ -214,7 +215,7 @@ def build_scene(
                 world = apply(np, pose, mark.triangles)
                 parts.append(Part(name, world, mark.color, mark.triangles, pose, mark.layer))
     if not parts:
-        loader.findings.append(_nothing_drawn(analysis, layers))
+        loader.findings.append(_nothing_drawn(analysis, layers, tuple(sorted(loader.missing))))
     findings = tuple(sorted(loader.findings, key=sort_key))
     return Scene(tuple(parts), findings, poses, length)
 
@@ -293,22 +294,35 @@ def _inertial_parts(
     return parts
 
 
-def _nothing_drawn(analysis: Analysis, layers: tuple[str, ...]) -> Diagnostic:
+def _nothing_drawn(
+    analysis: Analysis, layers: tuple[str, ...], packages: tuple[str, ...]
+) -> Diagnostic:
     """The error of a scene with no shape in it: the robot has none of the kinds asked for,
-    or none of them could be drawn (each said by a warning of its own)."""
+    or none of them could be drawn (each said by a warning of its own); ``packages``: those
+    not found, that hold its meshes. Its facts say how many shapes of the other kind could
+    be drawn, so that the other kind is offered only when that would draw something."""
     robot = analysis.robot
-    visuals = sum(len(link.visuals) for link in robot.links)
-    collisions = sum(len(link.collisions) for link in robot.links)
+    shapes_of = {
+        "visual": [v.geometry for link in robot.links for v in link.visuals],
+        "collision": [c.geometry for link in robot.links for c in link.collisions],
+    }
     inertials = sum(link.inertial is not None for link in robot.links)
-    counts = {"visual": visuals, "collision": collisions, "inertial": inertials}
     tags = list(dict.fromkeys(_TAGS[layer] for layer in layers))
-    count = sum(counts[tag] for tag in tags)
+    shapes = [shape for tag in tags for shape in shapes_of.get(tag, ())]
+    count = len(shapes) + (inertials if "inertial" in tags else 0)
+    other = {"visual": "collision", "collision": "visual"}.get(tags[0]) if len(tags) == 1 else None
+    others = shapes_of[other] if other else []
+    unfound = sum(1 for shape in shapes if not _drawable(analysis, shape))
     kind = " or ".join(tags)
     if count:
         noun = "inertial" if tags == ["inertial"] else f"{kind} shape"
         many = f"none of its {count} {noun}s can be drawn"
         what = many if count > 1 else f"its only {noun} cannot be drawn"
         hint = None  # the warnings before it say why
+        if unfound == count > 1:
+            hint = "none of its mesh files is found: each mesh-not-found warning says where"
+        elif unfound == count:
+            hint = "its mesh file is not found: the mesh-not-found warning says where"
     else:
         elements = " or ".join(_ELEMENTS[tag] for tag in tags)
         what, hint = f"no link has {elements}", f"give a link {_ARTICLES[tags[0]]} <{tags[0]}>"
@@ -318,7 +332,14 @@ def _nothing_drawn(analysis: Analysis, layers: tuple[str, ...]) -> Diagnostic:
         path=analysis.path,
         subject=Subject(Kind.ROBOT, robot.name),
         hint=hint,
-        data=NothingDrawnFacts(kind=",".join(layers), visuals=visuals, collisions=collisions),
+        data=NothingDrawnFacts(
+            kind=",".join(layers),
+            visuals=len(shapes_of["visual"]),
+            collisions=len(shapes_of["collision"]),
+            other_drawable=sum(1 for shape in others if _drawable(analysis, shape)),
+            meshes_not_found=unfound,
+            packages=packages,
+        ),
     )
 
 
@@ -329,6 +350,14 @@ _ELEMENTS = {
     "inertial": "an <inertial>",
 }
 _ARTICLES = {"visual": "a", "collision": "a", "inertial": "an"}
+
+
+def _drawable(analysis: Analysis, shape: Geometry) -> bool:
+    """A shape a scene could draw, as far as can be told without reading mesh files: a box,
+    cylinder or sphere, or a mesh whose file is found."""
+    if not isinstance(shape, Mesh):
+        return True
+    return bool(shape.filename) and analysis.mesh_paths.get(shape.filename).state is State.FOUND
 
 
 def _shown(shape: Geometry | Inertial) -> str:

@@ -55,6 +55,7 @@ __all__ = [
     "probe_macros",
     "robot_tree",
     "trusting_expressions",
+    "unexpanded",
 ]
 
 T = TypeVar("T")
@@ -187,3 +188,20 @@ def declared_args(expansion: Expansion) -> frozenset[str]:
             if found:
                 names.add(found.decode("utf-8", "replace"))
     return frozenset(names)
+
+
+# A substitution xacro makes: $(arg x), $(find pkg), $(eval ...), ${expression}.
+_SUBSTITUTION = re.compile(r"\$\([a-z]+\b[^)]*\)?|\$\{[^}]*\}?")
+
+EXPAND_HINT = (
+    "run xacro or `fishbot expand` on the .xacro file it came from, or give that file instead"
+)
+"""What to do about a xacro substitution left in a URDF file."""
+
+
+def unexpanded(text: str) -> str | None:
+    """The first xacro substitution in ``text`` (``$(arg x)``, ``$(find pkg)``, ``${x}``), as
+    written, if it holds one: in a URDF file, a substitution xacro never made (the file was
+    written from a .xacro file without running xacro on it)."""
+    found = _SUBSTITUTION.search(text)
+    return None if found is None else found.group()

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import ast
+import glob
+import itertools
 import os
 import re
 from pathlib import Path
@@ -42,6 +44,7 @@ class Explaining:
     xacro: Any
     subst: Any
     path: str
+    args: dict[str, str]
     node: Any
     calls: list[tuple[str, Location | None]]
     symbols: Any
@@ -161,7 +164,8 @@ class Explaining:
         if isinstance(inner, OSError) and self.node is not None:
             if self.node.tagName == "xacro:include":
                 spec = self.node.getAttribute("filename")
-                return _missing_include(inner, spec, where, calls)
+                made = self._made_from_args(spec, str(inner.filename or spec))
+                return _missing_include(inner, spec, where, calls, made)
             if getattr(inner, "filename", None):
                 return XacroError(
                     f"cannot read {inner.filename}: {inner.strerror}",
@@ -241,6 +245,33 @@ class Explaining:
             )
         said = text or (type(inner).__name__ if inner is not None else "xacro failed")
         return XacroError(said, where=where, calls=calls)
+
+    def _made_from_args(self, spec: str, target: str) -> tuple[str, str] | None:
+        """For an include whose path is made with ``$(arg ...)``: which arguments made it,
+        with what values (those left at their defaults are the likely cause), and what to
+        do: the values that name files there, when some do."""
+        names = _arg_names(spec)
+        if not names:
+            return None
+        values = self.xacro.substitution_args_context.get("arg", {})
+        defaults = [name for name in names if name not in self.args]
+        given = [name for name in names if name in self.args]
+        found = _choices(spec, target, values)
+        if not defaults:
+            held = "argument" if len(given) == 1 else "arguments"
+            fix = "check the value given" if len(given) == 1 else "check the values given"
+            if found:
+                fix += "; files there are named by " + _either(found, given)
+            return f"its path is made from the {held} given: {_pairs(given, values)}", fix
+        held = "argument" if len(defaults) == 1 else "arguments"
+        its = "its default" if len(defaults) == 1 else "their defaults"
+        what = f"its path is made from {held} left at {its}: {_pairs(defaults, values)}"
+        if given:
+            what += f", with {_pairs(given, values)} given"
+        fitting = [c for c in found if all(c[n] == str(values.get(n)) for n in given)]
+        if fitting:
+            return what, "give " + _either(fitting, defaults)
+        return what, "give " + " ".join(f"{name}:=VALUE" for name in defaults)
 
     def _undefined_name(
         self,
@@ -421,7 +452,10 @@ def _missing_include(
     spec: str,
     where: Location | None,
     calls: tuple[tuple[str, Location | None], ...],
+    made: tuple[str, str] | None = None,
 ) -> XacroError:
+    """The error of an include that cannot be read; ``made``: for one whose path is made
+    from arguments, what made it and what to do, said when the file does not exist."""
     target = Path(str(error.filename if error.filename is not None else spec))
     folder = target.parent
     if isinstance(error, PermissionError) or not _looked_at(target):
@@ -451,32 +485,91 @@ def _missing_include(
             calls=calls,
         )
     if not _is_folder(folder):
-        return XacroError(
-            f"included file {shown_path(str(target))} does not exist",
-            rule="xacro-include",
-            hint=f"there is no folder {shown_path(str(folder))}",
-            where=where,
-            calls=calls,
-        )
-    try:
-        close = closest(target.name, (p.name for p in folder.iterdir() if p.is_file()))
-    except OSError:  # a folder that may not be listed
-        close = None
-    hint = f"did you mean '{close}'?" if close else None
-    return XacroError(
-        f"included file {shown_path(str(target))} does not exist",
-        rule="xacro-include",
-        hint=hint,
-        where=where,
-        calls=calls,
-    )
+        hint: str | None = f"there is no folder {shown_path(str(folder))}"
+    else:
+        try:
+            close = closest(target.name, (p.name for p in folder.iterdir() if p.is_file()))
+        except OSError:  # a folder that may not be listed
+            close = None
+        hint = f"did you mean '{close}'?" if close else None
+    message = f"included file {shown_path(str(target))} does not exist"
+    if made is not None:
+        what, fix = made
+        message, hint = f"{message}: {what}", f"{hint}; {fix}" if hint else fix
+    return XacroError(message, rule="xacro-include", hint=hint, where=where, calls=calls)
+
+
+def _arg_names(text: str) -> list[str]:
+    """The arguments ``text`` reads with ``$(arg NAME)``, each once, in order."""
+    return list(dict.fromkeys(_ARG.findall(text)))
+
+
+_ARG = re.compile(r"\$\(arg\s+([^)\s]+)\s*\)")
+
+
+def _choices(spec: str, target: str, values: dict[str, Any]) -> list[dict[str, str]]:
+    """The values of the arguments in ``spec`` (an include's filename) that name files
+    there, found by listing the folders its path is made in, at most `_MOST_CHOICES`:
+    ``target``, the path made, is what the arguments' ``values`` made of the part of
+    ``spec`` from its first ``$(arg ...)`` on, written after what the rest made."""
+    tail = spec[spec.find("$(arg") :]
+    pieces = _ARG.split(tail)  # text, name, text, name, ..., text
+    texts, names = pieces[0::2], pieces[1::2]
+    if any("$(" in text or "${" in text for text in texts):
+        return []  # made by other substitutions too: not to be read back
+    made = "".join(t + str(values.get(n, "")) for t, n in zip(texts[:-1], names, strict=True))
+    made += texts[-1]
+    if not target.endswith(made):
+        return []
+    base = target[: len(target) - len(made)]
+    pattern = glob.escape(base) + "*".join(glob.escape(text) for text in texts)
+    # Each argument's group, at its first place (numbered: an argument's name need not be
+    # a Python name); the same value again at the others.
+    groups: dict[str, int] = {}
+    expression = re.escape(base)
+    for text, name in zip(texts[:-1], names, strict=True):
+        if name in groups:
+            expression += re.escape(text) + f"(?:(?P={_group(groups[name])}))"
+            continue
+        groups[name] = len(groups) + 1
+        expression += re.escape(text) + f"(?P<{_group(groups[name])}>[^/]+)"
+    matching = re.compile(expression + re.escape(texts[-1]))
+    found: list[dict[str, str]] = []
+    for path in sorted(itertools.islice(glob.iglob(pattern), _MOST_LOOKED_AT)):
+        match = matching.fullmatch(path)
+        if match is None or not os.path.isfile(path):
+            continue
+        choice = {name: match.group(_group(number)) for name, number in groups.items()}
+        if choice not in found:
+            found.append(choice)
+    return found[:_MOST_CHOICES]
+
+
+def _group(number: int) -> str:
+    return f"arg{number}"
+
+
+_MOST_CHOICES = 4  # values offered for an include's arguments
+_MOST_LOOKED_AT = 1000  # files looked at for them
+
+
+def _either(choices: list[dict[str, str]], names: list[str]) -> str:
+    said = [" ".join(f"{name}:={choice[name]}" for name in names) for choice in choices]
+    return said[0] if len(said) == 1 else ", ".join(said[:-1]) + " or " + said[-1]
+
+
+def _pairs(names: list[str], values: dict[str, Any]) -> str:
+    said = [f"{name}:={values.get(name, '')}" for name in names]
+    return said[0] if len(said) == 1 else ", ".join(said[:-1]) + " and " + said[-1]
 
 
 def _closest(name: str, candidates: list[str], what: str) -> str | None:
     if not candidates:
         return None
     close = closest(name, candidates)
-    return f"did you mean '{close}'?" if close else f"defined {what}: {listing(candidates)}"
+    return (
+        f"did you mean '{close}'?" if close else f"defined {what}: {listing(candidates, near=name)}"
+    )
 
 
 def _table_names(table: Any) -> list[str]:

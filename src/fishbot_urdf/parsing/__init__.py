@@ -14,7 +14,7 @@ from pathlib import Path
 from ..diagnostics import Diagnostic
 from ..errors import RobotError
 from ..expansion import declared_args, expand
-from ..expansion._findings import unknown_args, xacro_warning
+from ..expansion._findings import unknown_args, unused_args, xacro_warning
 from ..extensions import Reference
 from ..model import Location, Robot
 from ..xml.source import STRING_PATH, XmlDocument, read_bytes, read_xml
@@ -70,7 +70,8 @@ def read(
     Args:
         source: A file path, or the document itself as bytes.
         path: The name to report (default: the file path, or ``<string>`` for bytes).
-        args: ``<xacro:arg>`` values, for a xacro file.
+        args: ``<xacro:arg>`` values, for a xacro file (a URDF file reads none: each is
+            a `xacro-unknown-arg` warning).
         packages: Package folders for ``$(find NAME)``, for a xacro file.
 
     Raises:
@@ -85,6 +86,7 @@ def read(
     files: tuple[str, ...] = ()
     if isinstance(source, bytes):
         data, name = source, path or STRING_PATH
+        notes = tuple(unused_args(args or (), name))
     elif is_xacro_path(source):
         expansion = expand(source, args=args, packages=packages)
         # A file name that is no UTF-8 (the banner names the file) is no XML text either.
@@ -97,6 +99,7 @@ def read(
     else:
         name = path or str(source)
         data = read_bytes(source)
+        notes = tuple(unused_args(args or (), name))
         files = (str(source),)
     try:
         document, reader, robot = _robot(data, name, origins, None)

@@ -9,6 +9,7 @@ from lxml import etree
 from ..catalog import Rule
 from ..catalog.reading import BAD_NUMBER, BAD_VECTOR, MISSING_ATTRIBUTE, UNKNOWN_ELEMENT
 from ..diagnostics import Diagnostic, Kind, Severity, Subject
+from ..expansion import EXPAND_HINT, unexpanded
 from ..extensions import Reference
 from ..model import ZERO3, Location, Vector3
 from ..xml.locator import Locator
@@ -131,7 +132,7 @@ class ReaderBase:
                 BAD_NUMBER,
                 f'{owner}: <{el.tag} {attr}="{value}"> is not a number',
                 self.locator.attribute(at, attr),
-                _unexpanded(value)
+                unexpanded_hint(value)
                 or "write a finite decimal like 0.5 or 1e-3, with no units or trailing spaces",
             )
             return default
@@ -166,7 +167,7 @@ class ReaderBase:
                 f'{owner}: <{el.tag} {attr}="{value}"> has {len(pieces)} '
                 f"value{'' if len(pieces) == 1 else 's'}, {count} are needed",
                 self.locator.attribute(at, attr),
-                _unexpanded(value) or f'write {attr}="{meaning}" separated by spaces',
+                unexpanded_hint(value) or f'write {attr}="{meaning}" separated by spaces',
             )
             return None
         numbers = to_doubles(pieces)
@@ -176,7 +177,7 @@ class ReaderBase:
                 BAD_NUMBER,
                 f'{owner}: <{el.tag} {attr}="{value}">: {bad!r} is not a number',
                 self.locator.attribute(at, attr),
-                _unexpanded(value)
+                unexpanded_hint(value)
                 or f'write {attr}="{meaning}" as finite decimals separated by spaces',
             )
             return None
@@ -219,11 +220,8 @@ class ReaderBase:
         return default if found is None else (found[0], found[1], found[2])
 
 
-def _unexpanded(value: str) -> str | None:
-    """The hint for a value that is a xacro substitution nobody expanded, if it is one."""
-    if "$(" in value or "${" in value:
-        return (
-            "this is a xacro substitution left unexpanded: check the .xacro file it came "
-            "from, or expand that with xacro first"
-        )
-    return None
+def unexpanded_hint(value: str) -> str | None:
+    """The hint for a value that holds a xacro substitution nobody expanded, if it does."""
+    if unexpanded(value) is None:
+        return None
+    return f"this is a xacro substitution left unexpanded: {EXPAND_HINT}"

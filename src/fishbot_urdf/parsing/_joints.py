@@ -21,7 +21,7 @@ from ..model import (
     Origin,
     SafetyController,
 )
-from ._base import Owner
+from ._base import Owner, unexpanded_hint
 from ._links import LinkReader
 from .values import plain_numbers
 
@@ -49,7 +49,8 @@ class JointReader(LinkReader):
                 JOINT_TYPE,
                 f"{owner}: type {text!r} is not a URDF joint type",
                 self.locator.attribute(at, "type"),
-                "use revolute, continuous, prismatic, fixed, floating or planar",
+                unexpanded_hint(text)
+                or "use revolute, continuous, prismatic, fixed, floating or planar",
             )
         return JointType.FIXED  # stands in so that the rest can still be checked
 

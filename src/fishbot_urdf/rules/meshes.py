@@ -24,9 +24,11 @@ from ..catalog.meshes import (
 )
 from ..diagnostics import Diagnostic, Kind, Severity, Subject
 from ..errors import FishbotUrdfError, ShapeError
+from ..expansion import EXPAND_HINT, unexpanded
 from ..meshfile import EmptyMeshError, mesh_triangles
 from ..model import Box, Cylinder, Link, Mesh, Sphere
 from ..packages import PackageFinder
+from ..parsing import is_xacro_path
 
 __all__ = ["REPORTS", "meshes", "unresolved"]
 
@@ -67,6 +69,19 @@ def unresolved(
     missing: dict[str, list[tuple[Link, Mesh]]] = {}
     for link, mesh in uses:
         path = paths.get(mesh.filename)
+        left = _left_unexpanded(analysis, mesh, path)
+        if left is not None:  # not a name to look up, nor to suggest another for
+            yield MESH_NOT_FOUND.report(
+                f"link {link.name!r}: mesh {mesh.filename!r} is not found: {left!r} in it is "
+                f"a xacro substitution left unexpanded{', so it is not drawn' if drawing else ''}",
+                mesh.source,
+                path=analysis.path,
+                subject=Subject(Kind.LINK, link.name),
+                hint=EXPAND_HINT,
+                data=MeshNotFoundFacts(unexpanded=left),
+                severity=Severity.WARNING if drawing else None,
+            )
+            continue
         if path.state is State.NO_PACKAGE:
             missing.setdefault(str(path.package), []).append((link, mesh))
             continue
@@ -89,6 +104,14 @@ def unresolved(
             data=MeshNotFoundFacts(package=package),
             severity=Severity.WARNING,
         )
+
+
+def _left_unexpanded(analysis: Analysis, mesh: Mesh, path: MeshPath) -> str | None:
+    """The xacro substitution a URDF file's mesh name holds, when it leads to no file (a
+    xacro file's expansion leaves none, but for one written ``$${...}`` on purpose)."""
+    if path.state is State.FOUND or is_xacro_path(analysis.path):
+        return None
+    return unexpanded(mesh.filename)
 
 
 def _unresolved(
@@ -164,7 +187,7 @@ def _mesh(analysis: Analysis, link: Link, mesh: Mesh, collides: bool) -> Iterato
         )
 
     path = paths.get(name)
-    if path.state in (State.MALFORMED, State.REMOTE):
+    if path.state in (State.MALFORMED, State.REMOTE) or _left_unexpanded(analysis, mesh, path):
         return
     extension = os.path.splitext(name)[1].lower()
     if extension not in _LOADED:

@@ -42,7 +42,8 @@ def _reference(analysis: Analysis, ref: Reference) -> Iterator[Diagnostic]:
         names.extend(analysis.joints)
     if ref.name not in names:
         close = closest(ref.name, names)
-        hint = f"did you mean {close!r}?" if close else f"{ref.target.value}s: {listing(names)}"
+        listed = listing(names, near=ref.name)
+        hint = f"did you mean {close!r}?" if close else f"{ref.target.value}s: {listed}"
         yield UNKNOWN_REFERENCE.report(
             f"{ref.context} names {ref.target.value} {ref.name!r}, which the robot does not have",
             ref.source,

@@ -114,7 +114,7 @@ def _made(where: Location | None, calls: tuple[tuple[str, Location], ...]) -> st
 def _suggest(name: str, candidates: Iterable[str]) -> str:
     names = set(candidates)
     guess = did_you_mean(name, names)
-    return f"{guess}links: {listing(names)}" if names else "the robot defines no links"
+    return f"{guess}links: {listing(names, near=name)}" if names else "the robot defines no links"
 
 
 def _joints(analysis: Analysis) -> Iterator[Diagnostic]:
