@@ -37,9 +37,9 @@ COMMANDS = {
     "`ros2 run tf2_ros tf2_echo FROM TO` prints it with robot_state_publisher running.",
     "render": "A shaded PNG of FILE (URDF or xacro) at a joint configuration: no display, GPU "
     "or ROS needed.",
-    "view": "Show FILE (URDF or xacro) in a web browser: visuals in their colours, collision "
-    "shapes on a toggle, link frames as axes, and a slider per moving joint within its limits "
-    "(mimic joints follow).",
+    "view": "Show FILE (URDF or xacro) in a web browser: visuals in their colours, link frames as "
+    "axes, and a slider per moving joint within its limits, from the root outwards (mimic "
+    "joints follow).",
 }
 
 
