@@ -130,7 +130,7 @@ def test_a_xacro_robot_is_offered_names_in_its_own_form_never_this_machine_s_pat
 @pytest.mark.parametrize(
     ("name", "what"),
     [
-        ("package:///demo/meshes/base_link.stl", "names a package with no name (package:///)"),
+        ("package:///", "names no package and no file"),
         ("package://demo", "names a package but no file in it"),
         ("package:/demo/meshes/base_link.stl", "is not a package:// URI"),
         ("file://meshes/base_link.stl", "is a file:// URI with a relative path"),
@@ -141,6 +141,34 @@ def test_malformed_uris(package: Path, name: str, what: str) -> None:
     [(rule, severity, message)] = _found(package, name)
     assert (rule, severity) == ("mesh-uri", "error")
     assert f"mesh {name!r} {what}" in message
+
+
+def test_a_package_uri_without_the_package_is_found_by_its_path(package: Path) -> None:
+    # As PyBullet and yourdfpy find it: the path above the robot file's folder; as
+    # pinocchio does: the package its first folder names (TALOS in example-robot-data).
+    for name in ("package:///meshes/base_link.stl", "package:///demo/meshes/base_link.stl"):
+        [(rule, severity, message)] = _found(package, name, demo=package)
+        assert (rule, severity) == ("package-no-name", "warning")
+        assert message == (
+            f"link 'base_link': mesh {name!r} names no package (package:///), which ROS's "
+            "resource_retriever refuses (RViz, MoveIt); PyBullet, yourdfpy and pinocchio "
+            f"(given its package folders) find it by its path, as {package}/meshes/"
+            "base_link.stl (write package://demo/meshes/base_link.stl) [package-no-name]"
+        )
+
+
+def test_a_package_uri_without_the_package_leading_nowhere_is_also_not_found(
+    package: Path,
+) -> None:
+    found = _found(package, "package:///base_link.stl")
+    assert [(rule, severity) for rule, severity, _ in found] == [
+        ("mesh-not-found", "error"),
+        ("package-no-name", "warning"),
+    ]
+    assert found[1][2].endswith(
+        "(write package://PACKAGE/path, with the package's name after the two slashes) "
+        "[package-no-name]"
+    )
 
 
 def test_a_package_not_found_is_a_warning_naming_the_places_searched(

@@ -85,16 +85,32 @@ MESH_URI = Rule(
     "mesh-uri",
     E,
     Family.MESHES,
-    summary="A mesh file name is a malformed URI (package:///, package:/, file://relative, "
-    "backslashes).",
-    explanation="`package://NAME/path` names a file in ROS package NAME, so `package:///x` names "
-    "a package with no name and ROS's resource retriever fails on it. `file://` must be "
-    "followed by an absolute path, and backslashes only work on Windows. Write "
-    "`package://my_robot/meshes/base.stl`, a `file:///` path, or a path relative to the robot "
-    "file with forward slashes.",
-    bad=_ONE_BOX.format(name="package:///meshes/base_link.stl"),
+    summary="A mesh file name is a malformed URI (package:/, package://NAME alone, "
+    "file://relative, backslashes).",
+    explanation="`package://NAME/path` names a file in ROS package NAME: with one slash, or "
+    "with no path after the package, it names none. `file://` must be followed by an absolute "
+    "path (`file://meshes/x.stl` reads `meshes` as a host name), and backslashes only work on "
+    "Windows. Write `package://my_robot/meshes/base.stl`, a `file:///` path, or a path "
+    "relative to the robot file with forward slashes.",
+    bad=_ONE_BOX.format(name="file://meshes/base_link.stl"),
     good=_ONE_BOX.format(name=_FOUND),
     consumers=_VIEWERS,
+)
+PACKAGE_NO_NAME = Rule(
+    "package-no-name",
+    W,
+    Family.MESHES,
+    summary="A mesh is named `package:///path`: a package URI without the package's name.",
+    explanation="ROS's resource_retriever, which RViz, MoveIt and robot_state_publisher's "
+    "users load meshes through, refuses it (`Package name must not be empty`), so they show "
+    "and collide with nothing. Programs that look for the path instead find it: PyBullet and "
+    "yourdfpy in the robot file's folder or one above it, pinocchio in each of its package "
+    "folders (`package_dirs`); MuJoCo reads no `package://` name at all. fishbot looks where "
+    "those find it: a warning when the file is there, `mesh-not-found` too when it is not. "
+    "Write the package's name after the two slashes (`package://my_robot/meshes/base.stl`).",
+    bad=_ONE_BOX.format(name="package:///meshes/base_link.stl"),
+    good=_ONE_BOX.format(name=_FOUND),
+    consumers=(Consumer.URDFDOM,),
 )
 MESH_FORMAT = Rule(
     "mesh-format",

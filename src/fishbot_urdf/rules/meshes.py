@@ -20,6 +20,7 @@ from ..catalog.meshes import (
     MESH_NOT_FOUND,
     MESH_UNITS,
     MESH_URI,
+    PACKAGE_NO_NAME,
     MeshNotFoundFacts,
 )
 from ..diagnostics import Diagnostic, Kind, Severity, Subject
@@ -164,6 +165,8 @@ def _mesh(analysis: Analysis, link: Link, mesh: Mesh, collides: bool) -> Iterato
         )
 
     path = paths.get(name)
+    if path.unnamed:
+        yield _unnamed(analysis, named, mesh, path, subject)
     if path.state in (State.MALFORMED, State.REMOTE):
         return
     extension = os.path.splitext(name)[1].lower()
@@ -197,6 +200,33 @@ def _mesh(analysis: Analysis, link: Link, mesh: Mesh, collides: bool) -> Iterato
             units,
             'if it is in millimetres, add scale="0.001 0.001 0.001" to the <mesh>',
         )
+
+
+def _unnamed(
+    analysis: Analysis, named: str, mesh: Mesh, path: MeshPath, subject: Subject
+) -> Diagnostic:
+    """A ``package:///`` name: what ROS's tools and the programs that find it by its path
+    do with it."""
+    what = "names no package (package:///), which ROS's resource_retriever refuses (RViz, MoveIt)"
+    hint = "write package://PACKAGE/path, with the package's name after the two slashes"
+    if path.found and path.file is not None:
+        what += (
+            "; PyBullet, yourdfpy and pinocchio (given its package folders) find it by its "
+            f"path, as {path.file}"
+        )
+        paths = analysis.mesh_paths
+        # The first folder a package's (example-robot-data's TALOS), else the package
+        # that holds the file.
+        named_package = "package://" + mesh.filename[len("package:///") :].lstrip("/")
+        if paths.get(named_package).file == path.file:
+            hint = f"write {named_package}"
+        else:
+            held = paths.in_package(path.file)
+            if held is not None:
+                hint = f"write package://{held[0]}/{held[1]}"
+    return PACKAGE_NO_NAME.report(
+        f"{named} {what}", mesh.source, path=analysis.path, subject=subject, hint=hint
+    )
 
 
 def _millimetres(link: Link, extent: float) -> str | None:
