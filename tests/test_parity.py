@@ -46,6 +46,7 @@ STRICTER = {
     "joint-self-loop": "check_urdf hangs on a joint whose parent is its child",
     "undefined-mimic": "robot_state_publisher and simulators fail on it",
     "limit-range": "no position satisfies lower > upper",
+    "limit-unset": "a bound left out (0) that leaves lower above upper: no position is left",
     "zero-axis": "a moving joint with a zero axis cannot move",
     "negative-limit": "effort and velocity limits are magnitudes",
     "negative-mass": "a negative mass is not physical",
