@@ -56,6 +56,7 @@ STRICTER = {
     "missing-inertial": "Gazebo drops a moving link without <inertial>, as one of mass 0",
     "mesh-uri": "a malformed URI (package:/, file://relative) names no file anyone finds",
     "mesh-not-found": "a mesh that is not there is drawn by nobody",
+    "shape-size": "a collision shape of size 0 or less, which MuJoCo refuses",
     "unknown-reference": "Gazebo and ros2_control cannot attach to a part that does not exist",
 }
 

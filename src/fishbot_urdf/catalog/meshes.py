@@ -166,6 +166,33 @@ MESH_FACES = Rule(
     good=_COLLIDING.format(name=_FOUND),
     consumers=(Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE, Consumer.PYBULLET),
 )
+SHAPE_SIZE = Rule(
+    "shape-size",
+    E,
+    Family.MESHES,
+    summary="A box, cylinder or sphere has a size of 0 or less, or a mesh a scale of 0.",
+    explanation="urdfdom and pinocchio take any number for a size, but a shape of size 0 has "
+    "nothing to draw or collide with, and a negative one is no shape at all. MuJoCo refuses "
+    "such a collision shape, and so the robot (`size 0 must be positive in geom`; a mesh "
+    "scaled by 0: `mesh volume is too small`); it leaves a URDF's visuals out. A collision is "
+    "an error, a visual a warning; a negative mesh scale mirrors the mesh and is fine. Give the "
+    "shape its real size, or delete it.",
+    bad="""\
+<robot name="fishbot">
+  <link name="base_link">
+    <collision><geometry><box size="0.2 0.2 0"/></geometry></collision>
+  </link>
+</robot>
+""",
+    good="""\
+<robot name="fishbot">
+  <link name="base_link">
+    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
+  </link>
+</robot>
+""",
+    consumers=(Consumer.MUJOCO,),
+)
 SHAPE_NOT_DRAWN = Rule(
     "shape-not-drawn",
     W,

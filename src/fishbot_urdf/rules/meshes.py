@@ -301,7 +301,8 @@ def _fault(file: Path) -> str | None:
     return None
 
 
-# (shape-not-drawn and nothing-drawn are render's and view's findings: the check never draws)
-_DRAWING = (catalog.meshes.SHAPE_NOT_DRAWN, catalog.meshes.NOTHING_DRAWN)
-REPORTS: tuple[Rule, ...] = tuple(r for r in rules_in(catalog.meshes) if r not in _DRAWING)
+# (shape-not-drawn and nothing-drawn are render's and view's findings: the check never draws;
+# shape-size is the shapes' check's, which opens no file)
+_OTHERS = (catalog.meshes.SHAPE_NOT_DRAWN, catalog.meshes.NOTHING_DRAWN, catalog.meshes.SHAPE_SIZE)
+REPORTS: tuple[Rule, ...] = tuple(r for r in rules_in(catalog.meshes) if r not in _OTHERS)
 """Every rule this module's check may report: the check runs only when one is selected."""
