@@ -80,12 +80,19 @@ class MeshFacts:
         high: The largest.
         path: The file they were read from (None for facts made otherwise); `closed`
             reads it.
+        spread: How far its vertices lie, at most, from the plane that fits them best and
+            from the line that does (0 and 0: a point; 0 and more: flat, no volume for a
+            convex hull); None when not measured.
+        vertices: Its distinct vertices, counted for a mesh of a few triangles only (None
+            for the others).
     """
 
     faces: int
     low: Vector3
     high: Vector3
     path: str | None = field(default=None, compare=False, repr=False)
+    spread: tuple[float, float] | None = field(default=None, compare=False, repr=False)
+    vertices: int | None = field(default=None, compare=False, repr=False)
 
     def extent(self, scale: Vector3 | None = None) -> float:
         """The largest side of the box around the vertices, after ``scale``."""
@@ -240,7 +247,8 @@ def _obj_facts(data: bytes) -> MeshFacts | None:
         return _bounds(_OBJ_VERTEX.findall(data), faces)
     if not np.isfinite(numbers).all():
         return _bounds(_OBJ_VERTEX.findall(data), faces)
-    return _facts(faces, numbers.min(axis=0).tolist(), numbers.max(axis=0).tolist())
+    lows, highs = numbers.min(axis=0).tolist(), numbers.max(axis=0).tolist()
+    return _facts(faces, lows, highs, list(numbers.T))
 
 
 def mesh_bounds(path: str | Path) -> tuple[Vector3, Vector3] | None:
@@ -280,12 +288,13 @@ def _binary_stl(data: bytes, count: int) -> MeshFacts | None:
     import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
     records: Any = np.frombuffer(data, np.dtype(_COORDINATES), count, 84)  # type: ignore[call-overload]
-    lows, highs = [], []
+    lows, highs, axes = [], [], []
     for axis in "xyz":
         values = np.concatenate([records[f"{axis}{corner}"] for corner in range(3)])
         lows.append(float(values.min()))
         highs.append(float(values.max()))
-    return _facts(count, lows, highs)
+        axes.append(values)
+    return _facts(count, lows, highs, axes)
 
 
 def _bounds(vertices: list[tuple[bytes, bytes, bytes]], faces: int) -> MeshFacts | None:
@@ -298,7 +307,7 @@ def _bounds(vertices: list[tuple[bytes, bytes, bytes]], faces: int) -> MeshFacts
             numbers = None
         if numbers is not None and np.isfinite(numbers).all():
             lows, highs = numbers.min(axis=0).tolist(), numbers.max(axis=0).tolist()
-            return _facts(faces, lows, highs)
+            return _facts(faces, lows, highs, list(numbers.T))
     lows = [float("inf")] * 3
     highs = [float("-inf")] * 3
     check = deadline()
@@ -315,11 +324,47 @@ def _bounds(vertices: list[tuple[bytes, bytes, bytes]], faces: int) -> MeshFacts
     return _facts(faces, lows, highs)
 
 
-def _facts(faces: int, lows: list[float], highs: list[float]) -> MeshFacts | None:
+def _facts(
+    faces: int, lows: list[float], highs: list[float], axes: list[Any] | None = None
+) -> MeshFacts | None:
     finite = all(abs(v) < float("inf") for v in (*lows, *highs))
     if not finite:  # no vertex read, or one at infinity (NaN comparisons leave inf)
         return None
-    return MeshFacts(faces, (lows[0], lows[1], lows[2]), (highs[0], highs[1], highs[2]))
+    spread, vertices = _spread(axes) if axes is not None else (None, None)
+    low, high = (lows[0], lows[1], lows[2]), (highs[0], highs[1], highs[2])
+    return MeshFacts(faces, low, high, spread=spread, vertices=vertices)
+
+
+_FEW = 12  # the vertices of a mesh of at most this many corners are counted
+_SAMPLE = 20_000  # the vertices whose principal axes give the plane and the line
+
+
+def _spread(axes: list[Any]) -> tuple[tuple[float, float], int | None]:
+    """How far the vertices (their x, y and z columns) lie, at most, from the plane and the
+    line that fit them best, and how many distinct ones a mesh of a few corners has.
+
+    The plane's normal and the line's direction are the principal axes of at most
+    ``_SAMPLE`` of the vertices, evenly spread (a flat mesh's sample is flat too), and the
+    distances those of every vertex: a million triangles in 30 ms, where the principal axes
+    of all of them took 100 ms more."""
+    import numpy as np  # numpy: ~190 ms to load, only where arrays are made
+
+    step = max(1, len(axes[0]) // _SAMPLE)
+    sample = np.stack([np.asarray(a[::step], dtype=np.float64) for a in axes])
+    middle = sample.mean(axis=1)
+    sample -= middle[:, None]
+    _, directions = np.linalg.eigh(sample @ sample.T)  # eigenvalues ascending: the normal first
+    spread = []
+    for k in (0, 1):
+        n = directions[:, k]
+        # (in the file's precision: a flat mesh's distances are its rounding)
+        distance = n[0] * (axes[0] - middle[0]) + n[1] * (axes[1] - middle[1])
+        distance += n[2] * (axes[2] - middle[2])
+        spread.append(float(np.abs(distance).max()))
+    vertices = None
+    if len(axes[0]) <= _FEW:
+        vertices = len(np.unique(np.stack([np.asarray(a) for a in axes], axis=1), axis=0))
+    return (spread[0], spread[1]), vertices
 
 
 def mesh_triangles(path: str | Path) -> NDArray[Any]:

@@ -34,7 +34,7 @@ _COLLIDING = """\
 """
 # The examples' folder holds meshes/base_link.stl (a box in metres) and .step (empty),
 # base_link_mm.stl (a box 200 x 200 x 100 units), base_link_cut.stl (a binary STL cut
-# short) and base_link_fine.stl (30 000 triangles).
+# short), base_link_fine.stl (30 000 triangles) and base_link_flat.stl (a box 0.2 x 0.2 x 0).
 _FOUND = "meshes/base_link.stl"
 
 
@@ -165,6 +165,21 @@ MESH_FACES = Rule(
     bad=_COLLIDING.format(name="meshes/base_link_fine.stl"),
     good=_COLLIDING.format(name=_FOUND),
     consumers=(Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE, Consumer.PYBULLET),
+)
+MESH_FLAT = Rule(
+    "mesh-flat",
+    W,
+    Family.MESHES,
+    summary="A collision mesh has no volume: its vertices lie in one plane (or on a line).",
+    explanation="Simulators collide with a mesh's convex hull, and a flat mesh (a plate "
+    "exported as one face, a decal, a sheet of fewer than 4 vertices) has none. MuJoCo refuses "
+    "the robot (`mesh 'x' has coplanar vertices, cannot compute convex hull`, or `at least 4 "
+    "vertices required`), and a mesh flat but for the file's rounding gets a hull as thin as "
+    "that, which contacts pass through. urdfdom never opens meshes, and pinocchio and PyBullet "
+    "load it. Collide with a thin box instead, or give the mesh its thickness.",
+    bad=_COLLIDING.format(name="meshes/base_link_flat.stl"),
+    good=_COLLIDING.format(name=_FOUND),
+    consumers=(Consumer.MUJOCO,),
 )
 SHAPE_SIZE = Rule(
     "shape-size",

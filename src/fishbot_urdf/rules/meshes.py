@@ -15,6 +15,7 @@ from ..catalog import Rule, rules_in
 from ..catalog.meshes import (
     MESH_CASE,
     MESH_FACES,
+    MESH_FLAT,
     MESH_FORMAT,
     MESH_INVALID,
     MESH_NOT_FOUND,
@@ -25,7 +26,7 @@ from ..catalog.meshes import (
 )
 from ..diagnostics import Diagnostic, Kind, Severity, Subject
 from ..errors import FishbotUrdfError, ShapeError
-from ..meshfile import EmptyMeshError, mesh_triangles
+from ..meshfile import EmptyMeshError, MeshFacts, mesh_triangles
 from ..model import Box, Cylinder, Link, Mesh, Sphere
 from ..packages import PackageFinder
 
@@ -193,6 +194,14 @@ def _mesh(analysis: Analysis, link: Link, mesh: Mesh, collides: bool) -> Iterato
             "simplify it to a few hundred faces or its convex hull, or collide with boxes, "
             "cylinders and spheres",
         )
+    if collides:
+        flat = _flat(facts)
+        if flat is not None:
+            yield report(
+                MESH_FLAT,
+                flat,
+                "collide with a thin box, or give the mesh its thickness",
+            )
     units = _millimetres(link, facts.extent(mesh.scale))
     if units is not None:
         yield report(
@@ -226,6 +235,41 @@ def _unnamed(
                 hint = f"write package://{held[0]}/{held[1]}"
     return PACKAGE_NO_NAME.report(
         f"{named} {what}", mesh.source, path=analysis.path, subject=subject, hint=hint
+    )
+
+
+_FLAT = 1e-5  # a mesh thinner than this share of its size is flat (its numbers' rounding)
+
+
+def _flat(facts: MeshFacts) -> str | None:
+    """Why a collision mesh has no volume to make a convex hull of, or None if it has one."""
+    if facts.spread is None:
+        return None
+    plane, line = facts.spread
+    size = facts.extent()
+    corners = max(abs(v) for v in (*facts.low, *facts.high))
+    # float32 (STL) rounds a vertex by about 6e-8 of its coordinates
+    rounding = max(_FLAT * size, 1e-6 * corners)
+    if plane > rounding:
+        return None
+    if facts.vertices is not None and facts.vertices < 4:
+        return (
+            f"has {facts.vertices} distinct vertices, no volume to collide with: MuJoCo "
+            "refuses the robot ('at least 4 vertices required')"
+        )
+    if line <= rounding:
+        shape, said = "on one line", "collinear"
+    else:
+        shape, said = "in one plane", "coplanar"
+    # MuJoCo's own test allows 1e-15 of the mesh's size: what our sums leave is as small
+    if plane <= 1e-12 * max(size, corners) or line <= rounding:
+        return (
+            f"has every vertex {shape}, no volume to collide with: MuJoCo refuses the robot "
+            f"('{said} vertices, cannot compute convex hull')"
+        )
+    return (
+        f"has every vertex {shape} but for {plane:.2g} (the file's rounding), no volume to "
+        "collide with: MuJoCo's convex hull of it is as thin, and contacts pass through"
     )
 
 
