@@ -47,15 +47,16 @@ def test_a_collision_shape_of_no_size_is_an_error_mujoco_refuses(
     ]
 
 
-def test_a_visual_of_no_size_is_a_warning(tmp_path: Path) -> None:
-    assert _found(tmp_path, "visual", '<sphere radius="0"/>') == [
-        (
-            "shape-size",
-            "warning",
-            "link 'base_link': <visual> sphere of radius 0: it is drawn as nothing",
-        )
+def test_a_visual_of_negative_size_is_a_warning_and_of_size_0_a_placeholder(
+    tmp_path: Path,
+) -> None:
+    assert _found(tmp_path, "visual", '<sphere radius="-1"/>') == [
+        ("shape-size", "warning", "link 'base_link': <visual> sphere of radius -1: it is no shape")
     ]
-    assert _found(tmp_path, "visual", '<sphere radius="-1"/>')[0][2].endswith("it is no shape")
+    assert _found(tmp_path, "visual", '<box size="0 -0.1 0.1"/>')[0][1] == "warning"
+    # upkie's frames: <box size="0 0 0"/>, drawn as nothing, on purpose
+    assert _found(tmp_path, "visual", '<box size="0 0 0"/>') == []
+    assert _found(tmp_path, "visual", '<sphere radius="0"/>') == []
 
 
 def test_a_mesh_scaled_by_0_is_flat_and_a_negative_scale_mirrors(tmp_path: Path) -> None:

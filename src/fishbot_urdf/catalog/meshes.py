@@ -185,13 +185,15 @@ SHAPE_SIZE = Rule(
     "shape-size",
     E,
     Family.MESHES,
-    summary="A box, cylinder or sphere has a size of 0 or less, or a mesh a scale of 0.",
-    explanation="urdfdom and pinocchio take any number for a size, but a shape of size 0 has "
-    "nothing to draw or collide with, and a negative one is no shape at all. MuJoCo refuses "
-    "such a collision shape, and so the robot (`size 0 must be positive in geom`; a mesh "
-    "scaled by 0: `mesh volume is too small`); it leaves a URDF's visuals out. A collision is "
-    "an error, a visual a warning; a negative mesh scale mirrors the mesh and is fine. Give the "
-    "shape its real size, or delete it.",
+    summary="A collision box, cylinder or sphere has a size of 0 or less, or a collision mesh "
+    "a scale of 0; a visual a negative size.",
+    explanation="urdfdom and pinocchio take any number for a size, but a collision shape of "
+    "size 0 has nothing to collide with, and one of a negative size is no shape at all. MuJoCo "
+    "refuses such a collision, and so the robot (`size 0 must be positive in geom`; a mesh "
+    "scaled by 0: `mesh volume is too small`). A visual of size 0 is drawn as nothing, a "
+    "placeholder many robots use for frames (MuJoCo leaves a URDF's visuals out), so only a "
+    "negative one is reported, as a warning; a negative mesh scale mirrors the mesh and is fine. "
+    "Give the shape its real size, or delete it.",
     bad="""\
 <robot name="fishbot">
   <link name="base_link">

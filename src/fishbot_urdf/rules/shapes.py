@@ -16,7 +16,8 @@ __all__ = ["REPORTS", "shapes"]
 
 
 def shapes(analysis: Analysis) -> Iterator[Diagnostic]:
-    """Every shape of the robot whose size is 0 or less (a mesh: whose scale is 0)."""
+    """Every collision shape of the robot whose size is 0 or less (a mesh: whose scale is
+    0), and every visual whose size is negative."""
     for link in analysis.robot.links:
         parts = [("visual", v.geometry, False) for v in link.visuals]
         parts += [("collision", c.geometry, True) for c in link.collisions]
@@ -24,11 +25,13 @@ def shapes(analysis: Analysis) -> Iterator[Diagnostic]:
             found = _size(shape)
             if found is None:
                 continue
-            what, first = found
+            what, first, negative = found
             if not collides:
-                then = (
-                    "it is drawn as nothing" if first is None or first[1] == 0 else "it is no shape"
-                )
+                if not negative:
+                    # A visual of size 0 is drawn as nothing: a placeholder (upkie's and
+                    # laikago's frames), which no program minds.
+                    continue
+                then = "it is no shape"
             elif first is None:
                 then = "MuJoCo refuses the robot ('mesh volume is too small')"
             else:
@@ -43,15 +46,15 @@ def shapes(analysis: Analysis) -> Iterator[Diagnostic]:
             )
 
 
-def _size(shape: Geometry) -> tuple[str, tuple[int, float] | None] | None:
-    """What is wrong with a shape's size, and the first size that is 0 or less (MuJoCo's
-    index of it, and its value; None for a mesh); None if nothing is (a number that is no
-    number is bad-number's)."""
+def _size(shape: Geometry) -> tuple[str, tuple[int, float] | None, bool] | None:
+    """What is wrong with a shape's size, the first size that is 0 or less (MuJoCo's index
+    of it, and its value; None for a mesh), and whether one is negative; None if nothing is
+    (a number that is no number is bad-number's)."""
     if isinstance(shape, Mesh):  # a negative scale mirrors a mesh, a scale of 0 flattens it
         if shape.scale is None or 0 not in shape.scale:
             return None
         scale = " ".join(f"{v:g}" for v in shape.scale)
-        return f'mesh {shape.filename!r} is scaled by "{scale}", which flattens it', None
+        return f'mesh {shape.filename!r} is scaled by "{scale}", which flattens it', None, False
     if isinstance(shape, Box):
         values = list(zip("xyz", shape.size, strict=True))
         named = f'box of size "{" ".join(f"{v:g}" for v in shape.size)}"'
@@ -68,7 +71,7 @@ def _size(shape: Geometry) -> tuple[str, tuple[int, float] | None] | None:
         what = named
     else:
         what = f"{named} of " + " and ".join(f"{n} {v:g}" for _, n, v in bad)
-    return what, (bad[0][0], bad[0][2])
+    return what, (bad[0][0], bad[0][2]), any(v < 0 for _, _, v in bad)
 
 
 REPORTS: tuple[Rule, ...] = (SHAPE_SIZE,)
