@@ -481,3 +481,14 @@ def test_big_worlds_in_metres_are_not_millimetres(tmp_path: Path, name: str) -> 
     }
     path = _write(tmp_path, f"{name}.urdf", texts[name])
     assert "robot-units" not in "".join(_findings(path)[1])
+
+
+def test_an_inertial_to_compute_for_a_robot_in_millimetres_waits_for_metres(
+    tmp_path: Path,
+) -> None:
+    text = _MILLIMETRES.format(i="8333", iz="13333")
+    start = text.index('    <inertial><mass value="0.5"/>')
+    text = text[:start] + text[text.index("</inertial>\n", start) + len("</inertial>\n") :]
+    _, lines = _findings(_write(tmp_path, "arm.urdf", text))
+    [missing] = [line for line in lines if line.endswith("[missing-inertial]")]
+    assert "give it one computed from its collision shapes once they are in metres" in missing

@@ -77,7 +77,9 @@ def physics(
     if scaled is not None:
         yield units(robot, path, scaled)
     for body in analysis.bodies:
-        yield from body_findings(body, path, moments, bool(robot.joints))
+        yield from body_findings(
+            body, path, moments, bool(robot.joints), millimetres=scaled is not None
+        )
     for link in robot.links:
         own = moments.get(link.name)
         if own is not None:
