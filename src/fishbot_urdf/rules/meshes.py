@@ -250,8 +250,8 @@ def _flat(facts: MeshFacts) -> str | None:
     corners = max(abs(v) for v in (*facts.low, *facts.high))
     # float32 (STL) rounds a vertex by about 6e-8 of its coordinates
     rounding = max(_FLAT * size, 1e-6 * corners)
-    if plane > rounding:
-        return None
+    if line is None or plane > rounding:
+        return None  # (line: measured only for a mesh near flat)
     if facts.vertices is not None and facts.vertices < 4:
         return (
             f"has {facts.vertices} distinct vertices, no volume to collide with: MuJoCo "
