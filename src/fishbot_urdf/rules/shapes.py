@@ -53,25 +53,31 @@ def _size(shape: Geometry) -> tuple[str, tuple[int, float] | None, bool] | None:
     if isinstance(shape, Mesh):  # a negative scale mirrors a mesh, a scale of 0 flattens it
         if shape.scale is None or 0 not in shape.scale:
             return None
-        scale = " ".join(f"{v:g}" for v in shape.scale)
-        return f'mesh {shape.filename!r} is scaled by "{scale}", which flattens it', None, False
+        return (
+            f"mesh {shape.filename!r} is scaled by {_numbers(shape.scale)}, which flattens it",
+            None,
+            False,
+        )
     if isinstance(shape, Box):
         values = list(zip("xyz", shape.size, strict=True))
-        named = f'box of size "{" ".join(f"{v:g}" for v in shape.size)}"'
     elif isinstance(shape, Cylinder):
         values = [("radius", shape.radius), ("length", shape.length)]
-        named = "cylinder"
     else:
         values = [("radius", shape.radius)]
-        named = "sphere"
     bad = [(i, n, v) for i, (n, v) in enumerate(values) if v <= 0 and math.isfinite(v)]
     if not bad:
         return None
     if isinstance(shape, Box):
-        what = named
+        what = f"box of size {_numbers(shape.size)}"
     else:
-        what = f"{named} of " + " and ".join(f"{n} {v:g}" for _, n, v in bad)
-    return what, (bad[0][0], bad[0][2]), any(v < 0 for _, _, v in bad)
+        kind = "cylinder" if isinstance(shape, Cylinder) else "sphere"
+        what = f"{kind} of " + " and ".join(f"{n} {float(v):g}" for _, n, v in bad)
+    return what, (bad[0][0], float(bad[0][2])), any(v < 0 for _, _, v in bad)
+
+
+def _numbers(values: tuple[float, float, float]) -> str:
+    """A size or scale as written: "0.2 0.2 0"."""
+    return '"' + " ".join(f"{float(v):g}" for v in values) + '"'
 
 
 REPORTS: tuple[Rule, ...] = (SHAPE_SIZE,)

@@ -22,7 +22,7 @@ def millimetres(robot: Robot) -> UnitsFacts | None:
     sizes = sorted(size for shape in _shapes(robot) if (size := _largest(shape)) > 0)
     if len(sizes) < 2 or statistics.median(sizes) < _PART:
         return None
-    apart = [math.dist((0.0, 0.0, 0.0), joint.origin.xyz) for joint in robot.joints]
+    apart = [math.dist((0.0, 0.0, 0.0), map(float, joint.origin.xyz)) for joint in robot.joints]
     apart = [a for a in apart if a > 0 and math.isfinite(a)]
     if not apart or statistics.median(apart) < _APART:
         return None  # nothing held apart by joints: a ground plane, a room
@@ -75,6 +75,7 @@ def _largest(shape: Geometry) -> float:
         size = 2.0 * shape.radius
     else:
         return 0.0
+    size = float(size)  # (a number of another kind, given in code, is printed as a float)
     return size if math.isfinite(size) else 0.0
 
 
