@@ -105,7 +105,8 @@ PACKAGE_NO_NAME = Rule(
     "users load meshes through, refuses it (`Package name must not be empty`), so they show "
     "and collide with nothing. Programs that look for the path instead find it: PyBullet and "
     "yourdfpy in the robot file's folder or one above it, pinocchio in each of its package "
-    "folders (`package_dirs`); MuJoCo reads no `package://` name at all. fishbot looks where "
+    "folders (`package_dirs`); sdformat hands Gazebo `model:///path`, to look up on its "
+    "model path, as it does any `package://` name, and MuJoCo reads none. fishbot looks where "
     "those find it: a warning when the file is there, `mesh-not-found` too when it is not. "
     "Write the package's name after the two slashes (`package://my_robot/meshes/base.stl`).",
     bad=_ONE_BOX.format(name="package:///meshes/base_link.stl"),
