@@ -325,11 +325,11 @@ ROBOT_UNITS = Rule(
     "it was written in millimetres.",
     explanation="URDF lengths are metres. When a robot's shapes are tens to hundreds of metres "
     "across, its joints metres apart, and its masses fill them lighter than air, it was "
-    "written in millimetres: RViz shows a giant, and simulators drop a building of a few "
-    "kilograms. fishbot judges them together, so a ground plane or a room (big shapes, no "
-    "joints apart) is no finding, and then says so instead of proposing an inertia for a 200 m "
-    "box. Multiply every length by 0.001 (sizes and origins; inertias by 1e-6), or write "
-    "them through a xacro property in metres.",
+    "written in millimetres: RViz shows a giant, and simulators take it for a building of a "
+    "few kilograms. fishbot judges the three together, so that a ground plane or a room (big "
+    "shapes, no joints apart) is no finding; of a robot in millimetres it says so first, and "
+    "proposes no inertia for a 200 m box. Multiply every length by 0.001 (sizes and origins; "
+    "inertias by 1e-6), or write them through a xacro property in metres.",
     bad=_BUILT.format(box="200 200 100", i="8333", iz="13333", r="40", h="50", z="150"),
     good=_BUILT.format(
         box="0.2 0.2 0.1", i="0.008333", iz="0.013333", r="0.04", h="0.05", z="0.15"
