@@ -385,7 +385,7 @@ def test_a_turned_plate_is_flat_but_for_its_rounding(tmp_path: Path) -> None:
     plate = _turned([(0, 0, 0, 0.5, 0, 0, 0.5, 0.4, 0), (0, 0, 0, 0.5, 0.4, 0, 0, 0.4, 0)])
     [(_, _, message)] = _flat_found(tmp_path, binary_stl(plate))
     assert "has every vertex in one plane but for " in message
-    assert message.endswith("MuJoCo's convex hull of it is as thin, and contacts pass through")
+    assert message.endswith("MuJoCo makes a convex hull of it only as thick as that")
 
 
 @pytest.mark.parametrize("thickness", [0.001, 0.0001])

@@ -175,9 +175,10 @@ MESH_FLAT = Rule(
     explanation="Simulators collide with a mesh's convex hull, and a flat mesh (a plate "
     "exported as one face, a decal, a sheet of fewer than 4 vertices) has none. MuJoCo refuses "
     "the robot (`mesh 'x' has coplanar vertices, cannot compute convex hull`, or `at least 4 "
-    "vertices required`), and a mesh flat but for the file's rounding gets a hull as thin as "
-    "that, which contacts pass through. urdfdom never opens meshes, and pinocchio and PyBullet "
-    "load it. Collide with a thin box instead, or give the mesh its thickness.",
+    "vertices required`); a mesh flat but for the file's rounding passes its test with a hull "
+    "as thin as that rounding, and a volume or mass computed from it is 0. urdfdom never "
+    "opens meshes, and pinocchio and PyBullet load it. Collide with a thin box instead, or "
+    "give the mesh its thickness.",
     bad=_COLLIDING.format(name="meshes/base_link_flat.stl"),
     good=_COLLIDING.format(name=_FOUND),
     consumers=(Consumer.MUJOCO,),

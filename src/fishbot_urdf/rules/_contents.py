@@ -43,7 +43,7 @@ def flat_mesh(facts: MeshFacts) -> str | None:
         )
     return (
         f"has every vertex {shape} but for {plane:.2g} (the file's rounding), no volume to "
-        "collide with: MuJoCo's convex hull of it is as thin, and contacts pass through"
+        "collide with: MuJoCo makes a convex hull of it only as thick as that"
     )
 
 
