@@ -176,7 +176,7 @@ MESH_FLAT = Rule(
     "exported as one face, a decal, a sheet of fewer than 4 vertices) has none. MuJoCo refuses "
     "the robot (`mesh 'x' has coplanar vertices, cannot compute convex hull`, or `at least 4 "
     "vertices required`); a mesh flat but for the file's rounding passes its test with a hull "
-    "as thin as that rounding, and a volume or mass computed from it is 0. urdfdom never "
+    "as thin as that rounding, and still has no volume to weigh. urdfdom never "
     "opens meshes, and pinocchio and PyBullet load it. Collide with a thin box instead, or "
     "give the mesh its thickness.",
     bad=_COLLIDING.format(name="meshes/base_link_flat.stl"),
