@@ -306,4 +306,7 @@ def test_the_model_keeps_which_bounds_were_left_out(tmp_path: Path) -> None:
     path.write_text(LIMITED.format(type="revolute", bounds='upper="1"'), encoding="utf-8")
     limit = fishbot_urdf.load(path).joints[0].limit
     assert limit is not None and limit.unset == ("lower",)
-    assert limit == Limit(1.0, 1.0, 0.0, 1.0)  # written back, the bound is 0
+    assert limit == Limit(1.0, 1.0, 0.0, 1.0)  # as urdfdom reads it
+    # written back, the bound stays out (MuJoCo and PyBullet read a 0 written otherwise)
+    written = fishbot_urdf.to_urdf(fishbot_urdf.load(path))
+    assert '<limit upper="1" effort="1" velocity="1"/>' in written
