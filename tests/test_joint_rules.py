@@ -240,3 +240,73 @@ def test_a_suggested_wheel_axis_is_rounded_to_a_clean_one(
 def test_the_unit_axis_suggested_for_a_long_one_is_rounded() -> None:
     joint = Joint("j", JointType.CONTINUOUS, "base", "arm", axis=(0.0, 2.0, 0.0001))
     assert _hints(joint)["axis-length"] == 'write the unit vector: <axis xyz="0 1 0"/>'
+
+
+LIMITED = """\
+<robot name="r">
+  <link name="base"/><link name="arm"/>
+  <joint name="arm_joint" type="{type}">
+    <parent link="base"/><child link="arm"/><axis xyz="0 1 0"/>
+    <limit {bounds} effort="1" velocity="1"/>
+  </joint>
+</robot>
+"""
+
+
+def _limited(tmp_path: Path, kind: str, bounds: str) -> list[tuple[str, str, str]]:
+    path = tmp_path / "r.urdf"
+    path.write_text(LIMITED.format(type=kind, bounds=bounds), encoding="utf-8")
+    found = fishbot_urdf.check_file(path).diagnostics
+    return [(d.rule, d.severity.value, d.message) for d in found]
+
+
+def test_a_limit_without_bounds_holds_the_joint_at_0_for_urdfdom(tmp_path: Path) -> None:
+    # upkie's wheels (upkie-description 2.2.0): revolute, <limit effort velocity> alone
+    assert _limited(tmp_path, "revolute", "") == [
+        (
+            "limit-unset",
+            "warning",
+            "joint 'arm_joint': <limit> has no lower and no upper, so urdfdom reads both as 0 "
+            "and holds the joint at 0 (robot_state_publisher, MoveIt, Gazebo, pinocchio), while "
+            "MuJoCo and PyBullet leave it free",
+        )
+    ]
+    [(_, _, message)] = _limited(tmp_path, "prismatic", 'upper="0.2"')
+    assert message == (
+        "joint 'arm_joint': <limit> has no lower, so urdfdom reads it as 0 and limits the joint "
+        "to 0 .. 0.2, while MuJoCo leaves it free"
+    )
+
+
+def test_a_bound_left_out_that_leaves_lower_above_upper_is_one_error(tmp_path: Path) -> None:
+    # not limit-range as well: the bound left out is the fault
+    assert _limited(tmp_path, "revolute", 'lower="0.5"') == [
+        (
+            "limit-unset",
+            "error",
+            "joint 'arm_joint': <limit> has no upper, read as 0, which leaves lower 0.5 above "
+            "upper 0: Drake refuses the joint, MuJoCo and PyBullet leave it free",
+        )
+    ]
+    assert [r for r, _, _ in _limited(tmp_path, "revolute", 'lower="0.5" upper="0"')] == [
+        "limit-range"
+    ]
+
+
+@pytest.mark.parametrize(
+    ("kind", "bounds"),
+    [("continuous", ""), ("revolute", 'lower="0" upper="0"'), ("revolute", 'lower="-1" upper="1"')],
+)
+def test_bounds_written_or_not_needed_are_not_unset(tmp_path: Path, kind: str, bounds: str) -> None:
+    assert _limited(tmp_path, kind, bounds) == []
+
+
+def test_the_model_keeps_which_bounds_were_left_out(tmp_path: Path) -> None:
+    path = tmp_path / "r.urdf"
+    path.write_text(LIMITED.format(type="revolute", bounds='upper="1"'), encoding="utf-8")
+    limit = fishbot_urdf.load(path).joints[0].limit
+    assert limit is not None and limit.unset == ("lower",)
+    assert limit == Limit(1.0, 1.0, 0.0, 1.0)  # as urdfdom reads it
+    # written back, the bound stays out (MuJoCo and PyBullet read a 0 written otherwise)
+    written = fishbot_urdf.to_urdf(fishbot_urdf.load(path))
+    assert '<limit upper="1" effort="1" velocity="1"/>' in written

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from conftest import box_stl, fine_stl
+from conftest import binary_stl, box_stl, fine_stl
 
 from fishbot_urdf import check_file
 from fishbot_urdf.cli import cli
@@ -130,7 +130,7 @@ def test_a_xacro_robot_is_offered_names_in_its_own_form_never_this_machine_s_pat
 @pytest.mark.parametrize(
     ("name", "what"),
     [
-        ("package:///demo/meshes/base_link.stl", "names a package with no name (package:///)"),
+        ("package:///", "names no package and no file"),
         ("package://demo", "names a package but no file in it"),
         ("package:/demo/meshes/base_link.stl", "is not a package:// URI"),
         ("file://meshes/base_link.stl", "is a file:// URI with a relative path"),
@@ -141,6 +141,34 @@ def test_malformed_uris(package: Path, name: str, what: str) -> None:
     [(rule, severity, message)] = _found(package, name)
     assert (rule, severity) == ("mesh-uri", "error")
     assert f"mesh {name!r} {what}" in message
+
+
+def test_a_package_uri_without_the_package_is_found_by_its_path(package: Path) -> None:
+    # As PyBullet and yourdfpy find it: the path above the robot file's folder; as
+    # pinocchio does: the package its first folder names (TALOS in example-robot-data).
+    for name in ("package:///meshes/base_link.stl", "package:///demo/meshes/base_link.stl"):
+        [(rule, severity, message)] = _found(package, name, demo=package)
+        assert (rule, severity) == ("package-no-name", "warning")
+        assert message == (
+            f"link 'base_link': mesh {name!r} names no package (package:///), which ROS's "
+            "resource_retriever refuses (RViz, MoveIt); PyBullet, yourdfpy and pinocchio "
+            f"(given its package folders) find it by its path, as {package}/meshes/"
+            "base_link.stl (write package://demo/meshes/base_link.stl) [package-no-name]"
+        )
+
+
+def test_a_package_uri_without_the_package_leading_nowhere_is_also_not_found(
+    package: Path,
+) -> None:
+    found = _found(package, "package:///base_link.stl")
+    assert [(rule, severity) for rule, severity, _ in found] == [
+        ("mesh-not-found", "error"),
+        ("package-no-name", "warning"),
+    ]
+    assert found[1][2].endswith(
+        "(write package://PACKAGE/path, with the package's name after the two slashes) "
+        "[package-no-name]"
+    )
 
 
 def test_a_package_not_found_is_a_warning_naming_the_places_searched(
@@ -335,3 +363,72 @@ def test_a_malformed_mesh_is_a_warning_saying_what_is_wrong(
     assert message.startswith("link 'base_link': mesh 'package://demo/meshes/bad.stl' ")
     assert said in message
     assert message.endswith("(export the mesh again) [mesh-invalid]")
+
+
+COLLIDING = """\
+<robot name="r">
+  <link name="base_link">
+    <collision><geometry><mesh filename="{name}"/></geometry></collision>
+    <visual><geometry><mesh filename="{name}"/></geometry></visual>
+  </link>
+</robot>
+"""
+
+
+def _turned(triangles: list[tuple[float, ...]]) -> list[tuple[float, ...]]:
+    """The triangles turned about x by 30 degrees and about z by 40, and moved off the origin."""
+    import math
+
+    def turn(x: float, y: float, z: float) -> tuple[float, float, float]:
+        a, b = math.radians(30), math.radians(40)
+        y, z = y * math.cos(a) - z * math.sin(a), y * math.sin(a) + z * math.cos(a)
+        x, y = x * math.cos(b) - y * math.sin(b), x * math.sin(b) + y * math.cos(b)
+        return x + 10.0, y + 20.0, z + 5.0
+
+    return [tuple(v for k in range(3) for v in turn(*t[3 * k : 3 * k + 3])) for t in triangles]
+
+
+def _flat_found(tmp_path: Path, stl: bytes) -> list[tuple[str, str, str]]:
+    (tmp_path / "part.stl").write_bytes(stl)
+    path = tmp_path / "r.urdf"
+    path.write_text(COLLIDING.format(name="part.stl"), encoding="utf-8")
+    found = check_file(path).diagnostics
+    return [(d.rule, d.severity.value, d.message) for d in found if d.rule == "mesh-flat"]
+
+
+def test_a_flat_collision_mesh_has_no_hull(tmp_path: Path) -> None:
+    # the visual of the same mesh is no fault: nothing collides with it
+    assert _flat_found(tmp_path, box_stl(0.2, 0.3, 0.0)) == [
+        (
+            "mesh-flat",
+            "warning",
+            "link 'base_link': mesh 'part.stl' has every vertex in one plane, no volume to "
+            "collide with: MuJoCo refuses the robot ('coplanar vertices, cannot compute convex "
+            "hull')",
+        )
+    ]
+    [(_, _, line)] = _flat_found(tmp_path, box_stl(0.2, 0.0, 0.0))
+    assert "every vertex on one line" in line and "'collinear vertices" in line
+    [(_, _, few)] = _flat_found(tmp_path, binary_stl([(0, 0, 0, 1, 0, 0, 0, 1, 0)]))
+    assert "has 3 distinct vertices" in few and "('at least 4 vertices required')" in few
+
+
+def test_a_turned_plate_is_flat_but_for_its_rounding(tmp_path: Path) -> None:
+    # float32 rounds a turned plate's vertices off its plane, by about 1e-6 here
+    plate = _turned([(0, 0, 0, 0.5, 0, 0, 0.5, 0.4, 0), (0, 0, 0, 0.5, 0.4, 0, 0, 0.4, 0)])
+    [(_, _, message)] = _flat_found(tmp_path, binary_stl(plate))
+    assert "has every vertex in one plane but for " in message
+    assert message.endswith("MuJoCo makes a convex hull of it only as thick as that")
+
+
+@pytest.mark.parametrize("thickness", [0.001, 0.0001])
+def test_a_thin_plate_is_no_flat_mesh(tmp_path: Path, thickness: float) -> None:
+    # 0.1 mm on 0.5 m: a sheet, but one a hull can be made of
+    assert _flat_found(tmp_path, binary_stl(_turned(_box(0.5, 0.4, thickness)))) == []
+
+
+def _box(x: float, y: float, z: float) -> list[tuple[float, ...]]:
+    c = [(i * x, j * y, k * z) for i in (0, 1) for j in (0, 1) for k in (0, 1)]
+    faces = [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1)]
+    faces += [(2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]
+    return [(*c[a], *c[b], *c[d]) for a, b, d in faces]

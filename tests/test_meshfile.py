@@ -310,3 +310,14 @@ def test_an_obj_is_read_as_the_patterns_read_it(
     else:
         assert facts is not None
         assert (facts.faces, facts.high) == (faces, high)
+
+
+def test_the_facts_say_how_far_the_vertices_are_from_a_plane_and_a_line(tmp_path: Path) -> None:
+    (tmp_path / "plate.stl").write_bytes(box_stl(1, 2, 0))
+    (tmp_path / "box.stl").write_bytes(box_stl(1, 2, 3))
+    plate, box = mesh_facts(tmp_path / "plate.stl"), mesh_facts(tmp_path / "box.stl")
+    assert plate is not None and box is not None
+    assert plate.spread is not None and plate.spread[0] == 0.0 < (plate.spread[1] or 0)
+    assert box.spread is not None and box.spread[0] > 0.5
+    assert box.spread[1] is None  # far from flat: the line is not measured
+    assert (plate.vertices, box.vertices) == (None, None)  # counted only for a few corners

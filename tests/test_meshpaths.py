@@ -236,7 +236,8 @@ def test_a_robot_read_from_text_has_no_folder_for_relative_names(tmp_path: Path)
 @pytest.mark.parametrize(
     ("name", "state"),
     [
-        ("package:///x.stl", State.MALFORMED),
+        ("package:/x.stl", State.MALFORMED),
+        ("package:///nowhere_here.stl", State.MISSING),
         ("https://example.com/x.stl", State.REMOTE),
         ("package://nowhere_here/x.stl", State.NO_PACKAGE),
         ("MESHES/plain.stl", State.OTHER_CASE),

@@ -46,6 +46,7 @@ STRICTER = {
     "joint-self-loop": "check_urdf hangs on a joint whose parent is its child",
     "undefined-mimic": "robot_state_publisher and simulators fail on it",
     "limit-range": "no position satisfies lower > upper",
+    "limit-unset": "a bound left out (0) that leaves lower above upper: no position is left",
     "zero-axis": "a moving joint with a zero axis cannot move",
     "negative-limit": "effort and velocity limits are magnitudes",
     "negative-mass": "a negative mass is not physical",
@@ -53,8 +54,9 @@ STRICTER = {
     "inertia-triangle": "no rigid body has one moment above the sum of the other two (MuJoCo)",
     "massless-link": "a moving body without mass or inertia cannot be simulated (MuJoCo)",
     "missing-inertial": "Gazebo drops a moving link without <inertial>, as one of mass 0",
-    "mesh-uri": "ROS's resource retriever finds no package in package:///",
+    "mesh-uri": "a malformed URI (package:/, file://relative) names no file anyone finds",
     "mesh-not-found": "a mesh that is not there is drawn by nobody",
+    "shape-size": "a collision shape of size 0 or less, which MuJoCo refuses",
     "unknown-reference": "Gazebo and ros2_control cannot attach to a part that does not exist",
 }
 
@@ -67,8 +69,6 @@ FAULTY = {
     "romeo_laas_small.urdf": "hip inertias with a negative principal moment",
     "romeo_small.urdf": "arm inertias that break the triangle inequality",
     "pr2.urdf": "<gazebo reference> blocks name links the robot does not have",
-    "talos_full_v2.urdf": "meshes named package:///, a package with no name",
-    "talos_full_v2_box.urdf": "meshes named package:///, a package with no name",
     "talos_left_arm.urdf": "a <transmission> and a <gazebo> block for a joint left out",
     "tiago_dual.urdf": "<gazebo reference> names with an unexpanded {side} in them",
 }

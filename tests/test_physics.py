@@ -407,3 +407,88 @@ def test_an_unturned_inertia_is_compared_as_a_turned_one_would_be(
         general = _shape.mismatch(link, "p", principal)
     assert quick == general
     assert (quick and quick.data) == (general and general.data)
+
+
+# -- robot-units: a robot of primitives written in millimetres ------------------------------
+
+_MILLIMETRES = """\
+<robot name="arm">
+  <link name="base_link">
+    <collision><geometry><box size="200 200 100"/></geometry></collision>
+    <inertial><mass value="2"/>
+      <inertia ixx="{i}" iyy="{i}" izz="{iz}" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <link name="arm_link">
+    <collision><geometry><cylinder radius="30" length="300"/></geometry></collision>
+    <inertial><mass value="0.5"/>
+      <inertia ixx="3863" iyy="3863" izz="225" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <joint name="arm_joint" type="revolute">
+    <origin xyz="0 0 250"/><parent link="base_link"/><child link="arm_link"/>
+    <axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+"""
+
+
+def test_a_robot_written_in_millimetres_is_said_to_be_with_the_factor(tmp_path: Path) -> None:
+    path = _write(tmp_path, "arm.urdf", _MILLIMETRES.format(i="8333", iz="13333"))
+    status, lines = _findings(path)
+    assert status == 0
+    assert lines == [
+        f"{path}:1:1: warning: robot 'arm' reads as written in millimetres: its boxes, "
+        "cylinders and spheres are 200 to 300 m across (median 250 m), its joints 250 m from "
+        "their parents, and its links weigh 5.2e-07 kg/m^3, lighter than air (multiply every "
+        "length by 0.001 (sizes and origins; inertias by 1e-6): 250 m is 0.25 m) [robot-units]"
+    ]
+
+
+def test_no_inertia_is_proposed_for_a_200_m_box_of_a_robot_in_millimetres(tmp_path: Path) -> None:
+    # the base's inertia is that of a box 0.2 m across: the metres the lengths should be in
+    path = _write(tmp_path, "arm.urdf", _MILLIMETRES.format(i="0.0083", iz="0.013"))
+    _, lines = _findings(path)
+    assert [line.rsplit("[", 1)[1] for line in lines] == ["robot-units]"]  # the cause only
+    _, lines = _findings(path, "--ignore", "robot-units")
+    [mismatch] = lines
+    assert mismatch.endswith(
+        "(the robot reads as written in millimetres: multiply its lengths by 0.001 first, "
+        "then compare) [inertia-mismatch]"
+    )
+    assert "fishbot inertia box" not in mismatch
+
+
+@pytest.mark.parametrize(
+    "name",
+    [
+        # pybullet_data's plane.urdf: one box of 200 m, no joint
+        "plane",
+        # bullet_safety_gym's rooms: walls of 40 m and 4 kg, in one link
+        "room",
+        # big shapes with joints apart, but as heavy as things are (400 kg/m^3): a building
+        # in metres
+        "building",
+    ],
+)
+def test_big_worlds_in_metres_are_not_millimetres(tmp_path: Path, name: str) -> None:
+    wall = '<collision><geometry><box size="40 0.1 2"/></geometry></collision>'
+    texts = {
+        "plane": '<robot name="plane"><link name="planeLink"><collision><geometry>'
+        '<box size="200 200 10"/></geometry></collision></link></robot>',
+        "room": f'<robot name="room"><link name="walls">{wall * 4}</link></robot>',
+        "building": _MILLIMETRES.format(i="8333", iz="13333").replace(
+            'mass value="2"', 'mass value="2e9"'
+        ),
+    }
+    path = _write(tmp_path, f"{name}.urdf", texts[name])
+    assert "robot-units" not in "".join(_findings(path)[1])
+
+
+def test_an_inertial_to_compute_for_a_robot_in_millimetres_waits_for_metres(
+    tmp_path: Path,
+) -> None:
+    text = _MILLIMETRES.format(i="8333", iz="13333")
+    start = text.index('    <inertial><mass value="0.5"/>')
+    text = text[:start] + text[text.index("</inertial>\n", start) + len("</inertial>\n") :]
+    _, lines = _findings(_write(tmp_path, "arm.urdf", text))
+    [missing] = [line for line in lines if line.endswith("[missing-inertial]")]
+    assert "give it one computed from its collision shapes once they are in metres" in missing

@@ -142,11 +142,12 @@ def _check(tmp_path: Path, rule: Rule, text: str) -> Result:
     (tmp_path / "wheel.urdf.xacro").write_text(WHEEL_XACRO, encoding="utf-8")
     (tmp_path / "meshes").mkdir(exist_ok=True)
     # found, as the mesh rules' examples say: a box in metres, a .step file, a box in
-    # millimetres, a binary STL cut short
+    # millimetres, a binary STL cut short, a flat box
     (tmp_path / "meshes" / "base_link.stl").write_bytes(box_stl(0.2, 0.2, 0.1))
     (tmp_path / "meshes" / "base_link.step").write_bytes(b"")
     (tmp_path / "meshes" / "base_link_mm.stl").write_bytes(box_stl(200, 200, 100))
     (tmp_path / "meshes" / "base_link_cut.stl").write_bytes(box_stl(0.2, 0.2, 0.1)[:-20])
+    (tmp_path / "meshes" / "base_link_flat.stl").write_bytes(box_stl(0.2, 0.2, 0.0))
     if "base_link_fine" in text:
         (tmp_path / "meshes" / "base_link_fine.stl").write_bytes(fine_stl(30_000))
     name = tmp_path / ("robot.urdf.xacro" if rule.language == "xacro" else "robot.urdf")

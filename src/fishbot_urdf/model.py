@@ -176,6 +176,8 @@ class Limit:
     lower: float = 0.0
     upper: float = 0.0
     source: Location | None = _source()
+    unset: tuple[str, ...] = field(default=(), compare=False, repr=False)
+    """The bounds the file left out (``lower``, ``upper``), read as 0 as urdfdom reads them."""
 
 
 @dataclass(frozen=True, slots=True)

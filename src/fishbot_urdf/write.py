@@ -133,7 +133,9 @@ def _joint(parent: etree._Element, joint: Joint) -> None:
     for tag, names in parts:
         part = getattr(joint, tag)
         if part is not None:
-            _numbers(element, tag, part, names)
+            # A bound the file left out stays out: MuJoCo and PyBullet read that otherwise.
+            unset = getattr(part, "unset", ())
+            _numbers(element, tag, part, [name for name in names if name not in unset])
     if joint.mimic is not None:
         mimic = _sub(element, "mimic", joint=joint.mimic.joint)
         mimic.set("multiplier", _num(joint.mimic.multiplier))

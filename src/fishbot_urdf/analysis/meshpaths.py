@@ -2,6 +2,10 @@
 
 - ``package://PKG/path``: ``path`` in ROS package PKG's folder, found as for xacro's
   ``$(find PKG)`` (see :mod:`fishbot_urdf.packages`).
+- ``package:///path`` (no package named before the third slash), which ROS's
+  resource_retriever refuses: as PyBullet and yourdfpy find it, ``path`` in the robot
+  file's folder or one above it; else as pinocchio does, in the package its first folder
+  names.
 - ``file:///absolute/path``, or an absolute path: that file.
 - A relative name: beside the robot file, the file a program loads. After xacro the robot
   is one URDF text that keeps no trace of the file that wrote each element, so a relative
@@ -20,7 +24,7 @@ command and library function that opens a mesh asks it.
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from enum import Enum
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -54,7 +58,7 @@ class State(str, Enum):
     OTHER_CASE = "other-case"  # only a file whose name differs in upper and lower case
     MISSING = "missing"  # no file there
     NO_PACKAGE = "no-package"  # a package:// name whose package is found nowhere
-    MALFORMED = "malformed"  # a URI no program reads (package:///, file://relative, ...)
+    MALFORMED = "malformed"  # a URI no program reads (package:/, file://relative, ...)
     REMOTE = "remote"  # http(s)://, model://: not looked at
     NO_FOLDER = "no-folder"  # a relative name of a robot read from text
 
@@ -73,6 +77,8 @@ class MeshPath:
         searched: For NO_PACKAGE, the places searched, in order.
         problem: For MALFORMED, what is wrong with the name.
         fix: For MALFORMED, how to write it.
+        unnamed: Written ``package:///``, the package's name left out (ROS's
+            resource_retriever refuses it): resolved as the programs that read it find it.
     """
 
     name: str
@@ -83,6 +89,7 @@ class MeshPath:
     searched: tuple[str, ...] = ()
     problem: str | None = None
     fix: str | None = None
+    unnamed: bool = False
 
     @property
     def found(self) -> bool:
@@ -270,6 +277,8 @@ class MeshPaths:
             return MeshPath(name, State.MALFORMED, problem=what, fix=fix)
         if name.startswith(_REMOTE):
             return MeshPath(name, State.REMOTE)
+        if name.startswith("package:///"):
+            return replace(self._unnamed(name[len("package:///") :].lstrip("/")), name=name)
         if name.startswith("package://"):
             package, _, rest = name[len("package://") :].partition("/")
             folder = self._package(package)
@@ -290,6 +299,21 @@ class MeshPaths:
         if other is not None:
             return MeshPath(name, State.OTHER_CASE, file, other=other)
         return MeshPath(name, State.MISSING, file)
+
+    def _unnamed(self, path: str) -> MeshPath:
+        """Where ``package:///path`` leads, as the programs that read it find it: PyBullet
+        and yourdfpy join the path to the robot file's folder and to each folder above it,
+        pinocchio to each of its package folders (so its first folder is a package's)."""
+        if self.robot_file is not None and path:
+            folder = Path(self.robot_file).parent.absolute()
+            for above in (folder, *folder.parents):
+                if self._exists(above / path)[0]:
+                    return MeshPath(path, State.FOUND, above / path, unnamed=True)
+        if "/" in path:
+            return replace(self._resolve("package://" + path), unnamed=True)
+        if self.robot_file is None:
+            return MeshPath(path, State.NO_FOLDER, unnamed=True)
+        return MeshPath(path, State.MISSING, Path(self.robot_file).parent / path, unnamed=True)
 
     def _package(self, package: str) -> Path | PackageNotFound:
         known = self._folders.get(package)
@@ -352,10 +376,9 @@ def _malformed(name: str) -> tuple[str, str] | None:
     if name.startswith("package://"):
         package, _, rest = name[len("package://") :].partition("/")
         if not package:
-            return (
-                "names a package with no name (package:///)",
-                "write package://PACKAGE/path, with the package's name after the two slashes",
-            )
+            if not rest.strip("/"):
+                return "names no package and no file", "write package://PACKAGE/path/to/mesh"
+            return None  # package:///path: found by its path (see MeshPaths._unnamed)
         if not rest:
             return "names a package but no file in it", "write package://PACKAGE/path/to/mesh"
         return None

@@ -131,6 +131,34 @@ RPY_DEGREES = Rule(
     good=_arm(),
     consumers=_ALL,
 )
+_WHEEL_LIMIT = """\
+<robot name="upkie">
+  <link name="base_link"/>
+  <link name="wheel_link"/>
+  <joint name="wheel_joint" type="{type}">
+    <parent link="base_link"/><child link="wheel_link"/><axis xyz="0 1 0"/>
+    <limit effort="1.7" velocity="10"/>
+  </joint>
+</robot>
+"""
+LIMIT_UNSET = Rule(
+    "limit-unset",
+    W,
+    Family.JOINTS,
+    summary="A revolute or prismatic joint's <limit> leaves out lower or upper, which then "
+    "read as 0.",
+    explanation="URDF gives a bound left out the value 0, so `<limit effort velocity>` alone "
+    "holds a revolute or prismatic joint at 0: urdfdom, and so robot_state_publisher, MoveIt and "
+    "Gazebo (through sdformat), read 0 to 0, joint_state_publisher shows a slider that does "
+    "not move, and pinocchio's limits are 0 and 0. MuJoCo and PyBullet leave such a joint free "
+    "instead (with one bound given, MuJoCo still does; PyBullet reads a missing upper as -1 "
+    "and limits the joint only when lower <= upper), so it moves in one program and not in "
+    "another. A joint that turns without end, such as a wheel's, is `continuous`; otherwise "
+    "write both bounds.",
+    bad=_WHEEL_LIMIT.format(type="revolute"),
+    good=_WHEEL_LIMIT.format(type="continuous"),
+    consumers=(Consumer.URDFDOM, Consumer.GAZEBO, Consumer.MUJOCO, Consumer.PYBULLET),
+)
 MIMIC_CHAIN = Rule(
     "mimic-chain",
     W,

@@ -34,7 +34,7 @@ _COLLIDING = """\
 """
 # The examples' folder holds meshes/base_link.stl (a box in metres) and .step (empty),
 # base_link_mm.stl (a box 200 x 200 x 100 units), base_link_cut.stl (a binary STL cut
-# short) and base_link_fine.stl (30 000 triangles).
+# short), base_link_fine.stl (30 000 triangles) and base_link_flat.stl (a box 0.2 x 0.2 x 0).
 _FOUND = "meshes/base_link.stl"
 
 
@@ -91,16 +91,33 @@ MESH_URI = Rule(
     "mesh-uri",
     E,
     Family.MESHES,
-    summary="A mesh file name is a malformed URI (package:///, package:/, file://relative, "
-    "backslashes).",
-    explanation="`package://NAME/path` names a file in ROS package NAME, so `package:///x` names "
-    "a package with no name and ROS's resource retriever fails on it. `file://` must be "
-    "followed by an absolute path, and backslashes only work on Windows. Write "
-    "`package://my_robot/meshes/base.stl`, a `file:///` path, or a path relative to the robot "
-    "file with forward slashes.",
-    bad=_ONE_BOX.format(name="package:///meshes/base_link.stl"),
+    summary="A mesh file name is a malformed URI (package:/, package://NAME alone, "
+    "file://relative, backslashes).",
+    explanation="`package://NAME/path` names a file in ROS package NAME: with one slash, or "
+    "with no path after the package, it names none. `file://` must be followed by an absolute "
+    "path (`file://meshes/x.stl` reads `meshes` as a host name), and backslashes only work on "
+    "Windows. Write `package://my_robot/meshes/base.stl`, a `file:///` path, or a path "
+    "relative to the robot file with forward slashes.",
+    bad=_ONE_BOX.format(name="file://meshes/base_link.stl"),
     good=_ONE_BOX.format(name=_FOUND),
     consumers=_VIEWERS,
+)
+PACKAGE_NO_NAME = Rule(
+    "package-no-name",
+    W,
+    Family.MESHES,
+    summary="A mesh is named `package:///path`: a package URI without the package's name.",
+    explanation="ROS's resource_retriever, which RViz, MoveIt and robot_state_publisher's "
+    "users load meshes through, refuses it (`Package name must not be empty`), so they show "
+    "and collide with nothing. Programs that look for the path instead find it: PyBullet and "
+    "yourdfpy in the robot file's folder or one above it, pinocchio in each of its package "
+    "folders (`package_dirs`); sdformat hands Gazebo `model:///path`, to look up on its "
+    "model path, as it does any `package://` name, and MuJoCo reads none. fishbot looks where "
+    "those find it: a warning when the file is there, `mesh-not-found` too when it is not. "
+    "Write the package's name after the two slashes (`package://my_robot/meshes/base.stl`).",
+    bad=_ONE_BOX.format(name="package:///meshes/base_link.stl"),
+    good=_ONE_BOX.format(name=_FOUND),
+    consumers=(Consumer.URDFDOM,),
 )
 MESH_FORMAT = Rule(
     "mesh-format",
@@ -155,6 +172,51 @@ MESH_FACES = Rule(
     bad=_COLLIDING.format(name="meshes/base_link_fine.stl"),
     good=_COLLIDING.format(name=_FOUND),
     consumers=(Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE, Consumer.PYBULLET),
+)
+MESH_FLAT = Rule(
+    "mesh-flat",
+    W,
+    Family.MESHES,
+    summary="A collision mesh has no volume: its vertices lie in one plane (or on a line).",
+    explanation="Simulators collide with a mesh's convex hull, and a flat mesh (a plate "
+    "exported as one face, a decal, a sheet of fewer than 4 vertices) has none. MuJoCo refuses "
+    "the robot (`mesh 'x' has coplanar vertices, cannot compute convex hull`, or `at least 4 "
+    "vertices required`); a mesh flat but for the file's rounding passes its test with a hull "
+    "as thin as that rounding, and still has no volume to weigh. urdfdom never "
+    "opens meshes, and pinocchio and PyBullet load it. Collide with a thin box instead, or "
+    "give the mesh its thickness.",
+    bad=_COLLIDING.format(name="meshes/base_link_flat.stl"),
+    good=_COLLIDING.format(name=_FOUND),
+    consumers=(Consumer.MUJOCO,),
+)
+SHAPE_SIZE = Rule(
+    "shape-size",
+    E,
+    Family.MESHES,
+    summary="A collision box, cylinder or sphere has a size of 0 or less, or a collision mesh "
+    "a scale of 0; a visual a negative size.",
+    explanation="urdfdom and pinocchio take any number for a size, but a collision shape of "
+    "size 0 has nothing to collide with, and one of a negative size is no shape at all. MuJoCo "
+    "refuses such a collision, and so the robot (`size 0 must be positive in geom`; a mesh "
+    "scaled by 0: `mesh volume is too small`). A visual of size 0 is drawn as nothing, a "
+    "placeholder many robots use for frames (MuJoCo leaves a URDF's visuals out), so only a "
+    "negative one is reported, as a warning; a negative mesh scale mirrors the mesh and is fine. "
+    "Give the shape its real size, or delete it.",
+    bad="""\
+<robot name="fishbot">
+  <link name="base_link">
+    <collision><geometry><box size="0.2 0.2 0"/></geometry></collision>
+  </link>
+</robot>
+""",
+    good="""\
+<robot name="fishbot">
+  <link name="base_link">
+    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
+  </link>
+</robot>
+""",
+    consumers=(Consumer.MUJOCO,),
 )
 SHAPE_NOT_DRAWN = Rule(
     "shape-not-drawn",

@@ -287,6 +287,57 @@ INERTIA_MISMATCH = Rule(
 """,
     consumers=_SIMULATORS,
 )
+_BUILT = """\
+<robot name="fishbot">
+  <link name="base_link">
+    <collision><geometry><box size="{box}"/></geometry></collision>
+    <inertial><mass value="2"/>
+      <inertia ixx="{i}" iyy="{i}" izz="{iz}" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <link name="lidar_link">
+    <collision><geometry><cylinder radius="{r}" length="{h}"/></geometry></collision>
+  </link>
+  <joint name="lidar_joint" type="fixed">
+    <origin xyz="0 0 {z}"/><parent link="base_link"/><child link="lidar_link"/>
+  </joint>
+</robot>
+"""
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class UnitsFacts(Facts):
+    """The facts of a `robot-units` finding: what says the robot is in millimetres."""
+
+    sizes: tuple[float, float, float]
+    """Its boxes', cylinders' and spheres' sizes (the largest side), m: smallest, median,
+    largest."""
+    joints: float
+    """How far its joints are from their parent links' frames (the median), m."""
+    density: float | None
+    """The mass of its links over their shapes' volume, kg/m^3 (None: no link to weigh)."""
+    factor: float = 0.001
+    """What to multiply every length by."""
+
+
+ROBOT_UNITS = Rule(
+    "robot-units",
+    W,
+    Family.PHYSICS,
+    summary="A robot of boxes, cylinders and spheres whose sizes, joint origins and masses say "
+    "it was written in millimetres.",
+    explanation="URDF lengths are metres. When a robot's shapes are tens to hundreds of metres "
+    "across, its joints metres apart, and its masses fill them lighter than air, it was "
+    "written in millimetres: RViz shows a giant, and simulators take it for a building of a "
+    "few kilograms. fishbot judges the three together, so that a ground plane or a room (big "
+    "shapes, no joints apart) is no finding; of a robot in millimetres it says so first, and "
+    "proposes no inertia for a 200 m box. Multiply every length by 0.001 (sizes and origins; "
+    "inertias by 1e-6), or write them through a xacro property in metres.",
+    bad=_BUILT.format(box="200 200 100", i="8333", iz="13333", r="40", h="50", z="150"),
+    good=_BUILT.format(
+        box="0.2 0.2 0.1", i="0.008333", iz="0.013333", r="0.04", h="0.05", z="0.15"
+    ),
+    consumers=(Consumer.URDFDOM, *_SIMULATORS),
+)
 BELOW_GROUND = Rule(
     "below-ground",
     W,

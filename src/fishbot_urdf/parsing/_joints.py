@@ -135,15 +135,17 @@ class JointReader(LinkReader):
         plain = plain_numbers(
             [get("effort"), get("velocity"), get("lower", "0"), get("upper", "0")]
         )
+        unset = tuple(bound for bound in ("lower", "upper") if get(bound) is None)
         if plain is not None:
             effort, velocity, lower, upper = plain
-            return Limit(effort, velocity, lower, upper, at)
+            return Limit(effort, velocity, lower, upper, at, unset)
         return Limit(
             self.number(el, at, "effort", owner, required=True),
             self.number(el, at, "velocity", owner, required=True),
             self.number(el, at, "lower", owner),
             self.number(el, at, "upper", owner),
             at,
+            unset,
         )
 
     def dynamics(self, el: etree._Element, at: Location, owner: Owner) -> Dynamics:

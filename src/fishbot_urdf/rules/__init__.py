@@ -16,7 +16,7 @@ from ..analysis import Analysis
 from ..catalog import Consumer, Family, Rule, all_rules, get, ids
 from ..diagnostics import Diagnostic
 from ..packages import PackageFinder
-from . import joints, meshes, physics, references, structure
+from . import joints, meshes, physics, references, shapes, structure
 
 __all__ = [
     "CHECKS",
@@ -73,6 +73,7 @@ CHECKS: tuple[Check, ...] = (
     ),
     Check("joints", joints.REPORTS, lambda analysis, _: joints.joints(analysis)),
     Check("references", references.REPORTS, lambda analysis, _: references.references(analysis)),
+    Check("shapes", shapes.REPORTS, lambda analysis, _: shapes.shapes(analysis)),
     Check("meshes", meshes.REPORTS, lambda analysis, s: meshes.meshes(analysis, s.packages)),
     Check(
         "physics",

@@ -10,6 +10,7 @@ from ..analysis import Analysis
 from ..catalog import Rule, rules_in
 from ..catalog.joints import (
     AXIS_LENGTH,
+    LIMIT_UNSET,
     MIMIC_CHAIN,
     MIMIC_FIXED,
     RPY_DEGREES,
@@ -18,8 +19,8 @@ from ..catalog.joints import (
     WIDE_LIMIT,
     ZERO_LIMIT,
 )
-from ..diagnostics import Diagnostic, Kind, Subject
-from ..model import Cylinder, Joint, JointType, Link, Mimic, Origin, Vector3
+from ..diagnostics import Diagnostic, Kind, Severity, Subject
+from ..model import Cylinder, Joint, JointType, Limit, Link, Mimic, Origin, Vector3
 
 __all__ = ["REPORTS", "joints"]
 
@@ -79,6 +80,8 @@ def _joint(analysis: Analysis, joint: Joint) -> Iterator[Diagnostic]:
     if limit is None or joint.type not in _MOVING:
         return
     where = limit.source or joint.source
+    if limit.unset and joint.type.needs_limit:
+        yield _unset(analysis, joint, limit)
     if joint.type is JointType.REVOLUTE:
         wide = [
             (n, v)
@@ -126,6 +129,41 @@ def _joint(analysis: Analysis, joint: Joint) -> Iterator[Diagnostic]:
             subject=_subject(joint),
             hint="give the motor's real limits, or make the joint fixed",
         )
+
+
+def _unset(analysis: Analysis, joint: Joint, limit: Limit) -> Diagnostic:
+    """A revolute or prismatic joint whose <limit> leaves out a bound (read as 0)."""
+    said = f"<limit> has no {' and no '.join(limit.unset)}"
+    severity = None
+    if limit.lower > limit.upper:
+        # The one bound written is on the wrong side of 0: limit-range's fault too, said
+        # here once, as the error it is there.
+        what = (
+            f"{said}, read as 0, which leaves lower {limit.lower:g} above upper "
+            f"{limit.upper:g}: Drake refuses the joint, MuJoCo and PyBullet leave it free"
+        )
+        severity = Severity.ERROR
+    elif len(limit.unset) == 2:
+        what = (
+            f"{said}, so urdfdom reads both as 0 and holds the joint at 0 (robot_state_publisher, "
+            "MoveIt, Gazebo, pinocchio), while MuJoCo and PyBullet leave it free"
+        )
+    else:
+        what = (
+            f"{said}, so urdfdom reads it as 0 and limits the joint to {limit.lower:g} .. "
+            f"{limit.upper:g}, while MuJoCo leaves it free"
+        )
+    hint = 'write both bounds: <limit lower=".." upper=".." effort=".." velocity=".."/>'
+    if joint.type is JointType.REVOLUTE:
+        hint = f"a joint that turns without end (a wheel) is continuous; else {hint}"
+    return LIMIT_UNSET.report(
+        f"{_named(joint)}: {what}",
+        limit.source or joint.source,
+        path=analysis.path,
+        subject=_subject(joint),
+        hint=hint,
+        severity=severity,
+    )
 
 
 def _named(joint: Joint) -> str:

@@ -3,7 +3,6 @@ robot's programs load."""
 
 from __future__ import annotations
 
-import math
 import os
 from collections.abc import Iterable, Iterator, Mapping
 from pathlib import Path
@@ -15,27 +14,29 @@ from ..catalog import Rule, rules_in
 from ..catalog.meshes import (
     MESH_CASE,
     MESH_FACES,
+    MESH_FLAT,
     MESH_FORMAT,
     MESH_INVALID,
     MESH_NOT_FOUND,
     MESH_UNITS,
     MESH_URI,
+    PACKAGE_NO_NAME,
     MeshNotFoundFacts,
 )
 from ..diagnostics import Diagnostic, Kind, Severity, Subject
 from ..errors import FishbotUrdfError, ShapeError
 from ..expansion import EXPAND_HINT, unexpanded
 from ..meshfile import EmptyMeshError, mesh_triangles
-from ..model import Box, Cylinder, Link, Mesh, Sphere
+from ..model import Link, Mesh
 from ..packages import PackageFinder
 from ..parsing import is_xacro_path
+from ._contents import flat_mesh, millimetres
 
 __all__ = ["REPORTS", "meshes", "unresolved"]
 
 
 _LOADED = frozenset({".stl", ".obj", ".dae"})
 _MOST_FACES = 20_000  # a collision mesh above this is slow to simulate
-_LARGEST_PART = 5.0  # metres: a robot part larger than this is implausible
 
 
 def meshes(
@@ -187,6 +188,8 @@ def _mesh(analysis: Analysis, link: Link, mesh: Mesh, collides: bool) -> Iterato
         )
 
     path = paths.get(name)
+    if path.unnamed:
+        yield _unnamed(analysis, named, mesh, path, subject)
     if path.state in (State.MALFORMED, State.REMOTE) or _left_unexpanded(analysis, mesh, path):
         return
     extension = os.path.splitext(name)[1].lower()
@@ -213,7 +216,15 @@ def _mesh(analysis: Analysis, link: Link, mesh: Mesh, collides: bool) -> Iterato
             "simplify it to a few hundred faces or its convex hull, or collide with boxes, "
             "cylinders and spheres",
         )
-    units = _millimetres(link, facts.extent(mesh.scale))
+    if collides:
+        flat = flat_mesh(facts)
+        if flat is not None:
+            yield report(
+                MESH_FLAT,
+                flat,
+                "collide with a thin box, or give the mesh its thickness",
+            )
+    units = millimetres(link, facts.extent(mesh.scale))
     if units is not None:
         yield report(
             MESH_UNITS,
@@ -222,53 +233,31 @@ def _mesh(analysis: Analysis, link: Link, mesh: Mesh, collides: bool) -> Iterato
         )
 
 
-def _millimetres(link: Link, extent: float) -> str | None:
-    """Why a mesh ``extent`` metres across reads as millimetres, or None if it does not.
-
-    Plain sense: no robot part is more than 5 m across, unless the link's other shapes or
-    its inertia say it is that large too. Against them: a mesh 200 to 5000 times larger
-    than what they say.
-    """
-    shrunk = extent / 1000.0
-    sizes = list(_sizes(link))
-    if any(size >= extent / 20 for size, _ in sizes):
-        return None  # the rest of the link is as large: a big part, in metres
-    if extent > _LARGEST_PART and shrunk >= 0.001:
-        return (
-            f"is {extent:.4g} m across, more than any robot part; in millimetres it would be "
-            f"{shrunk:.4g} m"
+def _unnamed(
+    analysis: Analysis, named: str, mesh: Mesh, path: MeshPath, subject: Subject
+) -> Diagnostic:
+    """A ``package:///`` name: what ROS's tools and the programs that find it by its path
+    do with it."""
+    what = "names no package (package:///), which ROS's resource_retriever refuses (RViz, MoveIt)"
+    hint = "write package://PACKAGE/path, with the package's name after the two slashes"
+    if path.found and path.file is not None:
+        what += (
+            "; PyBullet, yourdfpy and pinocchio (given its package folders) find it by its "
+            f"path, as {path.file}"
         )
-    for size, what in sizes:
-        if extent > 0.3 and 200 <= extent / size <= 5000:
-            return (
-                f"is {extent:.4g} m across, but {what} says the link is about {size:.3g} m; "
-                f"in millimetres it would be {shrunk:.4g} m"
-            )
-    return None
-
-
-def _sizes(link: Link) -> Iterator[tuple[float, str]]:
-    """How large the link's other evidence says it is (m): its shapes, its inertia."""
-    shapes = [part.geometry for part in link.visuals]
-    shapes += [part.geometry for part in link.collisions]
-    for shape in shapes:
-        if isinstance(shape, Box):
-            size, what = max(shape.size), "its box"
-        elif isinstance(shape, Cylinder):
-            size, what = max(2 * shape.radius, shape.length), "its cylinder"
-        elif isinstance(shape, Sphere):
-            size, what = 2 * shape.radius, "its sphere"
+        paths = analysis.mesh_paths
+        # The first folder a package's (example-robot-data's TALOS), else the package
+        # that holds the file.
+        named_package = "package://" + mesh.filename[len("package:///") :].lstrip("/")
+        if paths.get(named_package).file == path.file:
+            hint = f"write {named_package}"
         else:
-            continue
-        if size > 0:
-            yield size, what
-    inertial = link.inertial
-    if inertial is not None and inertial.mass > 0:
-        i = inertial.inertia
-        largest = max(i.ixx, i.iyy, i.izz)
-        if largest > 0:
-            # A rod of length L has I = m L^2 / 12: the longest the inertia allows.
-            yield math.sqrt(12.0 * largest / inertial.mass), "its inertia"
+            held = paths.in_package(path.file)
+            if held is not None:
+                hint = f"write package://{held[0]}/{held[1]}"
+    return PACKAGE_NO_NAME.report(
+        f"{named} {what}", mesh.source, path=analysis.path, subject=subject, hint=hint
+    )
 
 
 def _fix(name: str) -> str:
@@ -294,7 +283,8 @@ def _fault(file: Path) -> str | None:
     return None
 
 
-# (shape-not-drawn and nothing-drawn are render's and view's findings: the check never draws)
-_DRAWING = (catalog.meshes.SHAPE_NOT_DRAWN, catalog.meshes.NOTHING_DRAWN)
-REPORTS: tuple[Rule, ...] = tuple(r for r in rules_in(catalog.meshes) if r not in _DRAWING)
+# (shape-not-drawn and nothing-drawn are render's and view's findings: the check never draws;
+# shape-size is the shapes' check's, which opens no file)
+_OTHERS = (catalog.meshes.SHAPE_NOT_DRAWN, catalog.meshes.NOTHING_DRAWN, catalog.meshes.SHAPE_SIZE)
+REPORTS: tuple[Rule, ...] = tuple(r for r in rules_in(catalog.meshes) if r not in _OTHERS)
 """Every rule this module's check may report: the check runs only when one is selected."""

@@ -222,7 +222,8 @@ def _limits(joint: Joint, owner: Subject, path: str) -> Iterator[Diagnostic]:
                 hint='write <limit lower=".." upper=".." effort=".." velocity=".."/>',
             )
         return
-    if joint.type.needs_limit and limit.lower > limit.upper:
+    # (a bound left out makes it so: limit-unset says that, as this rule's error)
+    if joint.type.needs_limit and limit.lower > limit.upper and not limit.unset:
         yield LIMIT_RANGE.report(
             f"{owner}: lower limit {limit.lower:g} is above upper limit {limit.upper:g}",
             limit.source,

@@ -66,7 +66,7 @@ from ..model import (
     Visual,
 )
 from ..parsing._reader import _VERSION  # the one test of a version, the reader's
-from ._plain import plain
+from ._plain import bounds_named, plain
 
 __all__ = ["values"]
 
@@ -404,6 +404,8 @@ class _Walk:
             if not isinstance(item, cls):
                 raise FieldTypeError(here, f"a {cls.__name__} or None", item)
             at = _source(item.source, f"{here}.source") or where
+            if isinstance(item, Limit) and item.unset != () and not bounds_named(item.unset):
+                raise FieldTypeError(f"{here}.unset", 'a tuple of "lower" and "upper"', item.unset)
             for number in names:
                 value = getattr(item, number)
                 if value is not None or part != "calibration":  # its two may be None

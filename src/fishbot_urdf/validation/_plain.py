@@ -38,7 +38,7 @@ from ..model import (
     Visual,
 )
 
-__all__ = ["plain"]
+__all__ = ["bounds_named", "plain"]
 
 _SOURCES = {Location, type(None)}
 _get = attrgetter
@@ -143,6 +143,8 @@ def _plain(links: object, joints: object) -> bool:
         or materials is None
     ):
         return False
+    if not all(limit.unset == () or bounds_named(limit.unset) for limit in limits):
+        return False
     parts = (limits, dynamics, calibrations, mimics, safeties, materials)
     geometries = list(map(_get("geometry"), shapes))
     if not _only(geometries, Box, Cylinder, Sphere, Mesh):
@@ -198,3 +200,12 @@ def _plain(links: object, joints: object) -> bool:
 
 _INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 _SAFETY = ("k_velocity", "k_position", "soft_lower_limit", "soft_upper_limit")
+
+
+def bounds_named(unset: object) -> bool:
+    """Whether ``unset`` names bounds a `Limit` may leave out, once each."""
+    return (
+        type(unset) is tuple
+        and len(set(unset)) == len(unset)
+        and all(type(b) is str and b in ("lower", "upper") for b in unset)
+    )

@@ -19,6 +19,7 @@ from ...catalog.physics import (
     INERTIA_TRIANGLE,
     MASSLESS_LINK,
     MISSING_INERTIAL,
+    ROBOT_UNITS,
 )
 from ...catalog.reading import BAD_NUMBER, NEGATIVE_MASS
 from ...diagnostics import Diagnostic
@@ -27,6 +28,7 @@ from ...spatial import eigenvalues
 from ._ground import GROUND_TOLERANCE, ground
 from ._mass import body_findings, finite
 from ._shape import MISMATCH, mismatch
+from ._units import millimetres, units
 
 __all__ = [
     "ABOVE_GROUND",
@@ -39,6 +41,7 @@ __all__ = [
     "MISMATCH",
     "MISSING_INERTIAL",
     "REPORTS",
+    "ROBOT_UNITS",
     "physics",
 ]
 
@@ -68,12 +71,19 @@ def physics(
         for link in robot.links
         if link.inertial is not None and finite(link.inertial)
     }
+    # Judged first: a robot in millimetres is said to be, before an inertia is proposed
+    # for a 200 m box.
+    scaled = millimetres(robot)
+    if scaled is not None:
+        yield units(robot, path, scaled)
     for body in analysis.bodies:
-        yield from body_findings(body, path, moments, bool(robot.joints))
+        yield from body_findings(
+            body, path, moments, bool(robot.joints), millimetres=scaled is not None
+        )
     for link in robot.links:
         own = moments.get(link.name)
         if own is not None:
-            found = mismatch(link, path, own)
+            found = mismatch(link, path, own, millimetres=scaled is not None)
             if found is not None:
                 yield found
     yield from ground(analysis, ground_tolerance)
@@ -89,5 +99,6 @@ REPORTS: tuple[Rule, ...] = (
     MASSLESS_LINK,
     MISSING_INERTIAL,
     NEGATIVE_MASS,
+    ROBOT_UNITS,
 )
 """Every rule this module's check may report: the check runs only when one is selected."""

@@ -36,8 +36,16 @@ def _inertials(body: Body) -> list[tuple[Link, Inertial, Pose]]:
 
 
 def body_findings(
-    body: Body, path: str, moments: Mapping[str, Vector3], jointed: bool
+    body: Body,
+    path: str,
+    moments: Mapping[str, Vector3],
+    jointed: bool,
+    *,
+    millimetres: bool = False,
 ) -> Iterator[Diagnostic]:
+    """The findings about one body's masses and inertias (``millimetres``: the robot reads
+    as written in millimetres, so an inertial is computed from its shapes only once they are
+    in metres)."""
     having = _inertials(body)
     all_finite = all(link.name in moments for link, _, _ in having)
     # Fused with its fixed neighbours a body may be physical although one link's own numbers
@@ -52,7 +60,7 @@ def body_findings(
         if own is None or inertial.mass < 0 or not physical(own):  # (seldom)
             yield from _inertial(link, inertial, path, merged, own)
     if all_finite:
-        yield from _moving(body, having, path, moments, jointed)
+        yield from _moving(body, having, path, moments, jointed, millimetres)
 
 
 def _inertial(
@@ -138,8 +146,10 @@ def _moving(
     path: str,
     moments: Mapping[str, Vector3],
     jointed: bool,
+    millimetres: bool,
 ) -> Iterator[Diagnostic]:
     joint = body.moved_by
+    shapes = "collision shapes" + (" once they are in metres" if millimetres else "")
     # A body without inertial: its first link with collision shapes, if any.
     link = None if having else next((link for link, _ in body.members if link.collisions), None)
     if joint is None:
@@ -152,7 +162,7 @@ def _moving(
                 path=path,
                 subject=link_subject(link),
                 hint="Gazebo drops a link without an inertial; give it one computed from its "
-                "collision shapes",
+                + shapes,
             )
         return
     if not having:
@@ -163,7 +173,7 @@ def _moving(
                 path=path,
                 subject=link_subject(link),
                 hint="Gazebo drops it with everything below it, as it drops one of mass 0; "
-                "give it one computed from its collision shapes",
+                "give it one computed from its " + shapes,
             )
         return
     if any(inertial.mass < 0 for _, inertial, _ in having):

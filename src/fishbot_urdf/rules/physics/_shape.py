@@ -6,7 +6,7 @@ import math
 from itertools import chain
 from operator import sub
 
-from ...catalog.physics import INERTIA_MISMATCH, CollisionFacts
+from ...catalog.physics import INERTIA_MISMATCH, ROBOT_UNITS, CollisionFacts
 from ...diagnostics import Diagnostic
 from ...inertia import solid_moments
 from ...model import Box, Cylinder, Link, Origin, Sphere, Vector3
@@ -25,11 +25,14 @@ MISMATCH = 0.10
 """How far (relative to the largest moment) an inertia may be from its collision shape's."""
 
 
-def mismatch(link: Link, path: str, moments: Vector3) -> Diagnostic | None:
+def mismatch(
+    link: Link, path: str, moments: Vector3, *, millimetres: bool = False
+) -> Diagnostic | None:
     """The inertia against the link's one collision box, cylinder or sphere (None: it fits,
-    or there is nothing to compare).
+    or there is nothing to compare). When the robot reads as ``millimetres``, the finding
+    says to scale it first, and follows from that one (`robot-units`).
 
-    The finding's data names the collision's shape (``shape``: box, cylinder or sphere,
+    Otherwise the finding's data names the collision's shape (``shape``: box, cylinder or sphere,
     with ``size`` or ``radius`` and ``length``), the ``mass``, and the collision origin's
     ``xyz`` and ``rpy``: what it takes to compute the inertial that matches it.
     """
@@ -75,6 +78,16 @@ def mismatch(link: Link, path: str, moments: Vector3) -> Diagnostic | None:
     if found is None:
         return None
     owner = link_subject(link)
+    if millimetres:  # no inertial to propose for a box of 200 m: the lengths come first
+        return INERTIA_MISMATCH.report(
+            f"{owner}: {found}",
+            place(link, inertial.source),
+            path=path,
+            subject=owner,
+            hint="the robot reads as written in millimetres: multiply its lengths by 0.001 "
+            "first, then compare",
+            follows=(ROBOT_UNITS.id,),
+        )
     return INERTIA_MISMATCH.report(
         f"{owner}: {found}",
         place(link, inertial.source),

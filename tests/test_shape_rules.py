@@ -1,0 +1,72 @@
+"""The shape rules: boxes, cylinders and spheres of no size, and meshes scaled to nothing."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+import fishbot_urdf
+from fishbot_urdf.config import Config
+
+ROBOT = """\
+<robot name="r">
+  <link name="base_link">
+    <{kind}><geometry>{shape}</geometry></{kind}>
+  </link>
+</robot>
+"""
+
+
+def _found(tmp_path: Path, kind: str, shape: str) -> list[tuple[str, str, str]]:
+    path = tmp_path / "r.urdf"
+    path.write_text(ROBOT.format(kind=kind, shape=shape), encoding="utf-8")
+    found = fishbot_urdf.check_file(path, config=Config(select=("shape-size",))).diagnostics
+    return [(d.rule, d.severity.value, d.message) for d in found]
+
+
+@pytest.mark.parametrize(
+    ("shape", "said", "index"),
+    [
+        ('<box size="0.2 0.2 0"/>', 'box of size "0.2 0.2 0"', 2),
+        ('<cylinder radius="-0.1" length="0.2"/>', "cylinder of radius -0.1", 0),
+        ('<cylinder radius="0.1" length="0"/>', "cylinder of length 0", 1),
+        ('<sphere radius="0"/>', "sphere of radius 0", 0),
+    ],
+)
+def test_a_collision_shape_of_no_size_is_an_error_mujoco_refuses(
+    tmp_path: Path, shape: str, said: str, index: int
+) -> None:
+    assert _found(tmp_path, "collision", shape) == [
+        (
+            "shape-size",
+            "error",
+            f"link 'base_link': <collision> {said}: MuJoCo refuses the robot "
+            f"('size {index} must be positive in geom')",
+        )
+    ]
+
+
+def test_a_visual_of_negative_size_is_a_warning_and_of_size_0_a_placeholder(
+    tmp_path: Path,
+) -> None:
+    assert _found(tmp_path, "visual", '<sphere radius="-1"/>') == [
+        ("shape-size", "warning", "link 'base_link': <visual> sphere of radius -1: it is no shape")
+    ]
+    assert _found(tmp_path, "visual", '<box size="0 -0.1 0.1"/>')[0][1] == "warning"
+    # upkie's frames: <box size="0 0 0"/>, drawn as nothing, on purpose
+    assert _found(tmp_path, "visual", '<box size="0 0 0"/>') == []
+    assert _found(tmp_path, "visual", '<sphere radius="0"/>') == []
+
+
+def test_a_mesh_scaled_by_0_is_flat_and_a_negative_scale_mirrors(tmp_path: Path) -> None:
+    (tmp_path / "m.stl").write_bytes(b"solid s\nendsolid s\n")
+    [(_, severity, message)] = _found(
+        tmp_path, "collision", '<mesh filename="m.stl" scale="0 1 1"/>'
+    )
+    assert (severity, message) == (
+        "error",
+        "link 'base_link': <collision> mesh 'm.stl' is scaled by \"0 1 1\", which flattens it: "
+        "MuJoCo refuses the robot ('mesh volume is too small')",
+    )
+    assert _found(tmp_path, "collision", '<mesh filename="m.stl" scale="-1 1 1"/>') == []
