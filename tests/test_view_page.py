@@ -234,6 +234,47 @@ def test_mass_and_inertia_show_as_rviz_shows_them(driver: Any) -> None:
         shown.close()
 
 
+# A blue post 0.3 m tall whose <inertial> was pasted from another part: 0.3 m beside it.
+MISPLACED = """\
+<robot name="misplaced">
+  <link name="post">
+    <visual>
+      <geometry><cylinder radius="0.04" length="0.3"/></geometry>
+      <material name="blue"><color rgba="0 0 1 1"/></material>
+    </visual>
+    <inertial>
+      <origin xyz="0.3 0 0"/>
+      <mass value="2"/>
+      <inertia ixx="0.0158" iyy="0.0158" izz="0.0016" ixy="0" ixz="0" iyz="0"/>
+    </inertial>
+  </link>
+</robot>
+"""
+
+
+def test_an_inertia_off_its_part_is_seen_beside_it(driver: Any, tmp_path: Path) -> None:
+    robot = tmp_path / "misplaced.urdf"
+    robot.write_text(MISPLACED, encoding="utf-8")
+    shown = Viewer(_loader(robot), port=_free_port())
+    try:
+        _open(driver, shown.url)
+        _tick(driver, "Link frames")
+        post = _wait(lambda: (lambda p: p if not _red(p).any() else None)(_settled(driver)))
+        r, g, b = (post[..., i].astype(int) for i in range(3))
+        _, _, left, right = _box_of((b > r + 60) & (b > g + 60) & _canvas(post))
+        _tick(driver, "Inertia")
+        boxed = _wait(lambda: (lambda p: p if _red(p).mean() > 0.001 else None)(_settled(driver)))
+        _, _, box_left, box_right = _box_of(_red(boxed))
+        # The box (0.07 x 0.07 x 0.3 m: its moments are the post's) stands clear of the
+        # post, on one side: the first view, which frames the marks too, shows it (0.3 m
+        # apart is 3.75 posts' widths, less as the camera sees it from the front left).
+        width = right - left
+        gap = box_left - right if box_left > right else left - box_right
+        assert gap > width / 2, (left, right, box_left, box_right)
+    finally:
+        shown.close()
+
+
 def test_the_first_view_frames_the_whole_robot_and_its_axes(driver: Any) -> None:
     shown = Viewer(_loader(FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"), port=_free_port())
     try:

@@ -218,7 +218,7 @@ class Viewer:
             # (an inertia with no box is left out unsaid: check's findings say why)
             self.findings = viewed(visual, collision)
             if self._points is None:
-                self._frame(np, (visual, collision), length)
+                self._frame(np, (visual, collision, marks), length)
             ranges = {name: slider_range(analysis, name) for name in analysis.plan.outwards()}
             inputs = dict(self._switches)
             for name, (low, high) in ranges.items():
@@ -263,8 +263,9 @@ class Viewer:
     def _frame(self, np: Any, scenes: Sequence[Scene], axes: float) -> None:
         """Point the camera at the robot: the pages open already too (the robot was not
         there to be seen before), each framed for its own view's width. What is framed is
-        the box around the robot: its visual and collision shapes, and its link frames'
-        axes (``axes`` long), whatever is toggled on."""
+        the box around the robot: its visual and collision shapes, its links' mass and inertia
+        marks (an inertial written far from its part is in view when ticked), and its link
+        frames' axes (``axes`` long), whatever is toggled on."""
         parts = [part.triangles.reshape(-1, 3) for scene in scenes for part in scene.parts]
         poses = np.array(list(scenes[0].poses.values())).reshape(-1, 4, 4)
         origins = poses[:, :3, 3]
