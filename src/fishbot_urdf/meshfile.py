@@ -356,10 +356,13 @@ def _spread(axes: list[Any]) -> tuple[tuple[float, float | None], int | None]:
 
     step = max(1, len(axes[0]) // _SAMPLE)
     sample = np.stack([np.asarray(a[::step], dtype=np.float64) for a in axes])
+    scale = max(float(np.abs(sample).max()), 1e-300)
+    sample /= scale  # (coordinates near the floats' limit would overflow in the products)
     middle = sample.mean(axis=1)
     sample -= middle[:, None]
     _, directions = np.linalg.eigh(sample @ sample.T)  # eigenvalues ascending: the normal first
-    size = max(float(np.abs(sample).max()), 1e-300)
+    size = max(float(np.abs(sample).max()) * scale, 1e-300)
+    middle *= scale
 
     def farthest(k: int, kind: Any) -> float:
         n = directions[:, k].astype(kind)
@@ -369,7 +372,8 @@ def _spread(axes: list[Any]) -> tuple[tuple[float, float | None], int | None]:
         centre = float(directions[:, k] @ middle)
         return max(float(along.max()) - centre, centre - float(along.min()))
 
-    plane = farthest(0, axes[0].dtype)
+    with np.errstate(over="ignore", invalid="ignore"):  # inf: too far apart to be flat
+        plane = farthest(0, axes[0].dtype)
     line = None
     if plane <= _NEAR_FLAT * size:
         plane, line = farthest(0, np.float64), farthest(1, np.float64)
