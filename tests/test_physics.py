@@ -434,9 +434,9 @@ _MILLIMETRES = """\
 def test_a_robot_written_in_millimetres_is_said_to_be_with_the_factor(tmp_path: Path) -> None:
     path = _write(tmp_path, "arm.urdf", _MILLIMETRES.format(i="8333", iz="13333"))
     status, lines = _findings(path)
-    assert status == 0
+    assert status == 1
     assert lines == [
-        f"{path}:1:1: warning: robot 'arm' reads as written in millimetres: its boxes, "
+        f"{path}:1:1: error: robot 'arm' reads as written in millimetres: its boxes, "
         "cylinders and spheres are 200 to 300 m across (median 250 m), its joints 250 m from "
         "their parents, and its links weigh 5.2e-07 kg/m^3, lighter than air (multiply every "
         "length by 0.001 (sizes and origins; inertias by 1e-6): 250 m is 0.25 m) [robot-units]"

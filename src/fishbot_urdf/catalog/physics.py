@@ -321,7 +321,7 @@ class UnitsFacts(Facts):
 
 ROBOT_UNITS = Rule(
     "robot-units",
-    W,
+    E,
     Family.PHYSICS,
     summary="A robot of boxes, cylinders and spheres whose sizes, joint origins and masses say "
     "it was written in millimetres.",
@@ -330,7 +330,8 @@ ROBOT_UNITS = Rule(
     "written in millimetres: RViz shows a giant, and simulators take it for a building of a "
     "few kilograms. fishbot judges the three together, so that a ground plane or a room (big "
     "shapes, no joints apart) is no finding; of a robot in millimetres it says so first, and "
-    "proposes no inertia for a 200 m box. Multiply every length by 0.001 (sizes and origins; "
+    "proposes no inertia for a 200 m box. It is an error: no program reads such a robot at "
+    "the size it was meant to have. Multiply every length by 0.001 (sizes and origins; "
     "inertias by 1e-6), or write them through a xacro property in metres.",
     bad=_BUILT.format(box="200 200 100", i="8333", iz="13333", r="40", h="50", z="150"),
     good=_BUILT.format(
