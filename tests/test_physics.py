@@ -6,6 +6,7 @@ comment beside it.
 
 from __future__ import annotations
 
+import re
 from operator import mul
 from pathlib import Path
 
@@ -438,7 +439,7 @@ def test_a_robot_written_in_millimetres_is_said_to_be_with_the_factor(tmp_path: 
     assert lines == [
         f"{path}:1:1: error: robot 'arm' reads as written in millimetres: its boxes, "
         "cylinders and spheres are 200 to 300 m across (median 250 m), its joints 250 m from "
-        "their parents, and its links weigh 5.2e-07 kg/m^3, lighter than air (multiply every "
+        "their parents, and its links weigh 5.2e-07 kg/m^3, far lighter than air (multiply every "
         "length by 0.001 (sizes and origins; inertias by 1e-6): 250 m is 0.25 m) [robot-units]"
     ]
 
@@ -457,6 +458,22 @@ def test_no_inertia_is_proposed_for_a_200_m_box_of_a_robot_in_millimetres(tmp_pa
     assert "fishbot inertia box" not in mismatch
 
 
+def _world(floor: str, part: str, count: int, *, spacing: float, inertial: str) -> str:
+    """A floor and ``count`` parts on fixed joints, ``spacing`` metres apart along x and y."""
+    links = [f'<link name="floor"><collision><geometry>{floor}</geometry></collision></link>']
+    joints = []
+    for n in range(count):
+        links.append(
+            f'<link name="part{n}"><collision><geometry>{part}</geometry></collision>'
+            f"{inertial}</link>"
+        )
+        joints.append(
+            f'<joint name="j{n}" type="fixed"><parent link="floor"/><child link="part{n}"/>'
+            f'<origin xyz="{spacing * (n + 1)} {spacing * (n + 1)} 3"/></joint>'
+        )
+    return f'<robot name="world">{"".join(links)}{"".join(joints)}</robot>'
+
+
 @pytest.mark.parametrize(
     "name",
     [
@@ -467,6 +484,12 @@ def test_no_inertia_is_proposed_for_a_200_m_box_of_a_robot_in_millimetres(tmp_pa
         # big shapes with joints apart, but as heavy as things are (400 kg/m^3): a building
         # in metres
         "building",
+        # a warehouse: a 60 x 40 m floor, 20 m shelves 17 m apart on fixed joints, unweighed
+        "warehouse",
+        # a house of 10 m rooms 8 m apart, each weighing a placeholder kilogram
+        "house",
+        # the arm in millimetres, but with nothing to weigh it: not judged
+        "unweighed",
     ],
 )
 def test_big_worlds_in_metres_are_not_millimetres(tmp_path: Path, name: str) -> None:
@@ -477,6 +500,20 @@ def test_big_worlds_in_metres_are_not_millimetres(tmp_path: Path, name: str) -> 
         "room": f'<robot name="room"><link name="walls">{wall * 4}</link></robot>',
         "building": _MILLIMETRES.format(i="8333", iz="13333").replace(
             'mass value="2"', 'mass value="2e9"'
+        ),
+        "warehouse": _world(
+            '<box size="60 40 0.2"/>', '<box size="20 1 6"/>', 6, spacing=6, inertial=""
+        ),
+        "house": _world(
+            '<box size="10 8 3"/>',
+            '<box size="10 8 3"/>',
+            4,
+            spacing=8,
+            inertial='<inertial><mass value="1"/>'
+            '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>',
+        ),
+        "unweighed": re.sub(
+            r"<inertial>.*?</inertial>", "", _MILLIMETRES.format(i="1", iz="1"), flags=re.S
         ),
     }
     path = _write(tmp_path, f"{name}.urdf", texts[name])

@@ -296,10 +296,10 @@ _BUILT = """\
   </link>
   <link name="lidar_link">
     <collision><geometry><cylinder radius="{r}" length="{h}"/></geometry></collision>
-  </link>
-  <joint name="lidar_joint" type="fixed">
-    <origin xyz="0 0 {z}"/><parent link="base_link"/><child link="lidar_link"/>
-  </joint>
+    <inertial><mass value="0.2"/>
+      <inertia ixx="{li}" iyy="{li}" izz="{liz}" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="lidar_joint" type="continuous"><axis xyz="0 0 1"/>
+    <origin xyz="0 0 {z}"/><parent link="base_link"/><child link="lidar_link"/></joint>
 </robot>
 """
 
@@ -326,16 +326,28 @@ ROBOT_UNITS = Rule(
     summary="A robot of boxes, cylinders and spheres whose sizes, joint origins and masses say "
     "it was written in millimetres.",
     explanation="URDF lengths are metres. When a robot's shapes are tens to hundreds of metres "
-    "across, its joints metres apart, and its masses fill them lighter than air, it was "
-    "written in millimetres: RViz shows a giant, and simulators take it for a building of a "
-    "few kilograms. fishbot judges the three together, so that a ground plane or a room (big "
-    "shapes, no joints apart) is no finding; of a robot in millimetres it says so first, and "
+    "across, its joints metres apart, one of them moving, and its masses fill them a "
+    "thousand times lighter than air (metal measured in millimetres and weighed in kilograms "
+    "reads about 1e-6 kg/m^3), it was written in millimetres: RViz shows a giant, and "
+    "simulators take it for a building of a few kilograms. fishbot judges these together, so "
+    "that a ground plane or a room (big shapes, no joints apart), and a warehouse or a house "
+    "in metres (nothing moves, nothing or a placeholder kilogram weighs it), are no finding; "
+    "of a robot in millimetres it says so first, and "
     "proposes no inertia for a 200 m box. It is an error: no program reads such a robot at "
     "the size it was meant to have. Multiply every length by 0.001 (sizes and origins; "
     "inertias by 1e-6), or write them through a xacro property in metres.",
-    bad=_BUILT.format(box="200 200 100", i="8333", iz="13333", r="40", h="50", z="150"),
+    bad=_BUILT.format(
+        box="200 200 100", i="8333", iz="13333", r="40", h="50", li="121.7", liz="160", z="150"
+    ),
     good=_BUILT.format(
-        box="0.2 0.2 0.1", i="0.008333", iz="0.013333", r="0.04", h="0.05", z="0.15"
+        box="0.2 0.2 0.1",
+        i="0.008333",
+        iz="0.013333",
+        r="0.04",
+        h="0.05",
+        li="0.0001217",
+        liz="0.00016",
+        z="0.15",
     ),
     consumers=(Consumer.URDFDOM, *_SIMULATORS),
 )

@@ -7,18 +7,25 @@ import statistics
 
 from ...catalog.physics import ROBOT_UNITS, UnitsFacts
 from ...diagnostics import Diagnostic, Kind, Subject
-from ...model import Box, Cylinder, Geometry, Robot, Sphere
+from ...model import Box, Cylinder, Geometry, JointType, Robot, Sphere
 
 # Judged together, so that no one of them alone makes the finding: a ground plane is a box of
-# 200 m, a room of 40 m, and neither has joints metres apart.
+# 200 m, a room of 40 m, and neither has joints metres apart; a warehouse or a house in metres
+# has its rooms and shelves metres apart, but nothing moves, and nothing (or a kilogram or
+# two, a placeholder) weighs it.
 _PART = 10.0  # m: the median shape beyond this is no robot part (10 mm read as metres)
 _APART = 1.0  # m: the median joint beyond this, with such parts, is millimetres too
-_AIR = 1.0  # kg/m^3: links lighter than this (air is 1.2) are millimetres weighed in kg
+_LIGHT = 1e-3  # kg/m^3, a thousandth of air: metal or plastic measured in millimetres and
+# weighed in kilograms reads 1e-7 to 2e-5 (its density times 1e-9); a room of 300 m^3 given
+# a placeholder kilogram, 3e-3
+
+
+_MOVING = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)
 
 
 def millimetres(robot: Robot) -> UnitsFacts | None:
-    """What says ``robot`` was written in millimetres (its shapes, its joints and its
-    density, together), or None when they do not all say so."""
+    """What says ``robot`` was written in millimetres (its shapes, its joints, one of which
+    moves, and its density, together), or None when they do not all say so."""
     sizes = sorted(size for shape in _shapes(robot) if (size := _largest(shape)) > 0)
     if len(sizes) < 2 or statistics.median(sizes) < _PART:
         return None
@@ -26,9 +33,11 @@ def millimetres(robot: Robot) -> UnitsFacts | None:
     apart = [a for a in apart if a > 0 and math.isfinite(a)]
     if not apart or statistics.median(apart) < _APART:
         return None  # nothing held apart by joints: a ground plane, a room
+    if not any(joint.type in _MOVING for joint in robot.joints):
+        return None  # nothing moves: a world, a building
     density = _density(robot)
-    if density is not None and density >= _AIR:
-        return None  # big, and weighing as much: a building in metres
+    if density is None or density >= _LIGHT:
+        return None  # not weighed, or weighing as much as what big things weigh
     return UnitsFacts(
         sizes=(sizes[0], statistics.median(sizes), sizes[-1]),
         joints=statistics.median(apart),
@@ -39,11 +48,7 @@ def millimetres(robot: Robot) -> UnitsFacts | None:
 def units(robot: Robot, path: str, facts: UnitsFacts) -> Diagnostic:
     """The finding that ``robot`` reads as millimetres."""
     low, middle, high = facts.sizes
-    weighed = (
-        f", and its links weigh {facts.density:.2g} kg/m^3, lighter than air"
-        if facts.density is not None
-        else ""
-    )
+    weighed = f", and its links weigh {facts.density:.2g} kg/m^3, far lighter than air"
     return ROBOT_UNITS.report(
         f"robot {robot.name!r} reads as written in millimetres: its boxes, cylinders and "
         f"spheres are {low:.3g} to {high:.3g} m across (median {middle:.3g} m), its joints "
