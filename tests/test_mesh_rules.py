@@ -160,15 +160,22 @@ def test_a_package_uri_without_the_package_is_found_by_its_path(package: Path) -
 def test_a_package_uri_without_the_package_leading_nowhere_is_also_not_found(
     package: Path,
 ) -> None:
-    found = _found(package, "package:///base_link.stl")
-    assert [(rule, severity) for rule, severity, _ in found] == [
-        ("mesh-not-found", "error"),
-        ("package-no-name", "warning"),
-    ]
-    assert found[1][2].endswith(
-        "(write package://PACKAGE/path, with the package's name after the two slashes) "
-        "[package-no-name]"
-    )
+    for name in ("package:///base_link.stl", "package:///meshes/gone.stl"):
+        found = _found(package, name)
+        assert [(rule, severity) for rule, severity, _ in found] == [
+            ("mesh-not-found", "error"),
+            ("package-no-name", "warning"),
+        ]
+        # its first folder is no package to look for: 'meshes' is never one
+        assert "package 'meshes'" not in found[0][2] and "--package" not in found[0][2]
+        assert found[0][2].endswith(
+            "(with no package named, it was looked for from the robot file's folder and each "
+            "folder above it, as PyBullet and yourdfpy look) [mesh-not-found]"
+        )
+        assert found[1][2].endswith(
+            "(write package://PACKAGE/path, with the package's name after the two slashes) "
+            "[package-no-name]"
+        )
 
 
 def test_a_package_not_found_is_a_warning_naming_the_places_searched(

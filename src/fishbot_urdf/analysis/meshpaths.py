@@ -303,14 +303,18 @@ class MeshPaths:
     def _unnamed(self, path: str) -> MeshPath:
         """Where ``package:///path`` leads, as the programs that read it find it: PyBullet
         and yourdfpy join the path to the robot file's folder and to each folder above it,
-        pinocchio to each of its package folders (so its first folder is a package's)."""
+        pinocchio to each of its package folders (so its first folder is a package's). Found
+        nowhere, it is missing beside the robot file, where the first of them looks: its first
+        folder is no package to look for."""
         if self.robot_file is not None and path:
             folder = Path(self.robot_file).parent.absolute()
             for above in (folder, *folder.parents):
                 if self._exists(above / path)[0]:
                     return MeshPath(path, State.FOUND, above / path, unnamed=True)
         if "/" in path:
-            return replace(self._resolve("package://" + path), unnamed=True)
+            by_package = self._resolve("package://" + path)
+            if by_package.state is not State.NO_PACKAGE:  # its first folder is a package's
+                return replace(by_package, unnamed=True)
         if self.robot_file is None:
             return MeshPath(path, State.NO_FOLDER, unnamed=True)
         return MeshPath(path, State.MISSING, Path(self.robot_file).parent / path, unnamed=True)

@@ -261,6 +261,11 @@ def _unnamed(
 
 
 def _fix(name: str) -> str:
+    if name.startswith("package:///"):
+        return (
+            "with no package named, it was looked for from the robot file's folder and each "
+            "folder above it, as PyBullet and yourdfpy look"
+        )
     if name.startswith("package://"):
         return "package:// names a file inside the package's folder"
     if name.startswith("file://") or os.path.isabs(name):
