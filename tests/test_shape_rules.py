@@ -5,8 +5,10 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from click.testing import CliRunner
 
 import fishbot_urdf
+from fishbot_urdf.cli import cli
 from fishbot_urdf.config import Config
 
 ROBOT = """\
@@ -70,3 +72,21 @@ def test_a_mesh_scaled_by_0_is_flat_and_a_negative_scale_mirrors(tmp_path: Path)
         "MuJoCo refuses the robot ('mesh volume is too small')",
     )
     assert _found(tmp_path, "collision", '<mesh filename="m.stl" scale="-1 1 1"/>') == []
+
+
+def test_a_value_that_cannot_be_read_hides_no_other_shape_of_its_link(tmp_path: Path) -> None:
+    # scale="0" is one number where three are needed: that mesh is dropped (bad-vector), and
+    # the sphere of radius 0 beside it is still said, all findings at once
+    path = tmp_path / "r.urdf"
+    path.write_text(
+        ROBOT.format(kind="collision", shape='<sphere radius="0"/>').replace(
+            "</link>",
+            '<collision><geometry><mesh filename="m.stl" scale="0"/></geometry></collision>'
+            "</link>",
+        ),
+        encoding="utf-8",
+    )
+    result = CliRunner().invoke(cli, ["check", "-q", str(path)])
+    assert result.exit_code == 1
+    rules = [line.rsplit("[", 1)[1] for line in result.stderr.splitlines()]
+    assert rules == ["shape-size]", "bad-vector]"]

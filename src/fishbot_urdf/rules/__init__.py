@@ -73,7 +73,9 @@ CHECKS: tuple[Check, ...] = (
     ),
     Check("joints", joints.REPORTS, lambda analysis, _: joints.joints(analysis)),
     Check("references", references.REPORTS, lambda analysis, _: references.references(analysis)),
-    Check("shapes", shapes.REPORTS, lambda analysis, _: shapes.shapes(analysis)),
+    # Each shape's size is judged alone: a value that could not be read drops its own shape
+    # and says nothing of the link's others, so their findings follow from no other fault.
+    Check("shapes", shapes.REPORTS, lambda analysis, _: shapes.shapes(analysis), uses_values=False),
     Check("meshes", meshes.REPORTS, lambda analysis, s: meshes.meshes(analysis, s.packages)),
     Check(
         "physics",
