@@ -655,10 +655,10 @@ def test_an_inertia_no_solid_has_is_a_warning_and_no_box(tmp_path: Path) -> None
     # izz = 0.01 > ixx + iyy: no box has these moments; RViz draws none, and says so.
     assert result.exit_code == 1  # nothing else to draw
     assert (
-        f"{robot}:8:5: warning: link 'body': inertial has no inertia box drawn: its inertia is "
-        "no solid's (not positive definite, or a principal moment larger than the other two "
-        "together), and RViz draws none either (compute the inertia again, from the part's "
-        "shape) [shape-not-drawn]"
+        f"{robot}:8:5: warning: link 'body': inertial has no inertia box drawn (RViz draws "
+        "none either): a principal moment of its inertia is larger than the other two "
+        "together (no solid has such moments: compute the inertia again, from the part's "
+        "shape and mass) [shape-not-drawn]"
     ) in result.stderr.splitlines()
     assert not out.exists()
     result = CliRunner().invoke(
@@ -666,6 +666,59 @@ def test_an_inertia_no_solid_has_is_a_warning_and_no_box(tmp_path: Path) -> None
     )
     assert result.exit_code == 0 and "[shape-not-drawn]" in result.stderr
     assert not _red(_pixels(out.read_bytes())).any()
+
+
+NO_BOXES = """\
+<robot name="bad">
+  <link name="base"/>
+  <link name="negative">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="-1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+  </link>
+  <link name="triangle">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.01"/>
+    </inertial>
+  </link>
+  <link name="massless">
+    <inertial>
+      <mass value="0"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/>
+    </inertial>
+  </link>
+  <joint name="a" type="fixed"><parent link="base"/><child link="negative"/></joint>
+  <joint name="b" type="fixed"><parent link="base"/><child link="triangle"/></joint>
+  <joint name="c" type="fixed"><parent link="base"/><child link="massless"/></joint>
+</robot>
+"""
+
+
+def test_each_inertial_without_a_box_is_told_why(tmp_path: Path) -> None:
+    robot = tmp_path / "bad.urdf"
+    robot.write_text(NO_BOXES, encoding="utf-8")
+    out = tmp_path / "out.png"
+    result = CliRunner().invoke(
+        cli, ["render", str(robot), "-o", str(out), "--show", "mass,inertia,frames"]
+    )
+    assert result.exit_code == 0
+    no_box = "inertial has no inertia box drawn (RViz draws none either)"
+    assert result.stderr.splitlines() == [
+        f"{robot}:4:5: warning: link 'negative': {no_box}: its inertia is not positive "
+        "definite: ixx, ixx*iyy - ixy^2 and the determinant are not all above 0 (a moment is "
+        "negative or 0, or a product too large: compute the inertia again, from the part's "
+        "shape and mass) [shape-not-drawn]",
+        f"{robot}:10:5: warning: link 'triangle': {no_box}: a principal moment of its inertia "
+        "is larger than the other two together (no solid has such moments: compute the "
+        "inertia again, from the part's shape and mass) [shape-not-drawn]",
+        # RViz draws no box for a mass of 0, whatever the inertia
+        f"{robot}:16:5: warning: link 'massless': {no_box}: its mass, 0 kg, is not positive "
+        "(give the link its mass in kg; a link that carries no mass needs no <inertial>) "
+        "[shape-not-drawn]",
+    ]
+    assert out.exists()
 
 
 def test_show_frames_draws_each_links_axes_small_beside_a_small_arm(tmp_path: Path) -> None:

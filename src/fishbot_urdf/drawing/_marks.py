@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 from typing import Any, NamedTuple
 
-from ..inertia import equivalent_box, mass_sphere_diameter
+from ..inertia import NoBox, equivalent_box, mass_sphere_diameter, why_no_box
 from ..model import Inertial
 from ._shapes import box, origin_matrix, sphere
 
@@ -33,10 +33,12 @@ class Mark(NamedTuple):
     layer: str
 
 
-def inertial_marks(np: Any, inertial: Inertial, layers: tuple[str, ...]) -> tuple[list[Mark], bool]:
+def inertial_marks(
+    np: Any, inertial: Inertial, layers: tuple[str, ...]
+) -> tuple[list[Mark], NoBox | None]:
     """The ``mass`` sphere and ``inertia`` box of an inertial, those of ``layers`` asked for,
-    and whether an inertia box was asked for and there is none (no solid's inertia: RViz
-    draws none either). A mass of 0 has a ball of size 0: nothing."""
+    and, when an inertia box was asked for and there is none (RViz draws none either), why.
+    A mass of 0 has a ball of size 0: nothing."""
     marks = []
     frame = origin_matrix(np, inertial.origin)  # the centre of mass, the inertia's axes
     if "mass" in layers:
@@ -44,15 +46,15 @@ def inertial_marks(np: Any, inertial: Inertial, layers: tuple[str, ...]) -> tupl
         if diameter > 0.0 and math.isfinite(diameter):
             marks.append(Mark(sphere(np, diameter / 2) + frame[:3, 3], MASS, "mass"))
     if "inertia" not in layers:
-        return marks, False
+        return marks, None
     found = equivalent_box(inertial)
     if found is None:
-        return marks, True
+        return marks, why_no_box(inertial)
     if min(found.size) > 0.0:
         turn = frame[:3, :3] @ np.array(found.axes)  # the origin's rpy, then the principal axes
         local = box(np, *found.size) @ turn.T + frame[:3, 3]
         marks.append(Mark(local, INERTIA, "inertia"))
-    return marks, False
+    return marks, None
 
 
 def axes_length(np: Any, points: Any) -> float:

@@ -15,7 +15,8 @@ COLLADA file's positions), else left out; so is a shape whose coordinates, scale
 are not finite or lie farther than :data:`FARTHEST` from the root. Each is a finding in
 ``Scene.findings``, of the mesh rule it breaks (``shape-not-drawn`` for a shape too far);
 a scene with nothing to draw at all is one more, an error (``nothing-drawn``). An inertia
-that has no equivalent box (RViz draws none either) is a ``shape-not-drawn`` warning.
+that has no equivalent box (RViz draws none either) is a ``shape-not-drawn`` warning that
+says why (`fishbot_urdf.inertia.why_no_box`).
 """
 
 from __future__ import annotations
@@ -41,6 +42,7 @@ from ..catalog.meshes import (
 from ..catalog.setup import TOOL_MISSING
 from ..diagnostics import Diagnostic, Kind, Severity, Subject, sort_key
 from ..errors import ArgumentError, FishbotUrdfError, LimitError, ShapeError, ToolNotFoundError
+from ..inertia import NoBox
 from ..inputs import deadline, read_input
 from ..kinematics import Kinematics
 from ..meshfile import mesh_bounds, mesh_triangles
@@ -275,15 +277,14 @@ def _inertial_parts(
     """A link's mass sphere and inertia box, as RViz draws them (see `build_scene`)."""
     with np.errstate(over="ignore", invalid="ignore"):  # (not finite: _placed says so)
         marks, no_box = inertial_marks(np, inertial, layers)
-    if no_box:
+    if no_box is not None:
+        what, hint = _NO_BOX[no_box]
         loader.report(
             SHAPE_NOT_DRAWN,
             link,
             inertial,
-            "has no inertia box drawn: its inertia is no solid's (not positive definite, "
-            "or a principal moment larger than the other two together), and RViz draws "
-            "none either",
-            "compute the inertia again, from the part's shape",
+            "has no inertia box drawn (RViz draws none either): " + what.format(mass=inertial.mass),
+            hint,
         )
     parts = []
     for mark in marks:
@@ -292,6 +293,29 @@ def _inertial_parts(
             world = apply(np, pose, local)
             parts.append(Part(link.name, world, mark.color, local, pose, mark.layer))
     return parts
+
+
+_NO_BOX = {  # why an inertial has no box, and what to do
+    NoBox.NOT_FINITE: (
+        "its mass or inertia holds a number that is not finite, or so large that products "
+        "of them overflow",
+        "write the mass in kg and the inertia in kg*m^2",
+    ),
+    NoBox.MASS: (
+        "its mass, {mass:g} kg, is not positive",
+        "give the link its mass in kg; a link that carries no mass needs no <inertial>",
+    ),
+    NoBox.NOT_DEFINITE: (
+        "its inertia is not positive definite: ixx, ixx*iyy - ixy^2 and the determinant are "
+        "not all above 0",
+        "a moment is negative or 0, or a product too large: compute the inertia again, from "
+        "the part's shape and mass",
+    ),
+    NoBox.TRIANGLE: (
+        "a principal moment of its inertia is larger than the other two together",
+        "no solid has such moments: compute the inertia again, from the part's shape and mass",
+    ),
+}
 
 
 def _nothing_drawn(
