@@ -147,8 +147,8 @@ def test_a_mesh_is_read_and_one_that_cannot_be_is_its_bounding_box(tmp_path: Pat
         (["-j", "imu_joint=1"], "joint 'imu_joint' is fixed: it takes no position", 2),
         (
             ["--show", "mass,weight"],
-            "Invalid value for --show: 'weight' is not one of visual, collision, mass, inertia, "
-            "frames",
+            "Invalid value for --show: nothing to show called 'weight' (visual, collision, "
+            "mass, inertia, frames)",
             2,
         ),
     ],
@@ -158,6 +158,22 @@ def test_wrong_options(tmp_path: Path, args: list[str], said: str, code: int) ->
     assert result.exit_code == code
     assert said in result.stderr
     assert not (tmp_path / "x.png").exists()
+
+
+@pytest.mark.parametrize(
+    ("wrong", "meant"), [("inerta", "inertia"), ("frame", "frames"), ("visuals", "visual")]
+)
+def test_a_layer_mistyped_is_offered_the_one_it_looks_like(
+    tmp_path: Path, wrong: str, meant: str
+) -> None:
+    out = tmp_path / "x.png"
+    result = CliRunner().invoke(cli, ["render", str(XACRO), "-o", str(out), "--show", wrong])
+    assert result.exit_code == 2
+    assert result.stderr.splitlines()[-1] == (
+        f"Error: Invalid value for --show: nothing to show called {wrong!r} (did you mean "
+        f"{meant!r}? visual, collision, mass, inertia, frames)"
+    )
+    assert not out.exists()
 
 
 def test_a_package_not_found_is_one_warning_for_all_its_meshes(tmp_path: Path) -> None:
@@ -761,6 +777,12 @@ def test_the_library_names_the_layers_it_can_show() -> None:
         build_scene(fishbot_urdf.load(FISHBOT / "urdf" / "first_robot.urdf"), show=("weight",))
     assert caught.value.message == (
         "nothing to show called 'weight' (visual, collision, mass, inertia, frames)"
+    )
+    with pytest.raises(fishbot_urdf.ArgumentError) as caught:
+        build_scene(fishbot_urdf.load(XACRO), show=("inerta",))
+    assert caught.value.message == (
+        "nothing to show called 'inerta' (did you mean 'inertia'? visual, collision, mass, "
+        "inertia, frames)"
     )
     with pytest.raises(fishbot_urdf.ArgumentError, match="nothing to show: name one of"):
         build_scene(fishbot_urdf.load(XACRO), show=())

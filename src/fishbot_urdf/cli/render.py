@@ -13,6 +13,7 @@ from ..drawing.scene import LAYERS, build_scene
 from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
 from ..kinematics import Kinematics
 from ..output import write_atomic
+from ..wording import did_you_mean
 from ._checking import check_joint_names, nearest_config, posable_input, read_files
 from ._common import (
     EXIT_INVALID,
@@ -38,8 +39,10 @@ def _show(text: str | None) -> tuple[str, ...] | None:
     layers = tuple(item.strip() for item in text.split(","))
     for layer in layers:
         if layer not in LAYERS:
+            close = did_you_mean(layer, LAYERS)
             raise click.BadParameter(
-                f"{layer!r} is not one of {', '.join(LAYERS)}", param_hint="--show"
+                f"nothing to show called {layer!r} ({close}{', '.join(LAYERS)})",
+                param_hint="--show",
             )
     return layers
 

@@ -59,6 +59,7 @@ from ..model import (
     Sphere,
 )
 from ..rules.meshes import unresolved
+from ..wording import did_you_mean
 from ._marks import AXES_SHARE, axes, axes_length, inertial_marks
 from ._shapes import apply, box, cylinder, origin_matrix, sphere
 
@@ -230,13 +231,16 @@ def _layers(show: Collection[str] | None, collision: bool) -> tuple[str, ...]:
         show = (show,)
     for layer in show:
         if layer not in LAYERS:
-            raise ArgumentError(
-                f"nothing to show called {layer!r} ({', '.join(LAYERS)})", name="show"
-            )
+            raise ArgumentError(_not_a_layer(layer), name="show")
     asked = {*show, *(("collision",) if collision else ())}
     if not asked:
         raise ArgumentError(f"nothing to show: name one of {', '.join(LAYERS)}", name="show")
     return tuple(layer for layer in LAYERS if layer in asked)
+
+
+def _not_a_layer(name: str) -> str:
+    """What is said of a name that is no layer: the layer it looks like, and all of them."""
+    return f"nothing to show called {name!r} ({did_you_mean(name, LAYERS)}{', '.join(LAYERS)})"
 
 
 def _placed(
