@@ -394,7 +394,7 @@ def test_a_robot_whose_shapes_cannot_be_drawn_has_nothing_to_draw(tmp_path: Path
     )
     scene = build_scene(fishbot_urdf.load(robot))
     assert scene.parts == ()
-    nothing, gone = scene.findings  # in the order of their places
+    gone, nothing = scene.findings  # nothing-drawn after the warning it speaks of
     assert gone.rule == "mesh-not-found"
     assert (nothing.rule, nothing.severity.value, nothing.where) == (
         "nothing-drawn",
@@ -424,7 +424,7 @@ def test_a_robot_whose_shapes_cannot_be_drawn_has_nothing_to_draw(tmp_path: Path
     result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(out), "--collision"])
     assert result.exit_code == 1
     # Its one visual shape cannot be drawn either: it is not offered.
-    assert result.stderr.splitlines()[0].endswith("(give a link a <collision>) [nothing-drawn]")
+    assert result.stderr.splitlines()[-2].endswith("(give a link a <collision>) [nothing-drawn]")
     assert not out.exists()
 
 
@@ -455,7 +455,7 @@ def test_meshes_not_found_are_said_and_the_other_kind_offered_only_when_it_draws
     result = CliRunner().invoke(cli, given)
     kind = "collision" if collision else "visual"
     assert result.exit_code == 1
-    assert result.stderr.splitlines()[0] == (
+    assert result.stderr.splitlines()[-2] == (
         f"{robot}:1:1: error: robot 'lost': none of its 2 {kind} shapes can be drawn: there "
         "is nothing to draw (none of its mesh files is found: each mesh-not-found warning "
         "says where; give the folder of its package with --package lost_description=PATH) "
@@ -470,12 +470,45 @@ def test_meshes_not_found_are_said_and_the_other_kind_offered_only_when_it_draws
         assert "[nothing-drawn]" not in result.stderr
         return
     assert result.exit_code == 1
-    assert result.stderr.splitlines()[0] == (
+    assert result.stderr.splitlines()[-2] == (
         f"{robot}:1:1: error: robot 'lost': none of its 2 visual shapes can be drawn: there "
         "is nothing to draw (none of its mesh files is found: each mesh-not-found warning "
         "says where; give the folder of its package with --package lost_description=PATH; "
         "`fishbot render --collision` draws 1 of its 2 collision shapes) [nothing-drawn]"
     )
+
+
+def test_nothing_drawn_comes_after_the_warnings_it_speaks_of(tmp_path: Path) -> None:
+    robot = tmp_path / "allmiss.urdf"
+    robot.write_text(
+        '<robot name="allmiss">\n'
+        '  <link name="base"><visual><geometry><mesh filename="meshes/base.stl"/></geometry>'
+        "</visual></link>\n"
+        '  <link name="arm"><visual><geometry><mesh filename="meshes/arm.stl"/></geometry>'
+        "</visual></link>\n"
+        '  <joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint>\n'
+        "</robot>\n",
+        encoding="utf-8",
+    )
+    result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(tmp_path / "t.png")])
+    assert result.exit_code == 1
+    beside = (
+        "relative mesh names are read beside the robot file, as Gazebo, MuJoCo, PyBullet, "
+        "pinocchio and yourdfpy read them), so it is not drawn (write package://PACKAGE/path "
+        "for a file of a ROS package) [mesh-not-found]"
+    )
+    # By place, as check lists them; the error at the robot's first line, which says that
+    # each mesh-not-found warning says where, after them.
+    assert result.stderr.splitlines() == [
+        f"{robot}:2:39: warning: link 'base': mesh 'meshes/base.stl' is not found (looked "
+        f"for {tmp_path / 'meshes' / 'base.stl'}; {beside}",
+        f"{robot}:3:38: warning: link 'arm': mesh 'meshes/arm.stl' is not found (looked "
+        f"for {tmp_path / 'meshes' / 'arm.stl'}; {beside}",
+        f"{robot}:1:1: error: robot 'allmiss': none of its 2 visual shapes can be drawn: there "
+        "is nothing to draw (none of its mesh files is found: each mesh-not-found warning says "
+        "where) [nothing-drawn]",
+        "nothing written: fix the errors above first",
+    ]
 
 
 def test_a_configuration_that_ignores_nothing_drawn_gets_the_blank_picture(

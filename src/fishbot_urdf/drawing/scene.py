@@ -109,8 +109,9 @@ class Scene:
     Attributes:
         parts: The shapes, in link order.
         findings: One warning for each shape drawn as its bounding box, or not at all, at
-            its element, with the rule it breaks; and, when no shape at all is drawn, an
-            error of rule ``nothing-drawn`` at the robot (its ``data``: ``kind``, the
+            its element, with the rule it breaks, in the order of their places; and, when no
+            shape at all is drawn, after them (it sums them up), an error of rule
+            ``nothing-drawn`` at the robot (its ``data``: ``kind``, the
             layers asked for, such as ``visual``, ``collision`` or ``mass,inertia``, and
             the robot's ``visuals`` and ``collisions``).
         poses: Every link's 4x4 pose in the root frame, by name.
@@ -217,10 +218,12 @@ def build_scene(
             for mark in axes(np, length):
                 world = apply(np, pose, mark.triangles)
                 parts.append(Part(name, world, mark.color, mark.triangles, pose, mark.layer))
+    # By place, as check lists them; but nothing-drawn, at the robot's first line, speaks of
+    # the warnings that say why each shape is not drawn: it comes after them, as a summary.
+    findings = sorted(loader.findings, key=sort_key)
     if not parts:
-        loader.findings.append(_nothing_drawn(analysis, layers, tuple(sorted(loader.missing))))
-    findings = tuple(sorted(loader.findings, key=sort_key))
-    return Scene(tuple(parts), findings, poses, length)
+        findings.append(_nothing_drawn(analysis, layers, tuple(sorted(loader.missing))))
+    return Scene(tuple(parts), tuple(findings), poses, length)
 
 
 def _layers(show: Collection[str] | None, collision: bool) -> tuple[str, ...]:
