@@ -34,12 +34,15 @@ def failure_note(found: Sequence[Diagnostic], *, shown: bool) -> str:
     )
 
 
-def viewed(visual: Scene, collision: Scene) -> tuple[Diagnostic, ...]:
-    """What the page cannot show as it is, once each, in the order of their places: a robot
-    with no visual shape to draw still shows its link frames (a warning here, after the
-    findings it sums up), and one without collision shapes has nothing on their toggle (no
-    finding)."""
-    found = [f for f in (*visual.findings, *collision.findings) if f.rule != NOTHING_DRAWN.id]
+def viewed(visual: Scene, collision: Scene, marks: Scene) -> tuple[Diagnostic, ...]:
+    """What the page cannot show as it is, once each, in the order of their places: the
+    shapes not drawn as they are, each link's mass or inertia mark not drawn (``marks``,
+    whatever the toggles: why a box is missing when Inertia is ticked); a robot with no
+    visual shape to draw still shows its link frames (a warning here, after the findings it
+    sums up), and one without collision shapes or inertials has nothing on their toggles
+    (no finding)."""
+    scenes = (visual, collision, marks)
+    found = [f for scene in scenes for f in scene.findings if f.rule != NOTHING_DRAWN.id]
     found.sort(key=sort_key)
     found += [
         replace(f, severity=Severity.WARNING) for f in visual.findings if f.rule == NOTHING_DRAWN.id
