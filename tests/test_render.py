@@ -677,9 +677,9 @@ def test_an_inertial_off_its_shape_is_seen_off_it(tmp_path: Path) -> None:
     robot = tmp_path / "wrong.urdf"
     robot.write_text(WRONG_INERTIAL, encoding="utf-8")
     pixels = _render(tmp_path, robot, "--show", "visual,inertia", "--view", "top")
-    r, g, b = (pixels[..., i] for i in range(3))
+    r, g, b = (pixels[..., i].astype(int) for i in range(3))
     green = (g > 70) & (r < 40) & (b < 40)
-    red = _red(pixels)
+    red = (r > g + 60) & (r > b + 60)  # seen through, over the white background
     assert green.any() and red.any()
     # From the top: x is up the picture. The shape is a disc 0.1 m across at x = 0; the
     # box of its inertia (ixx = iyy = m (3 r^2 + h^2) / 12, izz = m r^2 / 2) is
@@ -694,6 +694,70 @@ def test_an_inertial_off_its_shape_is_seen_off_it(tmp_path: Path) -> None:
     assert (red_columns.min() + red_columns.max()) / 2 == pytest.approx(
         (green_columns.min() + green_columns.max()) / 2, abs=1.5
     )
+
+
+TOO_BIG = """\
+<robot name="big">
+  <material name="blue"><color rgba="0 0 1 1"/></material>
+  <link name="base_link">
+    <visual>
+      <geometry><box size="0.1 0.1 0.1"/></geometry>
+      <material name="blue"/>
+    </visual>
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1.0" ixy="0" ixz="0" iyy="1.0" iyz="0" izz="1.0"/>
+    </inertial>
+  </link>
+</robot>
+"""
+
+
+def test_an_inertia_far_too_big_lets_its_shape_be_seen_inside_it(tmp_path: Path) -> None:
+    robot = tmp_path / "big.urdf"
+    robot.write_text(TOO_BIG, encoding="utf-8")
+    # 1 kg with ixx = iyy = izz = 1 kg*m^2 (the 0.1 m box's own is 0.00167): a cube
+    # sqrt(6 (1 + 1 - 1) / 1) = 2.45 m across, around a shape 0.1 m across. Drawn with the
+    # shape, it is seen through (alpha 0.4): the blue box shows in the middle of the red.
+    pixels = _render(tmp_path, robot, "--show", "visual,inertia", "--view", "front")
+    r, g, b = (pixels[..., i].astype(int) for i in range(3))
+    height, width = r.shape
+    blue = b > r + 20
+    rows, columns = np.nonzero(blue)
+    assert (rows.min() + rows.max()) / 2 == pytest.approx(height / 2, abs=2)
+    assert (columns.min() + columns.max()) / 2 == pytest.approx(width / 2, abs=2)
+    red = (r > g + 60) & (r > b + 60)
+    across = np.nonzero(red[height // 2])[0]
+    box_width = across.max() - across.min() + 1
+    assert (columns.max() - columns.min() + 1) / box_width == pytest.approx(0.1 / 2.449, rel=0.1)
+    assert g[blue].max() < 20  # the box's red over the shape's blue: no white in it
+    # Alone, as RViz draws it: opaque red, the middle as red as the rest.
+    alone = _render(tmp_path, robot, "--show", "inertia", "--view", "front")
+    assert not (alone[..., 2].astype(int) > alone[..., 0].astype(int) + 20).any()
+    assert _red(alone)[height // 2, width // 2]
+
+
+def test_an_inertia_box_in_its_shapes_plane_tints_it_without_specks(tmp_path: Path) -> None:
+    robot = tmp_path / "body.urdf"
+    # The fishbot's body: a cylinder of r = 0.1 m, h = 0.12 m and its own inertia, whose box
+    # (0.1732 x 0.1732 x 0.12 m) has its top and bottom in the planes of the cylinder's.
+    robot.write_text(
+        TOO_BIG.replace('<box size="0.1 0.1 0.1"/>', '<cylinder radius="0.1" length="0.12"/>')
+        .replace('ixx="1.0"', 'ixx="0.0037"')
+        .replace('iyy="1.0"', 'iyy="0.0037"')
+        .replace('izz="1.0"', 'izz="0.005"'),
+        encoding="utf-8",
+    )
+    pixels = _render(tmp_path, robot, "--show", "visual,inertia", "--size", "400x300")
+    r, g, b = (pixels[..., i].astype(int) for i in range(3))
+    shape = b > g + 40
+    bare = shape & (r < 10)  # blue the box's red does not tint
+    rows = np.nonzero(shape.any(axis=1))[0]
+    cap = range(rows.min(), rows.min() + (rows.max() - rows.min()) * 3 // 10)
+    # Across the top, the bare blue is the cylinder's rim past the box's sides, on the left
+    # and the right: no specks of it where the box's top lies on the cap.
+    assert max(len(_runs(bare[row])) for row in cap) <= 2
+    assert bare[cap.start : cap.stop].any()
 
 
 def test_an_inertia_no_solid_has_is_a_warning_and_no_box(tmp_path: Path) -> None:

@@ -60,13 +60,13 @@ from ..model import (
 )
 from ..rules.meshes import unresolved
 from ..wording import did_you_mean
-from ._marks import AXES_SHARE, axes, axes_length, inertial_marks
+from ._marks import AXES_SHARE, SEEN_THROUGH, axes, axes_length, inertial_marks
 from ._shapes import apply, box, cylinder, origin_matrix, sphere
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
-__all__ = ["AXES_SHARE", "FARTHEST", "LAYERS", "Part", "Scene", "build_scene"]
+__all__ = ["AXES_SHARE", "FARTHEST", "LAYERS", "SEEN_THROUGH", "Part", "Scene", "build_scene"]
 
 FARTHEST = 1e9
 """The farthest a drawn shape's corner may lie from the root, in metres: farther than any
@@ -164,8 +164,10 @@ def build_scene(
     shapes to it): ``mass``, for each link with an ``<inertial>``, a sphere of the diameter
     `fishbot_urdf.inertia.mass_sphere_diameter` gives at its centre of mass; ``inertia``,
     the box `fishbot_urdf.inertia.equivalent_box` gives, centred there and turned onto the
-    principal axes (in the frame of the inertial's origin); ``frames``, each link's x, y
-    and z axes in red, green and blue, :attr:`Scene.axes_length` long. Default: the visuals
+    principal axes (in the frame of the inertial's origin), both red, opaque as RViz draws
+    them but seen through (alpha :data:`SEEN_THROUGH`) when drawn with the visual or
+    collision shapes, which an opaque box would hide; ``frames``, each link's x, y and z
+    axes in red, green and blue, :attr:`Scene.axes_length` long. Default: the visuals
     (with ``collision``: the collision shapes alone).
 
     Raises:
