@@ -472,17 +472,31 @@ def test_the_inertia_box_lies_on_the_principal_axes() -> None:
 
 
 @pytest.mark.parametrize(
-    ("mass", "moments"),
+    ("mass", "moments", "why"),
     [
-        (1.0, (-1e-3, 1e-3, 1e-3)),  # a negative moment
-        (0.0, (1e-3, 1e-3, 1e-3)),  # no mass
-        (1.0, (1e-3, 1e-3, 3e-3)),  # one moment larger than the other two together
-        (1.0, (0.0, 0.0, 0.0)),
+        (1.0, (-1e-3, 1e-3, 1e-3), "NOT_DEFINITE"),  # a negative moment
+        (0.0, (1e-3, 1e-3, 1e-3), "MASS"),  # no mass
+        (-1.0, (1e-3, 1e-3, 1e-3), "MASS"),
+        (1.0, (1e-3, 1e-3, 3e-3), "TRIANGLE"),  # one moment larger than the other two together
+        (1.0, (0.0, 0.0, 0.0), "NOT_DEFINITE"),
+        (1.0, (1e300, 1e300, 1e300), "NOT_FINITE"),  # ixx iyy overflows
+        (math.nan, (1e-3, 1e-3, 1e-3), "NOT_FINITE"),
     ],
 )
-def test_an_inertia_no_solid_has_has_no_box(mass: float, moments: tuple[float, ...]) -> None:
-    from fishbot_urdf.inertia import equivalent_box
+def test_an_inertia_no_solid_has_has_no_box(
+    mass: float, moments: tuple[float, ...], why: str
+) -> None:
+    from fishbot_urdf.inertia import NoBox, equivalent_box, why_no_box
 
     ixx, iyy, izz = moments
-    inertia = fishbot_urdf.Inertia(ixx=ixx, iyy=iyy, izz=izz)
-    assert equivalent_box(fishbot_urdf.Inertial(mass=mass, inertia=inertia)) is None
+    inertial = fishbot_urdf.Inertial(
+        mass=mass, inertia=fishbot_urdf.Inertia(ixx=ixx, iyy=iyy, izz=izz)
+    )
+    assert equivalent_box(inertial) is None
+    assert why_no_box(inertial) is NoBox[why]
+
+
+def test_an_inertia_with_a_box_has_no_fault() -> None:
+    from fishbot_urdf.inertia import why_no_box
+
+    assert why_no_box(cylinder_inertia(1.0, 0.1, 0.12)) is None

@@ -223,7 +223,7 @@ def test_a_robot_read_from_text_has_no_folder_for_relative_names(tmp_path: Path)
     text = '<robot name="r">' + _LINK.format(link="a", name="meshes/a.stl").split("<joint")[0]
     robot = fishbot_urdf.parse(text + "</robot>")
     scene = build_scene(robot)
-    nothing, finding = scene.findings  # its only shape is not drawn: nothing is
+    finding, nothing = scene.findings  # its only shape is not drawn: nothing is
     assert nothing.rule == "nothing-drawn"
     assert (finding.rule, finding.severity.value) == ("mesh-not-found", "warning")
     assert finding.message == (

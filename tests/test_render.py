@@ -147,8 +147,8 @@ def test_a_mesh_is_read_and_one_that_cannot_be_is_its_bounding_box(tmp_path: Pat
         (["-j", "imu_joint=1"], "joint 'imu_joint' is fixed: it takes no position", 2),
         (
             ["--show", "mass,weight"],
-            "Invalid value for --show: 'weight' is not one of visual, collision, mass, inertia, "
-            "frames",
+            "Invalid value for --show: nothing to show called 'weight' (visual, collision, "
+            "mass, inertia, frames)",
             2,
         ),
     ],
@@ -158,6 +158,22 @@ def test_wrong_options(tmp_path: Path, args: list[str], said: str, code: int) ->
     assert result.exit_code == code
     assert said in result.stderr
     assert not (tmp_path / "x.png").exists()
+
+
+@pytest.mark.parametrize(
+    ("wrong", "meant"), [("inerta", "inertia"), ("frame", "frames"), ("visuals", "visual")]
+)
+def test_a_layer_mistyped_is_offered_the_one_it_looks_like(
+    tmp_path: Path, wrong: str, meant: str
+) -> None:
+    out = tmp_path / "x.png"
+    result = CliRunner().invoke(cli, ["render", str(XACRO), "-o", str(out), "--show", wrong])
+    assert result.exit_code == 2
+    assert result.stderr.splitlines()[-1] == (
+        f"Error: Invalid value for --show: nothing to show called {wrong!r} (did you mean "
+        f"{meant!r}? visual, collision, mass, inertia, frames)"
+    )
+    assert not out.exists()
 
 
 def test_a_package_not_found_is_one_warning_for_all_its_meshes(tmp_path: Path) -> None:
@@ -378,7 +394,7 @@ def test_a_robot_whose_shapes_cannot_be_drawn_has_nothing_to_draw(tmp_path: Path
     )
     scene = build_scene(fishbot_urdf.load(robot))
     assert scene.parts == ()
-    nothing, gone = scene.findings  # in the order of their places
+    gone, nothing = scene.findings  # nothing-drawn after the warning it speaks of
     assert gone.rule == "mesh-not-found"
     assert (nothing.rule, nothing.severity.value, nothing.where) == (
         "nothing-drawn",
@@ -408,7 +424,7 @@ def test_a_robot_whose_shapes_cannot_be_drawn_has_nothing_to_draw(tmp_path: Path
     result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(out), "--collision"])
     assert result.exit_code == 1
     # Its one visual shape cannot be drawn either: it is not offered.
-    assert result.stderr.splitlines()[0].endswith("(give a link a <collision>) [nothing-drawn]")
+    assert result.stderr.splitlines()[-2].endswith("(give a link a <collision>) [nothing-drawn]")
     assert not out.exists()
 
 
@@ -439,7 +455,7 @@ def test_meshes_not_found_are_said_and_the_other_kind_offered_only_when_it_draws
     result = CliRunner().invoke(cli, given)
     kind = "collision" if collision else "visual"
     assert result.exit_code == 1
-    assert result.stderr.splitlines()[0] == (
+    assert result.stderr.splitlines()[-2] == (
         f"{robot}:1:1: error: robot 'lost': none of its 2 {kind} shapes can be drawn: there "
         "is nothing to draw (none of its mesh files is found: each mesh-not-found warning "
         "says where; give the folder of its package with --package lost_description=PATH) "
@@ -454,12 +470,45 @@ def test_meshes_not_found_are_said_and_the_other_kind_offered_only_when_it_draws
         assert "[nothing-drawn]" not in result.stderr
         return
     assert result.exit_code == 1
-    assert result.stderr.splitlines()[0] == (
+    assert result.stderr.splitlines()[-2] == (
         f"{robot}:1:1: error: robot 'lost': none of its 2 visual shapes can be drawn: there "
         "is nothing to draw (none of its mesh files is found: each mesh-not-found warning "
         "says where; give the folder of its package with --package lost_description=PATH; "
         "`fishbot render --collision` draws 1 of its 2 collision shapes) [nothing-drawn]"
     )
+
+
+def test_nothing_drawn_comes_after_the_warnings_it_speaks_of(tmp_path: Path) -> None:
+    robot = tmp_path / "allmiss.urdf"
+    robot.write_text(
+        '<robot name="allmiss">\n'
+        '  <link name="base"><visual><geometry><mesh filename="meshes/base.stl"/></geometry>'
+        "</visual></link>\n"
+        '  <link name="arm"><visual><geometry><mesh filename="meshes/arm.stl"/></geometry>'
+        "</visual></link>\n"
+        '  <joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint>\n'
+        "</robot>\n",
+        encoding="utf-8",
+    )
+    result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(tmp_path / "t.png")])
+    assert result.exit_code == 1
+    beside = (
+        "relative mesh names are read beside the robot file, as Gazebo, MuJoCo, PyBullet, "
+        "pinocchio and yourdfpy read them), so it is not drawn (write package://PACKAGE/path "
+        "for a file of a ROS package) [mesh-not-found]"
+    )
+    # By place, as check lists them; the error at the robot's first line, which says that
+    # each mesh-not-found warning says where, after them.
+    assert result.stderr.splitlines() == [
+        f"{robot}:2:39: warning: link 'base': mesh 'meshes/base.stl' is not found (looked "
+        f"for {tmp_path / 'meshes' / 'base.stl'}; {beside}",
+        f"{robot}:3:38: warning: link 'arm': mesh 'meshes/arm.stl' is not found (looked "
+        f"for {tmp_path / 'meshes' / 'arm.stl'}; {beside}",
+        f"{robot}:1:1: error: robot 'allmiss': none of its 2 visual shapes can be drawn: there "
+        "is nothing to draw (none of its mesh files is found: each mesh-not-found warning says "
+        "where) [nothing-drawn]",
+        "nothing written: fix the errors above first",
+    ]
 
 
 def test_a_configuration_that_ignores_nothing_drawn_gets_the_blank_picture(
@@ -628,9 +677,9 @@ def test_an_inertial_off_its_shape_is_seen_off_it(tmp_path: Path) -> None:
     robot = tmp_path / "wrong.urdf"
     robot.write_text(WRONG_INERTIAL, encoding="utf-8")
     pixels = _render(tmp_path, robot, "--show", "visual,inertia", "--view", "top")
-    r, g, b = (pixels[..., i] for i in range(3))
+    r, g, b = (pixels[..., i].astype(int) for i in range(3))
     green = (g > 70) & (r < 40) & (b < 40)
-    red = _red(pixels)
+    red = (r > g + 60) & (r > b + 60)  # seen through, over the white background
     assert green.any() and red.any()
     # From the top: x is up the picture. The shape is a disc 0.1 m across at x = 0; the
     # box of its inertia (ixx = iyy = m (3 r^2 + h^2) / 12, izz = m r^2 / 2) is
@@ -647,6 +696,70 @@ def test_an_inertial_off_its_shape_is_seen_off_it(tmp_path: Path) -> None:
     )
 
 
+TOO_BIG = """\
+<robot name="big">
+  <material name="blue"><color rgba="0 0 1 1"/></material>
+  <link name="base_link">
+    <visual>
+      <geometry><box size="0.1 0.1 0.1"/></geometry>
+      <material name="blue"/>
+    </visual>
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1.0" ixy="0" ixz="0" iyy="1.0" iyz="0" izz="1.0"/>
+    </inertial>
+  </link>
+</robot>
+"""
+
+
+def test_an_inertia_far_too_big_lets_its_shape_be_seen_inside_it(tmp_path: Path) -> None:
+    robot = tmp_path / "big.urdf"
+    robot.write_text(TOO_BIG, encoding="utf-8")
+    # 1 kg with ixx = iyy = izz = 1 kg*m^2 (the 0.1 m box's own is 0.00167): a cube
+    # sqrt(6 (1 + 1 - 1) / 1) = 2.45 m across, around a shape 0.1 m across. Drawn with the
+    # shape, it is seen through (alpha 0.4): the blue box shows in the middle of the red.
+    pixels = _render(tmp_path, robot, "--show", "visual,inertia", "--view", "front")
+    r, g, b = (pixels[..., i].astype(int) for i in range(3))
+    height, width = r.shape
+    blue = b > r + 20
+    rows, columns = np.nonzero(blue)
+    assert (rows.min() + rows.max()) / 2 == pytest.approx(height / 2, abs=2)
+    assert (columns.min() + columns.max()) / 2 == pytest.approx(width / 2, abs=2)
+    red = (r > g + 60) & (r > b + 60)
+    across = np.nonzero(red[height // 2])[0]
+    box_width = across.max() - across.min() + 1
+    assert (columns.max() - columns.min() + 1) / box_width == pytest.approx(0.1 / 2.449, rel=0.1)
+    assert g[blue].max() < 20  # the box's red over the shape's blue: no white in it
+    # Alone, as RViz draws it: opaque red, the middle as red as the rest.
+    alone = _render(tmp_path, robot, "--show", "inertia", "--view", "front")
+    assert not (alone[..., 2].astype(int) > alone[..., 0].astype(int) + 20).any()
+    assert _red(alone)[height // 2, width // 2]
+
+
+def test_an_inertia_box_in_its_shapes_plane_tints_it_without_specks(tmp_path: Path) -> None:
+    robot = tmp_path / "body.urdf"
+    # The fishbot's body: a cylinder of r = 0.1 m, h = 0.12 m and its own inertia, whose box
+    # (0.1732 x 0.1732 x 0.12 m) has its top and bottom in the planes of the cylinder's.
+    robot.write_text(
+        TOO_BIG.replace('<box size="0.1 0.1 0.1"/>', '<cylinder radius="0.1" length="0.12"/>')
+        .replace('ixx="1.0"', 'ixx="0.0037"')
+        .replace('iyy="1.0"', 'iyy="0.0037"')
+        .replace('izz="1.0"', 'izz="0.005"'),
+        encoding="utf-8",
+    )
+    pixels = _render(tmp_path, robot, "--show", "visual,inertia", "--size", "400x300")
+    r, g, b = (pixels[..., i].astype(int) for i in range(3))
+    shape = b > g + 40
+    bare = shape & (r < 10)  # blue the box's red does not tint
+    rows = np.nonzero(shape.any(axis=1))[0]
+    cap = range(rows.min(), rows.min() + (rows.max() - rows.min()) * 3 // 10)
+    # Across the top, the bare blue is the cylinder's rim past the box's sides, on the left
+    # and the right: no specks of it where the box's top lies on the cap.
+    assert max(len(_runs(bare[row])) for row in cap) <= 2
+    assert bare[cap.start : cap.stop].any()
+
+
 def test_an_inertia_no_solid_has_is_a_warning_and_no_box(tmp_path: Path) -> None:
     robot = tmp_path / "wrong.urdf"
     robot.write_text(WRONG_INERTIAL.replace('izz="0.00125"', 'izz="0.01"'), encoding="utf-8")
@@ -655,10 +768,10 @@ def test_an_inertia_no_solid_has_is_a_warning_and_no_box(tmp_path: Path) -> None
     # izz = 0.01 > ixx + iyy: no box has these moments; RViz draws none, and says so.
     assert result.exit_code == 1  # nothing else to draw
     assert (
-        f"{robot}:8:5: warning: link 'body': inertial has no inertia box drawn: its inertia is "
-        "no solid's (not positive definite, or a principal moment larger than the other two "
-        "together), and RViz draws none either (compute the inertia again, from the part's "
-        "shape) [shape-not-drawn]"
+        f"{robot}:8:5: warning: link 'body': inertial has no inertia box drawn (RViz draws "
+        "none either): a principal moment of its inertia is larger than the other two "
+        "together (no solid has such moments: compute the inertia again, from the part's "
+        "shape and mass) [shape-not-drawn]"
     ) in result.stderr.splitlines()
     assert not out.exists()
     result = CliRunner().invoke(
@@ -666,6 +779,59 @@ def test_an_inertia_no_solid_has_is_a_warning_and_no_box(tmp_path: Path) -> None
     )
     assert result.exit_code == 0 and "[shape-not-drawn]" in result.stderr
     assert not _red(_pixels(out.read_bytes())).any()
+
+
+NO_BOXES = """\
+<robot name="bad">
+  <link name="base"/>
+  <link name="negative">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="-1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+  </link>
+  <link name="triangle">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.01"/>
+    </inertial>
+  </link>
+  <link name="massless">
+    <inertial>
+      <mass value="0"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/>
+    </inertial>
+  </link>
+  <joint name="a" type="fixed"><parent link="base"/><child link="negative"/></joint>
+  <joint name="b" type="fixed"><parent link="base"/><child link="triangle"/></joint>
+  <joint name="c" type="fixed"><parent link="base"/><child link="massless"/></joint>
+</robot>
+"""
+
+
+def test_each_inertial_without_a_box_is_told_why(tmp_path: Path) -> None:
+    robot = tmp_path / "bad.urdf"
+    robot.write_text(NO_BOXES, encoding="utf-8")
+    out = tmp_path / "out.png"
+    result = CliRunner().invoke(
+        cli, ["render", str(robot), "-o", str(out), "--show", "mass,inertia,frames"]
+    )
+    assert result.exit_code == 0
+    no_box = "inertial has no inertia box drawn (RViz draws none either)"
+    assert result.stderr.splitlines() == [
+        f"{robot}:4:5: warning: link 'negative': {no_box}: its inertia is not positive "
+        "definite: ixx, ixx*iyy - ixy^2 and the determinant are not all above 0 (a moment is "
+        "negative or 0, or a product too large: compute the inertia again, from the part's "
+        "shape and mass) [shape-not-drawn]",
+        f"{robot}:10:5: warning: link 'triangle': {no_box}: a principal moment of its inertia "
+        "is larger than the other two together (no solid has such moments: compute the "
+        "inertia again, from the part's shape and mass) [shape-not-drawn]",
+        # RViz draws no box for a mass of 0, whatever the inertia
+        f"{robot}:16:5: warning: link 'massless': {no_box}: its mass, 0 kg, is not positive "
+        "(give the link its mass in kg; a link that carries no mass needs no <inertial>) "
+        "[shape-not-drawn]",
+    ]
+    assert out.exists()
 
 
 def test_show_frames_draws_each_links_axes_small_beside_a_small_arm(tmp_path: Path) -> None:
@@ -708,6 +874,12 @@ def test_the_library_names_the_layers_it_can_show() -> None:
         build_scene(fishbot_urdf.load(FISHBOT / "urdf" / "first_robot.urdf"), show=("weight",))
     assert caught.value.message == (
         "nothing to show called 'weight' (visual, collision, mass, inertia, frames)"
+    )
+    with pytest.raises(fishbot_urdf.ArgumentError) as caught:
+        build_scene(fishbot_urdf.load(XACRO), show=("inerta",))
+    assert caught.value.message == (
+        "nothing to show called 'inerta' (did you mean 'inertia'? visual, collision, mass, "
+        "inertia, frames)"
     )
     with pytest.raises(fishbot_urdf.ArgumentError, match="nothing to show: name one of"):
         build_scene(fishbot_urdf.load(XACRO), show=())

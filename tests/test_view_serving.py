@@ -9,6 +9,7 @@ import os
 import socket
 import subprocess
 import sys
+import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -230,13 +231,21 @@ def test_a_robot_whose_only_fault_is_an_inertial_is_shown_with_its_findings(
     finally:
         shown.terminate()
         _, err = shown.communicate(timeout=60)
-    said, line = err.splitlines()
+    said, line, no_box = err.splitlines()
     assert said == (
         f"{robot}: warning: argument 'shoulder' is given, but a URDF file takes no arguments "
         "('shoulder' is a joint: did you mean `-j shoulder=0.5`?) [xacro-unknown-arg]"
     )
     assert line.startswith(f"{robot}:3:")
     assert line.endswith("error: link 'base': <inertial> has no <inertia> " + INERTIA_HINT)
+    # The drawing's findings after check's: an inertia of 0 has no box on the Inertia toggle.
+    assert no_box.startswith(f"{robot}:3:")
+    assert no_box.endswith(
+        "warning: link 'base': inertial has no inertia box drawn (RViz draws none either): its "
+        "inertia is not positive definite: ixx, ixx*iyy - ixy^2 and the determinant are not "
+        "all above 0 (a moment is negative or 0, or a product too large: compute the inertia "
+        "again, from the part's shape and mass) [shape-not-drawn]"
+    )
 
 
 INERTIA_HINT = (
@@ -266,3 +275,95 @@ def test_a_robot_with_no_visual_shows_its_frames_with_a_warning(tmp_path: Path) 
         assert set(shown._frames) == {"a", "b"}
     finally:
         shown.close()
+
+
+NO_BOXES = """\
+<robot name="bad">
+  <link name="base">
+    <visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual>
+  </link>
+  <link name="negative">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="-1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+  </link>
+  <link name="triangle">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.01"/>
+    </inertial>
+  </link>
+  <link name="massless">
+    <inertial>
+      <mass value="0"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/>
+    </inertial>
+  </link>
+  <joint name="a" type="fixed"><parent link="base"/><child link="negative"/></joint>
+  <joint name="b" type="fixed"><parent link="base"/><child link="triangle"/></joint>
+  <joint name="c" type="fixed"><parent link="base"/><child link="massless"/></joint>
+</robot>
+"""
+
+
+def _no_box(robot: Path, line: int, link: str, why: str) -> str:
+    return (
+        f"{robot}:{line}:5: warning: link {link!r}: inertial has no inertia box drawn (RViz "
+        f"draws none either): {why} [shape-not-drawn]"
+    )
+
+
+def test_view_says_why_a_link_has_no_inertia_box_at_each_load(tmp_path: Path) -> None:
+    robot = tmp_path / "bad.urdf"
+    robot.write_text(NO_BOXES, encoding="utf-8")
+    negative = _no_box(
+        robot,
+        6,
+        "negative",
+        "its inertia is not positive definite: ixx, ixx*iyy - ixy^2 and the determinant are "
+        "not all above 0 (a moment is negative or 0, or a product too large: compute the "
+        "inertia again, from the part's shape and mass)",
+    )
+    triangle = _no_box(
+        robot,
+        12,
+        "triangle",
+        "a principal moment of its inertia is larger than the other two together (no solid "
+        "has such moments: compute the inertia again, from the part's shape and mass)",
+    )
+    massless = _no_box(
+        robot,
+        18,
+        "massless",
+        "its mass, 0 kg, is not positive (give the link its mass in kg; a link that carries "
+        "no mass needs no <inertial>)",
+    )
+    command = [sys.executable, "-m", "fishbot_urdf", "view", str(robot), "--port", "0"]
+    env = {**os.environ, "NO_COLOR": "1"}
+    shown = subprocess.Popen(
+        command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env
+    )
+    said: list[str] = []
+    try:
+        assert shown.stdout is not None and shown.stderr is not None
+        reader = threading.Thread(target=lambda: said.extend(shown.stderr), daemon=True)
+        reader.start()
+        assert shown.stdout.readline().startswith("fishbot view: http://localhost:")
+        _wait_for(lambda: len(said) >= 3)  # (printed before the URL, read by the thread)
+        # Each link whose box the Inertia toggle cannot show, and why, once: the check
+        # that view runs reads no inertial (its faults do not stop the robot being shown).
+        assert [line.rstrip("\n") for line in said] == [negative, triangle, massless]
+        # An edit that gives the massless link its mass: read again, the findings said anew.
+        robot.write_text(NO_BOXES.replace('<mass value="0"/>', '<mass value="1"/>'))
+        _wait_for(lambda: len(said) >= 5)
+        assert [line.rstrip("\n") for line in said[3:]] == [negative, triangle]
+    finally:
+        shown.terminate()
+        shown.communicate(timeout=60)
+
+
+def _wait_for(done: Callable[[], bool]) -> None:
+    waited = time.monotonic() + 6 * SECONDS
+    while not done() and time.monotonic() < waited:
+        time.sleep(0.1)

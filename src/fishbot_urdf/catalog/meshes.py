@@ -231,9 +231,10 @@ SHAPE_NOT_DRAWN = Rule(
     "or a mesh file whose numbers are garbage. The picture is drawn without it and the command "
     "succeeds; fix the number. Asked to show each link's inertia (`--show inertia`, the "
     "viewer's Inertia toggle), they draw the box of uniform density with the link's mass and "
-    "principal moments, as RViz does; an inertia that is not positive definite, or whose "
-    "largest principal moment is more than the other two together, is no solid's and has no "
-    "such box: RViz leaves it out, and so do they, with this warning.",
+    "principal moments, as RViz does; a mass that is not positive, an inertia that is not "
+    "positive definite, or one whose largest principal moment is more than the other two "
+    "together has no such box (no solid has it): RViz leaves it out, and so do they, with "
+    "this warning, which says which of the three it is.",
     bad="""\
 # far.urdf places a box 1e10 m from its link
 fishbot render far.urdf -o far.png

@@ -13,6 +13,7 @@ from ..drawing.scene import LAYERS, build_scene
 from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
 from ..kinematics import Kinematics
 from ..output import write_atomic
+from ..wording import did_you_mean
 from ._checking import check_joint_names, nearest_config, posable_input, read_files
 from ._common import (
     EXIT_INVALID,
@@ -38,8 +39,10 @@ def _show(text: str | None) -> tuple[str, ...] | None:
     layers = tuple(item.strip() for item in text.split(","))
     for layer in layers:
         if layer not in LAYERS:
+            close = did_you_mean(layer, LAYERS)
             raise click.BadParameter(
-                f"{layer!r} is not one of {', '.join(LAYERS)}", param_hint="--show"
+                f"nothing to show called {layer!r} ({close}{', '.join(LAYERS)})",
+                param_hint="--show",
             )
     return layers
 
@@ -79,7 +82,8 @@ def _size(text: str) -> tuple[int, int]:
     metavar="LIST",
     help="What to draw, comma-separated (default: visual): visual, collision, mass (a ball "
     "of lead of each link's mass at its centre of mass), inertia (the box of uniform density "
-    "with each link's inertia), frames (each link's axes); both as RViz draws them.",
+    "with each link's inertia), frames (each link's axes); as RViz draws them, but for the "
+    "ball and box seen through when drawn with the shapes.",
 )
 @click.option(
     "--size",
@@ -111,7 +115,9 @@ def render(
     check prints them. --show picks what is drawn, as RViz's robot model shows it: the
     visuals, the collision shapes (--collision is --show collision), each link's mass as a
     red ball of lead at its centre of mass, its inertia as the red box of uniform density
-    with the same mass and principal moments, and its frame as red, green and blue axes.
+    with the same mass and principal moments (both seen through when drawn with the
+    visuals or collision shapes, which an opaque box would hide), and its frame as red,
+    green and blue axes.
     A robot with no shape to draw (no visuals, or none that can be drawn) is an error
     [nothing-drawn]: no blank picture is written. Exit status: 0 written (errors
     that leave the shape as it is, such as a fault in an <inertial>, do not stop it), 1 the

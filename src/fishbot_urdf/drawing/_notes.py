@@ -8,7 +8,7 @@ from collections.abc import Sequence
 from dataclasses import replace
 
 from ..catalog.meshes import NOTHING_DRAWN
-from ..diagnostics import Diagnostic, Severity, from_error
+from ..diagnostics import Diagnostic, Severity, from_error, sort_key
 from ..errors import FishbotUrdfError, RobotError
 from .scene import Scene
 
@@ -34,13 +34,17 @@ def failure_note(found: Sequence[Diagnostic], *, shown: bool) -> str:
     )
 
 
-def viewed(visual: Scene, collision: Scene) -> tuple[Diagnostic, ...]:
-    """What the page cannot show as it is, once each: a robot with no visual shape to draw
-    still shows its link frames (a warning here), and one without collision shapes has
-    nothing on their toggle (no finding)."""
-    found = [
-        replace(f, severity=Severity.WARNING) if f.rule == NOTHING_DRAWN.id else f
-        for f in visual.findings
+def viewed(visual: Scene, collision: Scene, marks: Scene) -> tuple[Diagnostic, ...]:
+    """What the page cannot show as it is, once each, in the order of their places: the
+    shapes not drawn as they are, each link's mass or inertia mark not drawn (``marks``,
+    whatever the toggles: why a box is missing when Inertia is ticked); a robot with no
+    visual shape to draw still shows its link frames (a warning here, after the findings it
+    sums up), and one without collision shapes or inertials has nothing on their toggles
+    (no finding)."""
+    scenes = (visual, collision, marks)
+    found = [f for scene in scenes for f in scene.findings if f.rule != NOTHING_DRAWN.id]
+    found.sort(key=sort_key)
+    found += [
+        replace(f, severity=Severity.WARNING) for f in visual.findings if f.rule == NOTHING_DRAWN.id
     ]
-    found += [f for f in collision.findings if f.rule != NOTHING_DRAWN.id]
     return tuple(dict.fromkeys(found))

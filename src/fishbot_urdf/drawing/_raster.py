@@ -1,7 +1,7 @@
 """The rasteriser of `fishbot_urdf.drawing.picture`: triangles on the screen to the
 triangle seen at each sample (nearest first, with a depth buffer), and the transparent
-triangles in front of it blended over it, from the farthest to the nearest, a few rows
-at a time; every pixel visit counted against the picture's bound."""
+triangles in front of it (or in its plane) blended over it, from the farthest to the
+nearest, a few rows at a time; every pixel visit counted against the picture's bound."""
 
 from __future__ import annotations
 
@@ -17,6 +17,11 @@ _CHUNK = 1 << 16  # candidate pixels worked on at once: small enough to stay in 
 _ROWS = 1 << 15  # (triangle, row) pairs whose spans are found at once
 _BIG_ROWS = 32  # a triangle over as many pixel rows is looked at for copies
 _GLASS = 1 << 16  # samples whose transparent layers are sorted at once (a few MiB each)
+# A transparent face this share of the depths' size behind the opaque one is taken as in
+# front: one in the same plane (an inertia box's top on the cylinder it is the box of) is
+# drawn over it everywhere, not in the specks rounding picks; the share is far below a
+# sample at any size the picture's bounds allow.
+_SAME_PLANE = 2.0**-30
 
 
 class PictureLimitError(LimitError):
@@ -181,6 +186,7 @@ def see_through(
     rows = max(1, _GLASS // width)
     flat = samples.reshape(-1, 3)
     planes = glass.planes(np)
+    same_plane = _SAME_PLANE * float(np.abs(glass.depth).max(initial=0.0))
     check = deadline()
     for low in range(top, top + len(samples), rows):
         check.check("rendering")
@@ -203,7 +209,7 @@ def see_through(
                 limit=visits.cover * samples_here,
             )
         pixel, z, t = _fragments(np, (tri, row, start, lengths), planes, width)
-        seen = z < zbuffer.reshape(-1)[pixel]  # in front of the opaque triangle there
+        seen = z < zbuffer.reshape(-1)[pixel] + same_plane  # in front of the opaque one
         if not seen.any():
             continue
         pixel, z, t = pixel[seen] - low * width, z[seen], t[seen]

@@ -5,9 +5,9 @@ triangles are rasterised with a depth buffer at twice the asked size (every pixe
 samples averaged: smooth edges), lit by a light from over the viewer's left shoulder, and
 written as an RGB PNG with the standard library's zlib. A shape whose colour has an alpha
 below 1 is seen through: at each sample the transparent triangles in front of the nearest
-opaque one are blended over it from the farthest to the nearest, each by its alpha (both
-faces of a closed shape count, as light goes through both); alpha 0 draws nothing. The
-rasteriser is `fishbot_urdf.drawing._raster`.
+opaque one (or in its plane) are blended over it from the farthest to the nearest, each by
+its alpha (both faces of a closed shape count, as light goes through both); alpha 0 draws
+nothing. The rasteriser is `fishbot_urdf.drawing._raster`.
 
 The work is bounded by the picture, not by the triangles: a picture of more than
 :data:`MAX_PIXELS` samples is refused before anything is allocated, triangles are drawn

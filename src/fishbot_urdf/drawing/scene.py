@@ -15,7 +15,8 @@ COLLADA file's positions), else left out; so is a shape whose coordinates, scale
 are not finite or lie farther than :data:`FARTHEST` from the root. Each is a finding in
 ``Scene.findings``, of the mesh rule it breaks (``shape-not-drawn`` for a shape too far);
 a scene with nothing to draw at all is one more, an error (``nothing-drawn``). An inertia
-that has no equivalent box (RViz draws none either) is a ``shape-not-drawn`` warning.
+that has no equivalent box (RViz draws none either) is a ``shape-not-drawn`` warning that
+says why (`fishbot_urdf.inertia.why_no_box`).
 """
 
 from __future__ import annotations
@@ -41,6 +42,7 @@ from ..catalog.meshes import (
 from ..catalog.setup import TOOL_MISSING
 from ..diagnostics import Diagnostic, Kind, Severity, Subject, sort_key
 from ..errors import ArgumentError, FishbotUrdfError, LimitError, ShapeError, ToolNotFoundError
+from ..inertia import NoBox
 from ..inputs import deadline, read_input
 from ..kinematics import Kinematics
 from ..meshfile import mesh_bounds, mesh_triangles
@@ -57,13 +59,14 @@ from ..model import (
     Sphere,
 )
 from ..rules.meshes import unresolved
-from ._marks import AXES_SHARE, axes, axes_length, inertial_marks
+from ..wording import did_you_mean
+from ._marks import AXES_SHARE, SEEN_THROUGH, axes, axes_length, inertial_marks
 from ._shapes import apply, box, cylinder, origin_matrix, sphere
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
-__all__ = ["AXES_SHARE", "FARTHEST", "LAYERS", "Part", "Scene", "build_scene"]
+__all__ = ["AXES_SHARE", "FARTHEST", "LAYERS", "SEEN_THROUGH", "Part", "Scene", "build_scene"]
 
 FARTHEST = 1e9
 """The farthest a drawn shape's corner may lie from the root, in metres: farther than any
@@ -106,8 +109,9 @@ class Scene:
     Attributes:
         parts: The shapes, in link order.
         findings: One warning for each shape drawn as its bounding box, or not at all, at
-            its element, with the rule it breaks; and, when no shape at all is drawn, an
-            error of rule ``nothing-drawn`` at the robot (its ``data``: ``kind``, the
+            its element, with the rule it breaks, in the order of their places; and, when no
+            shape at all is drawn, after them (it sums them up), an error of rule
+            ``nothing-drawn`` at the robot (its ``data``: ``kind``, the
             layers asked for, such as ``visual``, ``collision`` or ``mass,inertia``, and
             the robot's ``visuals`` and ``collisions``).
         poses: Every link's 4x4 pose in the root frame, by name.
@@ -160,8 +164,10 @@ def build_scene(
     shapes to it): ``mass``, for each link with an ``<inertial>``, a sphere of the diameter
     `fishbot_urdf.inertia.mass_sphere_diameter` gives at its centre of mass; ``inertia``,
     the box `fishbot_urdf.inertia.equivalent_box` gives, centred there and turned onto the
-    principal axes (in the frame of the inertial's origin); ``frames``, each link's x, y
-    and z axes in red, green and blue, :attr:`Scene.axes_length` long. Default: the visuals
+    principal axes (in the frame of the inertial's origin), both red, opaque as RViz draws
+    them but seen through (alpha :data:`SEEN_THROUGH`) when drawn with the visual or
+    collision shapes, which an opaque box would hide; ``frames``, each link's x, y and z
+    axes in red, green and blue, :attr:`Scene.axes_length` long. Default: the visuals
     (with ``collision``: the collision shapes alone).
 
     Raises:
@@ -214,10 +220,12 @@ def build_scene(
             for mark in axes(np, length):
                 world = apply(np, pose, mark.triangles)
                 parts.append(Part(name, world, mark.color, mark.triangles, pose, mark.layer))
+    # By place, as check lists them; but nothing-drawn, at the robot's first line, speaks of
+    # the warnings that say why each shape is not drawn: it comes after them, as a summary.
+    findings = sorted(loader.findings, key=sort_key)
     if not parts:
-        loader.findings.append(_nothing_drawn(analysis, layers, tuple(sorted(loader.missing))))
-    findings = tuple(sorted(loader.findings, key=sort_key))
-    return Scene(tuple(parts), findings, poses, length)
+        findings.append(_nothing_drawn(analysis, layers, tuple(sorted(loader.missing))))
+    return Scene(tuple(parts), tuple(findings), poses, length)
 
 
 def _layers(show: Collection[str] | None, collision: bool) -> tuple[str, ...]:
@@ -228,13 +236,16 @@ def _layers(show: Collection[str] | None, collision: bool) -> tuple[str, ...]:
         show = (show,)
     for layer in show:
         if layer not in LAYERS:
-            raise ArgumentError(
-                f"nothing to show called {layer!r} ({', '.join(LAYERS)})", name="show"
-            )
+            raise ArgumentError(_not_a_layer(layer), name="show")
     asked = {*show, *(("collision",) if collision else ())}
     if not asked:
         raise ArgumentError(f"nothing to show: name one of {', '.join(LAYERS)}", name="show")
     return tuple(layer for layer in LAYERS if layer in asked)
+
+
+def _not_a_layer(name: str) -> str:
+    """What is said of a name that is no layer: the layer it looks like, and all of them."""
+    return f"nothing to show called {name!r} ({did_you_mean(name, LAYERS)}{', '.join(LAYERS)})"
 
 
 def _placed(
@@ -275,15 +286,14 @@ def _inertial_parts(
     """A link's mass sphere and inertia box, as RViz draws them (see `build_scene`)."""
     with np.errstate(over="ignore", invalid="ignore"):  # (not finite: _placed says so)
         marks, no_box = inertial_marks(np, inertial, layers)
-    if no_box:
+    if no_box is not None:
+        what, hint = _NO_BOX[no_box]
         loader.report(
             SHAPE_NOT_DRAWN,
             link,
             inertial,
-            "has no inertia box drawn: its inertia is no solid's (not positive definite, "
-            "or a principal moment larger than the other two together), and RViz draws "
-            "none either",
-            "compute the inertia again, from the part's shape",
+            "has no inertia box drawn (RViz draws none either): " + what.format(mass=inertial.mass),
+            hint,
         )
     parts = []
     for mark in marks:
@@ -292,6 +302,29 @@ def _inertial_parts(
             world = apply(np, pose, local)
             parts.append(Part(link.name, world, mark.color, local, pose, mark.layer))
     return parts
+
+
+_NO_BOX = {  # why an inertial has no box, and what to do
+    NoBox.NOT_FINITE: (
+        "its mass or inertia holds a number that is not finite, or so large that products "
+        "of them overflow",
+        "write the mass in kg and the inertia in kg*m^2",
+    ),
+    NoBox.MASS: (
+        "its mass, {mass:g} kg, is not positive",
+        "give the link its mass in kg; a link that carries no mass needs no <inertial>",
+    ),
+    NoBox.NOT_DEFINITE: (
+        "its inertia is not positive definite: ixx, ixx*iyy - ixy^2 and the determinant are "
+        "not all above 0",
+        "a moment is negative or 0, or a product too large: compute the inertia again, from "
+        "the part's shape and mass",
+    ),
+    NoBox.TRIANGLE: (
+        "a principal moment of its inertia is larger than the other two together",
+        "no solid has such moments: compute the inertia again, from the part's shape and mass",
+    ),
+}
 
 
 def _nothing_drawn(

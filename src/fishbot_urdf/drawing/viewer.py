@@ -123,7 +123,8 @@ class Viewer:
         self._stamps: dict[str, float] = {}
         self._stop = threading.Event()
         self.reloads = 0
-        # What the scene could not draw as it is, with rules and places (the last load's).
+        # What the scene could not draw as it is, with rules and places (the last load's):
+        # its shapes, and its links' mass and inertia marks.
         self.findings: tuple[Diagnostic, ...] = ()
         self.server = serve(host, port, self._accepts)
         try:
@@ -215,8 +216,7 @@ class Viewer:
                         visible=self._toggles[part.layer].value,
                     )
                     self._shown[part.layer].append(mesh)
-            # (an inertia with no box is left out unsaid: check's findings say why)
-            self.findings = viewed(visual, collision)
+            self.findings = viewed(visual, collision, marks)
             if self._points is None:
                 self._frame(np, (visual, collision, marks), length)
             ranges = {name: slider_range(analysis, name) for name in analysis.plan.outwards()}

@@ -6,7 +6,14 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from ._marks import LEAD_DENSITY, EquivalentBox, equivalent_box, mass_sphere_diameter
+from ._marks import (
+    LEAD_DENSITY,
+    EquivalentBox,
+    NoBox,
+    equivalent_box,
+    mass_sphere_diameter,
+    why_no_box,
+)
 from ._robot import Filling, fill_inertials, link_inertial, mass_properties
 from ._solids import (
     MassProperties,
@@ -35,6 +42,7 @@ __all__ = [
     "LinkMass",
     "MassProperties",
     "MassTable",
+    "NoBox",
     "box_inertia",
     "combine",
     "cylinder_inertia",
@@ -53,6 +61,7 @@ __all__ = [
     "sphere_inertia",
     "suggest_inertials",
     "volume",
+    "why_no_box",
     "xacro_suggestions",
 ]
 

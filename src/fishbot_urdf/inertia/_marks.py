@@ -12,11 +12,19 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from enum import Enum
 
 from ..model import Inertial, Vector3
 from ..spatial import IDENTITY, Matrix3, eigh
 
-__all__ = ["LEAD_DENSITY", "EquivalentBox", "equivalent_box", "mass_sphere_diameter"]
+__all__ = [
+    "LEAD_DENSITY",
+    "EquivalentBox",
+    "NoBox",
+    "equivalent_box",
+    "mass_sphere_diameter",
+    "why_no_box",
+]
 
 LEAD_DENSITY = 11340.0
 """kg/m^3: the density RViz sizes a link's mass sphere with (a ball of lead)."""
@@ -41,6 +49,20 @@ class EquivalentBox:
     moments: Vector3
 
 
+class NoBox(Enum):
+    """Why an inertial has no equivalent box (RViz draws none), in the order it is tested."""
+
+    NOT_FINITE = "not-finite"
+    """Its mass or a term of its inertia is not a finite number, or so large that their
+    products overflow."""
+    MASS = "mass"
+    """Its mass is not positive."""
+    NOT_DEFINITE = "not-definite"
+    """Its inertia matrix is not positive definite."""
+    TRIANGLE = "triangle"
+    """A principal moment is larger than the other two together."""
+
+
 def mass_sphere_diameter(mass: float) -> float:
     """The diameter (m) of a ball of lead (:data:`LEAD_DENSITY`) of ``mass`` kg:
     ``2 * cbrt(3 m / (4 pi 11340))``. A negative mass gives the ball of its size (RViz
@@ -60,15 +82,30 @@ def equivalent_box(inertial: Inertial) -> EquivalentBox | None:
     not all positive), or a principal moment is larger than the other two together (beyond
     rounding): no solid has such an inertia.
     """
+    found = _box(inertial)
+    return found if isinstance(found, EquivalentBox) else None
+
+
+def why_no_box(inertial: Inertial) -> NoBox | None:
+    """Why ``inertial`` has no equivalent box (see `equivalent_box`), or None when it has
+    one: the first of its mass and inertia's faults that RViz (gz-math) tests for."""
+    found = _box(inertial)
+    return found if isinstance(found, NoBox) else None
+
+
+def _box(inertial: Inertial) -> EquivalentBox | NoBox:
     mass = inertial.mass
     i = inertial.inertia
     m = i.matrix()
     if not all(math.isfinite(x) for x in (mass, *m[0], *m[1], *m[2])):
-        return None
-    if not (mass > 0.0 and i.ixx > 0.0 and i.ixx * i.iyy - i.ixy * i.ixy > 0.0):
-        return None
-    if not _determinant(m) > 0.0:  # (nan, where products overflow: no box either)
-        return None
+        return NoBox.NOT_FINITE
+    if not mass > 0.0:
+        return NoBox.MASS
+    minor, determinant = i.ixx * i.iyy - i.ixy * i.ixy, _determinant(m)
+    if not (math.isfinite(minor) and math.isfinite(determinant)):
+        return NoBox.NOT_FINITE  # products overflow: RViz's doubles find no box either
+    if not (i.ixx > 0.0 and minor > 0.0 and determinant > 0.0):
+        return NoBox.NOT_DEFINITE
     largest = max(i.ixx, i.iyy, i.izz)
     if all(abs(p) <= _ON_AXES * largest for p in (i.ixy, i.ixz, i.iyz)):
         moments: Vector3 = (i.ixx, i.iyy, i.izz)
@@ -77,8 +114,10 @@ def equivalent_box(inertial: Inertial) -> EquivalentBox | None:
         moments, axes = eigh(m)
     a, b, c = moments
     slack = _ROUNDING * 0.5 * abs(a + b + c)
-    if min(moments) + slack < 0.0 or a + b + slack < c or b + c + slack < a or c + a + slack < b:
-        return None
+    if min(moments) + slack < 0.0:
+        return NoBox.NOT_DEFINITE
+    if a + b + slack < c or b + c + slack < a or c + a + slack < b:
+        return NoBox.TRIANGLE
     size = (_side(b + c - a, mass), _side(c + a - b, mass), _side(a + b - c, mass))
     return EquivalentBox(size, axes, moments)
 
