@@ -290,6 +290,17 @@ def test_fill_usage_errors(
     assert not (tmp_path / "x.urdf").exists()
 
 
+def test_a_usage_error_of_the_robot_form_hints_at_a_command_that_works() -> None:
+    # The user typed a file, not the form's internal name `robot`.
+    result = run(str(PHYSICS / "missing_inertial.urdf"), "--fill")
+    assert result.exit_code == 2
+    assert result.stderr == (
+        "Usage: fishbot inertia ROBOT [name:=value]... [OPTIONS]\n"
+        "Try 'fishbot inertia --help' for help.\n\n"
+        "Error: --fill needs --density KG_PER_M3 or --mass LINK=KG\n"
+    )
+
+
 def test_fill_skips_a_mesh_and_says_so(tmp_path: Path) -> None:
     source = tmp_path / "mesh.urdf"
     source.write_text(

@@ -223,12 +223,22 @@ def _print(make: Callable[[], Inertial], fmt: str) -> None:
     to_stdout(text.encode("utf-8", "surrogateescape"))
 
 
+class _RobotContext(click.Context):
+    """The robot form's context: its path is `fishbot inertia`, as the user typed it (a
+    file follows, not `robot`), so that a usage error's hint is a command that works."""
+
+    @property
+    def command_path(self) -> str:
+        return self.parent.command_path if self.parent else "fishbot inertia"
+
+
 class _RobotCommand(click.Command):
     """The robot form, shown as `fishbot inertia ROBOT ...` (its name is only internal)."""
 
+    context_class = _RobotContext
+
     def format_usage(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
-        parent = ctx.parent.command_path if ctx.parent else "fishbot inertia"
-        formatter.write_usage(parent, "ROBOT [name:=value]... [OPTIONS]")
+        formatter.write_usage(ctx.command_path, "ROBOT [name:=value]... [OPTIONS]")
 
 
 @inertia.command(cls=_RobotCommand, hidden=True)
