@@ -66,8 +66,9 @@ def test_shape_blocks_have_the_macros_numbers(tmp_path: Path, args: list[str], c
     assert inertia is not None
     real = _macro_attributes(tmp_path, call)
     for name in ("ixx", "iyy", "izz"):
-        assert float(inertia.get(name, "nan")) == float(real[name])
-        assert inertia.get(name) == real[name]  # the very same text
+        # The macro's number to 12 significant digits, as short as it reads back.
+        assert float(inertia.get(name, "nan")) == float(f"{float(real[name]):.12g}")
+        assert inertia.get(name) == repr(float(f"{float(real[name]):.12g}"))
 
 
 def test_cylinder_block_exactly() -> None:
@@ -86,14 +87,62 @@ def test_cylinder_block_exactly() -> None:
     )
     made = cylinder_inertia(0.1, 0.032, 0.04).inertia
     assert result.exit_code == 0
+    # To 12 significant digits: 0.1 / 2 * 0.032^2 is 5.1200000000000004e-05 in floats.
+    assert (made.izz, made.ixx) == (5.1200000000000004e-05, 3.8933333333333336e-05)
     assert result.stdout == (
         "<inertial>\n"
         '  <origin xyz="0 0 0" rpy="1.57079 0 0"/>\n'
         '  <mass value="0.1"/>\n'
-        f'  <inertia ixx="{made.ixx!r}" ixy="0" ixz="0" iyy="{made.iyy!r}" iyz="0" '
-        f'izz="{made.izz!r}"/>\n'
+        '  <inertia ixx="3.89333333333e-05" ixy="0" ixz="0" iyy="3.89333333333e-05" iyz="0" '
+        'izz="5.12e-05"/>\n'
         "</inertial>\n"
     )
+
+
+def test_a_shapes_numbers_carry_no_float_noise() -> None:
+    # 1/12 * (3 * 0.1^2 + 0.12^2) is 0.0037000000000000006 and 1/2 * 0.1^2 is
+    # 0.005000000000000001 in floats: what the user pastes is the number meant.
+    args = ("cylinder", "--mass", "1", "--radius", "0.1", "--length", "0.12")
+    assert run(*args).stdout == (
+        "<inertial>\n"
+        '  <origin xyz="0 0 0" rpy="0 0 0"/>\n'
+        '  <mass value="1"/>\n'
+        '  <inertia ixx="0.0037" ixy="0" ixz="0" iyy="0.0037" iyz="0" izz="0.005"/>\n'
+        "</inertial>\n"
+    )
+    data = json.loads(run(*args, "--format", "json").stdout)
+    assert data["inertia"] == {
+        "ixx": 0.0037,
+        "ixy": 0.0,
+        "ixz": 0.0,
+        "iyy": 0.0037,
+        "iyz": 0.0,
+        "izz": 0.005,
+    }
+
+
+def test_a_fill_notes_numbers_carry_no_float_noise(tmp_path: Path) -> None:
+    source = tmp_path / "body.urdf"
+    source.write_text(
+        '<robot name="b"><link name="a"/>\n<link name="b">\n<collision><geometry>'
+        '<cylinder radius="0.1" length="0.12"/></geometry></collision></link>'
+        '<joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint></robot>\n'
+    )
+    result = run(str(source), "--fill", "--mass", "b=1")
+    assert result.exit_code == 0, result.output
+    assert result.stdout == (
+        f"{source}:2:1: note: link 'b' has no <inertial>; for 1 kg, write at line 3, inside "
+        "the <link>:\n"
+        "  <inertial>\n"
+        '    <origin xyz="0 0 0" rpy="0 0 0"/>\n'
+        '    <mass value="1"/>\n'
+        '    <inertia ixx="0.0037" ixy="0" ixz="0" iyy="0.0037" iyz="0" izz="0.005"/>\n'
+        "  </inertial>\n"
+    )
+    data = json.loads(run(str(source), "--fill", "--mass", "b=1", "--format", "json").stdout)
+    (made,) = data["suggestions"]
+    assert made["inertial"]["inertia"]["izz"] == 0.005
+    assert made["inertial"]["inertia"]["ixx"] == 0.0037
 
 
 def test_shape_json() -> None:

@@ -23,7 +23,7 @@ from ..inertia import (
 )
 from ..model import Origin
 from ..wording import closest
-from ..write import inertial_xml
+from ..write import inertial_xml, rounded
 from ._checking import check_input, nearest_config, read_files
 from ._common import (
     EXIT_INVALID,
@@ -217,7 +217,7 @@ def _print(make: Callable[[], Inertial], fmt: str) -> None:
         raise click.UsageError("the moments overflow: give the sizes in metres")
 
     if fmt == "json":
-        text = json.dumps(inertial_dict(inertial), indent=2) + "\n"
+        text = json.dumps(inertial_dict(rounded(inertial)), indent=2) + "\n"
     else:
         text = inertial_xml(inertial)
     to_stdout(text.encode("utf-8", "surrogateescape"))

@@ -13,7 +13,7 @@ from ..analysis import Analysis, of
 from ..expansion import probe_macros
 from ..location import Location, MacroLocation, calls_of
 from ..model import Box, Collision, Cylinder, Inertial, Link, Robot, Sphere
-from ..write import inertial_xml
+from ..write import inertial_xml, rounded
 from ._macros import InertiaMacro, recognise_macros
 from ._table import inertial_dict
 
@@ -30,7 +30,7 @@ class InertialSuggestion:
     Attributes:
         link: The link's name.
         inertial: The inertial ``fill_inertials`` computed for it (what ``--fill -o``
-            writes).
+            writes; ``text`` and ``to_dict`` give it to 12 significant digits).
         source: Where its ``<link>`` is written (for a link a macro made, in the macro's
             body; ``made_by`` gives the calls).
         line: The line of ``source``'s file to write it at, inside the link (the line of
@@ -96,7 +96,7 @@ class InertialSuggestion:
             "written": dict(self.written) if self.written else None,
             "written_text": self.written_text,
             "plain_because": self.plain_because,
-            "inertial": inertial_dict(self.inertial),
+            "inertial": inertial_dict(rounded(self.inertial)),
         }
 
 
