@@ -452,27 +452,29 @@ def test_fill_without_output_turns_a_wheels_inertia_with_it(tmp_path: Path) -> N
     assert result.exit_code == 0, result.output
     mass = 1000 * math.pi * 0.032**2 * 0.04  # kg: 0.128680 to six digits
     assert f"{mass:.6g}" == "0.12868"
-    block = (
-        "note: link '{side}_wheel_link' has no <inertial>; for 0.12868 kg, write at line 12, "
-        "inside the <link>, in the body of macro wheel_xacro (called at {robot}:{line}:3):\n"
-        '  <xacro:cylinder_inertia m="0.12868" r="0.032" h="0.04" rpy="1.57079 0 0"/>\n'
-        "  or, with the sizes as the macro's body writes them, to fit every call:\n"
-        '  <xacro:cylinder_inertia m="0.12868" r="${{radius}}" h="${{length}}" '
-        'rpy="1.57079 0.0 0.0"/>\n'
-    )
+    # One line of wheel_xacro's body makes both wheels: one note, one call for both.
     assert result.stdout == (
-        f"{wheel}:11:5: "
-        + block.format(side="left", robot=robot, line=60)
-        + f"{wheel}:11:5: "
-        + block.format(side="right", robot=robot, line=62)
+        f"{wheel}:11:5: note: links 'left_wheel_link', 'right_wheel_link' have no "
+        "<inertial>; the body of macro wheel_xacro makes each of them (called at "
+        f"{robot}:60:3, {robot}:62:3): write at line 12, inside the <link>, once, to fit "
+        "every call:\n"
+        '  <xacro:cylinder_inertia m="${mass}" r="${radius}" h="${length}" '
+        'rpy="1.57079 0.0 0.0"/>\n'
+        "  its mass is wheel_xacro's parameter mass, as each call gives it:\n"
+        f"    left_wheel_link (0.12868 kg): the call at {robot}:60:3 gives "
+        'mass="${wheel_mass}" (0.1); write mass="0.12868" there\n'
+        f"    right_wheel_link (0.12868 kg): the call at {robot}:62:3 gives "
+        'mass="${wheel_mass}" (0.1); write mass="0.12868" there\n'
     )
     out = tmp_path / "filled.urdf"
     assert run(str(robot), "--fill", "--density", "1000", "-o", str(out)).exit_code == 0
     _pasted(
         wheel,
         12,
-        '      <xacro:cylinder_inertia m="0.12868" r="0.032" h="0.04" rpy="1.57079 0 0"/>\n',
+        '      <xacro:cylinder_inertia m="${mass}" r="${radius}" h="${length}" '
+        'rpy="1.57079 0.0 0.0"/>\n',
     )
+    robot.write_text(robot.read_text().replace('mass="${wheel_mass}"', 'mass="0.12868"'))
     for side in ("left", "right"):
         wanted = _inertial_of(out, f"{side}_wheel_link")
         assert wanted is not None
@@ -483,6 +485,137 @@ def test_fill_without_output_turns_a_wheels_inertia_with_it(tmp_path: Path) -> N
     assert done.returncode == 0, done.stderr
     expanded = fishbot_urdf.parse(done.stdout)
     _same_inertial(expanded.link("left_wheel_link").inertial, wanted)
+
+
+WHEEL_CALL = """<xacro:cylinder_inertia m="${mass}" r="${radius}" h="${length}"
+                              xyz="0.0 0.0 0.0" rpy="1.57079 0.0 0.0"/>"""
+
+
+def test_fill_gives_the_links_of_one_macro_one_call_through_its_mass_parameter(
+    tmp_path: Path,
+) -> None:
+    # wheel_xacro makes both wheels on one line of its body: one line cannot hold two
+    # masses, so the call writes its parameter mass, and the right wheel's call changes.
+    robot, wheel = _fishbot_without(tmp_path, "actuator/wheel.urdf.xacro", WHEEL_CALL)
+    args = ("--fill", "--mass", "left_wheel_link=0.1", "--mass", "right_wheel_link=0.2")
+    result = run(str(robot), *args)
+    assert result.exit_code == 0, result.output
+    assert result.stdout == (
+        f"{wheel}:11:5: note: links 'left_wheel_link', 'right_wheel_link' have no "
+        "<inertial>; the body of macro wheel_xacro makes each of them (called at "
+        f"{robot}:60:3, {robot}:62:3): write at line 12, inside the <link>, once, to fit "
+        "every call:\n"
+        '  <xacro:cylinder_inertia m="${mass}" r="${radius}" h="${length}" '
+        'rpy="1.57079 0.0 0.0"/>\n'
+        "  its mass is wheel_xacro's parameter mass, as each call gives it:\n"
+        f"    left_wheel_link (0.1 kg): the call at {robot}:60:3 gives "
+        'mass="${wheel_mass}" (0.1), as it should\n'
+        f"    right_wheel_link (0.2 kg): the call at {robot}:62:3 gives "
+        'mass="${wheel_mass}" (0.1); write mass="0.2" there\n'
+    )
+    data = json.loads(run(str(robot), *args, "--format", "json").stdout)
+    assert [s["link"] for s in data["suggestions"]] == ["left_wheel_link", "right_wheel_link"]
+    (shared,) = data["shared"]
+    assert shared == {
+        "links": ["left_wheel_link", "right_wheel_link"],
+        "source": {"path": str(wheel), "line": 11, "column": 5},
+        "line": 12,
+        "macro": "wheel_xacro",
+        "text": '<xacro:cylinder_inertia m="${mass}" r="${radius}" h="${length}" '
+        'rpy="1.57079 0.0 0.0"/>\n',
+        "arguments": {"m": "${mass}", "r": "${radius}", "h": "${length}", "rpy": "1.57079 0.0 0.0"},
+        "mass_parameter": "mass",
+        "add_parameter": None,
+        "fits_every_call": True,
+        "calls": [
+            {
+                "link": "left_wheel_link",
+                "call": {"path": str(robot), "line": 60, "column": 3},
+                "mass": 0.1,
+                "argument": "${wheel_mass}",
+                "value": 0.1,
+                "write": None,
+            },
+            {
+                "link": "right_wheel_link",
+                "call": {"path": str(robot), "line": 62, "column": 3},
+                "mass": 0.2,
+                "argument": "${wheel_mass}",
+                "value": 0.1,
+                "write": 'mass="0.2"',
+            },
+        ],
+    }
+    # Done as said, each wheel has the mass asked for, and one <inertial>.
+    out = tmp_path / "filled.urdf"
+    assert run(str(robot), *args, "-o", str(out)).exit_code == 0
+    _pasted(wheel, 12, "      " + shared["text"])
+    right = '<xacro:wheel_xacro name="right"'
+    text = robot.read_text()
+    at = text.index(right)
+    robot.write_text(text[:at] + text[at:].replace('mass="${wheel_mass}"', 'mass="0.2"', 1))
+    for side in ("left", "right"):
+        wanted = _inertial_of(out, f"{side}_wheel_link")
+        assert wanted is not None
+        assert wanted.mass == {"left": 0.1, "right": 0.2}[side]
+        _same_inertial(_inertial_of(robot, f"{side}_wheel_link"), wanted)
+    checked = CliRunner().invoke(cli, ["check", str(robot)])
+    assert checked.exit_code == 0, checked.output
+
+
+def test_fill_asks_for_a_mass_parameter_when_a_macro_has_none(tmp_path: Path) -> None:
+    (tmp_path / "inertias.xacro").write_text(COMMON.read_text())
+    robot = tmp_path / "robot.urdf.xacro"
+    robot.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="inertias.xacro"/>\n'
+        '  <link name="base"/>\n'
+        '  <xacro:macro name="leg" params="name">\n'
+        '    <link name="${name}">\n'
+        "      <collision>\n"
+        '        <geometry><box size="0.1 0.2 0.3"/></geometry>\n'
+        "      </collision>\n"
+        "    </link>\n"
+        '    <joint name="${name}_j" type="fixed"><parent link="base"/>'
+        '<child link="${name}"/></joint>\n'
+        "  </xacro:macro>\n"
+        '  <xacro:leg name="a"/>\n'
+        '  <xacro:leg name="b"/>\n'
+        "</robot>\n"
+    )
+    result = run(str(robot), "--fill", "--mass", "a=1", "--mass", "b=2")
+    assert result.exit_code == 0, result.output
+    assert result.stdout == (
+        f"{robot}:5:5: note: links 'a', 'b' have no <inertial>; the body of macro leg makes "
+        f"each of them (called at {robot}:12:3, {robot}:13:3): write at line 6, inside the "
+        "<link>, once, to fit every call:\n"
+        '  <xacro:box_inertia m="${mass}" w="0.1" h="0.2" d="0.3"/>\n'
+        "  leg has no parameter for the mass, and the links' masses differ (1 kg, 2 kg): add "
+        f'mass to its params (at {robot}:4:3: params="name mass"), and give it in each '
+        "call:\n"
+        f'    a (1 kg): the call at {robot}:12:3 gives none; write mass="1" there\n'
+        f'    b (2 kg): the call at {robot}:13:3 gives none; write mass="2" there\n'
+    )
+    # The same mass for both needs no parameter.
+    same = run(str(robot), "--fill", "--mass", "a=1", "--mass", "b=1")
+    assert same.stdout.endswith(
+        '  <xacro:box_inertia m="1" w="0.1" h="0.2" d="0.3"/>\n  (every link is 1 kg)\n'
+    )
+    # Done as said, each link has its own mass.
+    out = tmp_path / "filled.urdf"
+    assert (
+        run(str(robot), "--fill", "--mass", "a=1", "--mass", "b=2", "-o", str(out)).exit_code == 0
+    )
+    text = robot.read_text().replace('params="name"', 'params="name mass"')
+    text = text.replace('name="a"/>', 'name="a" mass="1"/>')
+    text = text.replace('name="b"/>', 'name="b" mass="2"/>')
+    robot.write_text(text)
+    _pasted(robot, 6, '      <xacro:box_inertia m="${mass}" w="0.1" h="0.2" d="0.3"/>\n')
+    for name, kg in (("a", 1.0), ("b", 2.0)):
+        wanted = _inertial_of(out, name)
+        assert wanted is not None
+        assert wanted.mass == kg
+        _same_inertial(_inertial_of(robot, name), wanted)
 
 
 def test_fill_without_output_on_a_urdf_gives_the_inertial_block() -> None:

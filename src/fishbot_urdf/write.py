@@ -192,7 +192,15 @@ def rounded(inertial: Inertial) -> Inertial:
     return dataclasses.replace(
         inertial,
         mass=_round(inertial.mass),
-        inertia=dataclasses.replace(tensor, **{f: _round(getattr(tensor, f)) for f in _MOMENTS}),
+        inertia=dataclasses.replace(
+            tensor,
+            ixx=_round(tensor.ixx),
+            ixy=_round(tensor.ixy),
+            ixz=_round(tensor.ixz),
+            iyy=_round(tensor.iyy),
+            iyz=_round(tensor.iyz),
+            izz=_round(tensor.izz),
+        ),
         origin=dataclasses.replace(
             inertial.origin,
             xyz=tuple(map(_round, inertial.origin.xyz)),  # type: ignore[arg-type]

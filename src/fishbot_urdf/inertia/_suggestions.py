@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import re
 from collections.abc import Iterable, Mapping, Sequence
@@ -18,9 +19,15 @@ from ._macros import InertiaMacro, recognise_macros
 from ._table import inertial_dict
 
 if TYPE_CHECKING:
-    from ..expansion import MacroTable
+    from ..expansion import Argument, MacroDefinition, MacroTable
 
-__all__ = ["InertialSuggestion", "suggest_inertials", "xacro_suggestions"]
+__all__ = [
+    "InertialSuggestion",
+    "number_text",
+    "place_dict",
+    "suggest_inertials",
+    "xacro_suggestions",
+]
 
 
 @dataclass(frozen=True, slots=True)
@@ -44,6 +51,10 @@ class InertialSuggestion:
         written: For a link a macro made whose sizes (or position, rotation) are written
             there with expressions: the call's arguments as written in the macro's body
             (``r="${radius}"``), which fit every call of it; else empty.
+        given: For a link a macro made: what the call that made it gave that macro's
+            parameters (by :func:`xacro_suggestions`; else empty).
+        maker: The definition of the macro that made the link, when it is one of the
+            robot's top-level macros (by :func:`xacro_suggestions`; else None).
     """
 
     link: str
@@ -54,6 +65,8 @@ class InertialSuggestion:
     arguments: tuple[tuple[str, str], ...] = ()
     plain_because: str | None = None
     written: tuple[tuple[str, str], ...] = ()
+    given: tuple[tuple[str, Argument], ...] = ()
+    maker: MacroDefinition | None = None
 
     @property
     def made_by(self) -> tuple[tuple[str, Location], ...]:
@@ -77,11 +90,7 @@ class InertialSuggestion:
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready dict of every field."""
 
-        def place(where: Location | None) -> dict[str, Any] | None:
-            if where is None:
-                return None
-            return {"path": where.path, "line": where.line, "column": where.column}
-
+        place = place_dict
         macro = self.macro
         return {
             "link": self.link,
@@ -157,11 +166,18 @@ def xacro_suggestions(
                 if isinstance(where, MacroLocation):
                     places.append(where)
 
-    def probe(table: MacroTable) -> tuple[tuple[InertiaMacro, ...], dict[Location, Any]]:
+    def probe(table: MacroTable) -> tuple[Any, ...]:
         found = {where: table.written(where) for where in places}
-        return recognise_macros(table), {k: v for k, v in found.items() if v is not None}
+        given = {name: table.arguments(calls_of(links[name].source)) for name in inertials}
+        makers = {d.name: d for d in table.definitions}
+        return (
+            recognise_macros(table),
+            {k: v for k, v in found.items() if v is not None},
+            given,
+            makers,
+        )
 
-    macros, written = probe_macros(
+    macros, written, given, makers = probe_macros(
         path,
         probe,
         args,
@@ -169,7 +185,16 @@ def xacro_suggestions(
         trust_expressions=trust_expressions,
         allow_read=allow_read,
     )
-    return suggest_inertials(robot, inertials, macros, written)
+    made = []
+    for suggestion in suggest_inertials(robot, inertials, macros, written):
+        calls = suggestion.made_by
+        if calls:
+            arguments = given.get(suggestion.link) or {}
+            suggestion = dataclasses.replace(
+                suggestion, given=tuple(arguments.items()), maker=makers.get(calls[0][0])
+            )
+        made.append(suggestion)
+    return tuple(made)
 
 
 def _suggestion(
@@ -300,11 +325,21 @@ def _beside(where: Location, link: Location) -> bool:
     return where.path == link.path and calls_of(where) == calls_of(link)
 
 
-def _text(value: float) -> str:
+def number_text(value: float) -> str:
     """A number to 6 significant digits, as short as it reads ('0.1', not '0.100000')."""
     text = f"{value:.6g}"
     return "0" if text == "-0" else text
 
 
+_text = number_text
+
+
 def _texts(values: Iterable[float]) -> str:
     return " ".join(_text(v) for v in values)
+
+
+def place_dict(where: Location | None) -> dict[str, Any] | None:
+    """A location, JSON-ready: its path, line and column."""
+    if where is None:
+        return None
+    return {"path": where.path, "line": where.line, "column": where.column}
