@@ -912,3 +912,45 @@ def test_a_fixed_joint_is_said_to_be_fixed() -> None:
     result = CliRunner().invoke(cli, ["inertia", str(XACRO), "-j", "imu_joint=1"])
     assert result.exit_code == 2
     assert "joint 'imu_joint' is fixed: it takes no position" in result.stderr
+
+
+def test_fill_says_when_no_one_call_fits_the_links_of_a_macro(tmp_path: Path) -> None:
+    # arm's <link> holds a collision tube's body writes: arm's body writes no size that
+    # one call could take, and the two arms differ in length.
+    (tmp_path / "inertias.xacro").write_text(COMMON.read_text())
+    robot = tmp_path / "robot.urdf.xacro"
+    robot.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="inertias.xacro"/>\n'
+        '  <link name="base"/>\n'
+        '  <xacro:macro name="arm" params="name len">\n'
+        '    <link name="${name}">\n'
+        '      <xacro:tube r="0.02" h="${len}"/>\n'
+        "    </link>\n"
+        '    <joint name="${name}_j" type="fixed"><parent link="base"/>'
+        '<child link="${name}"/></joint>\n'
+        "  </xacro:macro>\n"
+        '  <xacro:macro name="tube" params="r h">\n'
+        "    <collision>\n"
+        '      <geometry><cylinder radius="${r}" length="${h}"/></geometry>\n'
+        "    </collision>\n"
+        "  </xacro:macro>\n"
+        '  <xacro:arm name="a" len="0.3"/>\n'
+        '  <xacro:arm name="b" len="0.4"/>\n'
+        "</robot>\n"
+    )
+    result = run(str(robot), "--fill", "--mass", "a=1", "--mass", "b=2")
+    assert result.exit_code == 0, result.output
+    assert result.stdout == (
+        f"{robot}:5:5: note: links 'a', 'b' have no <inertial>; the body of macro arm makes "
+        f"each of them (called at {robot}:15:3, {robot}:16:3): write inside the <link>:\n"
+        "  no one call fits every call: the sizes differ from call to call, and the macro's "
+        "body does not write them; each link's own call fits its call only:\n"
+        '  a: <xacro:cylinder_inertia m="1" r="0.02" h="0.3"/>\n'
+        '  b: <xacro:cylinder_inertia m="2" r="0.02" h="0.4"/>\n'
+    )
+    data = json.loads(
+        run(str(robot), "--fill", "--mass", "a=1", "--mass", "b=2", "--format", "json").stdout
+    )
+    (shared,) = data["shared"]
+    assert (shared["links"], shared["fits_every_call"], shared["line"]) == (["a", "b"], False, None)

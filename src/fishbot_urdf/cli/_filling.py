@@ -182,14 +182,17 @@ def _shared_block(group: SharedInertial) -> str:
     if group.line is not None:
         at = f"at line {group.line}, {at}"
     sites = ", ".join(_site(s.made_by[0][1]) for s in group.suggestions)
-    once = "once, to fit every call" if group.fits else "(no one call fits every call)"
+    once = ", once, to fit every call" if group.fits else ""
     head = (
         f"{place}note: links {names} have no <inertial>; the body of macro "
-        f"{group.macro_name} makes each of them (called at {sites}): write {at}, {once}:"
+        f"{group.macro_name} makes each of them (called at {sites}): write {at}{once}:"
     )
     lines = [escape_controls(head)]
     if not group.fits:
-        lines.append("  the sizes differ from call to call: write each link's own call there")
+        lines.append(
+            "  no one call fits every call: the sizes differ from call to call, and the "
+            "macro's body does not write them; each link's own call fits its call only:"
+        )
         lines += [f"  {s.link}: {s.text.rstrip()}" for s in group.suggestions]
         return "\n".join(escape_controls(line) for line in lines) + "\n"
     lines.append("  " + escape_controls(group.text.rstrip("\n")))
@@ -201,17 +204,16 @@ def _shared_block(group: SharedInertial) -> str:
         )
     elif group.added is not None:
         masses = ", ".join(f"{c['mass']:.6g} kg" for c in calls)
+        maker = group.suggestions[0].maker
+        where = ""
+        if maker is not None and maker.source is not None and not maker.optional:
+            # (its params as written are known only when none has a default)
+            params = " ".join((*maker.params, group.added))
+            where = f' (at {_site(maker.source)}: params="{params}")'
         lines.append(
             f"  {group.macro_name} has no parameter for the mass, and the links' masses "
-            f"differ ({masses}): add {group.added} to its params"
-            + (
-                f' (at {_site(maker.source)}: params="{" ".join((*maker.params, group.added))}")'
-                if (maker := group.suggestions[0].maker) is not None
-                and maker.source is not None
-                and not maker.optional
-                else ""
-            )
-            + ", and give it in each call:"
+            f"differ ({masses}): add {group.added} to its params{where}, and give it in "
+            "each call:"
         )
     else:
         lines.append(f"  (every link is {calls[0]['mass']:.6g} kg)")
