@@ -954,3 +954,24 @@ def test_fill_says_when_no_one_call_fits_the_links_of_a_macro(tmp_path: Path) ->
     )
     (shared,) = data["shared"]
     assert (shared["links"], shared["fits_every_call"], shared["line"]) == (["a", "b"], False, None)
+
+
+def test_a_second_inertial_a_macro_call_made_names_the_calls(tmp_path: Path) -> None:
+    # Two masses pasted on one line of wheel_xacro's body: the second <inertial> is written
+    # in common_inertia.xacro, and the warning names the pasted call that made it.
+    robot, wheel = _fishbot_without(tmp_path, "actuator/wheel.urdf.xacro", WHEEL_CALL)
+    _pasted(
+        wheel,
+        12,
+        '      <xacro:cylinder_inertia m="0.1" r="${radius}" h="${length}"/>\n'
+        '      <xacro:cylinder_inertia m="0.2" r="${radius}" h="${length}"/>\n',
+    )
+    result = CliRunner().invoke(cli, ["check", "-q", str(robot)])
+    common = tmp_path / "fishbot" / "urdf" / "fishbot" / "common_inertia.xacro"
+    warnings = [line for line in result.stderr.splitlines() if "[duplicate-element]" in line]
+    assert warnings == [
+        f"{common}:23:5: warning: link '{side}_wheel_link': a second <inertial> is ignored; "
+        f"it is made by macro cylinder_inertia called at {wheel}:13, in macro wheel_xacro "
+        f"called at {robot}:{line} (a link has at most one <inertial>) [duplicate-element]"
+        for side, line in (("left", 60), ("right", 62))
+    ]
