@@ -20,8 +20,10 @@ _MASS_NAME = re.compile(r"(?i)m|mass|\w+_mass|mass_\w+")
 
 @dataclass(frozen=True, slots=True)
 class SharedInertial:
-    """What to write once, in a macro's body, for the links that lack an <inertial> and
-    that its one <link> makes, one per call of the macro.
+    """What to write once in a macro's body for the links its one <link> makes.
+
+    The links lack an <inertial>, one per call of the macro; one call of the robot's
+    inertia macro, written there, is to fit every call.
 
     Attributes:
         suggestions: One per link, in file order (each names its own call, ``made_by``).
@@ -111,9 +113,10 @@ class SharedInertial:
 
 
 def shared_inertials(suggestions: Sequence[InertialSuggestion]) -> tuple[SharedInertial, ...]:
-    """The places where several of ``suggestions`` are to be written: the links a macro's
-    one <link> makes (one per call), each to be given one call of the robot's inertia
-    macro that fits every call of it.
+    """The places where several of ``suggestions`` are to be written, one call for all.
+
+    Such a place is a macro's one <link>, which makes a link per call of the macro: the
+    links get one call of the robot's inertia macro that fits every call of it.
 
     Links written outside a macro, or the only link without an <inertial> a macro's line
     makes, or written out as an <inertial>, share with no other.
