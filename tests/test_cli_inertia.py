@@ -527,6 +527,7 @@ def test_fill_gives_the_links_of_one_macro_one_call_through_its_mass_parameter(
         "mass_parameter": "mass",
         "add_parameter": None,
         "fits_every_call": True,
+        "one_site": False,
         "calls": [
             {
                 "link": "left_wheel_link",
@@ -535,6 +536,7 @@ def test_fill_gives_the_links_of_one_macro_one_call_through_its_mass_parameter(
                 "argument": "${wheel_mass}",
                 "value": 0.1,
                 "write": None,
+                "outer": None,
             },
             {
                 "link": "right_wheel_link",
@@ -543,6 +545,7 @@ def test_fill_gives_the_links_of_one_macro_one_call_through_its_mass_parameter(
                 "argument": "${wheel_mass}",
                 "value": 0.1,
                 "write": 'mass="0.2"',
+                "outer": None,
             },
         ],
     }
@@ -975,3 +978,48 @@ def test_a_second_inertial_a_macro_call_made_names_the_calls(tmp_path: Path) -> 
         f"called at {robot}:{line} (a link has at most one <inertial>) [duplicate-element]"
         for side, line in (("left", 60), ("right", 62))
     ]
+
+
+def test_fill_sends_each_mass_through_the_outer_calls_of_a_call_written_once(
+    tmp_path: Path,
+) -> None:
+    # leg is called on one line of side's body: the argument there is the same text for
+    # both legs, so each leg's mass comes in through side's calls.
+    (tmp_path / "inertias.xacro").write_text(COMMON.read_text())
+    robot = tmp_path / "robot.urdf.xacro"
+    robot.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="inertias.xacro"/>\n'
+        '  <link name="base"/>\n'
+        '  <xacro:macro name="leg" params="name mass">\n'
+        '    <link name="${name}">\n'
+        "      <collision>\n"
+        '        <geometry><box size="0.1 0.2 0.3"/></geometry>\n'
+        "      </collision>\n"
+        "    </link>\n"
+        '    <joint name="${name}_j" type="fixed"><parent link="base"/>'
+        '<child link="${name}"/></joint>\n'
+        "  </xacro:macro>\n"
+        '  <xacro:macro name="side" params="name m">\n'
+        '    <xacro:leg name="${name}_leg" mass="${m}"/>\n'
+        "  </xacro:macro>\n"
+        '  <xacro:side name="a" m="1"/>\n'
+        '  <xacro:side name="b" m="1"/>\n'
+        "</robot>\n"
+    )
+    args = ("--fill", "--mass", "a_leg=1", "--mass", "b_leg=2")
+    result = run(str(robot), *args)
+    assert result.exit_code == 0, result.output
+    assert result.stdout == (
+        f"{robot}:5:5: note: links 'a_leg', 'b_leg' have no <inertial>; the body of macro leg "
+        f"makes each of them (called at {robot}:13:5): write at line 6, inside the <link>, "
+        "once, to fit every call:\n"
+        '  <xacro:box_inertia m="${mass}" w="0.1" h="0.2" d="0.3"/>\n'
+        f"  its mass is leg's parameter mass; the call at {robot}:13:5 that gives it is "
+        "written once in the body of macro side, for all of its calls: give each link its "
+        f"mass through them (a_leg 1 kg at {robot}:15:3; b_leg 2 kg at {robot}:16:3)\n"
+    )
+    (shared,) = json.loads(run(str(robot), *args, "--format", "json").stdout)["shared"]
+    assert shared["one_site"] is True
+    assert [c["write"] for c in shared["calls"]] == [None, None]
+    assert [c["outer"]["call"]["line"] for c in shared["calls"]] == [15, 16]

@@ -181,7 +181,7 @@ def _shared_block(group: SharedInertial) -> str:
     at = "inside the <link>"
     if group.line is not None:
         at = f"at line {group.line}, {at}"
-    sites = ", ".join(_site(s.made_by[0][1]) for s in group.suggestions)
+    sites = ", ".join(dict.fromkeys(_site(s.made_by[0][1]) for s in group.suggestions))
     once = ", once, to fit every call" if group.fits else ""
     head = (
         f"{place}note: links {names} have no <inertial>; the body of macro "
@@ -197,11 +197,22 @@ def _shared_block(group: SharedInertial) -> str:
         return "\n".join(escape_controls(line) for line in lines) + "\n"
     lines.append("  " + escape_controls(group.text.rstrip("\n")))
     calls = group.calls()
-    if group.parameter is not None:
-        lines.append(
-            f"  its mass is {group.macro_name}'s parameter {group.parameter}, as each call "
-            "gives it:"
+    one = ", as each call gives it:"
+    if group.one_site:  # one call, written once in another macro's body, makes them all
+        outer = calls[0]["outer"]
+        name = "another macro" if outer is None else f"macro {outer[0]}"
+        masses = "; ".join(
+            f"{c['link']} {c['mass']:.6g} kg"
+            + (f" at {_site(c['outer'][1])}" if c["outer"] else "")
+            for c in calls
         )
+        one = (
+            f"; the call at {_site(calls[0]['call'])} that gives it is written once in the "
+            f"body of {name}, for all of its calls: give each link its mass through them "
+            f"({masses})"
+        )
+    if group.parameter is not None:
+        lines.append(f"  its mass is {group.macro_name}'s parameter {group.parameter}{one}")
     elif group.added is not None:
         masses = ", ".join(f"{c['mass']:.6g} kg" for c in calls)
         maker = group.suggestions[0].maker
@@ -212,12 +223,12 @@ def _shared_block(group: SharedInertial) -> str:
             where = f' (at {_site(maker.source)}: params="{params}")'
         lines.append(
             f"  {group.macro_name} has no parameter for the mass, and the links' masses "
-            f"differ ({masses}): add {group.added} to its params{where}, and give it in "
-            "each call:"
+            f"differ ({masses}): add {group.added} to its params{where}"
+            + (one if group.one_site else ", and give it in each call:")
         )
     else:
         lines.append(f"  (every link is {calls[0]['mass']:.6g} kg)")
-    if group.parameter is not None or group.added is not None:
+    if (group.parameter is not None or group.added is not None) and not group.one_site:
         for call in calls:
             site = _site(call["call"])
             given = call["argument"]
@@ -232,7 +243,7 @@ def _shared_block(group: SharedInertial) -> str:
                 )
             said += f"; write {call['write']} there" if call["write"] else ", as it should"
             lines.append(escape_controls(said))
-    return "\n".join(lines) + "\n"
+    return "\n".join(escape_controls(line) for line in lines) + "\n"
 
 
 def _site(site: Location) -> str:

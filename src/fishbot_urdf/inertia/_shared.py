@@ -56,6 +56,14 @@ class SharedInertial:
         return self.suggestions[0].line
 
     @property
+    def one_site(self) -> bool:
+        """Whether the calls that made the links are one line written once, in another
+        macro's body (made once per call of that macro): an argument changed there
+        changes it for every link."""
+        sites = [s.made_by[0][1] for s in self.suggestions]
+        return len(set(sites)) < len(sites)
+
+    @property
     def macro_name(self) -> str:
         """The macro whose body makes the links."""
         return self.suggestions[0].made_by[0][0]
@@ -72,16 +80,21 @@ class SharedInertial:
         """Per link: its call's site, the mass it is filled with (kg), what its call gives
         the mass parameter (as written, and its value), and what to write in the call
         instead (``mass="0.2"``) when that is not the link's mass, or when the parameter
-        is to be added; None where nothing is to change."""
+        is to be added; None where nothing is to change, or where the call is written
+        once for several links (see `one_site`; its ``outer`` call, the one that made it,
+        is then where each link's mass differs)."""
         found = []
+        one_site = self.one_site
         for suggestion in self.suggestions:
             _, site = suggestion.made_by[0]
             mass = suggestion.inertial.mass
             given = dict(suggestion.given).get(self.parameter or "")
             name = self.parameter or self.added
             change = None
-            if name is not None and (
-                given is None or given.number is None or not _same(given.number, mass)
+            if (
+                name is not None
+                and not one_site
+                and (given is None or given.number is None or not _same(given.number, mass))
             ):
                 change = f'{name}="{number_text(mass)}"'
             found.append(
@@ -92,6 +105,7 @@ class SharedInertial:
                     "argument": None if given is None else given.text,
                     "value": None if given is None else given.number,
                     "write": change,
+                    "outer": suggestion.made_by[1] if len(suggestion.made_by) > 1 else None,
                 }
             )
         return tuple(found)
@@ -108,7 +122,17 @@ class SharedInertial:
             "mass_parameter": self.parameter,
             "add_parameter": self.added,
             "fits_every_call": self.fits,
-            "calls": [{**c, "call": place_dict(c["call"])} for c in self.calls()],
+            "one_site": self.one_site,
+            "calls": [
+                {
+                    **c,
+                    "call": place_dict(c["call"]),
+                    "outer": None
+                    if c["outer"] is None
+                    else {"macro": c["outer"][0], "call": place_dict(c["outer"][1])},
+                }
+                for c in self.calls()
+            ],
         }
 
 
