@@ -187,7 +187,7 @@ def _shared_block(group: SharedInertial) -> str:
         f"{place}note: links {names} have no <inertial>; the body of macro "
         f"{group.macro_name} makes each of them (called at {sites}): write {at}{once}:"
     )
-    lines = [escape_controls(head)]
+    lines = [head]  # (escaped as a whole, below)
     if not group.fits:
         lines.append(
             "  no one call fits every call: the sizes differ from call to call, and the "
@@ -195,7 +195,7 @@ def _shared_block(group: SharedInertial) -> str:
         )
         lines += [f"  {s.link}: {s.text.rstrip()}" for s in group.suggestions]
         return "\n".join(escape_controls(line) for line in lines) + "\n"
-    lines.append("  " + escape_controls(group.text.rstrip("\n")))
+    lines.append("  " + group.text.rstrip("\n"))
     calls = group.calls()
     one = ", as each call gives it:"
     if group.one_site:  # one call, written once in another macro's body, makes them all
@@ -242,7 +242,7 @@ def _shared_block(group: SharedInertial) -> str:
                     f" ({value:.6g})" if value is not None and given != f"{value:g}" else ""
                 )
             said += f"; write {call['write']} there" if call["write"] else ", as it should"
-            lines.append(escape_controls(said))
+            lines.append(said)
     return "\n".join(escape_controls(line) for line in lines) + "\n"
 
 
