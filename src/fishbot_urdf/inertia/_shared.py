@@ -10,7 +10,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..location import Location
-from ._suggestions import InertialSuggestion, number_text, place_dict
+from ._suggestions import InertialSuggestion, call_text, number_text, place_dict
 
 __all__ = ["SharedInertial", "shared_inertials"]
 
@@ -73,8 +73,7 @@ class SharedInertial:
         """The call to write, once (with a final line break)."""
         macro = self.suggestions[0].macro
         assert macro is not None
-        given = " ".join(f'{name}="{value}"' for name, value in self.arguments)
-        return f"<xacro:{macro.name} {given}/>\n"
+        return call_text(macro, self.arguments)
 
     def calls(self) -> tuple[dict[str, Any], ...]:
         """Per link: its call's site, the mass it is filled with (kg), what its call gives

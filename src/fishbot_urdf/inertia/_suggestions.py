@@ -23,6 +23,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "InertialSuggestion",
+    "call_text",
     "number_text",
     "place_dict",
     "suggest_inertials",
@@ -80,12 +81,12 @@ class InertialSuggestion:
         line break either way)."""
         if self.macro is None:
             return inertial_xml(self.inertial)
-        return _call(self.macro, self.arguments)
+        return call_text(self.macro, self.arguments)
 
     @property
     def written_text(self) -> str | None:
         """The call with the arguments as written in the macro's body, if there are any."""
-        return _call(self.macro, self.written) if self.macro and self.written else None
+        return call_text(self.macro, self.written) if self.macro and self.written else None
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready dict of every field."""
@@ -288,7 +289,8 @@ def _written_beside(
 _TOKEN = re.compile(r"(?:\$\{[^}]*\}|[^\s$]|\$(?!\{))+")
 
 
-def _call(macro: InertiaMacro, arguments: Iterable[tuple[str, str]]) -> str:
+def call_text(macro: InertiaMacro, arguments: Iterable[tuple[str, str]]) -> str:
+    """``<xacro:NAME param="value" .../>`` with a final line break."""
     given = " ".join(f'{name}="{value}"' for name, value in arguments)
     return f"<xacro:{macro.name} {given}/>\n"
 
