@@ -216,14 +216,14 @@ def _shared_block(group: SharedInertial) -> str:
     elif group.added is not None:
         masses = ", ".join(f"{c['mass']:.6g} kg" for c in calls)
         maker = group.suggestions[0].maker
-        where = ""
+        params = ""
         if maker is not None and maker.source is not None and not maker.optional:
             # (its params as written are known only when none has a default)
-            params = " ".join((*maker.params, group.added))
-            where = f' (at {_site(maker.source)}: params="{params}")'
+            written = " ".join((*maker.params, group.added))
+            params = f' (at {_site(maker.source)}: params="{written}")'
         lines.append(
             f"  {group.macro_name} has no parameter for the mass, and the links' masses "
-            f"differ ({masses}): add {group.added} to its params{where}"
+            f"differ ({masses}): add {group.added} to its params{params}"
             + (one if group.one_site else ", and give it in each call:")
         )
     else:
@@ -236,9 +236,8 @@ def _shared_block(group: SharedInertial) -> str:
             if given is None:
                 said += " gives none"
             else:
-                name = group.parameter
                 value = call["value"]
-                said += f' gives {name}="{given}"' + (
+                said += f' gives {group.parameter}="{given}"' + (
                     f" ({value:.6g})" if value is not None and given != f"{value:g}" else ""
                 )
             said += f"; write {call['write']} there" if call["write"] else ", as it should"
