@@ -66,8 +66,9 @@ def test_shape_blocks_have_the_macros_numbers(tmp_path: Path, args: list[str], c
     assert inertia is not None
     real = _macro_attributes(tmp_path, call)
     for name in ("ixx", "iyy", "izz"):
-        assert float(inertia.get(name, "nan")) == float(real[name])
-        assert inertia.get(name) == real[name]  # the very same text
+        # The macro's number to 12 significant digits, as short as it reads back.
+        assert float(inertia.get(name, "nan")) == float(f"{float(real[name]):.12g}")
+        assert inertia.get(name) == repr(float(f"{float(real[name]):.12g}"))
 
 
 def test_cylinder_block_exactly() -> None:
@@ -86,14 +87,62 @@ def test_cylinder_block_exactly() -> None:
     )
     made = cylinder_inertia(0.1, 0.032, 0.04).inertia
     assert result.exit_code == 0
+    # To 12 significant digits: 0.1 / 2 * 0.032^2 is 5.1200000000000004e-05 in floats.
+    assert (made.izz, made.ixx) == (5.1200000000000004e-05, 3.8933333333333336e-05)
     assert result.stdout == (
         "<inertial>\n"
         '  <origin xyz="0 0 0" rpy="1.57079 0 0"/>\n'
         '  <mass value="0.1"/>\n'
-        f'  <inertia ixx="{made.ixx!r}" ixy="0" ixz="0" iyy="{made.iyy!r}" iyz="0" '
-        f'izz="{made.izz!r}"/>\n'
+        '  <inertia ixx="3.89333333333e-05" ixy="0" ixz="0" iyy="3.89333333333e-05" iyz="0" '
+        'izz="5.12e-05"/>\n'
         "</inertial>\n"
     )
+
+
+def test_a_shapes_numbers_carry_no_float_noise() -> None:
+    # 1/12 * (3 * 0.1^2 + 0.12^2) is 0.0037000000000000006 and 1/2 * 0.1^2 is
+    # 0.005000000000000001 in floats: what the user pastes is the number meant.
+    args = ("cylinder", "--mass", "1", "--radius", "0.1", "--length", "0.12")
+    assert run(*args).stdout == (
+        "<inertial>\n"
+        '  <origin xyz="0 0 0" rpy="0 0 0"/>\n'
+        '  <mass value="1"/>\n'
+        '  <inertia ixx="0.0037" ixy="0" ixz="0" iyy="0.0037" iyz="0" izz="0.005"/>\n'
+        "</inertial>\n"
+    )
+    data = json.loads(run(*args, "--format", "json").stdout)
+    assert data["inertia"] == {
+        "ixx": 0.0037,
+        "ixy": 0.0,
+        "ixz": 0.0,
+        "iyy": 0.0037,
+        "iyz": 0.0,
+        "izz": 0.005,
+    }
+
+
+def test_a_fill_notes_numbers_carry_no_float_noise(tmp_path: Path) -> None:
+    source = tmp_path / "body.urdf"
+    source.write_text(
+        '<robot name="b"><link name="a"/>\n<link name="b">\n<collision><geometry>'
+        '<cylinder radius="0.1" length="0.12"/></geometry></collision></link>'
+        '<joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint></robot>\n'
+    )
+    result = run(str(source), "--fill", "--mass", "b=1")
+    assert result.exit_code == 0, result.output
+    assert result.stdout == (
+        f"{source}:2:1: note: link 'b' has no <inertial>; for 1 kg, write at line 3, inside "
+        "the <link>:\n"
+        "  <inertial>\n"
+        '    <origin xyz="0 0 0" rpy="0 0 0"/>\n'
+        '    <mass value="1"/>\n'
+        '    <inertia ixx="0.0037" ixy="0" ixz="0" iyy="0.0037" iyz="0" izz="0.005"/>\n'
+        "  </inertial>\n"
+    )
+    data = json.loads(run(str(source), "--fill", "--mass", "b=1", "--format", "json").stdout)
+    (made,) = data["suggestions"]
+    assert made["inertial"]["inertia"]["izz"] == 0.005
+    assert made["inertial"]["inertia"]["ixx"] == 0.0037
 
 
 def test_shape_json() -> None:
@@ -290,6 +339,17 @@ def test_fill_usage_errors(
     assert not (tmp_path / "x.urdf").exists()
 
 
+def test_a_usage_error_of_the_robot_form_hints_at_a_command_that_works() -> None:
+    # The user typed a file, not the form's internal name `robot`.
+    result = run(str(PHYSICS / "missing_inertial.urdf"), "--fill")
+    assert result.exit_code == 2
+    assert result.stderr == (
+        "Usage: fishbot inertia ROBOT [name:=value]... [OPTIONS]\n"
+        "Try 'fishbot inertia --help' for help.\n\n"
+        "Error: --fill needs --density KG_PER_M3 or --mass LINK=KG\n"
+    )
+
+
 def test_fill_skips_a_mesh_and_says_so(tmp_path: Path) -> None:
     source = tmp_path / "mesh.urdf"
     source.write_text(
@@ -392,27 +452,29 @@ def test_fill_without_output_turns_a_wheels_inertia_with_it(tmp_path: Path) -> N
     assert result.exit_code == 0, result.output
     mass = 1000 * math.pi * 0.032**2 * 0.04  # kg: 0.128680 to six digits
     assert f"{mass:.6g}" == "0.12868"
-    block = (
-        "note: link '{side}_wheel_link' has no <inertial>; for 0.12868 kg, write at line 12, "
-        "inside the <link>, in the body of macro wheel_xacro (called at {robot}:{line}:3):\n"
-        '  <xacro:cylinder_inertia m="0.12868" r="0.032" h="0.04" rpy="1.57079 0 0"/>\n'
-        "  or, with the sizes as the macro's body writes them, to fit every call:\n"
-        '  <xacro:cylinder_inertia m="0.12868" r="${{radius}}" h="${{length}}" '
-        'rpy="1.57079 0.0 0.0"/>\n'
-    )
+    # One line of wheel_xacro's body makes both wheels: one note, one call for both.
     assert result.stdout == (
-        f"{wheel}:11:5: "
-        + block.format(side="left", robot=robot, line=60)
-        + f"{wheel}:11:5: "
-        + block.format(side="right", robot=robot, line=62)
+        f"{wheel}:11:5: note: links 'left_wheel_link', 'right_wheel_link' have no "
+        "<inertial>; the body of macro wheel_xacro makes each of them (called at "
+        f"{robot}:60:3, {robot}:62:3): write at line 12, inside the <link>, once, to fit "
+        "every call:\n"
+        '  <xacro:cylinder_inertia m="${mass}" r="${radius}" h="${length}" '
+        'rpy="1.57079 0.0 0.0"/>\n'
+        "  its mass is wheel_xacro's parameter mass, as each call gives it:\n"
+        f"    left_wheel_link (0.12868 kg): the call at {robot}:60:3 gives "
+        'mass="${wheel_mass}" (0.1); write mass="0.12868" there\n'
+        f"    right_wheel_link (0.12868 kg): the call at {robot}:62:3 gives "
+        'mass="${wheel_mass}" (0.1); write mass="0.12868" there\n'
     )
     out = tmp_path / "filled.urdf"
     assert run(str(robot), "--fill", "--density", "1000", "-o", str(out)).exit_code == 0
     _pasted(
         wheel,
         12,
-        '      <xacro:cylinder_inertia m="0.12868" r="0.032" h="0.04" rpy="1.57079 0 0"/>\n',
+        '      <xacro:cylinder_inertia m="${mass}" r="${radius}" h="${length}" '
+        'rpy="1.57079 0.0 0.0"/>\n',
     )
+    robot.write_text(robot.read_text().replace('mass="${wheel_mass}"', 'mass="0.12868"'))
     for side in ("left", "right"):
         wanted = _inertial_of(out, f"{side}_wheel_link")
         assert wanted is not None
@@ -423,6 +485,140 @@ def test_fill_without_output_turns_a_wheels_inertia_with_it(tmp_path: Path) -> N
     assert done.returncode == 0, done.stderr
     expanded = fishbot_urdf.parse(done.stdout)
     _same_inertial(expanded.link("left_wheel_link").inertial, wanted)
+
+
+WHEEL_CALL = """<xacro:cylinder_inertia m="${mass}" r="${radius}" h="${length}"
+                              xyz="0.0 0.0 0.0" rpy="1.57079 0.0 0.0"/>"""
+
+
+def test_fill_gives_the_links_of_one_macro_one_call_through_its_mass_parameter(
+    tmp_path: Path,
+) -> None:
+    # wheel_xacro makes both wheels on one line of its body: one line cannot hold two
+    # masses, so the call writes its parameter mass, and the right wheel's call changes.
+    robot, wheel = _fishbot_without(tmp_path, "actuator/wheel.urdf.xacro", WHEEL_CALL)
+    args = ("--fill", "--mass", "left_wheel_link=0.1", "--mass", "right_wheel_link=0.2")
+    result = run(str(robot), *args)
+    assert result.exit_code == 0, result.output
+    assert result.stdout == (
+        f"{wheel}:11:5: note: links 'left_wheel_link', 'right_wheel_link' have no "
+        "<inertial>; the body of macro wheel_xacro makes each of them (called at "
+        f"{robot}:60:3, {robot}:62:3): write at line 12, inside the <link>, once, to fit "
+        "every call:\n"
+        '  <xacro:cylinder_inertia m="${mass}" r="${radius}" h="${length}" '
+        'rpy="1.57079 0.0 0.0"/>\n'
+        "  its mass is wheel_xacro's parameter mass, as each call gives it:\n"
+        f"    left_wheel_link (0.1 kg): the call at {robot}:60:3 gives "
+        'mass="${wheel_mass}" (0.1), as it should\n'
+        f"    right_wheel_link (0.2 kg): the call at {robot}:62:3 gives "
+        'mass="${wheel_mass}" (0.1); write mass="0.2" there\n'
+    )
+    data = json.loads(run(str(robot), *args, "--format", "json").stdout)
+    assert [s["link"] for s in data["suggestions"]] == ["left_wheel_link", "right_wheel_link"]
+    (shared,) = data["shared"]
+    assert shared == {
+        "links": ["left_wheel_link", "right_wheel_link"],
+        "source": {"path": str(wheel), "line": 11, "column": 5},
+        "line": 12,
+        "macro": "wheel_xacro",
+        "text": '<xacro:cylinder_inertia m="${mass}" r="${radius}" h="${length}" '
+        'rpy="1.57079 0.0 0.0"/>\n',
+        "arguments": {"m": "${mass}", "r": "${radius}", "h": "${length}", "rpy": "1.57079 0.0 0.0"},
+        "mass_parameter": "mass",
+        "add_parameter": None,
+        "fits_every_call": True,
+        "one_site": False,
+        "calls": [
+            {
+                "link": "left_wheel_link",
+                "call": {"path": str(robot), "line": 60, "column": 3},
+                "mass": 0.1,
+                "argument": "${wheel_mass}",
+                "value": 0.1,
+                "write": None,
+                "outer": None,
+            },
+            {
+                "link": "right_wheel_link",
+                "call": {"path": str(robot), "line": 62, "column": 3},
+                "mass": 0.2,
+                "argument": "${wheel_mass}",
+                "value": 0.1,
+                "write": 'mass="0.2"',
+                "outer": None,
+            },
+        ],
+    }
+    # Done as said, each wheel has the mass asked for, and one <inertial>.
+    out = tmp_path / "filled.urdf"
+    assert run(str(robot), *args, "-o", str(out)).exit_code == 0
+    _pasted(wheel, 12, "      " + shared["text"])
+    right = '<xacro:wheel_xacro name="right"'
+    text = robot.read_text()
+    at = text.index(right)
+    robot.write_text(text[:at] + text[at:].replace('mass="${wheel_mass}"', 'mass="0.2"', 1))
+    for side in ("left", "right"):
+        wanted = _inertial_of(out, f"{side}_wheel_link")
+        assert wanted is not None
+        assert wanted.mass == {"left": 0.1, "right": 0.2}[side]
+        _same_inertial(_inertial_of(robot, f"{side}_wheel_link"), wanted)
+    checked = CliRunner().invoke(cli, ["check", str(robot)])
+    assert checked.exit_code == 0, checked.output
+
+
+def test_fill_asks_for_a_mass_parameter_when_a_macro_has_none(tmp_path: Path) -> None:
+    (tmp_path / "inertias.xacro").write_text(COMMON.read_text())
+    robot = tmp_path / "robot.urdf.xacro"
+    robot.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="inertias.xacro"/>\n'
+        '  <link name="base"/>\n'
+        '  <xacro:macro name="leg" params="name">\n'
+        '    <link name="${name}">\n'
+        "      <collision>\n"
+        '        <geometry><box size="0.1 0.2 0.3"/></geometry>\n'
+        "      </collision>\n"
+        "    </link>\n"
+        '    <joint name="${name}_j" type="fixed"><parent link="base"/>'
+        '<child link="${name}"/></joint>\n'
+        "  </xacro:macro>\n"
+        '  <xacro:leg name="a"/>\n'
+        '  <xacro:leg name="b"/>\n'
+        "</robot>\n"
+    )
+    result = run(str(robot), "--fill", "--mass", "a=1", "--mass", "b=2")
+    assert result.exit_code == 0, result.output
+    assert result.stdout == (
+        f"{robot}:5:5: note: links 'a', 'b' have no <inertial>; the body of macro leg makes "
+        f"each of them (called at {robot}:12:3, {robot}:13:3): write at line 6, inside the "
+        "<link>, once, to fit every call:\n"
+        '  <xacro:box_inertia m="${mass}" w="0.1" h="0.2" d="0.3"/>\n'
+        "  leg has no parameter for the mass, and the links' masses differ (1 kg, 2 kg): add "
+        f'mass to its params (at {robot}:4:3: params="name mass"), and give it in each '
+        "call:\n"
+        f'    a (1 kg): the call at {robot}:12:3 gives none; write mass="1" there\n'
+        f'    b (2 kg): the call at {robot}:13:3 gives none; write mass="2" there\n'
+    )
+    # The same mass for both needs no parameter.
+    same = run(str(robot), "--fill", "--mass", "a=1", "--mass", "b=1")
+    assert same.stdout.endswith(
+        '  <xacro:box_inertia m="1" w="0.1" h="0.2" d="0.3"/>\n  (every link is 1 kg)\n'
+    )
+    # Done as said, each link has its own mass.
+    out = tmp_path / "filled.urdf"
+    assert (
+        run(str(robot), "--fill", "--mass", "a=1", "--mass", "b=2", "-o", str(out)).exit_code == 0
+    )
+    text = robot.read_text().replace('params="name"', 'params="name mass"')
+    text = text.replace('name="a"/>', 'name="a" mass="1"/>')
+    text = text.replace('name="b"/>', 'name="b" mass="2"/>')
+    robot.write_text(text)
+    _pasted(robot, 6, '      <xacro:box_inertia m="${mass}" w="0.1" h="0.2" d="0.3"/>\n')
+    for name, kg in (("a", 1.0), ("b", 2.0)):
+        wanted = _inertial_of(out, name)
+        assert wanted is not None
+        assert wanted.mass == kg
+        _same_inertial(_inertial_of(robot, name), wanted)
 
 
 def test_fill_without_output_on_a_urdf_gives_the_inertial_block() -> None:
@@ -719,3 +915,111 @@ def test_a_fixed_joint_is_said_to_be_fixed() -> None:
     result = CliRunner().invoke(cli, ["inertia", str(XACRO), "-j", "imu_joint=1"])
     assert result.exit_code == 2
     assert "joint 'imu_joint' is fixed: it takes no position" in result.stderr
+
+
+def test_fill_says_when_no_one_call_fits_the_links_of_a_macro(tmp_path: Path) -> None:
+    # arm's <link> holds a collision tube's body writes: arm's body writes no size that
+    # one call could take, and the two arms differ in length.
+    (tmp_path / "inertias.xacro").write_text(COMMON.read_text())
+    robot = tmp_path / "robot.urdf.xacro"
+    robot.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="inertias.xacro"/>\n'
+        '  <link name="base"/>\n'
+        '  <xacro:macro name="arm" params="name len">\n'
+        '    <link name="${name}">\n'
+        '      <xacro:tube r="0.02" h="${len}"/>\n'
+        "    </link>\n"
+        '    <joint name="${name}_j" type="fixed"><parent link="base"/>'
+        '<child link="${name}"/></joint>\n'
+        "  </xacro:macro>\n"
+        '  <xacro:macro name="tube" params="r h">\n'
+        "    <collision>\n"
+        '      <geometry><cylinder radius="${r}" length="${h}"/></geometry>\n'
+        "    </collision>\n"
+        "  </xacro:macro>\n"
+        '  <xacro:arm name="a" len="0.3"/>\n'
+        '  <xacro:arm name="b" len="0.4"/>\n'
+        "</robot>\n"
+    )
+    result = run(str(robot), "--fill", "--mass", "a=1", "--mass", "b=2")
+    assert result.exit_code == 0, result.output
+    assert result.stdout == (
+        f"{robot}:5:5: note: links 'a', 'b' have no <inertial>; the body of macro arm makes "
+        f"each of them (called at {robot}:15:3, {robot}:16:3): write inside the <link>:\n"
+        "  no one call fits every call: the sizes differ from call to call, and the macro's "
+        "body does not write them; each link's own call fits its call only:\n"
+        '  a: <xacro:cylinder_inertia m="1" r="0.02" h="0.3"/>\n'
+        '  b: <xacro:cylinder_inertia m="2" r="0.02" h="0.4"/>\n'
+    )
+    data = json.loads(
+        run(str(robot), "--fill", "--mass", "a=1", "--mass", "b=2", "--format", "json").stdout
+    )
+    (shared,) = data["shared"]
+    assert (shared["links"], shared["fits_every_call"], shared["line"]) == (["a", "b"], False, None)
+
+
+def test_a_second_inertial_a_macro_call_made_names_the_calls(tmp_path: Path) -> None:
+    # Two masses pasted on one line of wheel_xacro's body: the second <inertial> is written
+    # in common_inertia.xacro, and the warning names the pasted call that made it.
+    robot, wheel = _fishbot_without(tmp_path, "actuator/wheel.urdf.xacro", WHEEL_CALL)
+    _pasted(
+        wheel,
+        12,
+        '      <xacro:cylinder_inertia m="0.1" r="${radius}" h="${length}"/>\n'
+        '      <xacro:cylinder_inertia m="0.2" r="${radius}" h="${length}"/>\n',
+    )
+    result = CliRunner().invoke(cli, ["check", "-q", str(robot)])
+    common = tmp_path / "fishbot" / "urdf" / "fishbot" / "common_inertia.xacro"
+    warnings = [line for line in result.stderr.splitlines() if "[duplicate-element]" in line]
+    assert warnings == [
+        f"{common}:23:5: warning: link '{side}_wheel_link': a second <inertial> is ignored; "
+        f"it is made by macro cylinder_inertia called at {wheel}:13, in macro wheel_xacro "
+        f"called at {robot}:{line} (a link has at most one <inertial>) [duplicate-element]"
+        for side, line in (("left", 60), ("right", 62))
+    ]
+
+
+def test_fill_sends_each_mass_through_the_outer_calls_of_a_call_written_once(
+    tmp_path: Path,
+) -> None:
+    # leg is called on one line of side's body: the argument there is the same text for
+    # both legs, so each leg's mass comes in through side's calls.
+    (tmp_path / "inertias.xacro").write_text(COMMON.read_text())
+    robot = tmp_path / "robot.urdf.xacro"
+    robot.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="inertias.xacro"/>\n'
+        '  <link name="base"/>\n'
+        '  <xacro:macro name="leg" params="name mass">\n'
+        '    <link name="${name}">\n'
+        "      <collision>\n"
+        '        <geometry><box size="0.1 0.2 0.3"/></geometry>\n'
+        "      </collision>\n"
+        "    </link>\n"
+        '    <joint name="${name}_j" type="fixed"><parent link="base"/>'
+        '<child link="${name}"/></joint>\n'
+        "  </xacro:macro>\n"
+        '  <xacro:macro name="side" params="name m">\n'
+        '    <xacro:leg name="${name}_leg" mass="${m}"/>\n'
+        "  </xacro:macro>\n"
+        '  <xacro:side name="a" m="1"/>\n'
+        '  <xacro:side name="b" m="1"/>\n'
+        "</robot>\n"
+    )
+    args = ("--fill", "--mass", "a_leg=1", "--mass", "b_leg=2")
+    result = run(str(robot), *args)
+    assert result.exit_code == 0, result.output
+    assert result.stdout == (
+        f"{robot}:5:5: note: links 'a_leg', 'b_leg' have no <inertial>; the body of macro leg "
+        f"makes each of them (called at {robot}:13:5): write at line 6, inside the <link>, "
+        "once, to fit every call:\n"
+        '  <xacro:box_inertia m="${mass}" w="0.1" h="0.2" d="0.3"/>\n'
+        f"  its mass is leg's parameter mass; the call at {robot}:13:5 that gives it is "
+        "written once in the body of macro side, for all of its calls: give each link its "
+        f"mass through them (a_leg 1 kg at {robot}:15:3; b_leg 2 kg at {robot}:16:3)\n"
+    )
+    (shared,) = json.loads(run(str(robot), *args, "--format", "json").stdout)["shared"]
+    assert shared["one_site"] is True
+    assert [c["write"] for c in shared["calls"]] == [None, None]
+    assert [c["outer"]["call"]["line"] for c in shared["calls"]] == [15, 16]

@@ -16,6 +16,7 @@ from fishbot_urdf.inertia import (
     cylinder_inertia,
     fill_inertials,
     inertia_macros,
+    shared_inertials,
     suggest_inertials,
     xacro_suggestions,
 )
@@ -211,3 +212,38 @@ def test_a_collision_another_macro_writes_gives_no_line_and_no_expressions(
     assert made.text == '<xacro:cylinder_inertia m="0.5" r="0.02" h="0.3"/>\n'
     assert (made.source, made.line, made.written) == ((str(robot), 5, 5), None, ())
     assert [name for name, _ in made.made_by] == ["arm"]
+
+
+def test_the_links_one_macro_makes_share_one_call_through_its_mass_parameter(
+    tmp_path: Path,
+) -> None:
+    copy = tmp_path / "fishbot"
+    shutil.copytree(FISHBOT, copy)
+    wheel = copy / "urdf" / "fishbot" / "actuator" / "wheel.urdf.xacro"
+    text = wheel.read_text()
+    start = text.index("<xacro:cylinder_inertia")
+    wheel.write_text(text[:start] + text[text.index("/>", start) + 2 :])
+    robot = copy / "urdf" / "fishbot" / "fishbot.urdf.xacro"
+    masses = {"left_wheel_link": 0.1, "right_wheel_link": 0.2, "imu_link": 0.01}
+    imu = copy / "urdf" / "fishbot" / "sensor" / "imu.urdf.xacro"
+    imu.write_text(
+        imu.read_text()
+        .replace('<xacro:box_inertia m="${mass}"', "<!--")
+        .replace('d="${size}"/>', "-->")
+    )
+    analysis = fishbot_urdf.check_file(robot).analysis
+    assert analysis is not None
+    made = xacro_suggestions(robot, analysis, fill_inertials(analysis, masses=masses).inertials)
+    # What each wheel's call gave wheel_xacro, as written and as a number.
+    left = next(s for s in made if s.link == "left_wheel_link")
+    assert dict(left.given)["mass"] == ("${wheel_mass}", 0.1)
+    assert dict(left.given)["name"] == ("left", None)
+    assert left.maker is not None and left.maker.name == "wheel_xacro"
+    # The IMU, alone in its macro, shares with none.
+    (shared,) = shared_inertials(made)
+    assert [s.link for s in shared.suggestions] == ["left_wheel_link", "right_wheel_link"]
+    assert (shared.parameter, shared.added, shared.fits) == ("mass", None, True)
+    assert shared.text == (
+        '<xacro:cylinder_inertia m="${mass}" r="${radius}" h="${length}" rpy="1.57079 0.0 0.0"/>\n'
+    )
+    assert [c["write"] for c in shared.calls()] == [None, 'mass="0.2"']

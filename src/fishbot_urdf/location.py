@@ -42,3 +42,9 @@ def calls_of(where: Location | None) -> tuple[tuple[str, Location], ...]:
     """The macro calls that made the element written at ``where``, innermost first (none
     for an element not made by a macro call)."""
     return where.calls if isinstance(where, MacroLocation) else ()
+
+
+def call_chain(calls: tuple[tuple[str, Location], ...]) -> str:
+    """Macro calls, innermost first, as a finding names them: ``macro cylinder_inertia
+    called at wheel.urdf.xacro:13, in macro wheel_xacro called at fishbot.urdf.xacro:60``."""
+    return ", in ".join(f"macro {name} called at {site.path}:{site.line}" for name, site in calls)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Iterable, Mapping
 
 from lxml import etree
@@ -26,7 +27,7 @@ from .model import (
 from .validation import values
 from .xml.source import STRING_PATH, parse_xml
 
-__all__ = ["add_inertials", "inertial_xml", "to_urdf"]
+__all__ = ["add_inertials", "inertial_xml", "rounded", "to_urdf"]
 
 
 def _num(value: float) -> str:
@@ -87,11 +88,14 @@ def _extras(parent: etree._Element, extras: Iterable[str]) -> None:
         parent.append(parse_xml(text.encode("utf-8")))
 
 
+_MOMENTS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+
+
 def _inertial(parent: etree._Element, inertial: Inertial) -> None:
     element = _sub(parent, "inertial")
     _origin(element, inertial.origin)
     _sub(element, "mass", value=_num(inertial.mass))
-    _numbers(element, "inertia", inertial.inertia, ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"))
+    _numbers(element, "inertia", inertial.inertia, _MOMENTS)
 
 
 def _shape(parent: etree._Element, tag: str, item: Visual | Collision) -> etree._Element:
@@ -172,15 +176,50 @@ def to_urdf(robot: Robot) -> str:
     return f'<?xml version="1.0"?>\n{body}\n'
 
 
+# The digits an inertial told to a user keeps: a float's 17 show the arithmetic's noise
+# (0.0037000000000000006 for 1/12 * (3 * 0.1^2 + 0.12^2)), 12 never a real difference.
+_DIGITS = 12
+
+
+def _round(value: float) -> float:
+    return float(f"{value:.{_DIGITS}g}")
+
+
+def rounded(inertial: Inertial) -> Inertial:
+    """``inertial`` with every number rounded to 12 significant digits, as it is written
+    for a user to read or paste: a float's last digits are the arithmetic's noise."""
+    tensor = inertial.inertia
+    return dataclasses.replace(
+        inertial,
+        mass=_round(inertial.mass),
+        inertia=dataclasses.replace(
+            tensor,
+            ixx=_round(tensor.ixx),
+            ixy=_round(tensor.ixy),
+            ixz=_round(tensor.ixz),
+            iyy=_round(tensor.iyy),
+            iyz=_round(tensor.iyz),
+            izz=_round(tensor.izz),
+        ),
+        origin=dataclasses.replace(
+            inertial.origin,
+            xyz=tuple(map(_round, inertial.origin.xyz)),  # type: ignore[arg-type]
+            rpy=tuple(map(_round, inertial.origin.rpy)),  # type: ignore[arg-type]
+        ),
+    )
+
+
 def inertial_xml(inertial: Inertial) -> str:
     """An ``<inertial>`` element as text, ready to paste in a link.
 
     Its children are indented by two spaces.
 
-    The numbers are written exactly (the shortest text that reads back as the same float).
+    The numbers are rounded to 12 significant digits (see :func:`rounded`), each written
+    as the shortest text that reads back as that (``0.0037``, not
+    ``0.0037000000000000006``).
     """
     holder = etree.Element("link")
-    _inertial(holder, inertial)
+    _inertial(holder, rounded(inertial))
     element = holder[0]
     if len(element) and element[0].tag != "origin":
         # Always say where the centre of mass is, even at the link origin.

@@ -13,7 +13,13 @@ import click
 from ..config import Config
 from ..diagnostics import escape_controls
 from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
-from ..inertia import Filling, fill_inertials, suggest_inertials, xacro_suggestions
+from ..inertia import (
+    Filling,
+    fill_inertials,
+    shared_inertials,
+    suggest_inertials,
+    xacro_suggestions,
+)
 from ..inputs import allowing_reads
 from ..output import write_atomic
 from ..parsing import is_xacro_path
@@ -21,7 +27,7 @@ from ..write import add_inertials
 from ._common import EXIT_INVALID, EXIT_OK, EXIT_USAGE, emit_findings, fail, stop_on, to_stdout
 
 if TYPE_CHECKING:
-    from ..inertia import InertialSuggestion
+    from ..inertia import InertialSuggestion, SharedInertial
     from ..lint import CheckResult
     from ..location import Location
     from ..output import Source
@@ -115,16 +121,27 @@ def suggest(
                 suggestions = xacro_suggestions(file, analysis, filling.inertials, values, packages)
         except FishbotUrdfError as exc:
             stop_on(exc)
+    # Links one line of a macro's body makes get one note, and one call for them all.
+    shared = shared_inertials(suggestions)
     if fmt == "json":
         report = {
             "ok": not filling.skipped,
             "suggestions": [s.to_dict() for s in suggestions],
+            "shared": [s.to_dict() for s in shared],
             "diagnostics": [d.to_dict() for d in filling.skipped],
         }
         to_stdout((json.dumps(report, indent=2) + "\n").encode("utf-8", "surrogateescape"))
     else:
         xacro = file != "-" and is_xacro_path(file)
-        text = "".join(_block(s, xacro) for s in suggestions)
+        by_link = {s.link: group for group in shared for s in group.suggestions}
+        blocks = []
+        for suggestion in suggestions:
+            group = by_link.get(suggestion.link)
+            if group is None:
+                blocks.append(_block(suggestion, xacro))
+            elif group.suggestions[0] is suggestion:
+                blocks.append(_shared_block(group))
+        text = "".join(blocks)
         to_stdout(text.encode("utf-8", "surrogateescape"))
         if not suggestions and not filling.skipped:
             click.echo("no link needs an <inertial>", err=True)
@@ -153,6 +170,79 @@ def _block(suggestion: InertialSuggestion, xacro: bool) -> str:
     if xacro and suggestion.plain_because:
         lines.append(escape_controls(f"  (written out: {suggestion.plain_because})"))
     return "\n".join(lines) + "\n"
+
+
+def _shared_block(group: SharedInertial) -> str:
+    """A note on the <link> a macro's body writes once for several links: the one call
+    that fits every call of the macro, and what each call gives its mass."""
+    where = group.source
+    place = "" if where is None else f"{_site(where)}: "
+    names = ", ".join(f"'{s.link}'" for s in group.suggestions)
+    at = "inside the <link>"
+    if group.line is not None:
+        at = f"at line {group.line}, {at}"
+    sites = ", ".join(dict.fromkeys(_site(s.made_by[0][1]) for s in group.suggestions))
+    once = ", once, to fit every call" if group.fits else ""
+    head = (
+        f"{place}note: links {names} have no <inertial>; the body of macro "
+        f"{group.macro_name} makes each of them (called at {sites}): write {at}{once}:"
+    )
+    lines = [head]  # (escaped as a whole, below)
+    if not group.fits:
+        lines.append(
+            "  no one call fits every call: the sizes differ from call to call, and the "
+            "macro's body does not write them; each link's own call fits its call only:"
+        )
+        lines += [f"  {s.link}: {s.text.rstrip()}" for s in group.suggestions]
+        return "\n".join(escape_controls(line) for line in lines) + "\n"
+    lines.append("  " + group.text.rstrip("\n"))
+    calls = group.calls()
+    one = ", as each call gives it:"
+    if group.one_site:  # one call, written once in another macro's body, makes them all
+        outer = calls[0]["outer"]
+        name = "another macro" if outer is None else f"macro {outer[0]}"
+        masses = "; ".join(
+            f"{c['link']} {c['mass']:.6g} kg"
+            + (f" at {_site(c['outer'][1])}" if c["outer"] else "")
+            for c in calls
+        )
+        one = (
+            f"; the call at {_site(calls[0]['call'])} that gives it is written once in the "
+            f"body of {name}, for all of its calls: give each link its mass through them "
+            f"({masses})"
+        )
+    if group.parameter is not None:
+        lines.append(f"  its mass is {group.macro_name}'s parameter {group.parameter}{one}")
+    elif group.added is not None:
+        masses = ", ".join(f"{c['mass']:.6g} kg" for c in calls)
+        maker = group.suggestions[0].maker
+        params = ""
+        if maker is not None and maker.source is not None and not maker.optional:
+            # (its params as written are known only when none has a default)
+            written = " ".join((*maker.params, group.added))
+            params = f' (at {_site(maker.source)}: params="{written}")'
+        lines.append(
+            f"  {group.macro_name} has no parameter for the mass, and the links' masses "
+            f"differ ({masses}): add {group.added} to its params{params}"
+            + (one if group.one_site else ", and give it in each call:")
+        )
+    else:
+        lines.append(f"  (every link is {calls[0]['mass']:.6g} kg)")
+    if (group.parameter is not None or group.added is not None) and not group.one_site:
+        for call in calls:
+            site = _site(call["call"])
+            given = call["argument"]
+            said = f"    {call['link']} ({call['mass']:.6g} kg): the call at {site}"
+            if given is None:
+                said += " gives none"
+            else:
+                value = call["value"]
+                said += f' gives {group.parameter}="{given}"' + (
+                    f" ({value:.6g})" if value is not None and given != f"{value:g}" else ""
+                )
+            said += f"; write {call['write']} there" if call["write"] else ", as it should"
+            lines.append(said)
+    return "\n".join(escape_controls(line) for line in lines) + "\n"
 
 
 def _site(site: Location) -> str:

@@ -23,7 +23,7 @@ from ..inertia import (
 )
 from ..model import Origin
 from ..wording import closest
-from ..write import inertial_xml
+from ..write import inertial_xml, rounded
 from ._checking import check_input, nearest_config, read_files
 from ._common import (
     EXIT_INVALID,
@@ -217,18 +217,28 @@ def _print(make: Callable[[], Inertial], fmt: str) -> None:
         raise click.UsageError("the moments overflow: give the sizes in metres")
 
     if fmt == "json":
-        text = json.dumps(inertial_dict(inertial), indent=2) + "\n"
+        text = json.dumps(inertial_dict(rounded(inertial)), indent=2) + "\n"
     else:
         text = inertial_xml(inertial)
     to_stdout(text.encode("utf-8", "surrogateescape"))
 
 
+class _RobotContext(click.Context):
+    """The robot form's context: its path is `fishbot inertia`, as the user typed it (a
+    file follows, not `robot`), so that a usage error's hint is a command that works."""
+
+    @property
+    def command_path(self) -> str:
+        return self.parent.command_path if self.parent else "fishbot inertia"
+
+
 class _RobotCommand(click.Command):
     """The robot form, shown as `fishbot inertia ROBOT ...` (its name is only internal)."""
 
+    context_class = _RobotContext
+
     def format_usage(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
-        parent = ctx.parent.command_path if ctx.parent else "fishbot inertia"
-        formatter.write_usage(parent, "ROBOT [name:=value]... [OPTIONS]")
+        formatter.write_usage(ctx.command_path, "ROBOT [name:=value]... [OPTIONS]")
 
 
 @inertia.command(cls=_RobotCommand, hidden=True)

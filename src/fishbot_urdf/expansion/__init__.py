@@ -40,6 +40,7 @@ from ._scope import ReadOutsideError, ReadScope, robot_tree
 
 if TYPE_CHECKING:
     from ._engine import Run
+    from ._macros import Argument as Argument
     from ._macros import MacroTable as MacroTable
 
 __all__ = [

@@ -103,6 +103,9 @@ class Run(Explaining):
         self.probe = probe  # called with the top-level macros once the walk is done
         self.probed: Any = None  # what it gave
         self._top: tuple[Any, Any] | None = None  # the top level's macros and symbols
+        # For a probe: the arguments each macro call gave (by its calls, innermost first),
+        # as written and as evaluated.
+        self._given: dict[tuple[tuple[str, Location], ...], dict[str, tuple[str, Any]]] = {}
         self.trust = trust  # expressions run as Python, as xacro runs them
         self.reads = reads  # where files may be read; $(find) adds each package found
         self.node: Any = None  # the element being worked on
@@ -264,6 +267,8 @@ class Run(Explaining):
         if site is None:
             return
         calls = ((call.tagName[6:], Location(*site)), *calls_of(site))
+        if self.probe is not None:
+            self._given[calls] = self._arguments(call, frame.f_locals["symbols"])
         made: dict[int, dict[str, Any]] = {}  # one entry per element of the macro's text
         keeper = self._keeper
         element_node = body.ELEMENT_NODE
@@ -281,6 +286,21 @@ class Run(Explaining):
                     SOURCE_KEY: (MacroLocation(path, line, column, calls), keeper)
                 }
             element._user_data = entry
+
+    def _arguments(self, call: Any, symbols: Any) -> dict[str, tuple[str, Any]]:
+        """A call's arguments, as written and as xacro evaluates them next (in the caller's
+        symbols, unchanged until then: the body is cloned first), or None where the
+        evaluation fails (xacro then says why)."""
+        given: dict[str, tuple[str, Any]] = {}
+        for name, text in call.attributes.items():
+            try:
+                value = self.xacro.eval_text(text, symbols)
+            except LimitError:
+                raise
+            except Exception:  # xacro's own evaluation, next, reports it
+                value = None
+            given[name] = (text, value)
+        return given
 
     def _property(self, function: Callable[..., Any]) -> Callable[..., Any]:
         def run(node: Any, table: Any) -> Any:
@@ -398,7 +418,7 @@ class Run(Explaining):
         """xacro's processing of the file, and the document written out."""
         document = self.xacro.process_file(self.path, mappings=dict(self.args))
         if self.probe is not None and self._top is not None:
-            self.probed = self.probe(MacroTable(self.xacro, *self._top))
+            self.probed = self.probe(MacroTable(self.xacro, *self._top, self._given))
         _stringify_attributes(self.given_attributes)
         _escape_banner(document, self.path)
         return document, document.toprettyxml(indent="  ")

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from typing import Any
+import math
+from collections.abc import Mapping
+from typing import Any, NamedTuple
 from xml.dom import minidom
 
 from ..errors import LimitError
@@ -10,7 +12,19 @@ from ..location import Location
 from ._errors import source
 from ._result import MacroDefinition
 
-__all__ = ["MacroTable"]
+__all__ = ["Argument", "MacroTable"]
+
+
+class Argument(NamedTuple):
+    """What a macro call gave one parameter.
+
+    Attributes:
+        text: The attribute as written in the call (``${wheel_mass}``).
+        number: Its value, when it is a finite number (else None).
+    """
+
+    text: str
+    number: float | None
 
 
 class MacroTable:
@@ -21,8 +35,16 @@ class MacroTable:
     while the probe runs.
     """
 
-    def __init__(self, xacro: Any, macros: Any, symbols: Any) -> None:
+    def __init__(
+        self,
+        xacro: Any,
+        macros: Any,
+        symbols: Any,
+        given: Mapping[tuple[tuple[str, Location], ...], Mapping[str, tuple[str, Any]]]
+        | None = None,
+    ) -> None:
         self._xacro, self._macros, self._symbols = xacro, macros, symbols
+        self._given = given or {}
         self.definitions: tuple[MacroDefinition, ...] = tuple(
             MacroDefinition(
                 name,
@@ -69,3 +91,23 @@ class MacroTable:
                 if source(element) == where:
                     return {name: value for name, value in element.attributes.items()}
         return None
+
+    def arguments(self, calls: tuple[tuple[str, Location], ...]) -> dict[str, Argument] | None:
+        """The arguments the call at the head of ``calls`` (a `MacroLocation`'s calls,
+        innermost first) gave its macro, by parameter (those left to their defaults
+        aside); None for a call the expansion did not make."""
+        given = self._given.get(calls)
+        if given is None:
+            return None
+        return {name: Argument(text, _number(value)) for name, (text, value) in given.items()}
+
+
+def _number(value: Any) -> float | None:
+    """``value`` as a finite number, if it is one (xacro keeps a literal as its text)."""
+    if isinstance(value, bool) or not isinstance(value, int | float | str):
+        return None
+    try:
+        number = float(value)
+    except (ValueError, OverflowError):
+        return None
+    return number if math.isfinite(number) else None

@@ -30,6 +30,7 @@ from ._solids import (
 
 if TYPE_CHECKING:
     from ._macros import InertiaMacro, inertia_macros
+    from ._shared import SharedInertial, shared_inertials
     from ._suggestions import InertialSuggestion, suggest_inertials, xacro_suggestions
     from ._table import LinkMass, MassTable, inertial_dict, mass_table
 
@@ -43,6 +44,7 @@ __all__ = [
     "MassProperties",
     "MassTable",
     "NoBox",
+    "SharedInertial",
     "box_inertia",
     "combine",
     "cylinder_inertia",
@@ -57,6 +59,7 @@ __all__ = [
     "mass_table",
     "mesh_inertia",
     "principal_moments",
+    "shared_inertials",
     "solid_moments",
     "sphere_inertia",
     "suggest_inertials",
@@ -80,6 +83,10 @@ def __getattr__(name: str) -> Any:
         from . import _macros  # (the expansion's probe: only --fill needs it)
 
         return getattr(_macros, name)
+    if name in ("SharedInertial", "shared_inertials"):
+        from . import _shared  # (as the suggestions: only --fill needs them)
+
+        return getattr(_shared, name)
     if name in _SUGGESTIONS:
         from . import _suggestions  # (the writer too: only --fill needs them)
 

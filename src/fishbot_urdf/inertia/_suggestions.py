@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import re
 from collections.abc import Iterable, Mapping, Sequence
@@ -13,14 +14,21 @@ from ..analysis import Analysis, of
 from ..expansion import probe_macros
 from ..location import Location, MacroLocation, calls_of
 from ..model import Box, Collision, Cylinder, Inertial, Link, Robot, Sphere
-from ..write import inertial_xml
+from ..write import inertial_xml, rounded
 from ._macros import InertiaMacro, recognise_macros
 from ._table import inertial_dict
 
 if TYPE_CHECKING:
-    from ..expansion import MacroTable
+    from ..expansion import Argument, MacroDefinition, MacroTable
 
-__all__ = ["InertialSuggestion", "suggest_inertials", "xacro_suggestions"]
+__all__ = [
+    "InertialSuggestion",
+    "call_text",
+    "number_text",
+    "place_dict",
+    "suggest_inertials",
+    "xacro_suggestions",
+]
 
 
 @dataclass(frozen=True, slots=True)
@@ -30,7 +38,7 @@ class InertialSuggestion:
     Attributes:
         link: The link's name.
         inertial: The inertial ``fill_inertials`` computed for it (what ``--fill -o``
-            writes).
+            writes; ``text`` and ``to_dict`` give it to 12 significant digits).
         source: Where its ``<link>`` is written (for a link a macro made, in the macro's
             body; ``made_by`` gives the calls).
         line: The line of ``source``'s file to write it at, inside the link (the line of
@@ -44,6 +52,10 @@ class InertialSuggestion:
         written: For a link a macro made whose sizes (or position, rotation) are written
             there with expressions: the call's arguments as written in the macro's body
             (``r="${radius}"``), which fit every call of it; else empty.
+        given: For a link a macro made: what the call that made it gave that macro's
+            parameters (by :func:`xacro_suggestions`; else empty).
+        maker: The definition of the macro that made the link, when it is one of the
+            robot's top-level macros (by :func:`xacro_suggestions`; else None).
     """
 
     link: str
@@ -54,6 +66,8 @@ class InertialSuggestion:
     arguments: tuple[tuple[str, str], ...] = ()
     plain_because: str | None = None
     written: tuple[tuple[str, str], ...] = ()
+    given: tuple[tuple[str, Argument], ...] = ()
+    maker: MacroDefinition | None = None
 
     @property
     def made_by(self) -> tuple[tuple[str, Location], ...]:
@@ -67,21 +81,17 @@ class InertialSuggestion:
         line break either way)."""
         if self.macro is None:
             return inertial_xml(self.inertial)
-        return _call(self.macro, self.arguments)
+        return call_text(self.macro, self.arguments)
 
     @property
     def written_text(self) -> str | None:
         """The call with the arguments as written in the macro's body, if there are any."""
-        return _call(self.macro, self.written) if self.macro and self.written else None
+        return call_text(self.macro, self.written) if self.macro and self.written else None
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready dict of every field."""
 
-        def place(where: Location | None) -> dict[str, Any] | None:
-            if where is None:
-                return None
-            return {"path": where.path, "line": where.line, "column": where.column}
-
+        place = place_dict
         macro = self.macro
         return {
             "link": self.link,
@@ -96,7 +106,7 @@ class InertialSuggestion:
             "written": dict(self.written) if self.written else None,
             "written_text": self.written_text,
             "plain_because": self.plain_because,
-            "inertial": inertial_dict(self.inertial),
+            "inertial": inertial_dict(rounded(self.inertial)),
         }
 
 
@@ -157,11 +167,18 @@ def xacro_suggestions(
                 if isinstance(where, MacroLocation):
                     places.append(where)
 
-    def probe(table: MacroTable) -> tuple[tuple[InertiaMacro, ...], dict[Location, Any]]:
+    def probe(table: MacroTable) -> tuple[Any, ...]:
         found = {where: table.written(where) for where in places}
-        return recognise_macros(table), {k: v for k, v in found.items() if v is not None}
+        given = {name: table.arguments(calls_of(links[name].source)) for name in inertials}
+        makers = {d.name: d for d in table.definitions}
+        return (
+            recognise_macros(table),
+            {k: v for k, v in found.items() if v is not None},
+            given,
+            makers,
+        )
 
-    macros, written = probe_macros(
+    macros, written, given, makers = probe_macros(
         path,
         probe,
         args,
@@ -169,7 +186,16 @@ def xacro_suggestions(
         trust_expressions=trust_expressions,
         allow_read=allow_read,
     )
-    return suggest_inertials(robot, inertials, macros, written)
+    made = []
+    for suggestion in suggest_inertials(robot, inertials, macros, written):
+        calls = suggestion.made_by
+        if calls:
+            arguments = given.get(suggestion.link) or {}
+            suggestion = dataclasses.replace(
+                suggestion, given=tuple(arguments.items()), maker=makers.get(calls[0][0])
+            )
+        made.append(suggestion)
+    return tuple(made)
 
 
 def _suggestion(
@@ -263,7 +289,8 @@ def _written_beside(
 _TOKEN = re.compile(r"(?:\$\{[^}]*\}|[^\s$]|\$(?!\{))+")
 
 
-def _call(macro: InertiaMacro, arguments: Iterable[tuple[str, str]]) -> str:
+def call_text(macro: InertiaMacro, arguments: Iterable[tuple[str, str]]) -> str:
+    """``<xacro:NAME param="value" .../>`` with a final line break."""
     given = " ".join(f'{name}="{value}"' for name, value in arguments)
     return f"<xacro:{macro.name} {given}/>\n"
 
@@ -300,11 +327,21 @@ def _beside(where: Location, link: Location) -> bool:
     return where.path == link.path and calls_of(where) == calls_of(link)
 
 
-def _text(value: float) -> str:
+def number_text(value: float) -> str:
     """A number to 6 significant digits, as short as it reads ('0.1', not '0.100000')."""
     text = f"{value:.6g}"
     return "0" if text == "-0" else text
 
 
+_text = number_text
+
+
 def _texts(values: Iterable[float]) -> str:
     return " ".join(_text(v) for v in values)
+
+
+def place_dict(where: Location | None) -> dict[str, Any] | None:
+    """A location, JSON-ready: its path, line and column."""
+    if where is None:
+        return None
+    return {"path": where.path, "line": where.line, "column": where.column}

@@ -11,6 +11,7 @@ from ..catalog.reading import BAD_NUMBER, BAD_VECTOR, MISSING_ATTRIBUTE, UNKNOWN
 from ..diagnostics import Diagnostic, Kind, Severity, Subject
 from ..expansion import EXPAND_HINT, unexpanded
 from ..extensions import Reference
+from ..location import call_chain, calls_of
 from ..model import ZERO3, Location, Vector3
 from ..xml.locator import Locator
 from .values import to_double, to_doubles
@@ -87,10 +88,17 @@ class ReaderBase:
         self.locator.skip(el)
         return xml_text(el)
 
-    def passed_over(self, el: etree._Element, rule: Rule, message: str, hint: str) -> None:
-        """Warn about an element that is read no further, and skip what it holds."""
+    def passed_over(
+        self, el: etree._Element, rule: Rule, message: str, hint: str, *, made: bool = False
+    ) -> None:
+        """Warn about an element that is read no further, and skip what it holds; with
+        ``made``, the message names the macro calls that made it, if any (its location is
+        in the macro's body, which may hold the element for many calls)."""
         at = self.locator.locate(el)
         self.locator.skip_children(el)
+        calls = calls_of(at) if made else ()
+        if calls:
+            message += f"; it is made by {call_chain(calls)}"
         self.error(rule, message, at, hint)
 
     def ignored(self, el: etree._Element, owner: Owner, parent: str, allowed: str) -> None:

@@ -95,6 +95,7 @@ class LinkReader(ReaderBase):
                     DUPLICATE_ELEMENT,
                     f"{owner}: a second <inertial> is ignored",
                     "a link has at most one <inertial>",
+                    made=True,
                 )
                 extras.append(xml_text(child))
             elif isinstance(tag, str):

@@ -29,7 +29,7 @@ from ..catalog.structure import (
     UndefinedLinkFacts,
 )
 from ..diagnostics import Diagnostic, Kind, Subject
-from ..location import calls_of
+from ..location import call_chain, calls_of
 from ..model import Joint, Location, Robot
 from ..wording import did_you_mean, listing
 
@@ -105,9 +105,7 @@ def _names(analysis: Analysis) -> Iterator[Diagnostic]:
 def _made(where: Location | None, calls: tuple[tuple[str, Location], ...]) -> str:
     """Where an element was written: the macro calls that made it, else its line."""
     if calls:
-        return "by " + ", in ".join(
-            f"macro {name} called at {site.path}:{site.line}" for name, site in calls
-        )
+        return "by " + call_chain(calls)
     return f"at {where.path}:{where.line}" if where else "somewhere unknown"
 
 
