@@ -81,8 +81,7 @@ def test_a_value_that_cannot_be_read_hides_no_other_shape_of_its_link(tmp_path: 
     path.write_text(
         ROBOT.format(kind="collision", shape='<sphere radius="0"/>').replace(
             "</link>",
-            '<collision><geometry><mesh filename="m.stl" scale="0"/></geometry></collision>'
-            "</link>",
+            '<collision><geometry><mesh filename="m.stl" scale="0"/></geometry></collision></link>',
         ),
         encoding="utf-8",
     )
