@@ -459,7 +459,9 @@ _NAMES = st.text(
     ),
     min_size=1,
 )
-_SIZE = st.floats(0.01, 10.0)
+# Sizes of robot parts in metres: up to 2 m (a robot of 10 m parts, metres apart and
+# lighter than air, reads as millimetres: robot-units, an error)
+_SIZE = st.floats(0.01, 2.0)
 _ANY = st.floats(-10.0, 10.0)
 _VECTOR = st.tuples(_ANY, _ANY, _ANY)
 _ORIGINS = st.builds(Origin, _VECTOR, _VECTOR)
