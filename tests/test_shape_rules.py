@@ -89,3 +89,21 @@ def test_a_value_that_cannot_be_read_hides_no_other_shape_of_its_link(tmp_path: 
     assert result.exit_code == 1
     rules = [line.rsplit("[", 1)[1] for line in result.stderr.splitlines()]
     assert rules == ["shape-size]", "bad-vector]"]
+
+
+@pytest.mark.parametrize(
+    "shape",
+    [
+        '<capsule radius="0.1" length="0.2"/>',  # no URDF shape: none is read
+        '<box size="{x} {y} {z}"/>',  # a template's placeholders: no number is read
+        '<sphere radius="r"/>',
+    ],
+)
+def test_a_shape_whose_size_cannot_be_read_is_not_said_to_be_of_size_0(
+    tmp_path: Path, shape: str
+) -> None:
+    path = tmp_path / "r.urdf"
+    path.write_text(ROBOT.format(kind="collision", shape=shape), encoding="utf-8")
+    result = CliRunner().invoke(cli, ["check", "-q", str(path)])
+    assert result.exit_code == 1
+    assert "[shape-size]" not in result.stderr, result.stderr

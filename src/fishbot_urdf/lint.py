@@ -173,10 +173,10 @@ def _rule_findings(
     # A link or joint whose values could not be read has no trustworthy numbers: findings
     # about them would only repeat the fault (a mass of "1kg" read as none is no "massless
     # link", an effort limit left out is no "zero effort").
-    unread: dict[Subject, set[str]] = {}
+    unread: dict[Subject, list[Diagnostic]] = {}
     for d in read_findings:
         if d.is_error and d.subject is not None and d.subject.kind in (Kind.LINK, Kind.JOINT):
-            unread.setdefault(d.subject, set()).add(d.rule)
+            unread.setdefault(d.subject, []).append(d)
     mm = config.ground_tolerance
     settings = Settings(packages, GROUND_TOLERANCE if mm is None else mm / 1000.0)
     # A check runs only when one of its rules is selected (--ignore meshes reads no mesh file).
@@ -185,9 +185,11 @@ def _rule_findings(
             continue
         for finding in check.run(analysis, settings):
             subject = finding.subject
-            causes = unread.get(subject) if check.uses_values and subject is not None else None
-            if causes:
-                finding = replace(finding, follows=tuple(sorted(causes)))
+            faults = unread.get(subject, []) if check.uses_values and subject is not None else []
+            if check.by_line and finding.line is not None:
+                faults = [d for d in faults if (d.path, d.line) == (finding.path, finding.line)]
+            if faults:
+                finding = replace(finding, follows=tuple(sorted({d.rule for d in faults})))
             yield finding
 
 

@@ -56,12 +56,17 @@ class Check:
         uses_values: Whether it judges the numbers of links and joints: its findings about
             one whose values could not be read follow from that fault (names and the tree's
             shape are read even then).
+        by_line: Whether each of its findings judges one element's own numbers (a shape's
+            size): it follows only from a value that could not be read on that element's
+            line, so that one shape's fault hides none of its link's other shapes (a finding
+            with no line, about a shape made up where none could be read, follows from any).
     """
 
     name: str
     reports: tuple[Rule, ...]
     run: Callable[[Analysis, Settings], Iterable[Diagnostic]]
     uses_values: bool = True
+    by_line: bool = False
 
 
 CHECKS: tuple[Check, ...] = (
@@ -73,9 +78,7 @@ CHECKS: tuple[Check, ...] = (
     ),
     Check("joints", joints.REPORTS, lambda analysis, _: joints.joints(analysis)),
     Check("references", references.REPORTS, lambda analysis, _: references.references(analysis)),
-    # Each shape's size is judged alone: a value that could not be read drops its own shape
-    # and says nothing of the link's others, so their findings follow from no other fault.
-    Check("shapes", shapes.REPORTS, lambda analysis, _: shapes.shapes(analysis), uses_values=False),
+    Check("shapes", shapes.REPORTS, lambda analysis, _: shapes.shapes(analysis), by_line=True),
     Check("meshes", meshes.REPORTS, lambda analysis, s: meshes.meshes(analysis, s.packages)),
     Check(
         "physics",
