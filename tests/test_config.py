@@ -413,7 +413,7 @@ def test_a_configuration_that_cannot_be_read(arm: Path, monkeypatch: pytest.Monk
 
 def test_a_wrong_option_is_a_usage_error(arm: Path) -> None:
     families = (
-        "families: xml, urdf, structure, joints, references, meshes, physics, xacro, setup, lint"
+        "families: xml, urdf, structure, joints, references, meshes, physics, gazebo, xacro, setup, lint"
     )
     cases = {
         ("--select", "structure,physic"): "Invalid value for '--select': no rule or family "

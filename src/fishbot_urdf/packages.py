@@ -36,6 +36,7 @@ __all__ = [
     "find_package",
     "package_name",
     "resolve_package_uri",
+    "ros_version",
     "upward_folders",
 ]
 
@@ -82,6 +83,51 @@ def package_name(package_xml: str | Path) -> str | None:
     except InputError:
         return None
     return _name_in(data)
+
+
+def ros_version(package_xml: str | Path) -> int | None:
+    """The ROS a package.xml builds with: 2 for ament (``ament_cmake``, ``ament_python``), 1
+    for catkin, by its ``<buildtool_depend>`` and ``<export><build_type>``; None when it names
+    neither or cannot be read (as for `package_name`)."""
+    try:
+        data = read_input(package_xml)
+    except InputError:
+        return None
+    tools: list[str] = []
+    parts: list[str] = []
+    inside = False
+
+    def start(tag: str, attributes: object) -> None:
+        nonlocal inside
+        inside = tag.rpartition(" ")[2] in ("buildtool_depend", "build_type")
+        parts.clear()
+
+    def end(tag: str) -> None:
+        nonlocal inside
+        if inside:
+            tools.append("".join(parts).strip())
+        inside = False
+
+    def text(chunk: str) -> None:
+        if inside:
+            parts.append(chunk)
+
+    def refuse(*_: object) -> None:
+        raise _NotRead
+
+    parser = expat.ParserCreate(namespace_separator=" ")
+    parser.SetParamEntityParsing(expat.XML_PARAM_ENTITY_PARSING_NEVER)
+    parser.StartElementHandler = start
+    parser.EndElementHandler = end
+    parser.CharacterDataHandler = text
+    parser.EntityDeclHandler = refuse
+    try:
+        parser.Parse(data, True)
+    except (expat.ExpatError, _NotRead, ValueError):
+        return None
+    if any(tool.startswith("ament") for tool in tools):
+        return 2
+    return 1 if "catkin" in tools else None
 
 
 class _NotRead(Exception):

@@ -14,7 +14,18 @@ from functools import cache
 from types import MappingProxyType, ModuleType
 
 from ..errors import UnknownNameError
-from . import joints, meshes, physics, reading, references, setup, structure, xacro, xml
+from . import (
+    gazebo,
+    joints,
+    meshes,
+    physics,
+    reading,
+    references,
+    setup,
+    structure,
+    xacro,
+    xml,
+)
 from ._rule import Consumer, Family, Rule
 
 __all__ = ["Consumer", "Family", "Rule", "all_rules", "get", "ids", "rules_in"]
@@ -58,7 +69,7 @@ def rules_in(module: ModuleType) -> tuple[Rule, ...]:
 def _collect() -> dict[str, Rule]:
     found: dict[str, Rule] = {}
     order = list(Family)
-    modules = (xml, reading, structure, joints, references, meshes, physics, xacro, setup)
+    modules = (xml, reading, structure, joints, references, meshes, physics, gazebo, xacro, setup)
     rules = [r for module in modules for r in rules_in(module)]
     for rule in sorted(rules, key=lambda r: (order.index(r.family), r.id)):
         if rule.id in found and found[rule.id] is not rule:

@@ -25,6 +25,7 @@ class Family(str, Enum):
     REFERENCES = "references"
     MESHES = "meshes"
     PHYSICS = "physics"
+    GAZEBO = "gazebo"
     XACRO = "xacro"
     SETUP = "setup"
     LINT = "lint"

@@ -16,7 +16,7 @@ from ..analysis import Analysis
 from ..catalog import Consumer, Family, Rule, all_rules, get, ids
 from ..diagnostics import Diagnostic
 from ..packages import PackageFinder
-from . import joints, meshes, physics, references, shapes, structure
+from . import gazebo, joints, meshes, physics, references, shapes, structure
 
 __all__ = [
     "CHECKS",
@@ -85,5 +85,6 @@ CHECKS: tuple[Check, ...] = (
         physics.REPORTS,
         lambda analysis, s: physics.physics(analysis, ground_tolerance=s.ground_tolerance),
     ),
+    Check("gazebo", gazebo.REPORTS, lambda analysis, _: gazebo.gazebo(analysis)),
 )
 """Every check, in the order its findings come."""

@@ -1,0 +1,38 @@
+"""Rules about Gazebo's plugins and sensors: each held to the robot it is written in."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from ...analysis import Analysis
+from ...catalog import Rule, rules_in
+from ...catalog import gazebo as catalog
+from ...diagnostics import Diagnostic
+from ._blocks import blocks
+from ._drive import drives
+from ._sensors import sensors
+from ._versions import ros_versions, simulators
+
+__all__ = ["REPORTS", "gazebo"]
+
+
+def gazebo(analysis: Analysis, select: frozenset[str] | None = None) -> Iterator[Diagnostic]:
+    """Every finding about the robot's Gazebo plugins and sensors (of the rules in
+    ``select``, by id; None: all of them)."""
+    chosen = frozenset(r.id for r in REPORTS) if select is None else select
+    found = blocks(analysis)
+    if not found:
+        return
+    drive = {catalog.DIFF_DRIVE_SIZE.id, catalog.DIFF_DRIVE_WHEELS.id}
+    for block in found:
+        if chosen & drive:
+            yield from drives(analysis, block)
+        yield from sensors(analysis, block, select=chosen)
+    if catalog.PLUGIN_ROS_VERSION.id in chosen:
+        yield from ros_versions(analysis, found)
+    if catalog.PLUGIN_SIMULATOR.id in chosen:
+        yield from simulators(analysis, found)
+
+
+REPORTS: tuple[Rule, ...] = rules_in(catalog)
+"""Every rule this module's check may report: the check runs only when one is selected."""
