@@ -393,7 +393,7 @@ def test_each_check_reports_only_the_rules_it_lists(tmp_path: Path) -> None:
     # rule's failing and passing example, read and analysed, goes through each check.
     from fishbot_urdf.analysis import analyse
     from fishbot_urdf.parsing import read
-    from fishbot_urdf.rules import joints, meshes, physics, references
+    from fishbot_urdf.rules import gazebo, joints, meshes, physics, references
 
     seen: dict[str, set[str]] = {}
     for rule in all_rules():
@@ -416,10 +416,11 @@ def test_each_check_reports_only_the_rules_it_lists(tmp_path: Path) -> None:
                 (references, references.references(analysis)),
                 (meshes, meshes.meshes(analysis, None)),
                 (physics, physics.physics(analysis)),
+                (gazebo, gazebo.gazebo(analysis)),
             ):
                 rules = {d.rule for d in found}
                 assert rules <= {r.id for r in module.REPORTS}, (rule.id, rules)
                 seen.setdefault(module.__name__, set()).update(rules)
-    for module in (joints, references, meshes, physics):  # each listed rule is met
+    for module in (joints, references, meshes, physics, gazebo):  # each listed rule is met
         listed = {r.id for r in module.REPORTS} - {"bad-number", "negative-mass"}
         assert listed <= seen[module.__name__], listed - seen[module.__name__]
