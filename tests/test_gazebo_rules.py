@@ -215,3 +215,25 @@ def test_a_left_out_wheel_diameter_is_the_default_held_to_the_robot(tmp_path: Pa
 
 def test_the_rules_can_be_turned_off() -> None:
     assert _check(ROBOT, "separation:=0.34", "--ignore", "gazebo") == (0, TREE, "")
+
+
+@pytest.mark.parametrize(
+    ("manifest", "version"),
+    [
+        (
+            "<package format='3'><name>a</name><export><build_type>ament_python</build_type>"
+            "</export></package>",
+            2,
+        ),
+        (
+            "<package format='2'><name>a</name><buildtool_depend>catkin</buildtool_depend>"
+            "</package>",
+            1,
+        ),
+        ("<package format='3'><name>a</name></package>", None),
+        ("<package", None),
+    ],
+)
+def test_the_ros_a_package_xml_builds_with(tmp_path: Path, manifest: str, version: int) -> None:
+    (tmp_path / "package.xml").write_text(manifest, encoding="utf-8")
+    assert ros_version(tmp_path / "package.xml") == version

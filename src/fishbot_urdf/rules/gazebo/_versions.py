@@ -82,6 +82,8 @@ _NEW = (
 
 def ros_versions(analysis: Analysis, found: Sequence[Block]) -> Iterator[Diagnostic]:
     """ROS 1 plugins and plugin parameters, in a robot of ROS 2."""
+    if not any(_ros1(plugin) for block in found for plugin in plugins(block)):
+        return  # (nearly always): no package.xml is read
     if _ros(analysis, found) != 2:
         return
     subject = Subject(Kind.ROBOT, analysis.robot.name)
@@ -117,6 +119,16 @@ def ros_versions(analysis: Analysis, found: Sequence[Block]) -> Iterator[Diagnos
                     subject=subject,
                     hint=f"write them as ROS 2 does: {instead}",
                 )
+
+
+def _ros1(plugin: etree._Element) -> bool:
+    """Whether ``plugin`` is a ROS 1 plugin file or is given a ROS 1 parameter."""
+    filename = plugin.get("filename") or ""
+    if filename in _ROS1_ONLY:
+        return True
+    return filename.startswith("libgazebo_ros") and any(
+        child.tag in _ROS1_PARAMETERS for child in plugin
+    )
 
 
 def simulators(analysis: Analysis, found: Sequence[Block]) -> Iterator[Diagnostic]:
