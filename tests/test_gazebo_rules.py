@@ -234,6 +234,8 @@ def test_the_rules_can_be_turned_off() -> None:
         ("<package", None),
     ],
 )
-def test_the_ros_a_package_xml_builds_with(tmp_path: Path, manifest: str, version: int) -> None:
+def test_the_ros_a_package_xml_builds_with(
+    tmp_path: Path, manifest: str, version: int | None
+) -> None:
     (tmp_path / "package.xml").write_text(manifest, encoding="utf-8")
     assert ros_version(tmp_path / "package.xml") == version
