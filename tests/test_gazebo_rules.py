@@ -11,6 +11,7 @@ from click.testing import CliRunner
 from conftest import DATA
 
 from fishbot_urdf import check_file
+from fishbot_urdf.catalog import get
 from fishbot_urdf.cli import cli
 from fishbot_urdf.diagnostics import shown_path
 from fishbot_urdf.packages import ros_version
@@ -239,3 +240,13 @@ def test_the_ros_a_package_xml_builds_with(
 ) -> None:
     (tmp_path / "package.xml").write_text(manifest, encoding="utf-8")
     assert ros_version(tmp_path / "package.xml") == version
+
+
+def test_a_gpu_lidar_inside_the_robot_is_not_judged(tmp_path: Path) -> None:
+    # it renders the visuals: the collision shapes it starts in are not in its way
+    bad = get("sensor-self-hit").bad
+    path = tmp_path / "robot.urdf"
+    path.write_text(bad.replace('type="ray">', 'type="gpu_ray">'), encoding="utf-8")
+    assert check_file(path).diagnostics == ()
+    path.write_text(bad, encoding="utf-8")
+    assert [d.rule for d in check_file(path).diagnostics] == ["sensor-self-hit"]

@@ -176,10 +176,12 @@ SENSOR_SELF_HIT = Rule(
     Family.GAZEBO,
     summary="A ray sensor starts inside a collision shape of the robot and its minimum range "
     "does not reach out of it.",
-    explanation="A lidar's rays start at its frame. When that frame lies inside one of the "
-    "robot's collision shapes, every ray shorter than the way out of the shape hits the robot "
-    "itself, and the scan shows an obstacle all around it. Raise the sensor out of the shape, or "
-    "set its minimum range past the shape's surface.",
+    explanation="A `ray` (or `lidar`) sensor casts its rays through the physics engine's "
+    "collision shapes, from its frame. When that frame lies inside one of the robot's collision "
+    "shapes, every ray shorter than the way out of the shape hits the robot itself, and the "
+    "scan shows an obstacle all around it (a `gpu_ray` sensor renders the visuals instead, and "
+    "is not judged). Raise the sensor out of the shape, or set its minimum range past the "
+    "shape's surface.",
     bad=_LASER.format(z="0.05"),
     good=_LASER.format(z="0.08"),
     consumers=(Consumer.GAZEBO,),

@@ -17,6 +17,8 @@ from ._blocks import Block, number, text
 __all__ = ["sensors"]
 
 _RAYS = ("ray", "gpu_ray", "lidar", "gpu_lidar")
+# Rays cast through the physics engine's collision shapes; a GPU one renders the visuals.
+_PHYSICS_RAYS = ("ray", "lidar")
 _CAMERAS = ("camera", "depth", "depth_camera", "rgbd_camera", "rgbd", "multicamera")
 _DIRECTIONS = 360  # ray directions looked at, at most
 _EPS = 1e-9
@@ -40,7 +42,7 @@ def sensors(analysis: Analysis, block: Block, *, select: frozenset[str]) -> Iter
                     subject=_subject(analysis, block),
                     hint=hint,
                 )
-        if SENSOR_SELF_HIT.id in select and kind in _RAYS:
+        if SENSOR_SELF_HIT.id in select and kind in _PHYSICS_RAYS:
             yield from _self_hit(analysis, block, sensor, label)
 
 
