@@ -250,3 +250,32 @@ def test_a_gpu_lidar_inside_the_robot_is_not_judged(tmp_path: Path) -> None:
     assert check_file(path).diagnostics == ()
     path.write_text(bad, encoding="utf-8")
     assert [d.rule for d in check_file(path).diagnostics] == ["sensor-self-hit"]
+
+
+MIXED = """\
+<robot name="fishbot">
+  <link name="base_link"/>
+  <ros2_control name="fishbot" type="system">
+    <hardware><plugin>{hardware}</plugin></hardware>
+  </ros2_control>
+  <gazebo><plugin filename="libgazebo_ros2_control.so" name="gazebo_ros2_control"/></gazebo>
+</robot>
+"""
+
+
+@pytest.mark.parametrize(
+    ("hardware", "found"),
+    [
+        ("gazebo_ros2_control/GazeboSystem", []),
+        ("gz_ros2_control/GazeboSimSystem", ["libgazebo_ros2_control.so"]),
+    ],
+)
+def test_ros2_control_s_hardware_plugin_says_which_gazebo(
+    tmp_path: Path, hardware: str, found: list[str]
+) -> None:
+    # one of each kind: the one that comes second is the odd one out
+    path = tmp_path / "robot.urdf"
+    path.write_text(MIXED.format(hardware=hardware), encoding="utf-8")
+    result = check_file(path).diagnostics
+    assert [d.rule for d in result] == ["plugin-simulator"] * len(found)
+    assert [d.message.split("'")[1] for d in result] == found

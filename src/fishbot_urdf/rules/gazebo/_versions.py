@@ -136,17 +136,17 @@ def simulators(analysis: Analysis, found: Sequence[Block]) -> Iterator[Diagnosti
     kind fewer in number (on a tie, of the kind that comes second)."""
     classic: list[tuple[Block, etree._Element, str]] = []
     new: list[tuple[Block, etree._Element, str]] = []
+    new_first = False  # whether the first of either kind, in file order, is the new Gazebo's
     for block in found:
         for element, name in _loaded(block):
             if name.startswith(_CLASSIC):
                 classic.append((block, element, name))
             elif name.startswith(_NEW):
+                new_first = new_first or not classic
                 new.append((block, element, name))
     if not classic or not new:
         return
-    if len(classic) < len(new) or (
-        len(classic) == len(new) and _first_line(new) <= _first_line(classic)
-    ):
+    if len(classic) < len(new) or (len(classic) == len(new) and new_first):
         odd, kind, other = classic, "Gazebo Classic", "the new Gazebo (gz-sim)"
     else:
         odd, kind, other = new, "the new Gazebo (gz-sim)", "Gazebo Classic"
@@ -173,11 +173,6 @@ def _loaded(block: Block) -> Iterator[tuple[etree._Element, str]]:
         return
     for plugin in plugins(block):
         yield plugin, plugin.get("filename") or ""
-
-
-def _first_line(found: Sequence[tuple[Block, etree._Element, str]]) -> int:
-    where = found[0][0].where
-    return where.line if where is not None else 0
 
 
 def _ros(analysis: Analysis, found: Sequence[Block]) -> int | None:
