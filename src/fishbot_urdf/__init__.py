@@ -38,6 +38,7 @@ if TYPE_CHECKING:
         XmlSyntaxError,
     )
     from .expansion import Expansion, XacroError, expand
+    from .export.sdf import to_sdf
     from .graph import chain, leaves, root, subtree, to_networkx, tree_text
     from .inertia import (
         Filling,
@@ -208,6 +209,7 @@ __all__ = [
     "to_dot",
     "to_mermaid",
     "to_networkx",
+    "to_sdf",
     "to_urdf",
     "topology",
     "transform",
@@ -321,6 +323,7 @@ _WHERE = {
     "to_dot": "drawing.dot",
     "to_mermaid": "drawing.mermaid",
     "to_networkx": "graph",
+    "to_sdf": "export.sdf",
     "to_urdf": "write",
     "topology": "analysis.topology",
     "transform": "kinematics",

@@ -1,0 +1,349 @@
+"""URDF -> SDF as sdformat's converter writes it (sdformat 12, Gazebo Fortress: what
+`ign sdf -p robot.urdf` prints), from the analysis of the robot.
+
+The converter lumps every link hung on a fixed joint into its parent (inertials summed as
+ODE sums them, visuals and collisions carried over and renamed), leaves out each link that
+then has no mass, with everything below it, and writes the rest as links and joints of one
+model, in its own order and number format.
+"""
+
+from __future__ import annotations
+
+import struct
+from collections.abc import Iterator, Mapping
+from typing import NamedTuple
+from xml.sax.saxutils import escape
+
+from ..analysis import Analysis, of
+from ..errors import ArgumentError, StructureError
+from ..model import (
+    Box,
+    Cylinder,
+    Geometry,
+    Joint,
+    JointType,
+    Link,
+    Material,
+    Mesh,
+    Origin,
+    Robot,
+    Sphere,
+)
+from ..spatial import urdfdom_angles, urdfdom_quaternion
+from ._lumping import Mass, Placement, euler, lump, reach
+
+__all__ = ["to_sdf"]
+
+_LUMP = "_fixed_joint_lump__"  # between a body's name and a lumped shape's
+_TYPES = {  # URDF joint type -> SDF's; floating and planar joints are left out
+    JointType.REVOLUTE: "revolute",
+    JointType.CONTINUOUS: "revolute",
+    JointType.PRISMATIC: "prismatic",
+    JointType.FIXED: "fixed",
+}
+_ZERO_POSE = "0 0 0 0 0 0"
+
+
+class _Shape(NamedTuple):
+    """A visual or collision as the converter carries it: its name ("" for none), where it
+    is in the link that holds it, its geometry and (visuals) its material."""
+
+    name: str
+    placement: Placement
+    geometry: Geometry
+    material: Material | None = None
+
+
+def to_sdf(robot: Robot | Analysis) -> str:
+    """The SDF that sdformat 12's URDF converter makes of ``robot``, as `ign sdf -p` prints it.
+
+    SDF version 1.9, numbers as the converter prints them (16 significant digits, a zero as
+    ``0``): masses in kg, lengths in metres, angles in radians, inertias in kg*m^2.
+
+    Links on fixed joints are lumped into their parents; a link left without mass (none,
+    or within 1e-6 kg of 0) is left out with all below it; ``package://`` mesh names become
+    ``model://``.
+
+    Raises:
+        StructureError: The robot has no single root or has a joint loop (sdformat's
+            URDF reader refuses it).
+        ArgumentError: The robot has ``<gazebo>`` elements (not converted yet).
+    """
+    analysis = of(robot)
+    if any(text.startswith("<gazebo") for text in analysis.robot.extras):
+        raise ArgumentError(
+            f"robot {analysis.robot.name!r} has <gazebo> elements, which to_sdf does not "
+            "convert yet",
+            name="robot",
+        )
+    root = analysis.root
+    if analysis.loops:
+        raise StructureError(f"robot {analysis.robot.name!r} has a joint loop")
+    model = _Model(analysis)
+    model.reduce(root)
+    body = list(model.emit(root)) if root != "world" else []
+    if root == "world":
+        for joint in analysis.topology.children[root]:
+            body += model.emit(joint.child)
+    name = _attr(analysis.robot.name)
+    if not body:
+        return f"<sdf version='1.9'>\n  <model name={name}/>\n</sdf>\n"
+    lines = [f"    {line}" for element in body for line in element]
+    return "\n".join(
+        ["<sdf version='1.9'>", f"  <model name={name}>", *lines, "  </model>", "</sdf>", ""]
+    )
+
+
+class _Model:
+    """The converter's state: each link's inertial and shapes, each moving joint's parent
+    and placement, as lumping changes them."""
+
+    def __init__(self, analysis: Analysis) -> None:
+        self.analysis = analysis
+        materials = _materials(analysis.robot)
+        self.mass: dict[str, Mass | None] = {}
+        self.visuals: dict[str, list[_Shape]] = {}
+        self.collisions: dict[str, list[_Shape]] = {}
+        for link in analysis.links.values():
+            self.mass[link.name] = _mass(link)
+            self.visuals[link.name] = [
+                _Shape(
+                    v.name or "", _placement(v.origin), v.geometry, materials.get(id(v), v.material)
+                )
+                for v in link.visuals
+            ]
+            self.collisions[link.name] = [
+                _Shape(c.name or "", _placement(c.origin), c.geometry) for c in link.collisions
+            ]
+        self.parent: dict[str, str] = {}  # a moving joint's parent, once lumping moved it
+        self.placement: dict[str, Placement] = {
+            j.name: _placement(j.origin) for j in analysis.joints.values()
+        }
+
+    def _lumped(self, joint: Joint | None) -> bool:
+        return joint is not None and joint.type is JointType.FIXED and joint.parent != "world"
+
+    def reduce(self, link: str) -> None:
+        """Lump ``link``'s fixed subtree into it and ``link`` into its parent, then go on
+        below its moving joints: ReduceFixedJoints' order."""
+        children = self.analysis.topology.children[link]
+        for joint in children:
+            if joint.type is JointType.FIXED:
+                self.reduce(joint.child)
+        above = self.analysis.parent_joint.get(link)
+        if above is not None and self._lumped(above):
+            self._lump(link, above)
+        for joint in children:
+            if joint.type is not JointType.FIXED:
+                self.reduce(joint.child)
+
+    def _lump(self, link: str, joint: Joint) -> None:
+        parent, at = joint.parent, self.placement[joint.name]
+        mass = self.mass[link]
+        if mass is not None:
+            self.mass[parent] = lump(self.mass[parent], mass, at)
+        for shapes in (self.visuals, self.collisions):
+            shapes[parent] += [
+                s._replace(name=s.name or link, placement=reach([at], s.placement))
+                for s in shapes[link]
+            ]
+        parent_joint = self.analysis.parent_joint
+        for below in self.analysis.topology.children[link]:
+            if below.type is JointType.FIXED:
+                continue
+            # the joint now hangs from the first link up that no fixed joint holds
+            holder, up = link, parent_joint.get(link)
+            while up is not None and self._lumped(up):
+                self.placement[below.name] = reach(
+                    [self.placement[up.name]], self.placement[below.name]
+                )
+                holder = up.parent
+                up = parent_joint.get(holder)
+            self.parent[below.name] = holder
+
+    def emit(self, link: str) -> Iterator[list[str]]:
+        """The elements of ``link`` and below (each as lines): CreateSDF's order."""
+        mass = self.mass[link]
+        if link != "world" and (mass is None or abs(mass.mass) <= 1e-6):
+            return  # no mass: left out, and everything below it
+        above = self.analysis.parent_joint.get(link)
+        if not self._lumped(above):
+            if above is not None and above.type in _TYPES:
+                yield self._joint(above)
+            yield self._link(link, above, mass)
+        for joint in self.analysis.topology.children[link]:
+            yield from self.emit(joint.child)
+
+    def _joint(self, joint: Joint) -> list[str]:
+        kind = _TYPES[joint.type]
+        parent = self.parent.get(joint.name, joint.parent)
+        at = self.placement[joint.name]
+        relative = "__model__" if parent == "world" else parent
+        lines = [
+            f"<joint name={_attr(joint.name)} type='{kind}'>",
+            f"  <pose relative_to={_attr(relative)}>{_pose(at.xyz, euler(at.rotation))}</pose>",
+            f"  <parent>{escape(parent)}</parent>",
+            f"  <child>{escape(joint.child)}</child>",
+        ]
+        if kind != "fixed":
+            lines += ["  <axis>", f"    <xyz>{_numbers(joint.axis)}</xyz>", "    <limit>"]
+            lines += [f"      {line}" for line in _limits(joint)]
+            lines += ["    </limit>", "    <dynamics>"]
+            if joint.dynamics is not None:
+                lines.append(f"      <damping>{_number(joint.dynamics.damping)}</damping>")
+                lines.append(f"      <friction>{_number(joint.dynamics.friction)}</friction>")
+            lines += [
+                "      <spring_reference>0</spring_reference>",
+                "      <spring_stiffness>0</spring_stiffness>",
+                "    </dynamics>",
+                "  </axis>",
+            ]
+        return [*lines, "</joint>"]
+
+    def _link(self, name: str, above: Joint | None, mass: Mass | None) -> list[str]:
+        lines = [f"<link name={_attr(name)}>"]
+        if above is not None:
+            lines.append(f"  <pose relative_to={_attr(above.name)}>{_ZERO_POSE}</pose>")
+        if mass is not None:
+            lines += [f"  {line}" for line in _inertial(mass)]
+        for kind, shapes in (("collision", self.collisions[name]), ("visual", self.visuals[name])):
+            for number, shape in enumerate(shapes):
+                lines += [f"  {line}" for line in _shape(kind, name, number, shape)]
+        return [*lines, "</link>"]
+
+
+def _materials(robot: Robot) -> Mapping[int, Material]:
+    """Each visual's material (by the visual's id) as urdfdom resolves it: a material of the
+    same name defined at the top level, or by a visual before it, comes first."""
+    known: dict[str, Material] = {}
+    for material in robot.materials:
+        known.setdefault(material.name, material)
+    found: dict[int, Material] = {}
+    for link in robot.links:
+        for visual in link.visuals:
+            if visual.material is None or not visual.material.name:
+                continue
+            first = known.setdefault(visual.material.name, visual.material)
+            found[id(visual)] = first
+    return found
+
+
+def _mass(link: Link) -> Mass | None:
+    inertial = link.inertial
+    if inertial is None:
+        return None
+    i = inertial.inertia
+    frame = _placement(inertial.origin)
+    return Mass(inertial.mass, frame, (i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz))
+
+
+def _placement(origin: Origin) -> Placement:
+    return Placement(origin.xyz, urdfdom_quaternion(origin.rpy))
+
+
+def _limits(joint: Joint) -> list[str]:
+    """The limit's children as the converter writes them and the SDF reader completes them
+    (a missing lower and upper read as -1e16 and 1e16)."""
+    limit = joint.limit
+    lines = []
+    if limit is not None:
+        if joint.type is not JointType.CONTINUOUS:
+            lower, upper = sorted((limit.lower, limit.upper))  # sdformat swaps reversed ones
+            lines += [f"<lower>{_number(lower)}</lower>", f"<upper>{_number(upper)}</upper>"]
+        lines += [f"<effort>{_number(limit.effort)}</effort>"]
+        lines += [f"<velocity>{_number(limit.velocity)}</velocity>"]
+    if limit is None or joint.type is JointType.CONTINUOUS:
+        lines += ["<lower>-1e16</lower>", "<upper>1e16</upper>"]
+    return lines
+
+
+def _inertial(mass: Mass) -> list[str]:
+    ixx, ixy, ixz, iyy, iyz, izz = mass.inertia
+    return [
+        "<inertial>",
+        f"  <pose>{_pose(mass.frame.xyz, euler(mass.frame.rotation))}</pose>",
+        f"  <mass>{_number(mass.mass)}</mass>",
+        "  <inertia>",
+        *(
+            f"    <{tag}>{_number(value)}</{tag}>"
+            for tag, value in zip(
+                ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"),
+                (ixx, ixy, ixz, iyy, iyz, izz),
+                strict=True,
+            )
+        ),
+        "  </inertia>",
+        "</inertial>",
+    ]
+
+
+def _shape(kind: str, link: str, number: int, shape: _Shape) -> list[str]:
+    name = f"{shape.name or link}_{kind}" + (f"_{number}" if number else "")
+    if not name.startswith(link):
+        name = f"{link}{_LUMP}{name}"
+    lines = [
+        f"<{kind} name={_attr(name)}>",
+        f"  <pose>{_pose(shape.placement.xyz, urdfdom_angles(shape.placement.rotation))}</pose>",
+        *(f"  {line}" for line in _geometry(shape.geometry)),
+    ]
+    if shape.material is not None:
+        lines += [f"  {line}" for line in _material(shape.material)]
+    return [*lines, f"</{kind}>"]
+
+
+def _geometry(geometry: Geometry) -> list[str]:
+    if isinstance(geometry, Box):
+        inner = ["<box>", f"  <size>{_numbers(geometry.size)}</size>", "</box>"]
+    elif isinstance(geometry, Cylinder):
+        inner = [
+            "<cylinder>",
+            f"  <length>{_number(geometry.length)}</length>",
+            f"  <radius>{_number(geometry.radius)}</radius>",
+            "</cylinder>",
+        ]
+    elif isinstance(geometry, Sphere):
+        inner = ["<sphere>", f"  <radius>{_number(geometry.radius)}</radius>", "</sphere>"]
+    elif isinstance(geometry, Mesh):
+        scale = geometry.scale or (1.0, 1.0, 1.0)
+        uri = geometry.filename.replace("package://", "model://", 1)
+        inner = [
+            "<mesh>",
+            # the converter writes a mesh's scale with C++'s default 6 digits
+            f"  <scale>{' '.join(f'{v:g}' for v in scale)}</scale>",
+            f"  <uri>{escape(uri)}</uri>",
+            "</mesh>",
+        ]
+    else:  # pragma: no cover - the model has no other geometry
+        return []
+    return ["<geometry>", *(f"  {line}" for line in inner), "</geometry>"]
+
+
+def _material(material: Material) -> list[str]:
+    """urdfdom's colour (single precision; black if none) as Gazebo's diffuse and ambient."""
+    rgba = material.color or (0.0, 0.0, 0.0, 1.0)
+    r, g, b, a = (struct.unpack("f", struct.pack("f", v))[0] for v in rgba)
+    diffuse = [min(max(c / 0.8, 0.0), 1.0) for c in (r, g, b)]
+    ambient = [min(max(0.5 * c / 0.4, 0.0), 1.0) for c in (r, g, b)]
+    return [
+        "<material>",
+        f"  <diffuse>{_numbers((*diffuse, a))}</diffuse>",
+        f"  <ambient>{_numbers((*ambient, a))}</ambient>",
+        "</material>",
+    ]
+
+
+def _number(value: float) -> str:
+    """A number as the converter prints it: C++'s 16 significant digits, a zero as 0."""
+    return "0" if value == 0 else f"{value:.16g}"
+
+
+def _numbers(values: tuple[float, ...] | list[float]) -> str:
+    return " ".join(_number(v) for v in values)
+
+
+def _pose(xyz: tuple[float, float, float], rpy: tuple[float, float, float]) -> str:
+    return _numbers((*xyz, *rpy))
+
+
+def _attr(value: str) -> str:
+    return "'" + escape(value, {"'": "&apos;"}) + "'"
