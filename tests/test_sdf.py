@@ -134,3 +134,36 @@ def test_a_robot_without_one_root_is_refused() -> None:
     robot = fishbot_urdf.parse('<robot name="r"><link name="a"/><link name="b"/></robot>')
     with pytest.raises(StructureError, match="one root link"):
         fishbot_urdf.to_sdf(robot)
+
+
+@pytest.mark.parametrize(
+    ("body", "why"),
+    [
+        ('<link name="a"/><link name="a"/>', "a link or joint name used twice"),
+        (
+            '<link name="a"/><link name="b"/><link name="c"/>'
+            '<joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>'
+            '<joint name="j2" type="fixed"><parent link="a"/><child link="c"/></joint>'
+            '<joint name="j3" type="fixed"><parent link="b"/><child link="c"/></joint>',
+            "a link that is the child of several joints",
+        ),
+    ],
+)
+def test_a_tree_urdfdom_would_not_build_is_refused(body: str, why: str) -> None:
+    robot = fishbot_urdf.parse(f'<robot name="r">{body}</robot>')
+    with pytest.raises(StructureError, match=why):
+        fishbot_urdf.to_sdf(robot)
+
+
+def test_a_chain_deeper_than_python_recurses_converts() -> None:
+    mass = '<inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>'
+    links = "".join(f'<link name="l{i}">{mass}</inertial></link>' for i in range(1200))
+    joints = "".join(
+        f'<joint name="j{i}" type="{"fixed" if i % 2 else "revolute"}"><parent link="l{i}"/>'
+        f'<child link="l{i + 1}"/><limit effort="1" velocity="1"/></joint>'
+        for i in range(1199)
+    )
+    sdf = fishbot_urdf.to_sdf(fishbot_urdf.parse(f'<robot name="r">{links}{joints}</robot>'))
+    root = ET.fromstring(sdf)
+    assert len(root.findall("model/link")) == 601  # l2, l4, ... l1198 lumped into their parents
+    assert root.findall("model/joint")[-1].findtext("parent") == "l1197"  # j1198, moved up

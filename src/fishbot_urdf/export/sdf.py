@@ -77,8 +77,7 @@ def to_sdf(robot: Robot | Analysis) -> str:
             name="robot",
         )
     root = analysis.root
-    if analysis.loops:
-        raise StructureError(f"robot {analysis.robot.name!r} has a joint loop")
+    _refuse_what_urdfdom_refuses(analysis)
     model = _Model(analysis)
     model.reduce(root)
     body = list(model.emit(root)) if root != "world" else []
@@ -92,6 +91,22 @@ def to_sdf(robot: Robot | Analysis) -> str:
     return "\n".join(
         ["<sdf version='1.9'>", f"  <model name={name}>", *lines, "  </model>", "</sdf>", ""]
     )
+
+
+def _refuse_what_urdfdom_refuses(analysis: Analysis) -> None:
+    """Stop on a robot whose tree urdfdom (the converter's reader) would not build."""
+    robot, topology = analysis.robot, analysis.topology
+    why = None
+    if len(analysis.links) != len(robot.links) or len(analysis.joints) != len(robot.joints):
+        why = "a link or joint name used twice"
+    elif analysis.loops:
+        why = "a joint loop"
+    elif any(len(joints) > 1 for joints in topology.parents.values()):
+        why = "a link that is the child of several joints"
+    elif any(j.parent not in analysis.links or j.child not in analysis.links for j in robot.joints):
+        why = "a joint between links it does not define"
+    if why is not None:
+        raise StructureError(f"robot {robot.name!r} has {why}: sdformat's reader refuses it")
 
 
 class _Model:
@@ -120,22 +135,32 @@ class _Model:
             j.name: _placement(j.origin) for j in analysis.joints.values()
         }
 
+    def _above(self, link: str) -> Joint | None:
+        """The joint ``link`` hangs from (between links the robot defines), if any."""
+        parents = self.analysis.topology.parents.get(link)
+        return parents[0] if parents else None
+
     def _lumped(self, joint: Joint | None) -> bool:
         return joint is not None and joint.type is JointType.FIXED and joint.parent != "world"
 
-    def reduce(self, link: str) -> None:
-        """Lump ``link``'s fixed subtree into it and ``link`` into its parent, then go on
-        below its moving joints: ReduceFixedJoints' order."""
-        children = self.analysis.topology.children[link]
-        for joint in children:
-            if joint.type is JointType.FIXED:
-                self.reduce(joint.child)
-        above = self.analysis.parent_joint.get(link)
-        if above is not None and self._lumped(above):
-            self._lump(link, above)
-        for joint in children:
-            if joint.type is not JointType.FIXED:
-                self.reduce(joint.child)
+    def reduce(self, root: str) -> None:
+        """Lump every link on a fixed joint into its parent, in ReduceFixedJoints' order: a
+        link's fixed subtree into it, then it into its parent, then on below its moving
+        joints (with a stack of its own: a chain of links may be deeper than Python's)."""
+        children = self.analysis.topology.children
+        stack = [(root, False)]
+        while stack:
+            link, lumping = stack.pop()
+            if not lumping:
+                stack.append((link, True))
+                fixed = [j for j in children[link] if j.type is JointType.FIXED]
+                stack.extend((j.child, False) for j in reversed(fixed))
+                continue
+            above = self._above(link)
+            if above is not None and self._lumped(above):
+                self._lump(link, above)
+            moving = [j for j in children[link] if j.type is not JointType.FIXED]
+            stack.extend((j.child, False) for j in reversed(moving))
 
     def _lump(self, link: str, joint: Joint) -> None:
         parent, at = joint.parent, self.placement[joint.name]
@@ -147,32 +172,33 @@ class _Model:
                 s._replace(name=s.name or link, placement=reach([at], s.placement))
                 for s in shapes[link]
             ]
-        parent_joint = self.analysis.parent_joint
         for below in self.analysis.topology.children[link]:
             if below.type is JointType.FIXED:
                 continue
             # the joint now hangs from the first link up that no fixed joint holds
-            holder, up = link, parent_joint.get(link)
+            holder, up = link, self._above(link)
             while up is not None and self._lumped(up):
                 self.placement[below.name] = reach(
                     [self.placement[up.name]], self.placement[below.name]
                 )
                 holder = up.parent
-                up = parent_joint.get(holder)
+                up = self._above(holder)
             self.parent[below.name] = holder
 
-    def emit(self, link: str) -> Iterator[list[str]]:
-        """The elements of ``link`` and below (each as lines): CreateSDF's order."""
-        mass = self.mass[link]
-        if link != "world" and (mass is None or abs(mass.mass) <= 1e-6):
-            return  # no mass: left out, and everything below it
-        above = self.analysis.parent_joint.get(link)
-        if not self._lumped(above):
-            if above is not None and above.type in _TYPES:
-                yield self._joint(above)
-            yield self._link(link, above, mass)
-        for joint in self.analysis.topology.children[link]:
-            yield from self.emit(joint.child)
+    def emit(self, top: str) -> Iterator[list[str]]:
+        """The elements of ``top`` and below (each as lines), in CreateSDF's order."""
+        stack = [top]
+        while stack:
+            link = stack.pop()
+            mass = self.mass[link]
+            if link != "world" and (mass is None or abs(mass.mass) <= 1e-6):
+                continue  # no mass: left out, and everything below it
+            above = self._above(link)
+            if not self._lumped(above):
+                if above is not None and above.type in _TYPES:
+                    yield self._joint(above)
+                yield self._link(link, above, mass)
+            stack.extend(j.child for j in reversed(self.analysis.topology.children[link]))
 
     def _joint(self, joint: Joint) -> list[str]:
         kind = _TYPES[joint.type]
