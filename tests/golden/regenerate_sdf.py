@@ -32,6 +32,7 @@ INPUTS = {
     "fishbot": "robots/fishbot/urdf/fishbot/fishbot.urdf.xacro",
     "fixed_chain": "tests/data/sdf/fixed_chain.urdf",
     "lumping": "tests/data/sdf/lumping.urdf",
+    "materials": "tests/data/sdf/materials.urdf",
     "world_root": "tests/data/sdf/world_root.urdf",
 }
 

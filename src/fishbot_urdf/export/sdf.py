@@ -238,19 +238,23 @@ class _Model:
         return [*lines, "</link>"]
 
 
-def _materials(robot: Robot) -> Mapping[int, Material]:
+def _materials(robot: Robot) -> Mapping[int, Material | None]:
     """Each visual's material (by the visual's id) as urdfdom resolves it: a material of the
-    same name defined at the top level, or by a visual before it, comes first."""
+    same name defined at the top level, or by a visual before it, comes first; one with a
+    name alone that none defined so far is none."""
     known: dict[str, Material] = {}
     for material in robot.materials:
         known.setdefault(material.name, material)
-    found: dict[int, Material] = {}
+    found: dict[int, Material | None] = {}
     for link in robot.links:
         for visual in link.visuals:
-            if visual.material is None or not visual.material.name:
+            material = visual.material
+            if material is None or not material.name:
                 continue
-            first = known.setdefault(visual.material.name, visual.material)
-            found[id(visual)] = first
+            if material.color is None and material.texture is None:
+                found[id(visual)] = known.get(material.name)
+            else:
+                found[id(visual)] = known.setdefault(material.name, material)
     return found
 
 
