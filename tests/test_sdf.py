@@ -13,7 +13,7 @@ import pytest
 from conftest import GOLDEN, ROOT, live_tool
 
 import fishbot_urdf
-from fishbot_urdf.errors import ArgumentError, StructureError
+from fishbot_urdf.errors import ConversionError, StructureError
 
 SDF_GOLDEN = GOLDEN / "sdf"
 
@@ -125,9 +125,9 @@ def test_gazebo_elements_are_refused_until_they_are_converted() -> None:
         '<robot name="r"><link name="a"/><gazebo reference="a"><material>Gazebo/Red</material>'
         "</gazebo></robot>"
     )
-    with pytest.raises(ArgumentError, match="<gazebo> elements") as caught:
+    with pytest.raises(ConversionError, match="<gazebo> elements") as caught:
         fishbot_urdf.to_sdf(robot)
-    assert caught.value.rule == "argument" and caught.value.name == "robot"
+    assert (caught.value.target, caught.value.subject) == ("sdf", None)
 
 
 def test_a_robot_without_one_root_is_refused() -> None:
@@ -167,3 +167,28 @@ def test_a_chain_deeper_than_python_recurses_converts() -> None:
     root = ET.fromstring(sdf)
     assert len(root.findall("model/link")) == 601  # l2, l4, ... l1198 lumped into their parents
     assert root.findall("model/joint")[-1].findtext("parent") == "l1197"  # j1198, moved up
+
+
+def test_what_sdformat_refuses_is_refused() -> None:
+    # a revolute joint without limits (urdfdom refuses it), and links lumped into one that
+    # weigh 0 kg together (ODE divides by 0, and the SDF reader refuses the pose it gives)
+    limitless = fishbot_urdf.parse(
+        '<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="revolute">'
+        '<parent link="a"/><child link="b"/></joint></robot>'
+    )
+    with pytest.raises(ConversionError, match="joint 'j' is revolute and has no <limit>"):
+        fishbot_urdf.to_sdf(limitless)
+    inertial = (
+        '<inertial><mass value="0"/><inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/>'
+        "</inertial>"
+    )
+    massless = fishbot_urdf.parse(
+        f'<robot name="r"><link name="a"/><link name="b">{inertial}</link>'
+        '<link name="c"><inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" '
+        'iyz="0" izz="1"/></inertial></link>'
+        '<joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>'
+        '<joint name="k" type="fixed"><parent link="a"/><child link="c"/></joint></robot>'
+    )
+    with pytest.raises(ConversionError, match="link 'a': the links lumped into it") as caught:
+        fishbot_urdf.to_sdf(massless)
+    assert (caught.value.rule, caught.value.subject) == ("conversion", "a")

@@ -25,6 +25,7 @@ if TYPE_CHECKING:
     from .errors import (
         ArgumentError,
         ConfigError,
+        ConversionError,
         FieldTypeError,
         FishbotUrdfError,
         InertiaUnderflowError,
@@ -113,6 +114,7 @@ __all__ = [
     "Collision",
     "Config",
     "ConfigError",
+    "ConversionError",
     "Cylinder",
     "Diagnostic",
     "Dynamics",
@@ -228,6 +230,7 @@ _WHERE = {
     "Collision": "model",
     "Config": "config",
     "ConfigError": "errors",
+    "ConversionError": "errors",
     "Cylinder": "model",
     "Diagnostic": "diagnostics",
     "Dynamics": "model",

@@ -9,13 +9,14 @@ model, in its own order and number format.
 
 from __future__ import annotations
 
+import math
 import struct
 from collections.abc import Iterator, Mapping
 from typing import NamedTuple
 from xml.sax.saxutils import escape
 
 from ..analysis import Analysis, of
-from ..errors import ArgumentError, StructureError
+from ..errors import ConversionError, StructureError
 from ..model import (
     Box,
     Cylinder,
@@ -67,14 +68,16 @@ def to_sdf(robot: Robot | Analysis) -> str:
     Raises:
         StructureError: The robot has no single root or has a joint loop (sdformat's
             URDF reader refuses it).
-        ArgumentError: The robot has ``<gazebo>`` elements (not converted yet).
+        ConversionError: sdformat's reader refuses the robot (a revolute or prismatic
+            joint without limits; links lumped into one that weigh 0 kg together), or it has
+            ``<gazebo>`` elements (not converted yet).
     """
     analysis = of(robot)
     if any(text.startswith("<gazebo") for text in analysis.robot.extras):
-        raise ArgumentError(
-            f"robot {analysis.robot.name!r} has <gazebo> elements, which to_sdf does not "
-            "convert yet",
-            name="robot",
+        raise ConversionError(
+            f"robot {analysis.robot.name!r} has <gazebo> elements, which are not converted "
+            "to SDF yet",
+            target="sdf",
         )
     root = analysis.root
     _refuse_what_urdfdom_refuses(analysis)
@@ -107,6 +110,14 @@ def _refuse_what_urdfdom_refuses(analysis: Analysis) -> None:
         why = "a joint between links it does not define"
     if why is not None:
         raise StructureError(f"robot {robot.name!r} has {why}: sdformat's reader refuses it")
+    for joint in robot.joints:
+        if joint.limit is None and joint.type in (JointType.REVOLUTE, JointType.PRISMATIC):
+            raise ConversionError(
+                f"joint {joint.name!r} is {joint.type.value} and has no <limit>: sdformat's "
+                "reader refuses it",
+                target="sdf",
+                subject=joint.name,
+            )
 
 
 class _Model:
@@ -231,6 +242,14 @@ class _Model:
         if above is not None:
             lines.append(f"  <pose relative_to={_attr(above.name)}>{_ZERO_POSE}</pose>")
         if mass is not None:
+            if not all(map(math.isfinite, mass.frame.xyz)):
+                # ODE's sum of parts weighing 0 kg together divides by 0
+                raise ConversionError(
+                    f"link {name!r}: the links lumped into it weigh 0 kg together, so its "
+                    "centre of mass is not a number, which sdformat's reader refuses",
+                    target="sdf",
+                    subject=name,
+                )
             lines += [f"  {line}" for line in _inertial(mass)]
         for kind, shapes in (("collision", self.collisions[name]), ("visual", self.visuals[name])):
             for number, shape in enumerate(shapes):
