@@ -269,13 +269,13 @@ def _materials(robot: Robot) -> Mapping[int, Material | None]:
     found: dict[int, Material | None] = {}
     for link in robot.links:
         for visual in link.visuals:
-            material = visual.material
-            if material is None or not material.name:
+            given = visual.material
+            if given is None or not given.name:
                 continue
-            if material.color is None and material.texture is None:
-                found[id(visual)] = known.get(material.name)
+            if given.color is None and given.texture is None:
+                found[id(visual)] = known.get(given.name)
             else:
-                found[id(visual)] = known.setdefault(material.name, material)
+                found[id(visual)] = known.setdefault(given.name, given)
     return found
 
 
