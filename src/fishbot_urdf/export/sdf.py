@@ -372,7 +372,7 @@ def _geometry(geometry: Geometry) -> list[str]:
 def _material(material: Material) -> list[str]:
     """urdfdom's colour (single precision; black if none) as Gazebo's diffuse and ambient."""
     rgba = material.color or (0.0, 0.0, 0.0, 1.0)
-    r, g, b, a = (struct.unpack("f", struct.pack("f", v))[0] for v in rgba)
+    r, g, b, a = (_single(v) for v in rgba)
     diffuse = [min(max(c / 0.8, 0.0), 1.0) for c in (r, g, b)]
     ambient = [min(max(0.5 * c / 0.4, 0.0), 1.0) for c in (r, g, b)]
     return [
@@ -381,6 +381,15 @@ def _material(material: Material) -> list[str]:
         f"  <ambient>{_numbers((*ambient, a))}</ambient>",
         "</material>",
     ]
+
+
+def _single(value: float) -> float:
+    """``value`` as a C float holds it (beyond its range, an infinity)."""
+    try:
+        single: float = struct.unpack("f", struct.pack("f", value))[0]
+    except OverflowError:
+        return math.copysign(math.inf, value)
+    return single
 
 
 def _number(value: float) -> str:
