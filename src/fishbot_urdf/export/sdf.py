@@ -10,32 +10,25 @@ model, in its own order and number format.
 from __future__ import annotations
 
 import math
-import struct
 from collections.abc import Iterator, Mapping
-from typing import NamedTuple
 from xml.sax.saxutils import escape
 
 from ..analysis import Analysis, of
 from ..errors import ConversionError, StructureError
 from ..model import (
-    Box,
-    Cylinder,
-    Geometry,
     Joint,
     JointType,
     Link,
     Material,
-    Mesh,
     Origin,
     Robot,
-    Sphere,
 )
-from ..spatial import urdfdom_angles, urdfdom_quaternion
+from ..spatial import urdfdom_quaternion
+from ._elements import Shape, attr, inertial, limits, number, numbers, pose, shape
 from ._lumping import Mass, Placement, euler, lump, reach
 
 __all__ = ["to_sdf"]
 
-_LUMP = "_fixed_joint_lump__"  # between a body's name and a lumped shape's
 _TYPES = {  # URDF joint type -> SDF's; floating and planar joints are left out
     JointType.REVOLUTE: "revolute",
     JointType.CONTINUOUS: "revolute",
@@ -43,16 +36,6 @@ _TYPES = {  # URDF joint type -> SDF's; floating and planar joints are left out
     JointType.FIXED: "fixed",
 }
 _ZERO_POSE = "0 0 0 0 0 0"
-
-
-class _Shape(NamedTuple):
-    """A visual or collision as the converter carries it: its name ("" for none), where it
-    is in the link that holds it, its geometry and (visuals) its material."""
-
-    name: str
-    placement: Placement
-    geometry: Geometry
-    material: Material | None = None
 
 
 def to_sdf(robot: Robot | Analysis) -> str:
@@ -87,7 +70,7 @@ def to_sdf(robot: Robot | Analysis) -> str:
     if root == "world":
         for joint in analysis.topology.children[root]:
             body += model.emit(joint.child)
-    name = _attr(analysis.robot.name)
+    name = attr(analysis.robot.name)
     if not body:
         return f"<sdf version='1.9'>\n  <model name={name}/>\n</sdf>\n"
     lines = [f"    {line}" for element in body for line in element]
@@ -130,18 +113,18 @@ class _Model:
         self.analysis = analysis
         materials = _materials(analysis.robot)
         self.mass: dict[str, Mass | None] = {}
-        self.visuals: dict[str, list[_Shape]] = {}
-        self.collisions: dict[str, list[_Shape]] = {}
+        self.visuals: dict[str, list[Shape]] = {}
+        self.collisions: dict[str, list[Shape]] = {}
         for link in analysis.links.values():
             self.mass[link.name] = _mass(link)
             self.visuals[link.name] = [
-                _Shape(
+                Shape(
                     v.name or "", _placement(v.origin), v.geometry, materials.get(id(v), v.material)
                 )
                 for v in link.visuals
             ]
             self.collisions[link.name] = [
-                _Shape(c.name or "", _placement(c.origin), c.geometry) for c in link.collisions
+                Shape(c.name or "", _placement(c.origin), c.geometry) for c in link.collisions
             ]
         self.parent: dict[str, str] = {}  # a moving joint's parent, once lumping moved it
         self.placement: dict[str, Placement] = {
@@ -219,18 +202,18 @@ class _Model:
         at = self.placement[joint.name]
         relative = "__model__" if parent == "world" else parent
         lines = [
-            f"<joint name={_attr(joint.name)} type='{kind}'>",
-            f"  <pose relative_to={_attr(relative)}>{_pose(at.xyz, euler(at.rotation))}</pose>",
+            f"<joint name={attr(joint.name)} type='{kind}'>",
+            f"  <pose relative_to={attr(relative)}>{pose(at.xyz, euler(at.rotation))}</pose>",
             f"  <parent>{escape(parent)}</parent>",
             f"  <child>{escape(joint.child)}</child>",
         ]
         if kind != "fixed":
-            lines += ["  <axis>", f"    <xyz>{_numbers(joint.axis)}</xyz>", "    <limit>"]
-            lines += [f"      {line}" for line in _limits(joint)]
+            lines += ["  <axis>", f"    <xyz>{numbers(joint.axis)}</xyz>", "    <limit>"]
+            lines += [f"      {line}" for line in limits(joint)]
             lines += ["    </limit>", "    <dynamics>"]
             if joint.dynamics is not None:
-                lines.append(f"      <damping>{_number(joint.dynamics.damping)}</damping>")
-                lines.append(f"      <friction>{_number(joint.dynamics.friction)}</friction>")
+                lines.append(f"      <damping>{number(joint.dynamics.damping)}</damping>")
+                lines.append(f"      <friction>{number(joint.dynamics.friction)}</friction>")
             lines += [
                 "      <spring_reference>0</spring_reference>",
                 "      <spring_stiffness>0</spring_stiffness>",
@@ -240,9 +223,9 @@ class _Model:
         return [*lines, "</joint>"]
 
     def _link(self, name: str, above: Joint | None, mass: Mass | None) -> list[str]:
-        lines = [f"<link name={_attr(name)}>"]
+        lines = [f"<link name={attr(name)}>"]
         if above is not None:
-            lines.append(f"  <pose relative_to={_attr(above.name)}>{_ZERO_POSE}</pose>")
+            lines.append(f"  <pose relative_to={attr(above.name)}>{_ZERO_POSE}</pose>")
         if mass is not None:
             if not all(map(math.isfinite, mass.frame.xyz)):
                 # ODE's sum of parts weighing 0 kg together divides by 0
@@ -252,10 +235,10 @@ class _Model:
                     target="sdf",
                     subject=name,
                 )
-            lines += [f"  {line}" for line in _inertial(mass)]
+            lines += [f"  {line}" for line in inertial(mass)]
         for kind, shapes in (("collision", self.collisions[name]), ("visual", self.visuals[name])):
-            for number, shape in enumerate(shapes):
-                lines += [f"  {line}" for line in _shape(kind, name, number, shape)]
+            for count, item in enumerate(shapes):
+                lines += [f"  {line}" for line in shape(kind, name, count, item)]
         return [*lines, "</link>"]
 
 
@@ -290,120 +273,3 @@ def _mass(link: Link) -> Mass | None:
 
 def _placement(origin: Origin) -> Placement:
     return Placement(origin.xyz, urdfdom_quaternion(origin.rpy))
-
-
-def _limits(joint: Joint) -> list[str]:
-    """The limit's children as the converter writes them and the SDF reader completes them
-    (a missing lower and upper read as -1e16 and 1e16)."""
-    limit = joint.limit
-    lines = []
-    if limit is not None:
-        if joint.type is not JointType.CONTINUOUS:
-            lower, upper = sorted((limit.lower, limit.upper))  # sdformat swaps reversed ones
-            lines += [f"<lower>{_number(lower)}</lower>", f"<upper>{_number(upper)}</upper>"]
-        lines += [f"<effort>{_number(limit.effort)}</effort>"]
-        lines += [f"<velocity>{_number(limit.velocity)}</velocity>"]
-    if limit is None or joint.type is JointType.CONTINUOUS:
-        lines += ["<lower>-1e16</lower>", "<upper>1e16</upper>"]
-    return lines
-
-
-def _inertial(mass: Mass) -> list[str]:
-    ixx, ixy, ixz, iyy, iyz, izz = mass.inertia
-    return [
-        "<inertial>",
-        f"  <pose>{_pose(mass.frame.xyz, euler(mass.frame.rotation))}</pose>",
-        f"  <mass>{_number(mass.mass)}</mass>",
-        "  <inertia>",
-        *(
-            f"    <{tag}>{_number(value)}</{tag}>"
-            for tag, value in zip(
-                ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"),
-                (ixx, ixy, ixz, iyy, iyz, izz),
-                strict=True,
-            )
-        ),
-        "  </inertia>",
-        "</inertial>",
-    ]
-
-
-def _shape(kind: str, link: str, number: int, shape: _Shape) -> list[str]:
-    name = f"{shape.name or link}_{kind}" + (f"_{number}" if number else "")
-    if not name.startswith(link):
-        name = f"{link}{_LUMP}{name}"
-    lines = [
-        f"<{kind} name={_attr(name)}>",
-        f"  <pose>{_pose(shape.placement.xyz, urdfdom_angles(shape.placement.rotation))}</pose>",
-        *(f"  {line}" for line in _geometry(shape.geometry)),
-    ]
-    if shape.material is not None:
-        lines += [f"  {line}" for line in _material(shape.material)]
-    return [*lines, f"</{kind}>"]
-
-
-def _geometry(geometry: Geometry) -> list[str]:
-    if isinstance(geometry, Box):
-        inner = ["<box>", f"  <size>{_numbers(geometry.size)}</size>", "</box>"]
-    elif isinstance(geometry, Cylinder):
-        inner = [
-            "<cylinder>",
-            f"  <length>{_number(geometry.length)}</length>",
-            f"  <radius>{_number(geometry.radius)}</radius>",
-            "</cylinder>",
-        ]
-    elif isinstance(geometry, Sphere):
-        inner = ["<sphere>", f"  <radius>{_number(geometry.radius)}</radius>", "</sphere>"]
-    elif isinstance(geometry, Mesh):
-        scale = geometry.scale or (1.0, 1.0, 1.0)
-        uri = geometry.filename.replace("package://", "model://", 1)
-        inner = [
-            "<mesh>",
-            # the converter writes a mesh's scale with C++'s default 6 digits
-            f"  <scale>{' '.join(f'{v:g}' for v in scale)}</scale>",
-            f"  <uri>{escape(uri)}</uri>",
-            "</mesh>",
-        ]
-    else:  # pragma: no cover - the model has no other geometry
-        return []
-    return ["<geometry>", *(f"  {line}" for line in inner), "</geometry>"]
-
-
-def _material(material: Material) -> list[str]:
-    """urdfdom's colour (single precision; black if none) as Gazebo's diffuse and ambient."""
-    rgba = material.color or (0.0, 0.0, 0.0, 1.0)
-    r, g, b, a = (_single(v) for v in rgba)
-    diffuse = [min(max(c / 0.8, 0.0), 1.0) for c in (r, g, b)]
-    ambient = [min(max(0.5 * c / 0.4, 0.0), 1.0) for c in (r, g, b)]
-    return [
-        "<material>",
-        f"  <diffuse>{_numbers((*diffuse, a))}</diffuse>",
-        f"  <ambient>{_numbers((*ambient, a))}</ambient>",
-        "</material>",
-    ]
-
-
-def _single(value: float) -> float:
-    """``value`` as a C float holds it (beyond its range, an infinity)."""
-    try:
-        single: float = struct.unpack("f", struct.pack("f", value))[0]
-    except OverflowError:
-        return math.copysign(math.inf, value)
-    return single
-
-
-def _number(value: float) -> str:
-    """A number as the converter prints it: C++'s 16 significant digits, a zero as 0."""
-    return "0" if value == 0 else f"{value:.16g}"
-
-
-def _numbers(values: tuple[float, ...] | list[float]) -> str:
-    return " ".join(_number(v) for v in values)
-
-
-def _pose(xyz: tuple[float, float, float], rpy: tuple[float, float, float]) -> str:
-    return _numbers((*xyz, *rpy))
-
-
-def _attr(value: str) -> str:
-    return "'" + escape(value, {"'": "&apos;"}) + "'"
