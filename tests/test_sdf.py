@@ -5,6 +5,7 @@ element with numbers to 1e-9, and the real converter run live where it is instal
 from __future__ import annotations
 
 import math
+import random
 import subprocess
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -192,3 +193,48 @@ def test_what_sdformat_refuses_is_refused() -> None:
     with pytest.raises(ConversionError, match="link 'a': the links lumped into it") as caught:
         fishbot_urdf.to_sdf(massless)
     assert (caught.value.rule, caught.value.subject) == ("conversion", "a")
+
+
+def _welded(rng: random.Random, count: int) -> fishbot_urdf.Robot:
+    """A random tree of ``count`` links welded by turned fixed joints, inertials turned too
+    (but the root's, whose frame the lumped inertia is written in)."""
+
+    def numbers(low: float, high: float) -> str:
+        return " ".join(str(rng.uniform(low, high)) for _ in range(3))
+
+    links, joints = [], []
+    for i in range(count):
+        rpy = numbers(-1, 1) if i else "0 0 0"
+        ix, iy, iz = (rng.uniform(0.1, 1) for _ in range(3))
+        links.append(
+            f'<link name="l{i}"><inertial><origin xyz="{numbers(-1, 1)}" rpy="{rpy}"/>'
+            f'<mass value="{rng.uniform(0.1, 2)}"/><inertia ixx="{ix + iy}" ixy="0" ixz="0" '
+            f'iyy="{iy + iz}" iyz="0" izz="{ix + iz}"/></inertial></link>'
+        )
+        if i:
+            joints.append(
+                f'<joint name="j{i}" type="fixed"><parent link="l{rng.randrange(i)}"/>'
+                f'<child link="l{i}"/><origin xyz="{numbers(-1, 1)}" rpy="{numbers(-1, 1)}"/>'
+                "</joint>"
+            )
+    return fishbot_urdf.parse(f'<robot name="r">{"".join(links)}{"".join(joints)}</robot>')
+
+
+def test_lumping_gives_the_mass_properties_of_the_whole() -> None:
+    # ODE's sums as the converter makes them equal the inertia module's whole-robot mass,
+    # centre of mass and inertia about it, for trees welded at any angle
+    rng = random.Random(20261127)
+    for _ in range(20):
+        robot = _welded(rng, rng.randrange(2, 7))
+        whole = fishbot_urdf.mass_properties(robot)
+        sdf = ET.fromstring(fishbot_urdf.to_sdf(robot))
+        assert len(sdf.findall("model/link")) == 1
+        inertial = sdf.find("model/link/inertial")
+        assert inertial is not None
+        pose = [float(v) for v in inertial.findtext("pose", "").split()]
+        assert math.isclose(float(inertial.findtext("mass", "")), whole.mass, rel_tol=1e-12)
+        for got, want in zip(pose[:3], whole.com, strict=True):
+            assert math.isclose(got, want, rel_tol=1e-9, abs_tol=1e-12)
+        for tag in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"):
+            got = float(inertial.findtext(f"inertia/{tag}", ""))
+            assert math.isclose(got, getattr(whole.inertia, tag), rel_tol=1e-9, abs_tol=1e-12)
