@@ -529,6 +529,7 @@ def test_no_output_is_written_over_a_mesh_the_robot_names(tmp_path: Path) -> Non
     for command in (
         ["graph", str(robot), "--format", "gv"],
         ["expand", str(robot)],
+        ["sdf", str(robot)],
         ["check", str(robot), "--format", "json"],
         ["inertia", str(robot), "--fill", "--mass", "a=1"],
     ):
@@ -969,3 +970,31 @@ def test_a_workspace_with_links_that_cannot_be_followed(
     status, out, err = run("render", "ws/src/pkg/urdf/r.urdf", "--size", "32x32", "-o", "r.png")
     assert (status, out) == (0, "")
     assert "Traceback" not in err
+
+
+SDF_GOLDEN = Path(__file__).parent / "golden" / "sdf"
+
+
+def test_sdf_prints_what_ign_sdf_prints() -> None:
+    xacro = FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"
+    result = CliRunner().invoke(cli, ["sdf", str(xacro)])
+    assert (result.exit_code, result.stderr) == (0, "")
+    assert result.stdout == (SDF_GOLDEN / "fishbot.sdf").read_text(encoding="utf-8")
+
+
+def test_sdf_writes_a_file(tmp_path: Path) -> None:
+    out = tmp_path / "build" / "first_robot.sdf"
+    result = CliRunner().invoke(cli, ["sdf", str(FIRST), "-o", str(out)])
+    assert (result.exit_code, result.stdout, result.stderr) == (0, "", "")
+    assert out.read_text(encoding="utf-8") == (SDF_GOLDEN / "first_robot.sdf").read_text()
+
+
+def test_sdf_refuses_a_robot_with_gazebo_elements(tmp_path: Path) -> None:
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/><gazebo reference="a"/></robot>')
+    result = CliRunner().invoke(cli, ["sdf", str(robot)])
+    assert (result.exit_code, result.stdout) == (1, "")
+    assert result.stderr == (
+        "<input>: error: robot 'r' has <gazebo> elements, which are not converted to SDF yet "
+        "[conversion]\n"
+    )

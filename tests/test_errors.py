@@ -10,6 +10,7 @@ import fishbot_urdf
 from fishbot_urdf import (
     ArgumentError,
     ConfigError,
+    ConversionError,
     FishbotUrdfError,
     InertiaUnderflowError,
     InputError,
@@ -137,6 +138,16 @@ def test_argument_error() -> None:
     assert isinstance(error, FishbotUrdfError) and isinstance(error, ValueError)
     assert (error.rule, error.name) == ("argument", "density")
     assert error.message == "the density must be a finite number > 0, not -1"
+
+
+def test_conversion_error() -> None:
+    robot = fishbot_urdf.parse('<robot name="r"><link name="a"/><gazebo/></robot>')
+    with pytest.raises(ConversionError) as info:
+        fishbot_urdf.to_sdf(robot)
+    error = info.value
+    assert isinstance(error, FishbotUrdfError) and isinstance(error, ValueError)
+    assert (error.rule, error.target, error.subject) == ("conversion", "sdf", None)
+    assert error.message == "robot 'r' has <gazebo> elements, which are not converted to SDF yet"
 
 
 def test_shape_error() -> None:

@@ -114,6 +114,7 @@ def _commands(path: Path, out: Path) -> list[list[str]]:
         ["graph", name, "--format", "mmd", "-o", "-"],
         ["inertia", name, "--format", "json"],
         ["inertia", name, "--fill", "--density", "1000", "-o", str(out)],
+        ["sdf", name],
     ]
     if name.endswith(".xacro"):
         commands.append(["expand", name])

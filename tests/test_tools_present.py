@@ -12,3 +12,8 @@ def test_corpus_is_installed() -> None:
 
 def test_check_urdf_is_available() -> None:
     assert require_tool("check_urdf", "liburdfdom-tools").endswith("check_urdf")
+
+
+def test_ign_sdf_is_available() -> None:
+    # sdformat's URDF converter, the reference of tests/test_sdf.py
+    assert require_tool("ign", "ignition-tools libsdformat-dev").endswith("ign")

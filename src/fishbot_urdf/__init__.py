@@ -25,6 +25,7 @@ if TYPE_CHECKING:
     from .errors import (
         ArgumentError,
         ConfigError,
+        ConversionError,
         FieldTypeError,
         FishbotUrdfError,
         InertiaUnderflowError,
@@ -38,6 +39,7 @@ if TYPE_CHECKING:
         XmlSyntaxError,
     )
     from .expansion import Expansion, XacroError, expand
+    from .export.sdf import to_sdf
     from .graph import chain, leaves, root, subtree, to_networkx, tree_text
     from .inertia import (
         Filling,
@@ -112,6 +114,7 @@ __all__ = [
     "Collision",
     "Config",
     "ConfigError",
+    "ConversionError",
     "Cylinder",
     "Diagnostic",
     "Dynamics",
@@ -208,6 +211,7 @@ __all__ = [
     "to_dot",
     "to_mermaid",
     "to_networkx",
+    "to_sdf",
     "to_urdf",
     "topology",
     "transform",
@@ -226,6 +230,7 @@ _WHERE = {
     "Collision": "model",
     "Config": "config",
     "ConfigError": "errors",
+    "ConversionError": "errors",
     "Cylinder": "model",
     "Diagnostic": "diagnostics",
     "Dynamics": "model",
@@ -321,6 +326,7 @@ _WHERE = {
     "to_dot": "drawing.dot",
     "to_mermaid": "drawing.mermaid",
     "to_networkx": "graph",
+    "to_sdf": "export.sdf",
     "to_urdf": "write",
     "topology": "analysis.topology",
     "transform": "kinematics",

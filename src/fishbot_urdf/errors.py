@@ -152,6 +152,20 @@ class ArgumentError(FishbotUrdfError, ValueError):
         self.name = name
 
 
+class ConversionError(FishbotUrdfError, ValueError):
+    """A robot the target's own converter refuses, or that is not converted yet.
+
+    ``target`` names the format (``sdf``), ``subject`` the link or joint at fault (None for
+    the whole robot)."""
+
+    rule = "conversion"
+
+    def __init__(self, message: str, *, target: str, subject: str | None = None) -> None:
+        super().__init__(message)
+        self.target = target
+        self.subject = subject
+
+
 class ShapeError(FishbotUrdfError, ValueError):
     """A shape has no volume to fill.
 

@@ -12,14 +12,18 @@ __all__ = [
     "IDENTITY",
     "Matrix3",
     "Pose",
+    "Quaternion",
     "eigenvalues",
     "eigh",
     "euler_ypr",
     "rpy_matrix",
+    "urdfdom_angles",
+    "urdfdom_quaternion",
     "urdfdom_rpy",
 ]
 
 Matrix3 = tuple[Vector3, Vector3, Vector3]
+Quaternion = tuple[float, float, float, float]  # x, y, z, w, as urdfdom stores a rotation
 
 IDENTITY: Matrix3 = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
 
@@ -237,6 +241,12 @@ def urdfdom_rpy(rpy: Vector3) -> Vector3:
     getRPY, so the printed numbers match urdf_to_graphviz's, down to the sign of a zero
     pitch (``0 0 0`` comes back as ``0 -0 0``) and the gimbal-lock cases.
     """
+    return urdfdom_angles(urdfdom_quaternion(rpy))
+
+
+def urdfdom_quaternion(rpy: Vector3) -> Quaternion:
+    """The unit quaternion ``(x, y, z, w)`` urdfdom stores for roll, pitch, yaw (radians):
+    its Rotation::setFromRPY and normalize, operation for operation."""
     phi, the, psi = rpy[0] / 2.0, rpy[1] / 2.0, rpy[2] / 2.0
     sin, cos = math.sin, math.cos
     x = sin(phi) * cos(the) * cos(psi) - cos(phi) * sin(the) * sin(psi)
@@ -245,9 +255,14 @@ def urdfdom_rpy(rpy: Vector3) -> Vector3:
     w = cos(phi) * cos(the) * cos(psi) + sin(phi) * sin(the) * sin(psi)
     s = math.sqrt(x * x + y * y + z * z + w * w)
     if s == 0.0:
-        x, y, z, w = 0.0, 0.0, 0.0, 1.0
-    else:
-        x, y, z, w = x / s, y / s, z / s, w / s
+        return 0.0, 0.0, 0.0, 1.0
+    return x / s, y / s, z / s, w / s
+
+
+def urdfdom_angles(q: Quaternion) -> Vector3:
+    """Roll, pitch, yaw (radians) of the quaternion ``(x, y, z, w)`` as urdfdom's
+    Rotation::getRPY gives them, its gimbal-lock cases included."""
+    x, y, z, w = q
     sqx, sqy, sqz, sqw = x * x, y * y, z * z, w * w
     sarg = -2 * (x * z - w * y)
     if sarg <= -0.99999:

@@ -37,6 +37,8 @@ COMMANDS = {
     "`ros2 run tf2_ros tf2_echo FROM TO` prints it with robot_state_publisher running.",
     "render": "A shaded PNG of FILE (URDF or xacro) at a joint configuration: no display, GPU "
     "or ROS needed.",
+    "sdf": "The SDF of FILE (URDF or xacro) as Gazebo's converter makes it: what `ign sdf -p` "
+    "prints.",
     "view": "Show FILE (URDF or xacro) in a web browser: visuals in their colours, link frames as "
     "axes, and a slider per moving joint within its limits, from the root outwards (mimic "
     "joints follow).",
@@ -95,6 +97,7 @@ def cli() -> None:
       fishbot tf robot.urdf.xacro base_link laser_link -j left_wheel_joint=90deg
       fishbot render robot.urdf.xacro -o robot.png --view side
       fishbot view robot.urdf.xacro
+      fishbot sdf robot.urdf.xacro -o robot.sdf
     """
 
 

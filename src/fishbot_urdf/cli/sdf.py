@@ -1,0 +1,74 @@
+"""`fishbot sdf`: the SDF sdformat's URDF converter makes of a robot, as `ign sdf -p` prints it."""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Sequence
+
+import click
+
+from ..errors import FishbotUrdfError
+from ..export.sdf import to_sdf
+from ..output import write_atomic
+from ._checking import posable_input, read_files
+from ._common import (
+    EXIT_OK,
+    inputs_read,
+    limit_options,
+    package_option,
+    packages_option,
+    stop_on,
+    to_stdout,
+    xacro_args,
+)
+
+
+@click.command()
+@click.argument("file", type=click.Path(allow_dash=True))
+@click.argument("args", nargs=-1, metavar="[name:=value]...")
+@click.option(
+    "-o",
+    "--output",
+    default="-",
+    show_default=True,
+    metavar="FILE",
+    help="Where to write the SDF; - is standard output. Folders are made as needed.",
+)
+@package_option()
+@limit_options()
+def sdf(file: str, args: Sequence[str], output: str, package_items: Sequence[str]) -> None:
+    """The SDF of FILE (URDF or xacro) as Gazebo's converter makes it: what `ign sdf -p` prints.
+
+    Written as sdformat 12 (Gazebo Fortress) converts URDF: each link on a fixed joint is
+    lumped into its parent (masses, centres of mass and inertias summed, its visuals and
+    collisions renamed PARENT_fixed_joint_lump__NAME_visual), a link without mass is left
+    out with everything below it, floating and planar joints are left out (their links
+    stay), and package:// mesh names become model://. Robots with <gazebo> elements are
+    not converted yet. ARGS are name:=value values for a xacro file's <xacro:arg>. Findings
+    about the robot are printed as check prints them. Exit status: 0 written, 1 the robot
+    has errors that leave its tree in doubt or cannot be converted (nothing is written), 2
+    a file could not be read or written, or the command line is wrong.
+
+    \b
+    Examples:
+      fishbot sdf robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
+      fishbot sdf robot.urdf -o robot.sdf
+      fishbot sdf robot.urdf.xacro use_gpu:=false -o build/robot.sdf
+      fishbot sdf robot.urdf.xacro --package my_description=src/my_description
+    """
+    if file == "-" and args:
+        raise click.UsageError("name:=value arguments are for a .xacro file, not standard input")
+    values = xacro_args(args)
+    read = inputs_read()
+    result = posable_input(file, values, packages_option(package_items))
+    assert result.analysis is not None
+    try:
+        text = to_sdf(result.analysis)
+        if output == "-":
+            to_stdout(text.encode("utf-8", "surrogateescape"))
+        else:
+            # never over what was read: the robot, its includes, its meshes, the configuration
+            write_atomic(output, text, inputs=[*read_files(file, result), *read])
+    except FishbotUrdfError as exc:
+        stop_on(exc)
+    sys.exit(EXIT_OK)

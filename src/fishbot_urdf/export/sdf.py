@@ -1,0 +1,275 @@
+"""URDF -> SDF as sdformat's converter writes it (sdformat 12, Gazebo Fortress: what
+`ign sdf -p robot.urdf` prints), from the analysis of the robot.
+
+The converter lumps every link hung on a fixed joint into its parent (inertials summed as
+ODE sums them, visuals and collisions carried over and renamed), leaves out each link that
+then has no mass, with everything below it, and writes the rest as links and joints of one
+model, in its own order and number format.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator, Mapping
+from xml.sax.saxutils import escape
+
+from ..analysis import Analysis, of
+from ..errors import ConversionError, StructureError
+from ..model import (
+    Joint,
+    JointType,
+    Link,
+    Material,
+    Origin,
+    Robot,
+)
+from ..spatial import urdfdom_quaternion
+from ._elements import Shape, attr, inertial, limits, number, numbers, pose, shape
+from ._lumping import Mass, Placement, euler, lump, reach
+
+__all__ = ["to_sdf"]
+
+_TYPES = {  # URDF joint type -> SDF's; floating and planar joints are left out
+    JointType.REVOLUTE: "revolute",
+    JointType.CONTINUOUS: "revolute",
+    JointType.PRISMATIC: "prismatic",
+    JointType.FIXED: "fixed",
+}
+_ZERO_POSE = "0 0 0 0 0 0"
+
+
+def to_sdf(robot: Robot | Analysis) -> str:
+    """The SDF that sdformat 12's URDF converter makes of ``robot``, as `ign sdf -p` prints it.
+
+    SDF version 1.9, numbers as the converter prints them (16 significant digits, a zero as
+    ``0``): masses in kg, lengths in metres, angles in radians, inertias in kg*m^2.
+
+    Links on fixed joints are lumped into their parents; a link left without mass (none,
+    or within 1e-6 kg of 0) is left out with all below it; ``package://`` mesh names become
+    ``model://``.
+
+    Raises:
+        StructureError: The robot has no single root or has a joint loop (sdformat's
+            URDF reader refuses it).
+        ConversionError: sdformat's reader refuses the robot (a revolute or prismatic
+            joint without limits; links lumped into one that weigh 0 kg together), or it has
+            ``<gazebo>`` elements (not converted yet).
+    """
+    analysis = of(robot)
+    if any(text.startswith("<gazebo") for text in analysis.robot.extras):
+        raise ConversionError(
+            f"robot {analysis.robot.name!r} has <gazebo> elements, which are not converted "
+            "to SDF yet",
+            target="sdf",
+        )
+    root = analysis.root
+    _refuse_what_urdfdom_refuses(analysis)
+    model = _Model(analysis)
+    model.reduce(root)
+    body = list(model.emit(root)) if root != "world" else []
+    if root == "world":
+        for joint in analysis.topology.children[root]:
+            body += model.emit(joint.child)
+    name = attr(analysis.robot.name)
+    if not body:
+        return f"<sdf version='1.9'>\n  <model name={name}/>\n</sdf>\n"
+    lines = [f"    {line}" for element in body for line in element]
+    return "\n".join(
+        ["<sdf version='1.9'>", f"  <model name={name}>", *lines, "  </model>", "</sdf>", ""]
+    )
+
+
+def _refuse_what_urdfdom_refuses(analysis: Analysis) -> None:
+    """Stop on a robot whose tree urdfdom (the converter's reader) would not build."""
+    robot, topology = analysis.robot, analysis.topology
+    why = None
+    if len(analysis.links) != len(robot.links) or len(analysis.joints) != len(robot.joints):
+        why = "a link or joint name used twice"
+    elif analysis.loops:
+        why = "a joint loop"
+    elif any(len(joints) > 1 for joints in topology.parents.values()):
+        why = "a link that is the child of several joints"
+    elif any(j.parent not in analysis.links or j.child not in analysis.links for j in robot.joints):
+        why = "a joint between links it does not define"
+    if why is not None:
+        raise StructureError(f"robot {robot.name!r} has {why}: sdformat's reader refuses it")
+    for joint in robot.joints:
+        if joint.limit is None and joint.type in (JointType.REVOLUTE, JointType.PRISMATIC):
+            raise ConversionError(
+                f"joint {joint.name!r} is {joint.type.value} and has no <limit>: sdformat's "
+                "reader refuses it",
+                target="sdf",
+                subject=joint.name,
+            )
+
+
+class _Model:
+    """The converter's state: each link's inertial and shapes, each moving joint's parent
+    and placement, as lumping changes them. (The bodies `Analysis.bodies` fuses are the
+    same links, but the converter's order of lumping, over the topology's children in joint
+    name order, decides the shapes' names and order, and its arithmetic the last digits.)"""
+
+    def __init__(self, analysis: Analysis) -> None:
+        self.analysis = analysis
+        materials = _materials(analysis.robot)
+        self.mass: dict[str, Mass | None] = {}
+        self.visuals: dict[str, list[Shape]] = {}
+        self.collisions: dict[str, list[Shape]] = {}
+        for link in analysis.links.values():
+            self.mass[link.name] = _mass(link)
+            self.visuals[link.name] = [
+                Shape(
+                    v.name or "", _placement(v.origin), v.geometry, materials.get(id(v), v.material)
+                )
+                for v in link.visuals
+            ]
+            self.collisions[link.name] = [
+                Shape(c.name or "", _placement(c.origin), c.geometry) for c in link.collisions
+            ]
+        self.parent: dict[str, str] = {}  # a moving joint's parent, once lumping moved it
+        self.placement: dict[str, Placement] = {
+            j.name: _placement(j.origin) for j in analysis.joints.values()
+        }
+
+    def _above(self, link: str) -> Joint | None:
+        """The joint ``link`` hangs from (between links the robot defines), if any."""
+        parents = self.analysis.topology.parents.get(link)
+        return parents[0] if parents else None
+
+    def _lumped(self, joint: Joint | None) -> bool:
+        return joint is not None and joint.type is JointType.FIXED and joint.parent != "world"
+
+    def reduce(self, root: str) -> None:
+        """Lump every link on a fixed joint into its parent, in ReduceFixedJoints' order: a
+        link's fixed subtree into it, then it into its parent, then on below its moving
+        joints (with a stack of its own: a chain of links may be deeper than Python's)."""
+        children = self.analysis.topology.children
+        stack = [(root, False)]
+        while stack:
+            link, lumping = stack.pop()
+            if not lumping:
+                stack.append((link, True))
+                fixed = [j for j in children[link] if j.type is JointType.FIXED]
+                stack.extend((j.child, False) for j in reversed(fixed))
+                continue
+            above = self._above(link)
+            if above is not None and self._lumped(above):
+                self._lump(link, above)
+            moving = [j for j in children[link] if j.type is not JointType.FIXED]
+            stack.extend((j.child, False) for j in reversed(moving))
+
+    def _lump(self, link: str, joint: Joint) -> None:
+        parent, at = joint.parent, self.placement[joint.name]
+        mass = self.mass[link]
+        if mass is not None:
+            self.mass[parent] = lump(self.mass[parent], mass, at)
+        for shapes in (self.visuals, self.collisions):
+            shapes[parent] += [
+                s._replace(name=s.name or link, placement=reach([at], s.placement))
+                for s in shapes[link]
+            ]
+        for below in self.analysis.topology.children[link]:
+            if below.type is JointType.FIXED:
+                continue
+            # the joint now hangs from the first link up that no fixed joint holds
+            holder, up = link, self._above(link)
+            while up is not None and self._lumped(up):
+                self.placement[below.name] = reach(
+                    [self.placement[up.name]], self.placement[below.name]
+                )
+                holder = up.parent
+                up = self._above(holder)
+            self.parent[below.name] = holder
+
+    def emit(self, top: str) -> Iterator[list[str]]:
+        """The elements of ``top`` and below (each as lines), in CreateSDF's order."""
+        stack = [top]
+        while stack:
+            link = stack.pop()
+            mass = self.mass[link]
+            if link != "world" and (mass is None or abs(mass.mass) <= 1e-6):
+                continue  # no mass: left out, and everything below it
+            above = self._above(link)
+            if not self._lumped(above):
+                if above is not None and above.type in _TYPES:
+                    yield self._joint(above)
+                yield self._link(link, above, mass)
+            stack.extend(j.child for j in reversed(self.analysis.topology.children[link]))
+
+    def _joint(self, joint: Joint) -> list[str]:
+        kind = _TYPES[joint.type]
+        parent = self.parent.get(joint.name, joint.parent)
+        at = self.placement[joint.name]
+        relative = "__model__" if parent == "world" else parent
+        lines = [
+            f"<joint name={attr(joint.name)} type='{kind}'>",
+            f"  <pose relative_to={attr(relative)}>{pose(at.xyz, euler(at.rotation))}</pose>",
+            f"  <parent>{escape(parent)}</parent>",
+            f"  <child>{escape(joint.child)}</child>",
+        ]
+        if kind != "fixed":
+            lines += ["  <axis>", f"    <xyz>{numbers(joint.axis)}</xyz>", "    <limit>"]
+            lines += [f"      {line}" for line in limits(joint)]
+            lines += ["    </limit>", "    <dynamics>"]
+            if joint.dynamics is not None:
+                lines.append(f"      <damping>{number(joint.dynamics.damping)}</damping>")
+                lines.append(f"      <friction>{number(joint.dynamics.friction)}</friction>")
+            lines += [
+                "      <spring_reference>0</spring_reference>",
+                "      <spring_stiffness>0</spring_stiffness>",
+                "    </dynamics>",
+                "  </axis>",
+            ]
+        return [*lines, "</joint>"]
+
+    def _link(self, name: str, above: Joint | None, mass: Mass | None) -> list[str]:
+        lines = [f"<link name={attr(name)}>"]
+        if above is not None:
+            lines.append(f"  <pose relative_to={attr(above.name)}>{_ZERO_POSE}</pose>")
+        if mass is not None:
+            if not all(map(math.isfinite, mass.frame.xyz)):
+                # ODE's sum of parts weighing 0 kg together divides by 0
+                raise ConversionError(
+                    f"link {name!r}: the links lumped into it weigh 0 kg together, so its "
+                    "centre of mass is not a number, which sdformat's reader refuses",
+                    target="sdf",
+                    subject=name,
+                )
+            lines += [f"  {line}" for line in inertial(mass)]
+        for kind, shapes in (("collision", self.collisions[name]), ("visual", self.visuals[name])):
+            for count, item in enumerate(shapes):
+                lines += [f"  {line}" for line in shape(kind, name, count, item)]
+        return [*lines, "</link>"]
+
+
+def _materials(robot: Robot) -> Mapping[int, Material | None]:
+    """Each visual's material (by the visual's id) as urdfdom resolves it: a material of the
+    same name defined at the top level, or by a visual before it, comes first; one with a
+    name alone that none defined so far is none."""
+    known: dict[str, Material] = {}
+    for material in robot.materials:
+        known.setdefault(material.name, material)
+    found: dict[int, Material | None] = {}
+    for link in robot.links:
+        for visual in link.visuals:
+            given = visual.material
+            if given is None or not given.name:
+                continue
+            if given.color is None and given.texture is None:
+                found[id(visual)] = known.get(given.name)
+            else:
+                found[id(visual)] = known.setdefault(given.name, given)
+    return found
+
+
+def _mass(link: Link) -> Mass | None:
+    inertial = link.inertial
+    if inertial is None:
+        return None
+    i = inertial.inertia
+    frame = _placement(inertial.origin)
+    return Mass(inertial.mass, frame, (i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz))
+
+
+def _placement(origin: Origin) -> Placement:
+    return Placement(origin.xyz, urdfdom_quaternion(origin.rpy))
