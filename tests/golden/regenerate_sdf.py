@@ -17,6 +17,7 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -45,6 +46,12 @@ def urdf_text(path: Path) -> str:
     from fishbot_urdf import expand
 
     return expand(path).text
+
+
+def digest(text: str) -> str:
+    """The sha256 of a converter's input without its comments: xacro's banner names the file
+    it expanded by the path it was given, which is another on every checkout."""
+    return hashlib.sha256(re.sub(r"<!--.*?-->", "", text, flags=re.S).encode("utf-8")).hexdigest()
 
 
 def version() -> str:
@@ -98,8 +105,7 @@ def main() -> int:
             if run.returncode != 0:
                 print(f"regenerate_sdf.py: {relative}: {run.stderr.strip()}", file=sys.stderr)
                 return 1
-            sha = hashlib.sha256(text.encode("utf-8")).hexdigest()
-            index["inputs"][name] = {"input": relative, "sha256": sha}  # type: ignore[index]
+            index["inputs"][name] = {"input": relative, "sha256": digest(text)}  # type: ignore[index]
             if _write(OUT / f"{name}.sdf", run.stdout):
                 changed.append(f"{name}.sdf")
     if _write(OUT / "index.json", json.dumps(index, indent=2, sort_keys=True) + "\n"):
