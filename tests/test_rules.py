@@ -113,6 +113,26 @@ WORKSPACE["frames.urdf"] = WORKSPACE["fishbot.urdf"].replace(
     '    <visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>\n', ""
 )
 
+# The conversion's example: an arm, and the same with a <gazebo> block (not converted yet).
+_ARM = """\
+<robot name="arm">
+  <link name="base_link">
+    <inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <link name="upper_arm">
+    <inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <joint name="shoulder" type="revolute">
+    <parent link="base_link"/><child link="upper_arm"/><axis xyz="0 1 0"/>
+    <limit lower="-1.57" upper="1.57" effort="10" velocity="1"/>
+  </joint>{gazebo}
+</robot>
+"""
+WORKSPACE["arm.urdf"] = _ARM.format(gazebo="")
+WORKSPACE["gazebo.urdf"] = _ARM.format(
+    gazebo='\n  <gazebo reference="upper_arm"><material>Gazebo/Red</material></gazebo>'
+)
+
 # Rules of what render and view cannot draw: the picture is drawn without it, exit status 0.
 DRAWING_RULES = {"shape-not-drawn"}
 

@@ -100,6 +100,28 @@ fishbot graph fishbot.urdf -o fishbot.png
     language="shell",
     fatal=True,
 )
+CONVERSION = Rule(
+    "conversion",
+    E,
+    Family.SETUP,
+    summary="A robot cannot be converted to another format: its converter refuses it, or it "
+    "holds what is not converted yet.",
+    explanation="`fishbot sdf` writes what sdformat's own URDF converter writes, and refuses "
+    "what it refuses beyond what the reader does: links lumped over fixed joints that weigh "
+    "0 kg together (the converter divides by their mass). Robots with `<gazebo>` elements are "
+    "not converted yet. The message names the link at fault, nothing is written, and the "
+    "command stops with exit status 1.",
+    bad="""\
+# gazebo.urdf: the arm, with a <gazebo reference="upper_arm"> block
+fishbot sdf gazebo.urdf -o arm.sdf
+""",
+    good="""\
+# arm.urdf: the same arm without it
+fishbot sdf arm.urdf -o arm.sdf
+""",
+    consumers=(Consumer.GAZEBO,),
+    language="shell",
+)
 TOOL_FAILED = Rule(
     "tool-failed",
     E,

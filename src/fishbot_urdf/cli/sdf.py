@@ -7,7 +7,7 @@ from collections.abc import Sequence
 
 import click
 
-from ..errors import FishbotUrdfError
+from ..errors import ConversionError, FishbotUrdfError
 from ..export.sdf import to_sdf
 from ..output import write_atomic
 from ._checking import posable_input, read_files
@@ -70,5 +70,7 @@ def sdf(file: str, args: Sequence[str], output: str, package_items: Sequence[str
             # never over what was read: the robot, its includes, its meshes, the configuration
             write_atomic(output, text, inputs=[*read_files(file, result), *read])
     except FishbotUrdfError as exc:
+        if isinstance(exc, ConversionError) and exc.path is None:  # about the robot read
+            exc.path = result.analysis.path
         stop_on(exc)
     sys.exit(EXIT_OK)
