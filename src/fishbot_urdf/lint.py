@@ -27,6 +27,7 @@ from .parsing import is_xacro_path, read
 from .rules import CHECKS, Settings
 from .rules.physics import GROUND_TOLERANCE
 from .suppress import apply_suppressions, suppressions
+from .targets import retarget, targets_of
 from .validation import values
 from .validation._readable import finite, readable
 
@@ -87,8 +88,9 @@ def check_file(
     where each mesh package was found for the next files. ``config`` selects the rules, sets
     their severities and the ground tolerance (default: every rule, at its default
     severity), and says which folders a xacro file may read in besides its own tree
-    (``allow_read``). ``fishbot: ignore[RULE]`` comments in the file (and in a xacro file's
-    includes) silence findings.
+    (``allow_read``), and the programs the robot is for (``targets``: an error that harms
+    none of them is a warning, see `fishbot_urdf.targets`). ``fishbot: ignore[RULE]``
+    comments in the file (and in a xacro file's includes) silence findings.
 
     Raises:
         InputError: The file cannot be read.
@@ -111,7 +113,10 @@ def check_file(
     else:
         sources = {parsed.path: parsed.data}
     marks = suppressions(sources)
-    kept, silenced = apply_suppressions(config.apply(found), marks, config)
+    targets = targets_of(parsed.robot, config.targets)
+    kept, silenced = apply_suppressions(
+        config.apply(retarget(found, targets, analysis)), marks, config
+    )
     kept = without_consequences(kept)
     kept.sort(key=sort_key)
     return CheckResult(
@@ -135,7 +140,8 @@ def check(
 
     The findings are sorted by position. ``packages`` are folders for the ``package://``
     names of meshes (looked up as for xacro's ``$(find)``). (Comments are not read here:
-    see `check_file`.)
+    see `check_file`.) ``config`` chooses the rules, their severities and the targets, as
+    for `check_file`.
 
     A robot built in Python is held to what the reader gives: a number that is not finite, a
     missing name or a character XML cannot hold is the reader's finding (see
@@ -161,7 +167,8 @@ def check(
         analysis = of(robot, packages)
     config = config or Config()
     found = [*model, *_rule_findings(analysis, model, config, packages)]
-    return tuple(sorted(without_consequences(config.apply(found)), key=sort_key))
+    targeted = retarget(found, targets_of(given, config.targets), analysis)
+    return tuple(sorted(without_consequences(config.apply(targeted)), key=sort_key))
 
 
 def _rule_findings(

@@ -15,26 +15,14 @@ from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, NoReturn
 
-from ..catalog import Family, all_rules
-from ..catalog.reading import ROBOT_NAME, ROBOT_VERSION
-from ..catalog.structure import (
-    DUPLICATE_JOINT,
-    DUPLICATE_LINK,
-    DUPLICATE_MATERIAL,
-    MISSING_LIMIT,
-    MULTIPLE_ROOTS,
-    NO_LINKS,
-    NO_ROOT,
-    UNDEFINED_LINK,
-)
-from ..diagnostics import Kind, has_errors
 from ..diagnostics import escape_line_controls as shown
+from ..diagnostics import has_errors
 from ..errors import FishbotUrdfError
 from ..graph import tree_text
 from ..inputs import max_seconds, recording_inputs, time_limit
-from ..model import JointType
 from ..parsing import is_xacro_path
 from ..report import FileReport
+from ..targets import urdfdom_refuses as refuses
 from ._checking import check_input, read_files
 from ._common import EXIT_INVALID, EXIT_OK, fail, status_of
 
@@ -340,45 +328,10 @@ def tree_chunks(result: CheckResult) -> Iterable[str]:
     )
 
 
-# Faults for which urdfdom builds no robot from the file, whatever their severity here.
-_REFUSED = frozenset(
-    rule.id
-    for rule in (
-        ROBOT_NAME,
-        ROBOT_VERSION,
-        NO_LINKS,
-        DUPLICATE_LINK,
-        DUPLICATE_JOINT,
-        DUPLICATE_MATERIAL,
-        UNDEFINED_LINK,
-        MULTIPLE_ROOTS,
-        NO_ROOT,
-        MISSING_LIMIT,
-    )
-)
-_READING = frozenset(rule.id for rule in all_rules() if rule.family is Family.URDF)
-_AXISLESS = (JointType.FIXED, JointType.FLOATING)
-
-
 def urdfdom_refuses(result: CheckResult) -> bool:
     """Whether urdfdom (check_urdf) refuses the file, as its findings (silenced ones too)
-    tell: a fault of the robot element, of the names or of the tree, or any error in reading
-    a joint (urdfdom drops nothing of a joint, and refuses the whole file for it; it logs a
-    link's faults and keeps the link, and reads no fixed or floating joint's axis)."""
-    analysis = result.analysis
-    for finding in (*result.diagnostics, *result.suppressed):
-        rule = finding.rule
-        if rule in _REFUSED:
-            return True
-        subject = finding.subject
-        if rule not in _READING or not finding.is_error or subject is None:
-            continue
-        if subject.kind is Kind.JOINT:
-            joint = analysis.joints.get(subject.name) if analysis is not None else None
-            axisless = joint is not None and joint.type in _AXISLESS
-            if not (axisless and finding.element == "axis"):
-                return True
-    return False
+    tell (see `fishbot_urdf.targets.urdfdom_refuses`)."""
+    return refuses((*result.diagnostics, *result.suppressed), result.analysis)
 
 
 def _can_fork() -> bool:
