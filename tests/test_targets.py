@@ -122,7 +122,9 @@ def test_names_and_aliases() -> None:
     with pytest.raises(UnknownNameError, match="did you mean 'pybullet'"):
         target_name("pybulet")
     assert consumers_of(["all"]) == frozenset(Consumer)
-    assert set(TARGETS) == {"ros", "check_urdf", "gazebo", "mujoco", "drake", "pybullet", "all"}
+    assert target_name("ros_control") == "ros2_control"
+    names = {"ros", "check_urdf", "gazebo", "mujoco", "drake", "pybullet", "ros2_control", "all"}
+    assert set(TARGETS) == names
 
 
 def test_the_default_targets_follow_the_robot(robots: Path) -> None:
@@ -135,7 +137,25 @@ def test_the_default_targets_follow_the_robot(robots: Path) -> None:
         "<plugin>gz_ros2_control/GazeboSimSystem</plugin></hardware></ros2_control></robot>",
     )
     Path("control.urdf").write_text(control)
-    assert targets_of(check_file("control.urdf").robot) == ("ros", "gazebo")
+    assert targets_of(check_file("control.urdf").robot) == ("ros", "gazebo", "ros2_control")
+
+
+def test_a_robot_with_ros2_control_is_for_ros2_control(tmp_path: Path) -> None:
+    # A joint ros2_control is told of that the robot does not have: the controller manager
+    # refuses it, on a real robot as in Gazebo.
+    robot = tmp_path / "r.urdf"
+    robot.write_text(
+        KINEMATIC.replace(
+            "</robot>",
+            '<ros2_control name="arm" type="system"><hardware><plugin>arm/Hardware</plugin>'
+            '</hardware><joint name="elbow"><command_interface name="position"/></joint>'
+            "</ros2_control></robot>",
+        )
+    )
+    status, err = run(str(robot))
+    assert (status, levels(err, "unknown-reference")) == (1, ["error"])
+    status, err = run("--target", "ros", str(robot))
+    assert (status, levels(err, "unknown-reference")) == (0, ["warning"])
 
 
 def test_the_library_takes_the_targets_from_the_configuration(robots: Path) -> None:

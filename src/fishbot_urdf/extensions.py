@@ -19,7 +19,15 @@ from .errors import FishbotUrdfError
 from .model import Location, Robot
 from .xml.source import parse_xml
 
-__all__ = ["Interface", "Reference", "Target", "collect", "from_robot", "simulated_in_gazebo"]
+__all__ = [
+    "Interface",
+    "Reference",
+    "Target",
+    "collect",
+    "controlled",
+    "from_robot",
+    "simulated_in_gazebo",
+]
 
 Locate = Callable[[etree._Element], Location | None]
 LocateAttribute = Callable[[Location, str], Location]
@@ -162,6 +170,12 @@ def simulated_in_gazebo(robot: Robot) -> bool:
         if text.startswith("<ros2_control") and _GAZEBO_HARDWARE.search(text):
             return True
     return False
+
+
+def controlled(robot: Robot) -> bool:
+    """Whether ``robot`` is written for ros2_control or ros_control: it has a
+    ``<ros2_control>`` or ``<transmission>`` element."""
+    return any(text.startswith(("<ros2_control", "<transmission")) for text in robot.extras)
 
 
 _GAZEBO = re.compile(r"<gazebo[\s/>]")

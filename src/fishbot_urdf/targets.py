@@ -8,11 +8,12 @@ A target names one program, or the programs every ROS robot meets:
 - ``check_urdf``: check_urdf alone: an error only where it refuses the file, so that the
   exit status is check_urdf's;
 - ``gazebo``, ``mujoco``, ``drake``, ``pybullet``: the simulators;
+- ``ros2_control``: the controller manager of ros2_control (and ros_control);
 - ``all``: every program a rule names.
 
 A robot with a ``<gazebo>`` element, or a ``<ros2_control>`` run by Gazebo, targets Gazebo
-besides the default. A rule that names no program (a file that cannot be read), and a
-fatal one, stays as it is.
+besides the default; one with a ``<ros2_control>`` or ``<transmission>``, ros2_control. A
+rule that names no program (a file that cannot be read), and a fatal one, stays as it is.
 """
 
 from __future__ import annotations
@@ -35,7 +36,7 @@ from .catalog.structure import (
 )
 from .diagnostics import Diagnostic, Kind, Severity
 from .errors import UnknownNameError
-from .extensions import simulated_in_gazebo
+from .extensions import controlled, simulated_in_gazebo
 from .model import JointType
 
 if TYPE_CHECKING:
@@ -62,6 +63,7 @@ TARGETS: dict[str, tuple[Consumer, ...]] = {
     "mujoco": (Consumer.MUJOCO,),
     "drake": (Consumer.DRAKE,),
     "pybullet": (Consumer.PYBULLET,),
+    "ros2_control": (Consumer.ROS2_CONTROL,),
     "all": tuple(Consumer),
 }
 """Each target's name, and the consumers (see `fishbot_urdf.catalog.Consumer`) it stands for."""
@@ -80,11 +82,14 @@ ALIASES = {
     "bullet": "pybullet",
     "pydrake": "drake",
     "mjcf": "mujoco",
+    "ros_control": "ros2_control",
+    "controller_manager": "ros2_control",
 }
 """Other names of the targets (written with ``-`` or ``_``, in any case)."""
 
 DEFAULT = ("ros",)
-"""The targets of a robot when none are given (and ``gazebo`` when it is written for it)."""
+"""The targets of a robot when none are given (with ``gazebo`` and ``ros2_control`` when it
+is written for them)."""
 
 
 def target_name(name: str) -> str:
@@ -102,12 +107,15 @@ def target_name(name: str) -> str:
 
 def targets_of(robot: Robot | None, given: Iterable[str] | None = None) -> tuple[str, ...]:
     """The targets a robot is checked for: ``given`` (names or aliases), else the default,
-    with ``gazebo`` for a robot written for Gazebo."""
+    with ``gazebo`` for a robot written for Gazebo and ``ros2_control`` for one written for
+    it."""
     if given is not None:
         return tuple(dict.fromkeys(map(target_name, given)))
-    if robot is not None and simulated_in_gazebo(robot):
-        return (*DEFAULT, "gazebo")
-    return DEFAULT
+    if robot is None:
+        return DEFAULT
+    gazebo = ("gazebo",) if simulated_in_gazebo(robot) else ()
+    control = ("ros2_control",) if controlled(robot) else ()
+    return (*DEFAULT, *gazebo, *control)
 
 
 def consumers_of(targets: Iterable[str]) -> frozenset[Consumer]:

@@ -212,8 +212,9 @@ class _Options:
     multiple=True,
     help="The programs the robots are for (comma-separated, repeatable): ros (check_urdf, "
     "robot_state_publisher, RViz, MoveIt), check_urdf (its exit status exactly), gazebo, "
-    "mujoco, drake, pybullet, all. A finding that harms none of them is a warning. "
-    "[default: the configuration's targets, else ros, and gazebo for a robot with <gazebo>]",
+    "mujoco, drake, pybullet, ros2_control, all. A finding that harms none of them is a "
+    "warning. [default: the configuration's targets, else ros, with gazebo for a robot with "
+    "<gazebo> and ros2_control for one with <ros2_control> or <transmission>]",
 )
 @click.option(
     "--config",
@@ -278,8 +279,9 @@ def check(
     their collision shapes, and whether a robot on a footprint root stands on the ground.
 
     A finding that harms only programs the robot is not for is a warning: by default a
-    robot is for the ROS tools (check_urdf, robot_state_publisher, RViz), and for Gazebo
-    when it has <gazebo> elements; --target names others (--target check_urdf: exit 1
+    robot is for the ROS tools (check_urdf, robot_state_publisher, RViz), for Gazebo when
+    it has <gazebo> elements, for ros2_control when it has <ros2_control> or <transmission>;
+    --target names others (--target check_urdf: exit 1
     exactly where check_urdf fails).
 
     Rules are chosen by [tool.fishbot] in the nearest pyproject.toml, or a fishbot.toml,
