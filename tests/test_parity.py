@@ -135,6 +135,15 @@ def test_a_broken_file_prints_what_check_urdf_prints_and_nothing_more(
     assert (out != b"") is (real.status == 0)
 
 
+@pytest.mark.parametrize("item", BROKEN, ids=[item.id for item in BROKEN])
+def test_the_tree_is_check_urdfs_whatever_the_targets(item: GoldenInput) -> None:
+    # A fault urdfdom refuses a joint for is a warning for a program that does not read
+    # joints so (ros2_control alone): the tree is still check_urdf's.
+    real = golden_check_urdf(item)
+    for target in ("ros2_control", "mujoco", "drake", "check_urdf"):
+        assert _ours(item.path, "--target", target)[1] == real.stdout, target
+
+
 def test_a_silenced_fault_still_tells_what_check_urdf_prints(tmp_path: Path) -> None:
     item = GoldenInput.from_id("data/broken/joint_mimic_without_joint.urdf")
     silenced = tmp_path / "silenced.urdf"

@@ -27,7 +27,7 @@ from .parsing import is_xacro_path, read
 from .rules import CHECKS, Settings
 from .rules.physics import GROUND_TOLERANCE
 from .suppress import apply_suppressions, suppressions
-from .targets import retarget, targets_of
+from .targets import retarget, targets_of, urdfdom_refuses
 from .validation import values
 from .validation._readable import finite, readable
 
@@ -52,6 +52,9 @@ class CheckResult:
         files: Every file the robot was read from (for xacro, with everything it includes).
         data: The URDF read: the file's bytes, or a xacro file's expansion.
         suppressed: The findings that ``fishbot: ignore[...]`` comments silenced.
+        refused_by_urdfdom: urdfdom (check_urdf) builds no robot from the file, as the
+            findings of the selected rules tell (silenced ones too, whatever the targets
+            made of them: see `fishbot_urdf.targets.urdfdom_refuses`).
     """
 
     path: str
@@ -61,6 +64,7 @@ class CheckResult:
     files: tuple[str, ...] = ()
     data: bytes = field(default=b"", repr=False)
     suppressed: tuple[Diagnostic, ...] = ()
+    refused_by_urdfdom: bool = False
 
     @property
     def topology(self) -> Topology | None:
@@ -114,6 +118,7 @@ def check_file(
         sources = {parsed.path: parsed.data}
     marks = suppressions(sources)
     targets = targets_of(parsed.robot, config.targets)
+    refused = urdfdom_refuses(config.apply(found), analysis)
     kept, silenced = apply_suppressions(
         config.apply(retarget(found, targets, analysis)), marks, config
     )
@@ -127,6 +132,7 @@ def check_file(
         parsed.files,
         parsed.data,
         tuple(sorted(silenced, key=sort_key)),
+        refused,
     )
 
 

@@ -22,7 +22,6 @@ from ..graph import tree_text
 from ..inputs import max_seconds, recording_inputs, time_limit
 from ..parsing import is_xacro_path
 from ..report import FileReport
-from ..targets import urdfdom_refuses as refuses
 from ._checking import check_input, read_files
 from ._common import EXIT_INVALID, EXIT_OK, fail, status_of
 
@@ -308,12 +307,12 @@ def outcome(name: str, config: Config, run: Run) -> Outcome:
 def tree_chunks(result: CheckResult) -> Iterable[str]:
     """check_urdf's output: the tree wherever urdfdom builds the robot, our errors or not (a
     script reading it keeps working, and the exit status tells the rest), nothing where it
-    refuses the file (see `urdfdom_refuses`). A joint loop reached from the root, which
+    refuses the file (`CheckResult.refused_by_urdfdom`). A joint loop reached from the root, which
     check_urdf prints without end, is not printed either."""
     topo = result.topology
     if result.analysis is None or topo is None or topo.root is None or topo.loop_from_root:
         return ()
-    if urdfdom_refuses(result):
+    if result.refused_by_urdfdom:
         return ()
     robot = result.analysis.robot
 
@@ -326,12 +325,6 @@ def tree_chunks(result: CheckResult) -> Iterable[str]:
         shown(chunk[:-1]) + "\n" if chunk.endswith("\n") else shown(chunk)
         for chunk in tree_text(result.analysis)
     )
-
-
-def urdfdom_refuses(result: CheckResult) -> bool:
-    """Whether urdfdom (check_urdf) refuses the file, as its findings (silenced ones too)
-    tell (see `fishbot_urdf.targets.urdfdom_refuses`)."""
-    return refuses((*result.diagnostics, *result.suppressed), result.analysis)
 
 
 def _can_fork() -> bool:
