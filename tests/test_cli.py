@@ -292,11 +292,13 @@ def test_json_report() -> None:
         "links": 2,
         "joints": 1,
         "config": None,
+        "targets": ["gazebo"],
         "skipped": None,
         "diagnostics": [],
         "suppressed": {"count": 0, "rules": {}},
     }
     assert second["ok"] is False
+    assert second["targets"] == ["gazebo"]
     assert [d["rule"] for d in second["diagnostics"]] == ["limit-range"]
     assert second["diagnostics"][0]["line"] == 7
 

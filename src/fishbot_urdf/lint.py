@@ -55,6 +55,7 @@ class CheckResult:
         refused_by_urdfdom: urdfdom (check_urdf) builds no robot from the file, as the
             findings of the selected rules tell (silenced ones too, whatever the targets
             made of them: see `fishbot_urdf.targets.urdfdom_refuses`).
+        targets: The programs the robot was checked for (see `fishbot_urdf.targets`).
     """
 
     path: str
@@ -65,6 +66,7 @@ class CheckResult:
     data: bytes = field(default=b"", repr=False)
     suppressed: tuple[Diagnostic, ...] = ()
     refused_by_urdfdom: bool = False
+    targets: tuple[str, ...] = ()
 
     @property
     def topology(self) -> Topology | None:
@@ -133,6 +135,7 @@ def check_file(
         parsed.data,
         tuple(sorted(silenced, key=sort_key)),
         refused,
+        targets,
     )
 
 

@@ -344,6 +344,7 @@ def _report(result: CheckResult, config: Config, failed: bool) -> FileReport:
         links=None if robot is None else len(robot.links),
         joints=None if robot is None else len(robot.joints),
         config=config.path,
+        targets=result.targets,
     )
 
 
