@@ -18,8 +18,9 @@ rule that names no program (a file that cannot be read), and a fatal one, stays 
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import replace
+from types import MappingProxyType
 from typing import TYPE_CHECKING
 
 from .catalog import Consumer, Family, all_rules
@@ -48,6 +49,7 @@ __all__ = [
     "DEFAULT",
     "TARGETS",
     "consumers_of",
+    "refused",
     "retarget",
     "target_name",
     "targets_of",
@@ -56,35 +58,39 @@ __all__ = [
 
 CHECK_URDF = "check_urdf"
 
-TARGETS: dict[str, tuple[Consumer, ...]] = {
-    "ros": (Consumer.URDFDOM, Consumer.XACRO),
-    CHECK_URDF: (),  # what check_urdf refuses: see `urdfdom_refuses`
-    "gazebo": (Consumer.GAZEBO,),
-    "mujoco": (Consumer.MUJOCO,),
-    "drake": (Consumer.DRAKE,),
-    "pybullet": (Consumer.PYBULLET,),
-    "ros2_control": (Consumer.ROS2_CONTROL,),
-    "all": tuple(Consumer),
-}
+TARGETS: Mapping[str, tuple[Consumer, ...]] = MappingProxyType(
+    {
+        "ros": (Consumer.URDFDOM, Consumer.XACRO),
+        CHECK_URDF: (),  # what check_urdf refuses: see `urdfdom_refuses`
+        "gazebo": (Consumer.GAZEBO,),
+        "mujoco": (Consumer.MUJOCO,),
+        "drake": (Consumer.DRAKE,),
+        "pybullet": (Consumer.PYBULLET,),
+        "ros2_control": (Consumer.ROS2_CONTROL,),
+        "all": tuple(Consumer),
+    }
+)
 """Each target's name, and the consumers (see `fishbot_urdf.catalog.Consumer`) it stands for."""
 
-ALIASES = {
-    "urdfdom": "ros",
-    "rviz": "ros",
-    "rviz2": "ros",
-    "robot_state_publisher": "ros",
-    "moveit": "ros",
-    "kdl": "ros",
-    "gz": "gazebo",
-    "gazebo_classic": "gazebo",
-    "ignition": "gazebo",
-    "gz_sim": "gazebo",
-    "bullet": "pybullet",
-    "pydrake": "drake",
-    "mjcf": "mujoco",
-    "ros_control": "ros2_control",
-    "controller_manager": "ros2_control",
-}
+ALIASES: Mapping[str, str] = MappingProxyType(
+    {
+        "urdfdom": "ros",
+        "rviz": "ros",
+        "rviz2": "ros",
+        "robot_state_publisher": "ros",
+        "moveit": "ros",
+        "kdl": "ros",
+        "gz": "gazebo",
+        "gazebo_classic": "gazebo",
+        "ignition": "gazebo",
+        "gz_sim": "gazebo",
+        "bullet": "pybullet",
+        "pydrake": "drake",
+        "mjcf": "mujoco",
+        "ros_control": "ros2_control",
+        "controller_manager": "ros2_control",
+    }
+)
 """Other names of the targets (written with ``-`` or ``_``, in any case)."""
 
 DEFAULT = ("ros",)
