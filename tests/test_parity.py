@@ -65,7 +65,7 @@ FAULTY = {
     "alex_psyonic_hands.urdf": "mimic joints name joints that do not exist",
     "icub.urdf": "moving links with mass and an all-zero (or 1e-20) inertia",
     "icub_reduced.urdf": "moving links with mass and an all-zero (or 1e-20) inertia",
-    "romeo_laas_small.urdf": "hip inertias with a negative principal moment",
+    "romeo_laas_small.urdf": "meshes named by absolute file:// paths that are not there",
     "pr2.urdf": "<gazebo reference> blocks name links the robot does not have",
     "talos_left_arm.urdf": "a <transmission> and a <gazebo> block for a joint left out",
     "tiago_dual.urdf": "<gazebo reference> names with an unexpanded {side} in them",
