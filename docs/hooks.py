@@ -4,7 +4,7 @@
   without the side bars so that its pictures have the page's width;
 - the rule list and one page per rule come from the rule registry (`fishbot_urdf.catalog`),
   the text `fishbot rules --format markdown` prints, and the navigation lists those pages by
-  family;
+  family; so does the configuration page's table of the programs each rule matters to;
 - the API page lists every name of `fishbot_urdf.__all__` with its one-line summary, then
   each one's reference from its docstring (mkdocstrings).
 
@@ -27,7 +27,11 @@ from mkdocs.structure.pages import Page
 
 import fishbot_urdf
 from fishbot_urdf.catalog import Rule, all_rules
-from fishbot_urdf.catalog.docs import markdown_explanation, with_rule_table
+from fishbot_urdf.catalog.docs import (
+    markdown_explanation,
+    with_consumer_table,
+    with_rule_table,
+)
 
 ROOT = Path(__file__).resolve().parent.parent
 API_MARKER = "<!-- api: the names of fishbot_urdf.__all__, made by docs/hooks.py -->"
@@ -91,6 +95,8 @@ def on_page_markdown(markdown: str, page: Page, config: MkDocsConfig, files: Fil
         return _home()
     if page.file.src_uri == "rules/index.md":
         return _linked_rule_table(with_rule_table(markdown, all_rules()))
+    if page.file.src_uri == "configuration.md":
+        return _linked_rule_table(with_consumer_table(markdown, all_rules()), "rules/")
     if page.file.src_uri == "api.md":
         return markdown.replace(API_MARKER, _api())
     return markdown
@@ -109,9 +115,10 @@ def _rule_page(rule: Rule) -> str:
     return f"# {title}\n{body}\n{back}\n"
 
 
-def _linked_rule_table(markdown: str) -> str:
-    """Each rule id of the table linked to its page."""
-    return re.sub(r"^\| `([a-z0-9-]+)` \|", r"| [`\1`](\1.md) |", markdown, flags=re.MULTILINE)
+def _linked_rule_table(markdown: str, folder: str = "") -> str:
+    """Each rule id of the table linked to its page (in ``folder``, from the page's own)."""
+    link = rf"| [`\1`]({folder}\1.md) |"
+    return re.sub(r"^\| `([a-z0-9-]+)` \|", link, markdown, flags=re.MULTILINE)
 
 
 def _sources() -> dict[str, str]:

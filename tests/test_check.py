@@ -11,7 +11,7 @@ import pytest
 from conftest import DATA, INVALID, VALID
 
 import fishbot_urdf
-from fishbot_urdf import Severity, check_file
+from fishbot_urdf import Config, Severity, check_file
 
 # (fixture, rule, severity, text the finding points at, message).
 # The expected line and column are where the pointed-at text first occurs in the fixture
@@ -228,12 +228,16 @@ def _position(path: Path, needle: str) -> tuple[int, int]:
     return line, column
 
 
+# Each fixture checked for every program its rule names: its finding at the rule's severity.
+EVERY_PROGRAM = Config(targets=("all",))
+
+
 @pytest.mark.parametrize(
     ("name", "rule", "severity", "needle", "message"), CASES, ids=[c[0] for c in CASES]
 )
 def test_rule(name: str, rule: str, severity: str, needle: str, message: str) -> None:
     path = DATA / "invalid" / f"{name}.urdf"
-    result = check_file(path)
+    result = check_file(path, config=EVERY_PROGRAM)
     matching = [d for d in result.diagnostics if d.rule == rule]
     assert len(matching) == 1, [d.format() for d in result.diagnostics]
     finding = matching[0]

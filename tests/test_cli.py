@@ -277,8 +277,8 @@ def test_many_files_worst_status_wins() -> None:
 
 
 def test_json_report() -> None:
-    bad = DATA / "invalid" / "limit_range.urdf"
-    status, out, err = run("check", "--format", "json", str(FIRST), str(bad))
+    bad = DATA / "invalid" / "limit_range.urdf"  # an error for the simulators
+    status, out, err = run("check", "--target", "gazebo", "--format", "json", str(FIRST), str(bad))
     assert status == 1
     assert err == ""
     report = json.loads(out)
@@ -292,11 +292,13 @@ def test_json_report() -> None:
         "links": 2,
         "joints": 1,
         "config": None,
+        "targets": ["gazebo"],
         "skipped": None,
         "diagnostics": [],
         "suppressed": {"count": 0, "rules": {}},
     }
     assert second["ok"] is False
+    assert second["targets"] == ["gazebo"]
     assert [d["rule"] for d in second["diagnostics"]] == ["limit-range"]
     assert second["diagnostics"][0]["line"] == 7
 
@@ -460,10 +462,11 @@ def test_a_closed_standard_output_is_no_error_for_a_command_that_writes_nothing_
 @pytest.mark.skipif(os.name != "posix", reason="a pipe closed by its reader")
 def test_a_reader_that_has_gone_ends_nothing_but_the_output(tmp_path: Path) -> None:
     # `fishbot check robot.urdf | head -0`: no line, no traceback, and the robot's own
-    # status (its findings still go to stderr).
+    # status (its findings still go to stderr). A mass urdfdom cannot read: an error for
+    # every program (a negative mass harms only simulators).
     robot = tmp_path / "r.urdf"
     robot.write_text(
-        '<robot name="r"><link name="a"/><link name="b"><inertial><mass value="-1"/>'
+        '<robot name="r"><link name="a"/><link name="b"><inertial><mass value="1kg"/>'
         '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>'
         '<joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint></robot>'
     )

@@ -677,7 +677,8 @@ def test_fill_without_output_on_a_full_robot_and_on_standard_input() -> None:
 
 
 def test_the_missing_inertial_hint_names_fill() -> None:
-    result = CliRunner().invoke(cli, ["check", str(PHYSICS / "missing_inertial.urdf")])
+    command = ["check", "--target", "gazebo", str(PHYSICS / "missing_inertial.urdf")]
+    result = CliRunner().invoke(cli, command)
     assert result.exit_code == 1
     assert (
         "`fishbot inertia ROBOT --fill --mass LINK=KG` says what to write and where, and with "

@@ -18,7 +18,7 @@ from fishbot_urdf.cli import cli
 from fishbot_urdf.diagnostics import Severity
 
 # An arm with one finding in each of three families: urdf (a warning), physics and
-# structure (errors).
+# structure (errors: its <gazebo> block makes it a robot for Gazebo, which both harm).
 ARM = """\
 <?xml version="1.0"?>
 <robot name="arm">
@@ -39,6 +39,7 @@ ARM = """\
     <axis xyz="0 1 0"/>
     <limit lower="1.5" upper="-1.5" effort="10" velocity="1"/>
   </joint>
+  <gazebo reference="upper_arm"/>
 </robot>
 """
 TREE = (
@@ -333,7 +334,8 @@ def test_an_empty_selection_still_prints_the_tree(arm: Path) -> None:
         (
             '[project]\nname = "x"\n\n[tool.fishbot]\nignroe = ["physics"]\n',
             "pyproject.toml:5: error: unknown key 'ignroe' (did you mean 'ignore'? keys: "
-            "select, extend-select, ignore, severity, strict, ground-tolerance, allow-read) "
+            "select, extend-select, ignore, severity, strict, ground-tolerance, allow-read, "
+            "targets) "
             "[config]",
         ),
         (

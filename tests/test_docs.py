@@ -39,7 +39,7 @@ from conftest import DATA, REQUIRE_TOOLS, ROOT, require_tool
 from lxml import etree
 
 import fishbot_urdf
-from fishbot_urdf.catalog import all_rules
+from fishbot_urdf.catalog import Consumer, all_rules
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -407,6 +407,24 @@ def test_every_rule_has_its_page_made_from_the_registry(site: Path) -> None:
         assert " ".join(rule.summary.replace("`", "").split()) in page.replace("`", ""), rule.id
         assert rule.id in table
         assert f'href="{rule.id}/"' in _html(site, "rules"), rule.id
+
+
+def test_the_configuration_page_has_one_table_of_rules_and_programs(site: Path) -> None:
+    """Made from the catalogue: a row per rule that names programs, linked to its page, a
+    column per program, ticked where the rule names it."""
+    html = _html(site, "configuration")
+    tables = [t for t in re.findall(r"<table>.*?</table>", html, re.S) if "xml-tools" in t]
+    assert len(tables) == 1
+    rows = re.findall(r"<tr>(.*?)</tr>", tables[0], re.S)
+    header = re.findall(r"<th[^>]*>(.*?)</th>", rows[0])
+    assert header == ["rule", "severity", *(c.value for c in Consumer)]
+    named = [rule for rule in all_rules() if rule.consumers]
+    assert len(rows) == 1 + len(named)
+    for rule, row in zip(named, rows[1:], strict=True):
+        cells = re.findall(r"<td[^>]*>(.*?)</td>", row, re.S)
+        assert f'href="../rules/{rule.id}/"' in cells[0], rule.id
+        ticked = [c for c, cell in zip(Consumer, cells[2:], strict=True) if cell == "✓"]
+        assert ticked == [c for c in Consumer if c in rule.consumers], rule.id
 
 
 def _summary(name: str) -> str:

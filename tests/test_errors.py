@@ -206,5 +206,5 @@ def test_config_error(tmp_path: Path) -> None:
     assert (error.rule, error.path, error.line) == ("config", str(config), 2)
     assert error.message == (
         "unknown key 'ignroe' (did you mean 'ignore'? keys: select, extend-select, ignore, "
-        "severity, strict, ground-tolerance, allow-read)"
+        "severity, strict, ground-tolerance, allow-read, targets)"
     )

@@ -65,17 +65,22 @@ FAULTY = {
     "alex_psyonic_hands.urdf": "mimic joints name joints that do not exist",
     "icub.urdf": "moving links with mass and an all-zero (or 1e-20) inertia",
     "icub_reduced.urdf": "moving links with mass and an all-zero (or 1e-20) inertia",
-    "romeo.urdf": "moving finger links whose mass is 0",
-    "romeo_laas_small.urdf": "hip inertias with a negative principal moment",
-    "romeo_small.urdf": "arm inertias that break the triangle inequality",
+    "romeo_laas_small.urdf": "meshes named by absolute file:// paths that are not there",
     "pr2.urdf": "<gazebo reference> blocks name links the robot does not have",
     "talos_left_arm.urdf": "a <transmission> and a <gazebo> block for a joint left out",
     "tiago_dual.urdf": "<gazebo reference> names with an unexpanded {side} in them",
 }
 
+# ... and those whose faults harm only the simulators: warnings by default (they have no
+# <gazebo> block), errors with --target all.
+FAULTY_FOR_SIMULATORS = {
+    "romeo.urdf": "moving finger links whose mass is 0",
+    "romeo_small.urdf": "arm inertias that break the triangle inequality",
+}
 
-def _ours(path: Path) -> tuple[int, bytes, str]:
-    result = CliRunner().invoke(cli, ["check", str(path)])
+
+def _ours(path: Path, *options: str) -> tuple[int, bytes, str]:
+    result = CliRunner().invoke(cli, ["check", *options, str(path)])
     return result.exit_code, result.stdout_bytes, result.stderr
 
 
@@ -130,6 +135,15 @@ def test_a_broken_file_prints_what_check_urdf_prints_and_nothing_more(
     assert (out != b"") is (real.status == 0)
 
 
+@pytest.mark.parametrize("item", BROKEN, ids=[item.id for item in BROKEN])
+def test_the_tree_is_check_urdfs_whatever_the_targets(item: GoldenInput) -> None:
+    # A fault urdfdom refuses a joint for is a warning for a program that does not read
+    # joints so (ros2_control alone): the tree is still check_urdf's.
+    real = golden_check_urdf(item)
+    for target in ("ros2_control", "mujoco", "drake", "check_urdf"):
+        assert _ours(item.path, "--target", target)[1] == real.stdout, target
+
+
 def test_a_silenced_fault_still_tells_what_check_urdf_prints(tmp_path: Path) -> None:
     item = GoldenInput.from_id("data/broken/joint_mimic_without_joint.urdf")
     silenced = tmp_path / "silenced.urdf"
@@ -175,6 +189,26 @@ def test_the_corpus_has_robots_we_accept_byte_for_byte() -> None:
     real_reject = {i.path.name for i in CORPUS_INPUTS if golden_check_urdf(i).status != 0}
     assert ours_reject - real_reject == set(FAULTY)
     assert len(CORPUS_INPUTS) - len(ours_reject) >= 55
+    for_all = {i.path.name for i in CORPUS_INPUTS if _ours(i.path, "--target", "all")[0] != 0}
+    assert for_all - real_reject == set(FAULTY) | set(FAULTY_FOR_SIMULATORS)
+
+
+# --target check_urdf: exit 1 exactly where check_urdf fails (for a CI that swaps the two).
+ANSWERED = [item for item in INPUTS if golden_check_urdf(item).status is not None]
+
+
+@pytest.mark.parametrize("item", ANSWERED, ids=[item.id for item in ANSWERED])
+def test_target_check_urdf_exits_as_check_urdf_does(item: GoldenInput) -> None:
+    real = check_urdf(item)
+    status, out, err = _ours(item.path, "--target", "check_urdf")
+    assert status == (0 if real.status == 0 else 1), err
+    assert out == real.stdout
+    assert status == 1 or ": error: " not in err
+
+
+def test_target_check_urdf_sees_both_outcomes() -> None:
+    assert {golden_check_urdf(item).status == 0 for item in ANSWERED} == {True, False}
+    assert len(ANSWERED) >= 100
 
 
 # ------------------------------------------------------------------ the golden files

@@ -25,7 +25,7 @@ from conftest import DATA, FISHBOT, REQUIRE_TOOLS, ROOT, require_tool
 
 from fishbot_urdf.cli import cli
 
-BAD = DATA / "invalid" / "limit_range.urdf"
+BAD = DATA / "invalid" / "zero_axis.urdf"
 
 
 def _pre_commit() -> list[str]:
@@ -160,14 +160,14 @@ def test_the_hook_fails_on_a_bad_robot_and_passes_once_it_is_fixed(
     project = setup[0]
     monkeypatch.chdir(project)
     finding = CliRunner().invoke(cli, ["check", "-q", "bad.urdf"]).stderr
-    assert finding.endswith("[limit-range]\n") and finding.count("\n") == 1
+    assert finding.endswith("[zero-axis]\n") and finding.count("\n") == 1
     first = _run(setup, "run", "fishbot-check", "--all-files")
     assert first.returncode == 1, first.stdout + first.stderr
     assert "fishbot check" in first.stdout and "Failed" in first.stdout
     # Our one line, and nothing about the good robot, the xacro robot (whose comments
     # silence its findings) or the file of macros it includes.
     assert _hook_output(first.stdout) == [finding.rstrip("\n")]
-    fixed = BAD.read_text().replace('lower="1.57" upper="-1.57"', 'lower="-1.57" upper="1.57"')
+    fixed = BAD.read_text().replace('<axis xyz="0 0 0"/>', '<axis xyz="0 0 1"/>')
     (project / "bad.urdf").write_text(fixed)
     second = _run(setup, "run", "fishbot-check", "--all-files")
     assert second.returncode == 0, second.stdout + second.stderr

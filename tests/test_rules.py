@@ -172,7 +172,9 @@ def _check(tmp_path: Path, rule: Rule, text: str) -> Result:
         (tmp_path / "meshes" / "base_link_fine.stl").write_bytes(fine_stl(30_000))
     name = tmp_path / ("robot.urdf.xacro" if rule.language == "xacro" else "robot.urdf")
     name.write_text(text, encoding="utf-8")
-    return CliRunner().invoke(cli, ["check", "--isolated", "--format", "json", str(name)])
+    # For every program (--target all): each finding at its rule's severity.
+    command = ["check", "--isolated", "--target", "all", "--format", "json", str(name)]
+    return CliRunner().invoke(cli, command)
 
 
 def _sentences(text: str) -> list[str]:

@@ -5,7 +5,8 @@ Keys (the same as the command-line options): ``select``, ``extend-select`` and `
 (lists of rule ids, family names, or ``ALL``), ``severity`` (a table: rule id -> ``error``,
 ``warning`` or ``note``), ``strict`` (warnings fail too), ``ground-tolerance`` (mm) and
 ``allow-read`` (folders, from the configuration file's own, that xacro files may read in
-besides the robot's tree: see :mod:`fishbot_urdf.expansion`).
+besides the robot's tree: see :mod:`fishbot_urdf.expansion`) and ``targets`` (the programs
+the robots are for: see :mod:`fishbot_urdf.targets`).
 
 Selections are resolved as ruff resolves them: within one layer (the file, then the command
 line) the more specific name wins (a rule id over a family, a family over ``ALL``; an
@@ -27,8 +28,9 @@ from typing import Any
 
 from .catalog import Family, all_rules, ids
 from .diagnostics import Diagnostic, Severity
-from .errors import ConfigError, InputError
+from .errors import ConfigError, InputError, UnknownNameError
 from .inputs import read_input
+from .targets import target_name
 from .wording import did_you_mean, listing
 
 if sys.version_info >= (3, 11):
@@ -58,6 +60,7 @@ _KEYS = (
     "strict",
     "ground-tolerance",
     "allow-read",
+    "targets",
 )
 _ALL = "ALL"
 _LEVELS = tuple(s.value for s in Severity)
@@ -95,6 +98,9 @@ class Config:
         allow_read: Folders xacro files may read in besides the robot's tree and the
             packages ``$(find)`` finds (see :mod:`fishbot_urdf.expansion`); a file's are
             absolute, from its folder. A relative one is taken from the current folder.
+        targets: The programs the robots are for (names of `fishbot_urdf.targets.TARGETS`),
+            or None for each robot's default: an error that harms none of them is a
+            warning.
         path: The file the configuration was read from, if any.
         overrides: Layers of choices laid over this one, in order (`updated` adds one).
         enabled: The ids of the rules that apply, resolved from all of the above.
@@ -107,6 +113,7 @@ class Config:
     strict: bool = False
     ground_tolerance: float | None = None
     allow_read: tuple[str, ...] = ()
+    targets: tuple[str, ...] | None = None
     path: str | None = None
     overrides: tuple[Selection, ...] = ()
     enabled: frozenset[str] = field(init=False, repr=False, compare=False)
@@ -121,6 +128,8 @@ class Config:
             ):
                 check_selectors(key, names, path=self.path)
         check_severities(self.severity, path=self.path)
+        if self.targets is not None:
+            object.__setattr__(self, "targets", _targets(self.targets, self.path))
         fatal = {r.id for r in all_rules() if r.fatal}
         object.__setattr__(self, "enabled", frozenset(_resolve(layers) | fatal))
         object.__setattr__(self, "severity", MappingProxyType(dict(self.severity)))
@@ -153,11 +162,12 @@ class Config:
         severity: Mapping[str, Severity] | None = None,
         strict: bool | None = None,
         ground_tolerance: float | None = None,
+        targets: Iterable[str] | None = None,
     ) -> Config:
         """This configuration with options on top, as the command line gives them:
         ``select`` replaces the selection (this configuration's ``ignore`` still holds),
-        ``extend_select``, ``ignore`` and ``severity`` add to it, ``strict`` and
-        ``ground_tolerance`` replace it unless None."""
+        ``extend_select``, ``ignore`` and ``severity`` add to it, ``strict``,
+        ``ground_tolerance`` and ``targets`` replace it unless None."""
         layer = Selection(
             None if select is None else tuple(select), tuple(extend_select), tuple(ignore)
         )
@@ -168,6 +178,7 @@ class Config:
             ground_tolerance=(
                 self.ground_tolerance if ground_tolerance is None else ground_tolerance
             ),
+            targets=self.targets if targets is None else tuple(targets),
             overrides=(*self.overrides, layer) if layer != Selection() else self.overrides,
         )
 
@@ -329,6 +340,11 @@ def _from_table(table: dict[str, Any], path: str) -> Config:
     folders = table.get("allow-read", [])
     if not isinstance(folders, list) or not all(isinstance(f, str) and f for f in folders):
         raise _wrong(path, "allow-read", "a list of folders")
+    targets = table.get("targets")
+    if targets is not None and (
+        not isinstance(targets, list) or not all(isinstance(t, str) for t in targets)
+    ):
+        raise _wrong(path, "targets", 'a list of programs ("ros", "gazebo", ...)')
     here = os.path.dirname(os.path.abspath(path))
     return Config(
         select=lists["select"] if "select" in table else None,
@@ -338,8 +354,22 @@ def _from_table(table: dict[str, Any], path: str) -> Config:
         strict=strict,
         ground_tolerance=None if tolerance is None else float(tolerance),
         allow_read=tuple(os.path.normpath(os.path.join(here, f)) for f in folders),
+        targets=None if targets is None else tuple(targets),
         path=path,
     )
+
+
+def _targets(names: Iterable[str], path: str | None) -> tuple[str, ...]:
+    """The targets ``names`` stand for, each once."""
+    found: list[str] = []
+    for name in names:
+        try:
+            found.append(target_name(name))
+        except UnknownNameError as exc:
+            raise ConfigError(
+                exc.message, key="targets", path=path, line=_line_of(path, name)
+            ) from None
+    return tuple(dict.fromkeys(found))
 
 
 def _names(table: dict[str, Any], key: str, path: str) -> tuple[str, ...]:

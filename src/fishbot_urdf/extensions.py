@@ -8,6 +8,7 @@ every URDF reader and breaks the simulation later. `collect` lists them with the
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from enum import Enum
@@ -18,7 +19,15 @@ from .errors import FishbotUrdfError
 from .model import Location, Robot
 from .xml.source import parse_xml
 
-__all__ = ["Interface", "Reference", "Target", "collect", "from_robot"]
+__all__ = [
+    "Interface",
+    "Reference",
+    "Target",
+    "collect",
+    "controlled",
+    "from_robot",
+    "simulated_in_gazebo",
+]
 
 Locate = Callable[[etree._Element], Location | None]
 LocateAttribute = Callable[[Location, str], Location]
@@ -149,6 +158,29 @@ def from_robot(robot: Robot) -> tuple[Reference, ...]:
         if element.tag in TAGS:
             found.extend(collect(element, lambda _node: None))
     return tuple(found)
+
+
+def simulated_in_gazebo(robot: Robot) -> bool:
+    """Whether ``robot`` is written for Gazebo: it has a ``<gazebo>`` element (a plugin, a
+    link's friction or colour), or a ``<ros2_control>`` whose hardware is Gazebo's
+    (gazebo_ros2_control, gz_ros2_control, ign_ros2_control)."""
+    for text in robot.extras:
+        if _GAZEBO.match(text):
+            return True
+        if text.startswith("<ros2_control") and _GAZEBO_HARDWARE.search(text):
+            return True
+    return False
+
+
+def controlled(robot: Robot) -> bool:
+    """Whether ``robot`` is written for ros2_control or ros_control: it has a
+    ``<ros2_control>`` or ``<transmission>`` element."""
+    return any(text.startswith(("<ros2_control", "<transmission")) for text in robot.extras)
+
+
+_GAZEBO = re.compile(r"<gazebo[\s/>]")
+# The hardware plugins of ros2_control that run the robot in Gazebo (classic, Ignition, Sim).
+_GAZEBO_HARDWARE = re.compile(r"<plugin>\s*(?:gazebo|gz|ign)_ros2_control/")
 
 
 def _with(control: Reference, interfaces: Iterable[Interface]) -> Reference:

@@ -27,6 +27,7 @@ from .parsing import is_xacro_path, read
 from .rules import CHECKS, Settings
 from .rules.physics import GROUND_TOLERANCE
 from .suppress import apply_suppressions, suppressions
+from .targets import retarget, targets_of, urdfdom_refuses
 from .validation import values
 from .validation._readable import finite, readable
 
@@ -51,6 +52,10 @@ class CheckResult:
         files: Every file the robot was read from (for xacro, with everything it includes).
         data: The URDF read: the file's bytes, or a xacro file's expansion.
         suppressed: The findings that ``fishbot: ignore[...]`` comments silenced.
+        refused_by_urdfdom: urdfdom (check_urdf) builds no robot from the file, as the
+            findings of the selected rules tell (silenced ones too, whatever the targets
+            made of them: see `fishbot_urdf.targets.urdfdom_refuses`).
+        targets: The programs the robot was checked for (see `fishbot_urdf.targets`).
     """
 
     path: str
@@ -60,6 +65,8 @@ class CheckResult:
     files: tuple[str, ...] = ()
     data: bytes = field(default=b"", repr=False)
     suppressed: tuple[Diagnostic, ...] = ()
+    refused_by_urdfdom: bool = False
+    targets: tuple[str, ...] = ()
 
     @property
     def topology(self) -> Topology | None:
@@ -87,8 +94,9 @@ def check_file(
     where each mesh package was found for the next files. ``config`` selects the rules, sets
     their severities and the ground tolerance (default: every rule, at its default
     severity), and says which folders a xacro file may read in besides its own tree
-    (``allow_read``). ``fishbot: ignore[RULE]`` comments in the file (and in a xacro file's
-    includes) silence findings.
+    (``allow_read``), and the programs the robot is for (``targets``: an error that harms
+    none of them is a warning, see `fishbot_urdf.targets`). ``fishbot: ignore[RULE]``
+    comments in the file (and in a xacro file's includes) silence findings.
 
     Raises:
         InputError: The file cannot be read.
@@ -111,7 +119,11 @@ def check_file(
     else:
         sources = {parsed.path: parsed.data}
     marks = suppressions(sources)
-    kept, silenced = apply_suppressions(config.apply(found), marks, config)
+    targets = targets_of(parsed.robot, config.targets)
+    refused = urdfdom_refuses(config.apply(found), analysis)
+    kept, silenced = apply_suppressions(
+        config.apply(retarget(found, targets, analysis)), marks, config
+    )
     kept = without_consequences(kept)
     kept.sort(key=sort_key)
     return CheckResult(
@@ -122,6 +134,8 @@ def check_file(
         parsed.files,
         parsed.data,
         tuple(sorted(silenced, key=sort_key)),
+        refused,
+        targets,
     )
 
 
@@ -135,7 +149,8 @@ def check(
 
     The findings are sorted by position. ``packages`` are folders for the ``package://``
     names of meshes (looked up as for xacro's ``$(find)``). (Comments are not read here:
-    see `check_file`.)
+    see `check_file`.) ``config`` chooses the rules, their severities and the targets, as
+    for `check_file`.
 
     A robot built in Python is held to what the reader gives: a number that is not finite, a
     missing name or a character XML cannot hold is the reader's finding (see
@@ -161,7 +176,8 @@ def check(
         analysis = of(robot, packages)
     config = config or Config()
     found = [*model, *_rule_findings(analysis, model, config, packages)]
-    return tuple(sorted(without_consequences(config.apply(found)), key=sort_key))
+    targeted = retarget(found, targets_of(given, config.targets), analysis)
+    return tuple(sorted(without_consequences(config.apply(targeted)), key=sort_key))
 
 
 def _rule_findings(

@@ -39,6 +39,7 @@ class FileReport:
         links: How many links it has, when one was read.
         joints: How many joints it has, when one was read.
         config: The configuration file that applied, if any.
+        targets: The programs it was checked for (none for a file that was not read).
         skipped: Why the file was not checked as a robot (``--skip-includes``), if it was not.
     """
 
@@ -52,13 +53,14 @@ class FileReport:
     joints: int | None = None
     config: str | None = None
     skipped: str | None = None
+    targets: tuple[str, ...] = ()
 
 
 def json_report(files: Sequence[FileReport]) -> dict[str, Any]:
     """The report of ``fishbot check --format json``, as a dict.
 
-    ``ok`` overall, then per file its robot, its findings and how many comments silenced,
-    by rule."""
+    ``ok`` overall, then per file its robot, the programs it was checked for, its findings
+    and how many comments silenced, by rule."""
     return {
         "ok": all(f.ok for f in files),
         "files": [
@@ -70,6 +72,7 @@ def json_report(files: Sequence[FileReport]) -> dict[str, Any]:
                 "links": f.links,
                 "joints": f.joints,
                 "config": f.config,
+                "targets": list(f.targets),
                 "skipped": f.skipped,
                 "diagnostics": [d.to_dict() for d in f.diagnostics],
                 "suppressed": {

@@ -40,6 +40,7 @@ class Consumer(str, Enum):
     MUJOCO = "mujoco"
     DRAKE = "drake"
     PYBULLET = "pybullet"
+    ROS2_CONTROL = "ros2_control"  # its controller manager, and ros_control's
     XML_TOOLS = "xml-tools"  # strict XML readers: lxml, Python's xml, yourdfpy, urchin
 
     @property
@@ -55,6 +56,7 @@ _LABELS = {
     Consumer.MUJOCO: "MuJoCo",
     Consumer.DRAKE: "Drake",
     Consumer.PYBULLET: "PyBullet",
+    Consumer.ROS2_CONTROL: "ros2_control (and ros_control)",
     Consumer.XML_TOOLS: "strict XML readers (lxml, Python's xml, yourdfpy, urchin)",
 }
 

@@ -2,7 +2,8 @@
 documentation site's rule list and rule pages are made here as the site builds, so that
 they always say what the registry says).
 
-`with_rule_table` fills a page's rule list, between its two markers, from the registry.
+`with_rule_table` fills a page's rule list, between its two markers, from the registry;
+`with_consumer_table` the table of which programs each rule matters to.
 """
 
 from __future__ import annotations
@@ -12,15 +13,19 @@ import textwrap
 from collections.abc import Sequence
 
 from ..errors import ArgumentError
-from . import Rule
+from . import Consumer, Rule
 
 __all__ = [
+    "CONSUMERS_BEGIN",
+    "CONSUMERS_END",
     "README_BEGIN",
     "README_END",
     "explanation",
+    "markdown_consumers",
     "markdown_explanation",
     "markdown_table",
     "table",
+    "with_consumer_table",
     "with_rule_table",
 ]
 
@@ -28,6 +33,10 @@ README_BEGIN = "<!-- rules: begin -->"
 """The line after which a page's rule list starts."""
 README_END = "<!-- rules: end -->"
 """The line before which a page's rule list ends."""
+CONSUMERS_BEGIN = "<!-- consumers: begin -->"
+"""The line after which a page's table of rules and programs starts."""
+CONSUMERS_END = "<!-- consumers: end -->"
+"""The line before which a page's table of rules and programs ends."""
 
 
 def _flags(rule: Rule) -> str:
@@ -67,11 +76,19 @@ def explanation(rule: Rule) -> str:
     if rule.explanation:
         parts += ["", _fill(rule.explanation)]
     if rule.consumers:
-        parts += ["", _fill("Matters to: " + ", ".join(c.label for c in rule.consumers) + ".")]
+        parts += ["", _fill(_matters(rule))]
     for title, snippet in (("Fails:", rule.bad), ("Passes:", rule.good)):
         if snippet:
             parts += ["", title, textwrap.indent(snippet.rstrip("\n"), "    ")]
     return "\n".join(parts) + "\n"
+
+
+def _matters(rule: Rule) -> str:
+    """The programs a rule matters to, and, for an error, that it is one only for them."""
+    text = "Matters to: " + ", ".join(c.label for c in rule.consumers) + "."
+    if rule.severity.value == "error" and not rule.fatal:
+        text += " An error where the robot is for one of them (its targets), a warning elsewhere."
+    return text
 
 
 def markdown_table(rules: Sequence[Rule]) -> str:
@@ -81,6 +98,23 @@ def markdown_table(rules: Sequence[Rule]) -> str:
         severity = f"{rule.severity.value}" + (" (always on)" if rule.fatal else "")
         summary = _markdown(rule.summary)
         lines.append(f"| `{rule.id}` | {severity} | {rule.family.value} | {summary} |")
+    return "\n".join(lines) + "\n"
+
+
+def markdown_consumers(rules: Sequence[Rule]) -> str:
+    """The rules that name the programs they matter to, as a Markdown table: id, default
+    severity, and a column per program, ticked where the rule matters to it."""
+    columns = list(Consumer)
+    lines = [
+        "| rule | severity | " + " | ".join(c.value for c in columns) + " |",
+        "| --- | --- |" + " :-: |" * len(columns),
+    ]
+    for rule in rules:
+        if not rule.consumers:
+            continue
+        ticks = " | ".join("✓" if c in rule.consumers else "" for c in columns)
+        severity = f"{rule.severity.value}" + (" (always on)" if rule.fatal else "")
+        lines.append(f"| `{rule.id}` | {severity} | {ticks} |")
     return "\n".join(lines) + "\n"
 
 
@@ -94,7 +128,7 @@ def markdown_explanation(rule: Rule) -> str:
     if rule.explanation:
         parts += ["", rule.explanation]
     if rule.consumers:
-        parts += ["", "Matters to: " + ", ".join(c.label for c in rule.consumers) + "."]
+        parts += ["", _matters(rule)]
     fence = "bash" if rule.language == "shell" else "toml" if rule.language == "toml" else "xml"
     for title, snippet in (("Fails:", rule.bad), ("Passes:", rule.good)):
         if snippet:
@@ -109,12 +143,30 @@ def with_rule_table(readme: str, rules: Sequence[Rule]) -> str:
     Raises:
         ArgumentError: The text lacks a marker, or has the end before the beginning.
     """
-    begin = readme.find(README_BEGIN)
-    end = readme.find(README_END)
+    table = markdown_table(rules)
+    return _between(readme, README_BEGIN, README_END, table, "README", "the rule list")
+
+
+def with_consumer_table(page: str, rules: Sequence[Rule]) -> str:
+    """``page`` with the text between `CONSUMERS_BEGIN` and `CONSUMERS_END` replaced by the
+    `markdown_consumers` table of ``rules`` (a blank line on either side).
+
+    Raises:
+        ArgumentError: The text lacks a marker, or has the end before the beginning.
+    """
+    table = markdown_consumers(rules)
+    return _between(page, CONSUMERS_BEGIN, CONSUMERS_END, table, "page", "the rules' programs")
+
+
+def _between(
+    text: str, begin_marker: str, end_marker: str, body: str, owner: str, what: str
+) -> str:
+    begin = text.find(begin_marker)
+    end = text.find(end_marker)
     if begin < 0 or end < begin:
         raise ArgumentError(
-            f"the README has no {README_BEGIN} ... {README_END} section for the rule list",
-            name="readme",
+            f"the {owner} has no {begin_marker} ... {end_marker} section for {what}",
+            name=owner.lower(),
         )
-    start = begin + len(README_BEGIN)
-    return readme[:start] + "\n\n" + markdown_table(rules) + "\n" + readme[end:]
+    start = begin + len(begin_marker)
+    return text[:start] + "\n\n" + body + "\n" + text[end:]

@@ -46,7 +46,7 @@ UNKNOWN_REFERENCE = Rule(
   </ros2_control>
 </robot>
 """,
-    consumers=(Consumer.GAZEBO,),
+    consumers=(Consumer.GAZEBO, Consumer.ROS2_CONTROL),
 )
 CONTROL_INTERFACE = Rule(
     "control-interface",
@@ -83,7 +83,7 @@ CONTROL_INTERFACE = Rule(
   </ros2_control>
 </robot>
 """,
-    consumers=(Consumer.GAZEBO,),
+    consumers=(Consumer.GAZEBO, Consumer.ROS2_CONTROL),
 )
 UNDEFINED_MATERIAL = Rule(
     "undefined-material",

@@ -15,24 +15,11 @@ from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, NoReturn
 
-from ..catalog import Family, all_rules
-from ..catalog.reading import ROBOT_NAME, ROBOT_VERSION
-from ..catalog.structure import (
-    DUPLICATE_JOINT,
-    DUPLICATE_LINK,
-    DUPLICATE_MATERIAL,
-    MISSING_LIMIT,
-    MULTIPLE_ROOTS,
-    NO_LINKS,
-    NO_ROOT,
-    UNDEFINED_LINK,
-)
-from ..diagnostics import Kind, has_errors
 from ..diagnostics import escape_line_controls as shown
+from ..diagnostics import has_errors
 from ..errors import FishbotUrdfError
 from ..graph import tree_text
 from ..inputs import max_seconds, recording_inputs, time_limit
-from ..model import JointType
 from ..parsing import is_xacro_path
 from ..report import FileReport
 from ._checking import check_input, read_files
@@ -320,12 +307,12 @@ def outcome(name: str, config: Config, run: Run) -> Outcome:
 def tree_chunks(result: CheckResult) -> Iterable[str]:
     """check_urdf's output: the tree wherever urdfdom builds the robot, our errors or not (a
     script reading it keeps working, and the exit status tells the rest), nothing where it
-    refuses the file (see `urdfdom_refuses`). A joint loop reached from the root, which
+    refuses the file (`CheckResult.refused_by_urdfdom`). A joint loop reached from the root, which
     check_urdf prints without end, is not printed either."""
     topo = result.topology
     if result.analysis is None or topo is None or topo.root is None or topo.loop_from_root:
         return ()
-    if urdfdom_refuses(result):
+    if result.refused_by_urdfdom:
         return ()
     robot = result.analysis.robot
 
@@ -338,47 +325,6 @@ def tree_chunks(result: CheckResult) -> Iterable[str]:
         shown(chunk[:-1]) + "\n" if chunk.endswith("\n") else shown(chunk)
         for chunk in tree_text(result.analysis)
     )
-
-
-# Faults for which urdfdom builds no robot from the file, whatever their severity here.
-_REFUSED = frozenset(
-    rule.id
-    for rule in (
-        ROBOT_NAME,
-        ROBOT_VERSION,
-        NO_LINKS,
-        DUPLICATE_LINK,
-        DUPLICATE_JOINT,
-        DUPLICATE_MATERIAL,
-        UNDEFINED_LINK,
-        MULTIPLE_ROOTS,
-        NO_ROOT,
-        MISSING_LIMIT,
-    )
-)
-_READING = frozenset(rule.id for rule in all_rules() if rule.family is Family.URDF)
-_AXISLESS = (JointType.FIXED, JointType.FLOATING)
-
-
-def urdfdom_refuses(result: CheckResult) -> bool:
-    """Whether urdfdom (check_urdf) refuses the file, as its findings (silenced ones too)
-    tell: a fault of the robot element, of the names or of the tree, or any error in reading
-    a joint (urdfdom drops nothing of a joint, and refuses the whole file for it; it logs a
-    link's faults and keeps the link, and reads no fixed or floating joint's axis)."""
-    analysis = result.analysis
-    for finding in (*result.diagnostics, *result.suppressed):
-        rule = finding.rule
-        if rule in _REFUSED:
-            return True
-        subject = finding.subject
-        if rule not in _READING or not finding.is_error or subject is None:
-            continue
-        if subject.kind is Kind.JOINT:
-            joint = analysis.joints.get(subject.name) if analysis is not None else None
-            axisless = joint is not None and joint.type in _AXISLESS
-            if not (axisless and finding.element == "axis"):
-                return True
-    return False
 
 
 def _can_fork() -> bool:
@@ -398,6 +344,7 @@ def _report(result: CheckResult, config: Config, failed: bool) -> FileReport:
         links=None if robot is None else len(robot.links),
         joints=None if robot is None else len(robot.joints),
         config=config.path,
+        targets=result.targets,
     )
 
 

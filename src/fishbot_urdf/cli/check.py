@@ -15,12 +15,13 @@ import click
 
 from ..config import Config, check_selectors, check_severities, find_config, load_config
 from ..diagnostics import Severity, shown_path
-from ..errors import ConfigError, FishbotUrdfError
+from ..errors import ConfigError, FishbotUrdfError, UnknownNameError
 from ..inputs import recording_inputs
 from ..output import AtomicFile, write_atomic
 from ..packages import PackageFinder
 from ..parsing import is_xacro_path
 from ..report import github_annotations, json_report, sarif_report
+from ..targets import target_name
 from ._batch import Run, outcomes, tree_chunks
 from ._checking import STDIN
 from ._common import (
@@ -90,6 +91,23 @@ class _Severity(click.ParamType):  # type: ignore[type-arg]
         return rule, level
 
 
+class _Targets(click.ParamType):  # type: ignore[type-arg]
+    """Programs the robots are for, comma-separated (the option may be repeated)."""
+
+    name = "PROGRAM"
+
+    def convert(
+        self, value: object, param: click.Parameter | None, ctx: click.Context | None
+    ) -> tuple[str, ...]:
+        if isinstance(value, tuple):
+            return value
+        names = tuple(part.strip() for part in str(value).split(",") if part.strip())
+        try:
+            return tuple(target_name(name) for name in names)
+        except UnknownNameError as exc:
+            self.fail(exc.message, param, ctx)
+
+
 @dataclass(frozen=True, slots=True)
 class _Options:
     """What the command line says about rules, on top of any configuration file."""
@@ -100,6 +118,7 @@ class _Options:
     severity: dict[str, str]
     strict: bool | None
     ground_mm: float | None
+    targets: tuple[str, ...] | None
     config_file: str | None
     isolated: bool
 
@@ -127,6 +146,7 @@ class _Options:
             severity={rule: Severity(level) for rule, level in self.severity.items()},
             strict=self.strict,
             ground_tolerance=self.ground_mm,
+            targets=self.targets,
         )
         return found[key]
 
@@ -186,6 +206,17 @@ class _Options:
     help="Report RULE's findings as errors, warnings or notes (repeatable).",
 )
 @click.option(
+    "--target",
+    "targets",
+    type=_Targets(),
+    multiple=True,
+    help="The programs the robots are for (comma-separated, repeatable): ros (check_urdf, "
+    "robot_state_publisher, RViz, MoveIt), check_urdf (its exit status exactly), gazebo, "
+    "mujoco, drake, pybullet, ros2_control, all. A finding that harms none of them is a "
+    "warning. [default: the configuration's targets, else ros, with gazebo for a robot with "
+    "<gazebo> and ros2_control for one with <ros2_control> or <transmission>]",
+)
+@click.option(
     "--config",
     "config_file",
     type=click.Path(dir_okay=False),
@@ -228,6 +259,7 @@ def check(
     extend_select: Sequence[tuple[str, ...]],
     ignore: Sequence[tuple[str, ...]],
     severities: Sequence[tuple[str, str]],
+    targets: Sequence[tuple[str, ...]],
     config_file: str | None,
     isolated: bool,
     skip_includes: bool,
@@ -246,13 +278,19 @@ def check(
     masses and inertias (errors where a simulator would refuse them), inertias against
     their collision shapes, and whether a robot on a footprint root stands on the ground.
 
+    A finding that harms only programs the robot is not for is a warning: by default a
+    robot is for the ROS tools (check_urdf, robot_state_publisher, RViz), for Gazebo when
+    it has <gazebo> elements, for ros2_control when it has <ros2_control> or <transmission>;
+    --target names others (--target check_urdf: exit 1
+    exactly where check_urdf fails).
+
     Rules are chosen by [tool.fishbot] in the nearest pyproject.toml, or a fishbot.toml,
     above each file (keys select, extend-select, ignore, severity, strict,
-    ground-tolerance, allow-read), then by the options: --select replaces the file's selection, the
-    other options add to it. A comment <!-- fishbot: ignore[RULE, ...] --> right before an
-    element silences RULE for it and everything inside it (before the root element, for
-    the whole file). `fishbot rules` lists the rules. FILE may be - to read standard input
-    (URDF).
+    ground-tolerance, allow-read, targets), then by the options: --select replaces the
+    file's selection, the other options add to it. A comment
+    <!-- fishbot: ignore[RULE, ...] --> right before an element silences RULE for it and
+    everything inside it (before the root element, for the whole file). `fishbot rules`
+    lists the rules. FILE may be - to read standard input (URDF).
 
     \b
     Exit status:
@@ -268,6 +306,7 @@ def check(
       fishbot check --strict a.urdf robot.urdf.xacro use_gpu:=false
       fishbot check --select physics --ignore inertia-mismatch robot.urdf
       fishbot check --severity limit-range=warning robot.urdf
+      fishbot check --target gazebo --target mujoco robot.urdf
       fishbot check --config ci/fishbot.toml urdf/*.urdf
       fishbot check --format sarif -o fishbot.sarif urdf/*.urdf
       fishbot check --format github robot.urdf.xacro
@@ -291,6 +330,7 @@ def check(
         severity=dict(severities),
         strict=strict,
         ground_mm=ground_mm,
+        targets=tuple(dict.fromkeys(t for group in targets for t in group)) if targets else None,
         config_file=config_file,
         isolated=isolated,
     )

@@ -325,6 +325,8 @@ def robot(
     positions = joint_positions(joint_items)
     read = inputs_read()
     config = nearest_config(file)
+    if config.targets is None:  # masses and inertias are the simulators': checked for them
+        config = config.updated(targets=["all"])
     try:
         result = check_input(file, values, packages, config)
     except FishbotUrdfError as exc:
