@@ -998,6 +998,6 @@ def test_sdf_refuses_a_robot_with_gazebo_elements(tmp_path: Path) -> None:
     result = CliRunner().invoke(cli, ["sdf", str(robot)])
     assert (result.exit_code, result.stdout) == (1, "")
     assert result.stderr == (
-        "<input>: error: robot 'r' has <gazebo> elements, which are not converted to SDF yet "
+        f"{robot}: error: robot 'r' has <gazebo> elements, which are not converted to SDF yet "
         "[conversion]\n"
     )
