@@ -62,9 +62,20 @@ def _hostile(folder: Path, canary: Path, depth: int = 9) -> Path:
 def _wait_for_walks() -> None:
     """Every expansion's walk ended (a cancelled one ends at its next step)."""
     for thread in threading.enumerate():
-        if thread.name == "fishbot-xacro" and thread.ident is not None:  # started
-            thread.join(timeout=30)
+        if thread.name == "fishbot-xacro":
+            _join(thread)
             assert not thread.is_alive(), "a cancelled expansion went on walking"
+
+
+def _join(thread: threading.Thread) -> None:
+    """Join a thread that may be listed before it has said it started (join refuses one
+    until then: seen once in a full run, under load)."""
+    while True:
+        try:
+            thread.join(timeout=30)
+            return
+        except RuntimeError:
+            time.sleep(0.001)
 
 
 def _duration(robot: Path) -> float:
