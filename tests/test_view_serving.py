@@ -18,6 +18,7 @@ from typing import Any
 import pytest
 from click.testing import CliRunner
 from conftest import REQUIRE_TOOLS
+from test_render import NO_BOXES as RENDERED_NO_BOXES
 from test_view_requests import ARM, SECONDS, _http, _websocket
 
 if not REQUIRE_TOOLS:  # on a user's machine without the [view] extra: skipped, with a reason
@@ -277,34 +278,12 @@ def test_a_robot_with_no_visual_shows_its_frames_with_a_warning(tmp_path: Path) 
         shown.close()
 
 
-NO_BOXES = """\
-<robot name="bad">
-  <link name="base">
-    <visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual>
-  </link>
-  <link name="negative">
-    <inertial>
-      <mass value="1"/>
-      <inertia ixx="-1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
-    </inertial>
-  </link>
-  <link name="triangle">
-    <inertial>
-      <mass value="1"/>
-      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.01"/>
-    </inertial>
-  </link>
-  <link name="massless">
-    <inertial>
-      <mass value="0"/>
-      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/>
-    </inertial>
-  </link>
-  <joint name="a" type="fixed"><parent link="base"/><child link="negative"/></joint>
-  <joint name="b" type="fixed"><parent link="base"/><child link="triangle"/></joint>
-  <joint name="c" type="fixed"><parent link="base"/><child link="massless"/></joint>
-</robot>
-"""
+# render's robot whose links get no inertia box, its base given a shape to show
+NO_BOXES = RENDERED_NO_BOXES.replace(
+    '<link name="base"/>',
+    '<link name="base">\n    <visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual>\n'
+    "  </link>",
+)
 
 
 def _no_box(robot: Path, line: int, link: str, why: str) -> str:
