@@ -51,6 +51,15 @@ XACRO_ERROR = Rule(
     language="xacro",
     fatal=True,
 )
+# A top file that includes its wheel macro by the name given.
+_INCLUDING = """\
+<robot name="fishbot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="{name}"/>
+  <link name="base_link"/>
+  <xacro:wheel side="left"/>
+</robot>
+"""
+
 XACRO_INCLUDE = Rule(
     "xacro-include",
     E,
@@ -64,20 +73,8 @@ XACRO_INCLUDE = Rule(
     "file run without its arguments) are the ones to give as `name:=value`, with the values "
     "that name files there. Correct the name, "
     "and use `$(find your_package)/urdf/...` for a file of another package.",
-    bad="""\
-<robot name="fishbot" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:include filename="wheel_urdf.xacro"/>
-  <link name="base_link"/>
-  <xacro:wheel side="left"/>
-</robot>
-""",
-    good="""\
-<robot name="fishbot" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:include filename="wheel.urdf.xacro"/>
-  <link name="base_link"/>
-  <xacro:wheel side="left"/>
-</robot>
-""",
+    bad=_INCLUDING.format(name="wheel_urdf.xacro"),
+    good=_INCLUDING.format(name="wheel.urdf.xacro"),
     consumers=_XACRO,
     language="xacro",
     fatal=True,
@@ -337,20 +334,8 @@ XACRO_READ_OUTSIDE = Rule(
     "resolved. The error names the file and the tree, never what the file holds. Name a "
     "file of another package with `$(find pkg)/...`, move the file into the tree, or allow "
     "its folder.",
-    bad="""\
-<robot name="fishbot" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:include filename="../../common/wheel.urdf.xacro"/>
-  <link name="base_link"/>
-  <xacro:wheel side="left"/>
-</robot>
-""",
-    good="""\
-<robot name="fishbot" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:include filename="wheel.urdf.xacro"/>
-  <link name="base_link"/>
-  <xacro:wheel side="left"/>
-</robot>
-""",
+    bad=_INCLUDING.format(name="../../common/wheel.urdf.xacro"),
+    good=_INCLUDING.format(name="wheel.urdf.xacro"),
     consumers=_XACRO,
     language="xacro",
     fatal=True,
