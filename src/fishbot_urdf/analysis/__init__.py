@@ -20,6 +20,7 @@ from ..inputs import deadline
 from ..model import Joint, JointType, Link, Robot
 from ..packages import PackageFinder
 from ..spatial import Pose
+from .gazebo import Block, blocks
 from .meshpaths import MeshPaths
 from .plan import Plan, build
 from .poses import place
@@ -97,6 +98,11 @@ class Analysis:
         if self.given_references is not None:
             return self.given_references
         return from_robot(self.robot)
+
+    @cached_property
+    def gazebo_blocks(self) -> tuple[Block, ...]:
+        """Its ``<gazebo>`` and ``<ros2_control>`` elements, parsed once, in file order."""
+        return blocks(self.robot, self.references)
 
     @cached_property
     def mesh_paths(self) -> MeshPaths:

@@ -8,7 +8,6 @@ from ...analysis import Analysis
 from ...catalog import Rule, rules_in
 from ...catalog import gazebo as catalog
 from ...diagnostics import Diagnostic
-from ._blocks import blocks
 from ._drive import drives
 from ._sensors import sensors
 from ._versions import ros_versions, simulators
@@ -20,7 +19,7 @@ def gazebo(analysis: Analysis, select: frozenset[str] | None = None) -> Iterator
     """Every finding about the robot's Gazebo plugins and sensors (of the rules in
     ``select``, by id; None: all of them)."""
     chosen = frozenset(r.id for r in REPORTS) if select is None else select
-    found = blocks(analysis)
+    found = analysis.gazebo_blocks
     if not found:
         return
     drive = {catalog.DIFF_DRIVE_SIZE.id, catalog.DIFF_DRIVE_WHEELS.id}

@@ -9,11 +9,11 @@ from dataclasses import dataclass
 from lxml import etree
 
 from ...analysis import Analysis
+from ...analysis.gazebo import Block, place, plugins, text, texts
 from ...catalog.gazebo import DIFF_DRIVE_SIZE, DIFF_DRIVE_WHEELS
 from ...diagnostics import Diagnostic, Kind, Subject
 from ...model import Cylinder, Joint, JointType, Location
 from ...spatial import Pose, dot, mat_vec, rpy_matrix, scale
-from ._blocks import Block, place, plugins, text, texts
 
 __all__ = ["drives"]
 
@@ -65,7 +65,7 @@ def _names(plugin: etree._Element) -> _Names | None:
 def _drive(
     analysis: Analysis, block: Block, plugin: etree._Element, names: _Names
 ) -> Iterator[Diagnostic]:
-    where = place(analysis, block, plugin)
+    where = place(analysis.references, block, plugin)
     label = f"plugin {plugin.get('name') or ''!r} ({plugin.get('filename')})"
     lefts, rights = texts(plugin, names.left), texts(plugin, names.right)
     separations = [_float(t) for t in texts(plugin, names.separation)]

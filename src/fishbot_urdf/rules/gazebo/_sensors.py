@@ -8,11 +8,11 @@ from collections.abc import Iterator
 from lxml import etree
 
 from ...analysis import Analysis
+from ...analysis.gazebo import Block, number, text
 from ...catalog.gazebo import SENSOR_REFERENCE, SENSOR_SELF_HIT, SENSOR_SETTINGS
 from ...diagnostics import Diagnostic, Kind, Subject
 from ...model import Box, Cylinder, Geometry, Sphere
 from ...spatial import Pose, mat_vec, rpy_matrix, transpose
-from ._blocks import Block, number, text
 
 __all__ = ["sensors"]
 

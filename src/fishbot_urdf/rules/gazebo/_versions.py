@@ -8,10 +8,10 @@ from collections.abc import Iterator, Sequence
 from lxml import etree
 
 from ...analysis import Analysis
+from ...analysis.gazebo import Block, place, plugins
 from ...catalog.gazebo import PLUGIN_ROS_VERSION, PLUGIN_SIMULATOR
 from ...diagnostics import Diagnostic, Kind, Subject
 from ...packages import ros_version, upward_folders
-from ._blocks import Block, place, plugins
 
 __all__ = ["ros_versions", "simulators"]
 
@@ -90,7 +90,7 @@ def ros_versions(analysis: Analysis, found: Sequence[Block]) -> Iterator[Diagnos
     for block in found:
         for plugin in plugins(block):
             filename = plugin.get("filename") or ""
-            where = place(analysis, block, plugin)
+            where = place(analysis.references, block, plugin)
             if filename in _ROS1_ONLY:
                 instead = _ROS1_ONLY[filename]
                 yield PLUGIN_ROS_VERSION.report(
@@ -156,7 +156,7 @@ def simulators(analysis: Analysis, found: Sequence[Block]) -> Iterator[Diagnosti
         yield PLUGIN_SIMULATOR.report(
             f"plugin {name!r} is {kind}'s, but this robot's other plugins "
             f"({', '.join(sorted(others))}) are for {other}",
-            place(analysis, block, element),
+            place(analysis.references, block, element),
             path=analysis.path,
             subject=subject,
             hint=f"use {other}'s plugin for it, or move the whole robot to {kind}",

@@ -1,4 +1,5 @@
-"""The robot's ``<gazebo>`` blocks as the checks read them: plugins, sensors, numbers, places."""
+"""The robot's ``<gazebo>`` and ``<ros2_control>`` blocks, read once: their elements, what
+they refer to and where they are written, for the checks, the drawings and the converters."""
 
 from __future__ import annotations
 
@@ -8,10 +9,12 @@ from dataclasses import dataclass
 
 from lxml import etree
 
-from ...analysis import Analysis
-from ...errors import FishbotUrdfError
-from ...model import Location
-from ...xml.source import parse_xml
+from ..errors import FishbotUrdfError
+from ..extensions import Reference
+from ..model import Location, Robot
+from ..xml.source import parse_xml
+
+__all__ = ["Block", "blocks", "number", "place", "plugins", "text", "texts"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -29,11 +32,12 @@ class Block:
     where: Location | None
 
 
-def blocks(analysis: Analysis) -> tuple[Block, ...]:
-    """Every ``<gazebo>`` and ``<ros2_control>`` element of the robot, in file order."""
-    places = _places(analysis)
+def blocks(robot: Robot, references: tuple[Reference, ...]) -> tuple[Block, ...]:
+    """Every ``<gazebo>`` and ``<ros2_control>`` element of ``robot``, in file order, placed
+    by the places of ``references`` (the names they give)."""
+    places = _places(references)
     found: list[Block] = []
-    for text in analysis.robot.extras:
+    for text in robot.extras:
         if not text.startswith(("<gazebo", "<ros2_control")):
             continue
         try:
@@ -56,10 +60,12 @@ def plugins(block: Block) -> Iterator[etree._Element]:
         yield from (p for p in block.element.iter("plugin") if p.get("filename"))
 
 
-def place(analysis: Analysis, block: Block, element: etree._Element) -> Location | None:
-    """Where ``element`` of ``block`` is written, as near as the reader's places say: a name
-    inside it, else the block."""
-    return _first_place(element, _places(analysis)) or block.where
+def place(
+    references: tuple[Reference, ...], block: Block, element: etree._Element
+) -> Location | None:
+    """Where ``element`` of ``block`` is written, as near as the places of ``references``
+    say: a name inside it, else the block."""
+    return _first_place(element, _places(references)) or block.where
 
 
 def number(element: etree._Element, path: str) -> float | None:
@@ -88,9 +94,9 @@ def texts(element: etree._Element, tag: str) -> list[str]:
     return [(child.text or "").strip() for child in element.findall(tag)]
 
 
-def _places(analysis: Analysis) -> dict[tuple[str, str | None], Location]:
+def _places(references: tuple[Reference, ...]) -> dict[tuple[str, str | None], Location]:
     places: dict[tuple[str, str | None], Location] = {}
-    for ref in analysis.references:
+    for ref in references:
         if ref.source is not None:
             places.setdefault((ref.context, ref.name), ref.source)
     return places
