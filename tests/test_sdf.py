@@ -238,3 +238,37 @@ def test_lumping_gives_the_mass_properties_of_the_whole() -> None:
         for tag in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"):
             got = float(inertial.findtext(f"inertia/{tag}", ""))
             assert math.isclose(got, getattr(whole.inertia, tag), rel_tol=1e-9, abs_tol=1e-12)
+
+
+@pytest.mark.parametrize(("name", "path"), INPUTS, ids=[name for name, _ in INPUTS])
+def test_the_analysis_lumping_keeps_the_links_ign_sdf_keeps(name: str, path: Path) -> None:
+    robot = fishbot_urdf.parse(_urdf(path), path=str(path))
+    lumping = fishbot_urdf.analyse(robot).gazebo_lumping
+    kept = {
+        link
+        for link, landing in lumping.landings.items()
+        if landing.link == link and link not in lumping.lost() and link != "world"
+    }
+    golden = ET.fromstring((SDF_GOLDEN / f"{name}.sdf").read_text(encoding="utf-8"))
+    assert kept == {link.get("name") for link in golden.iter("link")}
+
+
+def test_the_subtree_below_a_massless_lumped_link_is_lost() -> None:
+    # sdformat stops at mount (lumped, no mass) and never reaches arm, though arm has mass
+    robot = fishbot_urdf.parse(
+        """<robot name="r">
+          <link name="base"><inertial><mass value="1"/>
+            <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+          <link name="mount"/>
+          <link name="arm"><inertial><mass value="1"/>
+            <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+          <link name="tip"/>
+          <joint name="m" type="fixed"><parent link="base"/><child link="mount"/></joint>
+          <joint name="a" type="continuous"><parent link="mount"/><child link="arm"/></joint>
+          <joint name="t" type="fixed"><parent link="arm"/><child link="tip"/></joint>
+        </robot>"""
+    )
+    lumping = fishbot_urdf.analyse(robot).gazebo_lumping
+    assert lumping.dropped == {"mount": ("arm", "tip")}
+    assert lumping.landings["mount"].link == "base"
+    assert "<link name='arm'>" not in fishbot_urdf.to_sdf(robot)

@@ -20,7 +20,7 @@ from ..inputs import deadline
 from ..model import Joint, JointType, Link, Robot
 from ..packages import PackageFinder
 from ..spatial import Pose
-from .gazebo import Block, blocks
+from .gazebo import Block, Lumping, blocks, lumping
 from .meshpaths import MeshPaths
 from .plan import Plan, build
 from .poses import place
@@ -103,6 +103,16 @@ class Analysis:
     def gazebo_blocks(self) -> tuple[Block, ...]:
         """Its ``<gazebo>`` and ``<ros2_control>`` elements, parsed once, in file order."""
         return blocks(self.robot, self.references)
+
+    @cached_property
+    def gazebo_lumping(self) -> Lumping:
+        """What sdformat's URDF converter does to the links before Gazebo sees them: which
+        it lumps into which, which it leaves out for lack of mass.
+
+        Raises:
+            StructureError: There is no single root.
+        """
+        return lumping(self.gazebo_blocks, self.topology, self.links, self.joints, self.root)
 
     @cached_property
     def mesh_paths(self) -> MeshPaths:
