@@ -45,19 +45,19 @@ def test_the_right_robot_has_no_finding(robot: Path) -> None:
 FAULTS = [
     (
         ["separation:=0.34"],
-        "84:9: error: plugin 'diff_drive' (libgazebo_ros_diff_drive.so): <wheel_separation> is "
+        "86:9: error: plugin 'diff_drive' (libgazebo_ros_diff_drive.so): <wheel_separation> is "
         "0.34 m, but joints 'left_wheel_joint' and 'right_wheel_joint' are 0.2 m apart along "
         "the axle (write <wheel_separation>0.2</wheel_separation>) [diff-drive-size]",
     ),
     (
         ["diameter:=0.032"],
-        "84:9: error: plugin 'diff_drive' (libgazebo_ros_diff_drive.so): <wheel_diameter> is "
+        "87:9: error: plugin 'diff_drive' (libgazebo_ros_diff_drive.so): <wheel_diameter> is "
         "0.032 m, the radius of wheel 'left_wheel_link''s collision cylinder (radius 0.032 m) "
         "(write <wheel_diameter>0.064</wheel_diameter>) [diff-drive-size]",
     ),
     (
         ["diameter:=0.07"],
-        "84:9: error: plugin 'diff_drive' (libgazebo_ros_diff_drive.so): <wheel_diameter> is "
+        "87:9: error: plugin 'diff_drive' (libgazebo_ros_diff_drive.so): <wheel_diameter> is "
         "0.07 m, but wheel 'left_wheel_link''s collision cylinder has radius 0.032 m (write "
         "<wheel_diameter>0.064</wheel_diameter>) [diff-drive-size]",
     ),
@@ -77,12 +77,12 @@ FAULTS = [
     ),
     (
         ["laser_plugin:=libgazebo_ros_laser.so"],
-        "122:9: error: plugin 'libgazebo_ros_laser.so' is ROS 1's; this robot is for ROS 2, which "
+        "119:7: error: plugin 'libgazebo_ros_laser.so' is ROS 1's; this robot is for ROS 2, which "
         "has no such file (use libgazebo_ros_ray_sensor.so) [plugin-ros-version]",
     ),
     (
         ["depth_plugin:=libgazebo_ros_openni_kinect.so"],
-        "135:9: error: plugin 'libgazebo_ros_openni_kinect.so' is ROS 1's; this robot is for ROS "
+        "145:7: error: plugin 'libgazebo_ros_openni_kinect.so' is ROS 1's; this robot is for ROS "
         "2, which has no such file (use libgazebo_ros_camera.so on a depth sensor) "
         "[plugin-ros-version]",
     ),
@@ -115,13 +115,13 @@ FAULTS = [
     ),
     (
         ["sim:=gz", "--select", "diff-drive-size"],
-        "98:9: error: plugin 'gz::sim::systems::DiffDrive' (gz-sim-diff-drive-system): "
+        "101:9: error: plugin 'gz::sim::systems::DiffDrive' (gz-sim-diff-drive-system): "
         "<wheel_radius> is 0.064 m, the diameter of wheel 'left_wheel_link''s collision cylinder "
         "(radius 0.032 m) (write <wheel_radius>0.032</wheel_radius>) [diff-drive-size]",
     ),
     (
         ["sim:=gz", "diameter:=0.032", "--select", "plugin-simulator"],
-        "98:9: error: plugin 'gz-sim-diff-drive-system' is the new Gazebo (gz-sim)'s, but this "
+        "97:7: error: plugin 'gz-sim-diff-drive-system' is the new Gazebo (gz-sim)'s, but this "
         "robot's other plugins (libgazebo_ros_camera.so, libgazebo_ros_ray_sensor.so) are for "
         "Gazebo Classic (use Gazebo Classic's plugin for it, or move the whole robot to the new "
         "Gazebo (gz-sim)) [plugin-simulator]",
@@ -152,7 +152,7 @@ def test_ros1_plugins_in_a_catkin_package_are_right() -> None:
     assert ros_version(ROS1 / "package.xml") == 1
     assert ros_version(ROS2 / "package.xml") == 2
     assert _check(ROBOT1, "diameter:=0.032")[2] == (
-        f"{shown_path(str(ROBOT1))}:84:7: error: plugin 'differential_drive_controller' "
+        f"{shown_path(str(ROBOT1))}:87:7: error: plugin 'differential_drive_controller' "
         "(libgazebo_ros_diff_drive.so): <wheelDiameter> is 0.032 m, the radius of wheel "
         "'left_wheel_link''s collision cylinder (radius 0.032 m) (write "
         "<wheelDiameter>0.064</wheelDiameter>) [diff-drive-size]\n"
@@ -165,7 +165,7 @@ def test_the_ros1_robot_in_an_ament_package_is_told_each_ros1_plugin(tmp_path: P
     shutil.copy(ROBOT1, tmp_path / "urdf" / "fishbot.urdf.xacro")
     result = check_file(tmp_path / "urdf" / "fishbot.urdf.xacro")
     found = [(d.rule, d.line) for d in result.diagnostics]
-    assert found == [("plugin-ros-version", line) for line in (84, 108, 126)]
+    assert found == [("plugin-ros-version", line) for line in (80, 106, 120)]
     messages = [d.message for d in result.diagnostics]
     assert "<leftJoint>" in messages[0] and "libgazebo_ros_ray_sensor.so" in (
         result.diagnostics[1].hint or ""

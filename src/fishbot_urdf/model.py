@@ -246,6 +246,9 @@ class Robot:
 
     ``materials`` are the top-level <material> elements; ``extras`` keeps every top-level
     element URDF does not define (gazebo, transmission, ros2_control, ...) as XML text.
+    ``extra_places`` gives, for each of ``extras`` that names parts of the robot (gazebo,
+    transmission, ros2_control), where each element in it is written, in document order
+    (empty when the reader had no places, or for other extras).
     """
 
     name: str
@@ -255,6 +258,9 @@ class Robot:
     version: str | None = None
     extras: tuple[str, ...] = ()
     source: Location | None = _source()
+    extra_places: tuple[tuple[Location | None, ...], ...] = field(
+        default=(), compare=False, repr=False
+    )
 
     def link(self, name: str) -> Link:
         """The link called ``name``. Linear in the number of links.

@@ -37,12 +37,24 @@ class Block:
     Attributes:
         element: The element, read again from the robot's text.
         reference: Its ``reference`` (None for a block about the whole robot).
-        where: Where it is written, when the reader gave the place of one of its names.
+        where: Where it is written, when the reader gave places.
+        places: Where each element in it is written, in document order (empty when the
+            reader gave no places).
     """
 
     element: etree._Element
     reference: str | None
     where: Location | None
+    places: tuple[Location | None, ...] = ()
+
+    def place_of(self, element: etree._Element) -> Location | None:
+        """Where ``element`` (inside this block) is written, if the reader said."""
+        if not self.places:
+            return None
+        for index, node in enumerate(self.element.iter(etree.Element)):
+            if node is element:
+                return self.places[index] if index < len(self.places) else None
+        return None
 
 
 def blocks(robot: Robot, references: tuple[Reference, ...]) -> tuple[Block, ...]:
@@ -50,7 +62,7 @@ def blocks(robot: Robot, references: tuple[Reference, ...]) -> tuple[Block, ...]
     by the places of ``references`` (the names they give)."""
     places = _places(references)
     found: list[Block] = []
-    for text in robot.extras:
+    for index, text in enumerate(robot.extras):
         if not text.startswith(("<gazebo", "<ros2_control")):
             continue
         try:
@@ -60,10 +72,13 @@ def blocks(robot: Robot, references: tuple[Reference, ...]) -> tuple[Block, ...]
         if element.tag not in ("gazebo", "ros2_control"):
             continue
         reference = element.get("reference") if element.tag == "gazebo" else None
+        given = robot.extra_places[index] if index < len(robot.extra_places) else ()
         where = places.get(("<gazebo reference>", reference)) if reference is not None else None
+        if where is None and given:
+            where = given[0]
         if where is None:
             where = _first_place(element, places)
-        found.append(Block(element, reference, where))
+        found.append(Block(element, reference, where, given))
     return tuple(found)
 
 
@@ -76,9 +91,9 @@ def plugins(block: Block) -> Iterator[etree._Element]:
 def place(
     references: tuple[Reference, ...], block: Block, element: etree._Element
 ) -> Location | None:
-    """Where ``element`` of ``block`` is written, as near as the places of ``references``
-    say: a name inside it, else the block."""
-    return _first_place(element, _places(references)) or block.where
+    """Where ``element`` of ``block`` is written: its own place when the reader gave it,
+    else as near as the places of ``references`` say (a name inside it), else the block."""
+    return block.place_of(element) or _first_place(element, _places(references)) or block.where
 
 
 def number(element: etree._Element, path: str) -> float | None:

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 
 from lxml import etree
 
@@ -11,7 +11,7 @@ from ..catalog.reading import NO_ROBOT, ROBOT_NAME, ROBOT_VERSION
 from ..diagnostics import Kind, Subject
 from ..extensions import TAGS, collect
 from ..inputs import deadline
-from ..model import Joint, Link, Material, Robot
+from ..model import Joint, Link, Location, Material, Robot
 from ._base import xml_text
 from ._joints import JointReader
 
@@ -50,6 +50,7 @@ class Reader(JointReader):
         joints: list[Joint] = []
         materials: list[Material] = []
         extras: list[str] = []
+        places: list[tuple[Location | None, ...]] = []
         locate = self.locator.locate
         until = deadline()
         for index, child in enumerate(children):
@@ -65,9 +66,34 @@ class Reader(JointReader):
                 materials.append(self.material(child, locate(child), whole))
             elif tag in TAGS:  # read for the names it gives to links and joints
                 extras.append(xml_text(child))
-                self.references.extend(collect(child, locate, self.locator.attribute))
+                found: list[Location | None] = []
+                self.references.extend(
+                    collect(child, _recording(locate, found), self.locator.attribute)
+                )
+                places.extend([()] * (len(extras) - 1 - len(places)))
+                places.append(tuple(found))
             elif isinstance(tag, str):
                 extras.append(self.extra(child))
         return Robot(
-            name or "", tuple(links), tuple(joints), tuple(materials), version, tuple(extras), at
+            name or "",
+            tuple(links),
+            tuple(joints),
+            tuple(materials),
+            version,
+            tuple(extras),
+            at,
+            tuple(places),
         )
+
+
+def _recording(
+    locate: Callable[[etree._Element], Location | None], found: list[Location | None]
+) -> Callable[[etree._Element], Location | None]:
+    """``locate``, keeping each place it gives in ``found``."""
+
+    def recording(node: etree._Element) -> Location | None:
+        at = locate(node)
+        found.append(at)
+        return at
+
+    return recording

@@ -75,9 +75,10 @@ def _drive(
         pair = _pair(analysis, left, right, base)
         if isinstance(pair, list):
             for message, subject in pair:
+                named = names.left if subject.name != right or left == right else names.right
                 yield DIFF_DRIVE_WHEELS.report(
                     f"{label}: {message}",
-                    where,
+                    _at(block, plugin, named, index) or where,
                     path=analysis.path,
                     subject=subject,
                     hint="name the wheels' continuous joints, turning about the axle, left as "
@@ -96,7 +97,7 @@ def _drive(
                 analysis,
                 f"{label}: <{names.separation}> {_is(given, written)}, but joints {left!r} and "
                 f"{right!r} are {apart:.4g} m apart along the axle",
-                where,
+                _at(block, plugin, names.separation, at) or where,
                 f"write <{names.separation}>{apart:.4g}</{names.separation}>",
             )
         size = sizes[at] if at < len(sizes) else names.default_size
@@ -117,7 +118,19 @@ def _drive(
                 f"{label}: <{names.size}> {_is(size, written)}, but wheel {wheel!r}'s "
                 f"collision cylinder has radius {radius:.4g} m"
             )
-        yield _size(analysis, message, where, f"write <{names.size}>{want:.4g}</{names.size}>")
+        yield _size(
+            analysis,
+            message,
+            _at(block, plugin, names.size, at) or where,
+            f"write <{names.size}>{want:.4g}</{names.size}>",
+        )
+
+
+def _at(block: Block, plugin: etree._Element, tag: str, index: int) -> Location | None:
+    """Where the ``index``-th ``<tag>`` of ``plugin`` is written, if it is and the reader
+    said."""
+    found = plugin.findall(tag)
+    return block.place_of(found[index]) if index < len(found) else None
 
 
 def _size(analysis: Analysis, message: str, where: Location | None, hint: str) -> Diagnostic:
