@@ -2,7 +2,9 @@
 its mesh file, placed by the forward kinematics at a joint configuration, in the root
 link's frame; and, on request, what RViz's "Mass Properties" and link axes show: each
 link's mass as a ball of lead at its centre of mass, its inertia as the equivalent box on
-its principal axes (`fishbot_urdf.inertia.equivalent_box`), and its frame as three axes.
+its principal axes (`fishbot_urdf.inertia.equivalent_box`), and its frame as three axes;
+and what Gazebo will simulate: its sensors' rays and frustums, and the links sdformat's
+converter lumps together (`fishbot_urdf.analysis.gazebo`) in one colour each.
 `fishbot render` rasterises a scene; `fishbot view` sends one to the browser.
 
 numpy is imported when a scene is built. Mesh files are found by the analysis's
@@ -60,7 +62,9 @@ from ..model import (
 )
 from ..rules.meshes import unresolved
 from ..wording import did_you_mean
+from ._lumping import tints
 from ._marks import AXES_SHARE, SEEN_THROUGH, axes, axes_length, inertial_marks
+from ._sensors import reach, sensor_marks
 from ._shapes import apply, box, cylinder, origin_matrix, sphere
 
 if TYPE_CHECKING:
@@ -73,9 +77,10 @@ FARTHEST = 1e9
 robot reaches, and near enough that drawing it (its normals are squares of its sizes) stays
 within floating point."""
 
-LAYERS = ("visual", "collision", "mass", "inertia", "frames")
+LAYERS = ("visual", "collision", "mass", "inertia", "frames", "sensors", "gazebo")
 """What a scene can show: the visual shapes, the collision shapes, each link's mass sphere
-and inertia box, and each link's frame as axes."""
+and inertia box, each link's frame as axes, the Gazebo sensors' rays and frustums, and the
+visual shapes coloured by the Gazebo link sdformat's converter lumps each link into."""
 
 GREY = (0.7, 0.7, 0.72, 1.0)  # RViz draws a visual without a material in a light grey
 COLLISION = (0.55, 0.7, 0.85, 1.0)
@@ -167,8 +172,14 @@ def build_scene(
     principal axes (in the frame of the inertial's origin), both red, opaque as RViz draws
     them but seen through (alpha :data:`SEEN_THROUGH`) when drawn with the visual or
     collision shapes, which an opaque box would hide; ``frames``, each link's x, y and z
-    axes in red, green and blue, :attr:`Scene.axes_length` long. Default: the visuals
-    (with ``collision``: the collision shapes alone).
+    axes in red, green and blue, :attr:`Scene.axes_length` long; ``sensors``, the sensors of
+    the robot's ``<gazebo reference>`` blocks at their poses on their links (as sdformat
+    keeps them where they are on a link it lumps into another): each lidar's rays from its
+    minimum to its maximum range and the arc at the maximum in orange, each camera's
+    frustum in purple (`fishbot_urdf.drawing._sensors`); ``gazebo``, the visuals coloured
+    by the link of the Gazebo model sdformat's converter makes each link part of, one colour
+    for each (`fishbot_urdf.drawing._lumping`), a link it leaves out dark and seen through.
+    Default: the visuals (with ``collision``: the collision shapes alone).
 
     Raises:
         StructureError: The robot has no single root.
@@ -187,6 +198,7 @@ def build_scene(
     poses = {name: poses_array[i] for i, name in enumerate(kin.links)}
     materials = {m.name: m for m in analysis.robot.materials if m.name}
     loader = _Loader(analysis)
+    tinted = tints(analysis.gazebo_lumping) if "gazebo" in layers else {}
     parts: list[Part] = []
     check = deadline()
     for link in analysis.robot.links:
@@ -195,8 +207,9 @@ def build_scene(
             continue
         pose = poses[link.name]
         shapes: list[tuple[Geometry, Origin, Material | None, str]] = []
-        if "visual" in layers:
-            shapes += [(v.geometry, v.origin, v.material, "visual") for v in link.visuals]
+        if "visual" in layers or "gazebo" in layers:
+            kind = "gazebo" if "gazebo" in layers else "visual"  # the visuals, recoloured
+            shapes += [(v.geometry, v.origin, v.material, kind) for v in link.visuals]
         if "collision" in layers:
             shapes += [(c.geometry, c.origin, None, "collision") for c in link.collisions]
         loader.unresolved(link, [geometry for geometry, _, _, _ in shapes])
@@ -207,7 +220,10 @@ def build_scene(
             placed = _placed(np, loader, link, geometry, origin_matrix(np, origin), local, pose)
             if placed is None:
                 continue
-            color = COLLISION if layer == "collision" else _color(material, materials)
+            if layer == "gazebo":
+                color = tinted.get(link.name, GREY)
+            else:
+                color = COLLISION if layer == "collision" else _color(material, materials)
             parts.append(Part(link.name, apply(np, pose, placed), color, placed, pose, layer))
         if link.inertial is not None and ("mass" in layers or "inertia" in layers):
             parts += _inertial_parts(np, loader, link, link.inertial, pose, layers)
@@ -220,6 +236,17 @@ def build_scene(
             for mark in axes(np, length):
                 world = apply(np, pose, mark.triangles)
                 parts.append(Part(name, world, mark.color, mark.triangles, pose, mark.layer))
+    if "sensors" in layers:  # after the axes' length: a lidar's reach is not the robot's size
+        placed = [
+            (s, poses[s.link]) for s in analysis.sensors if s.link is not None and s.link in poses
+        ]
+        size = max([length / AXES_SHARE, *(reach(s) for s, _ in placed)])
+        for sensor, pose in placed:
+            for mark in sensor_marks(np, sensor, size):
+                world = apply(np, pose, mark.triangles)
+                parts.append(
+                    Part(sensor.link or "", world, mark.color, mark.triangles, pose, mark.layer)
+                )
     # By place, as check lists them; but nothing-drawn, at the robot's first line, speaks of
     # the warnings that say why each shape is not drawn: it comes after them, as a summary.
     findings = sorted(loader.findings, key=sort_key)
@@ -340,7 +367,7 @@ def _nothing_drawn(
         "collision": [c.geometry for link in robot.links for c in link.collisions],
     }
     inertials = sum(link.inertial is not None for link in robot.links)
-    tags = list(dict.fromkeys(_TAGS[layer] for layer in layers))
+    tags = list(dict.fromkeys(_TAGS[layer] for layer in layers if layer in _TAGS))
     shapes = [shape for tag in tags for shape in shapes_of.get(tag, ())]
     count = len(shapes) + (inertials if "inertial" in tags else 0)
     other = {"visual": "collision", "collision": "visual"}.get(tags[0]) if len(tags) == 1 else None
@@ -376,13 +403,21 @@ def _nothing_drawn(
     )
 
 
-_TAGS = {"visual": "visual", "collision": "collision", "mass": "inertial", "inertia": "inertial"}
+_TAGS = {
+    "visual": "visual",
+    "collision": "collision",
+    "mass": "inertial",
+    "inertia": "inertial",
+    "sensors": "sensor",
+    "gazebo": "visual",
+}
 _ELEMENTS = {
     "visual": "a visual shape",
     "collision": "a collision shape",
     "inertial": "an <inertial>",
+    "sensor": "a lidar or camera <sensor> in its <gazebo reference> block",
 }
-_ARTICLES = {"visual": "a", "collision": "a", "inertial": "an"}
+_ARTICLES = {"visual": "a", "collision": "a", "inertial": "an", "sensor": "a"}
 
 
 def _drawable(analysis: Analysis, shape: Geometry) -> bool:
