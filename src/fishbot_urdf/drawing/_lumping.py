@@ -1,11 +1,12 @@
 """The colours of what sdformat's converter makes of the links: one for each link of the
-Gazebo model (those lumped into it share it), and a dark ghost for a link it leaves out."""
+Gazebo model (those lumped into it share it), and a dark ghost for a link it leaves out;
+and the words the viewer labels such links with."""
 
 from __future__ import annotations
 
 from ..analysis.gazebo import Lumping
 
-__all__ = ["DROPPED", "PALETTE", "tints"]
+__all__ = ["DROPPED", "PALETTE", "notes", "tints"]
 
 PALETTE = (
     (0.12, 0.47, 0.71, 1.0),  # blue
@@ -35,3 +36,17 @@ def tints(lumping: Lumping) -> dict[str, tuple[float, float, float, float]]:
         name: DROPPED if name in lost else colours.get(landing.link, DROPPED)
         for name, landing in lumping.landings.items()
     }
+
+
+def notes(lumping: Lumping) -> dict[str, str]:
+    """What a person is told of each link sdformat's converter does not keep as it is: the
+    link it is lumped into, or that it is left out, and why."""
+    said: dict[str, str] = {}
+    for name, landing in lumping.landings.items():
+        if landing.link != name:
+            said[name] = f"{name} \u2192 {landing.link} (lumped)"
+    for stop, lost in lumping.dropped.items():
+        for name in lost:
+            why = "no mass" if name == stop else f"{stop} has no mass"
+            said[name] = f"{name}: left out ({why})"
+    return said

@@ -61,15 +61,15 @@ def sensor_marks(np: Any, sensor: Sensor, size: float) -> list[Mark]:
     for rays in sensor.rays:
         segments = _fan(np, rays)
         if segments is not None:
-            marks.append(
-                Mark(_placed(np, sensor.pose, _lines(np, segments, thick)), LIDAR, "sensors")
-            )
+            segments = _placed(np, sensor.pose, segments)
+            marks.append(Mark(_lines(np, segments, thick), LIDAR, "sensors", segments))
     for camera in sensor.cameras:
         pose = sensor.pose.then(camera.pose)
         edges, sides = _frustum(np, camera)
         if edges is None:
             continue
-        marks.append(Mark(_placed(np, pose, _lines(np, edges, thick)), CAMERA, "sensors"))
+        edges = _placed(np, pose, edges)
+        marks.append(Mark(_lines(np, edges, thick), CAMERA, "sensors", edges))
         marks.append(Mark(_placed(np, pose, sides), (*CAMERA[:3], _SIDE_ALPHA), "sensors"))
     return marks
 
@@ -181,5 +181,5 @@ def _lines(np: Any, segments: Any, thick: float) -> Any:
 
 
 def _placed(np: Any, pose: Pose, triangles: Any) -> Any:
-    """Triangles in the sensor's frame, in its link's."""
+    """Triangles (or segments) in the sensor's frame, in its link's."""
     return triangles @ np.array(pose.rotation).T + np.array(pose.translation)

@@ -97,6 +97,9 @@ class Part:
         local: The same triangles in the link's frame (what a viewer poses itself).
         pose: The link's 4x4 pose in the root frame.
         layer: What it shows, one of :data:`LAYERS`.
+        lines: For lines (a lidar's rays, a frustum's edges), their segments (N, 2, 3) in
+            the link's frame, which a viewer may draw as lines of a width on screen; the
+            triangles draw them as thin boxes. None for a shape.
     """
 
     link: str
@@ -105,6 +108,7 @@ class Part:
     local: NDArray[Any] = field(repr=False)
     pose: NDArray[Any] = field(repr=False)
     layer: str = "visual"
+    lines: NDArray[Any] | None = field(default=None, repr=False)
 
 
 @dataclass(frozen=True)
@@ -245,7 +249,15 @@ def build_scene(
             for mark in sensor_marks(np, sensor, size):
                 world = apply(np, pose, mark.triangles)
                 parts.append(
-                    Part(sensor.link or "", world, mark.color, mark.triangles, pose, mark.layer)
+                    Part(
+                        sensor.link or "",
+                        world,
+                        mark.color,
+                        mark.triangles,
+                        pose,
+                        mark.layer,
+                        mark.lines,
+                    )
                 )
     # By place, as check lists them; but nothing-drawn, at the robot's first line, speaks of
     # the warnings that say why each shape is not drawn: it comes after them, as a summary.
