@@ -184,3 +184,74 @@ def test_a_link_sdformat_leaves_out_is_a_dark_ghost(tmp_path: Path) -> None:
     r, g, b = (pixels[..., i] for i in range(3))
     ghost = (abs(r - g) < 6) & (abs(g - b) < 6) & (r > 100) & (r < 200)
     assert ghost.mean() > 0.02
+
+
+LIDAR_3D = """\
+<robot name="car">
+  <link name="base"><visual><geometry><box size="4 2 1"/></geometry></visual></link>
+  <link name="roof"/>
+  <joint name="mount" type="fixed">
+    <parent link="base"/><child link="roof"/><origin xyz="0 0 0.5"/>
+  </joint>
+  <gazebo reference="roof">
+    <sensor name="velodyne" type="gpu_lidar">
+      <pose>0 0 0.2 0 0 0</pose>
+      <lidar>
+        <scan>
+          <horizontal><samples>1800</samples><min_angle>-3.14159</min_angle>
+            <max_angle>3.14159</max_angle></horizontal>
+          <vertical><samples>16</samples><min_angle>-0.26</min_angle>
+            <max_angle>0.26</max_angle></vertical>
+        </scan>
+        <range><min>0.9</min><max>30</max></range>
+      </lidar>
+    </sensor>
+    <sensor name="eyes" type="multicamera">
+      <camera name="left"><pose>0 0.05 0 0 0 0</pose><horizontal_fov>1</horizontal_fov>
+        <clip><near>0.1</near><far>0.5</far></clip></camera>
+      <camera name="right"><pose>0 -0.05 0 0 0 0</pose><horizontal_fov>1</horizontal_fov>
+        <clip><near>0.1</near><far>0.5</far></clip></camera>
+    </sensor>
+  </gazebo>
+</robot>
+"""
+
+
+def test_a_3d_lidar_is_drawn_in_rows_of_rays_and_a_multicamera_in_frustums() -> None:
+    scene = build_scene(fishbot_urdf.parse(LIDAR_3D), show=("sensors",))
+    fan, left, left_sides, right, right_sides = scene.parts
+    assert {p.link for p in scene.parts} == {"roof"}
+    # The roof is 0.5 m up, the lidar 0.2 m above it: its rays start 0.9 m from there and
+    # end 30 m away.
+    assert fan.lines is not None
+    start, end = fan.lines[:, 0] - (0, 0, 0.2), fan.lines[:, 1] - (0, 0, 0.2)
+    rays = np.isclose(np.linalg.norm(start, axis=1), 0.9)
+    assert np.allclose(np.linalg.norm(end, axis=1), 30)
+    # 1800 samples: every 31st (ceil(1799 / 59)) and the last, 60 rays a row; 16 rows: every
+    # 3rd (ceil(15 / 7)), 6 rows, the last (0.26 rad up) among them.
+    assert rays.sum() == 60 * 6
+    elevations = np.unique(np.round(np.arcsin(end[rays, 2] / 30), 6))
+    assert elevations == pytest.approx(np.linspace(-0.26, 0.26, 16)[::3])
+    # The arcs at 30 m, one a row, in pieces of 3 degrees or less round the 2 pi of the scan.
+    assert (~rays).sum() == 6 * math.ceil(2 * 3.14159 / math.radians(3))
+    assert fan.triangles.reshape(-1, 3)[:, 2].max() == pytest.approx(
+        0.5 + 0.2 + 30 * math.sin(0.26), abs=0.1
+    )
+    # Each camera's frustum at its own pose: 0.5 m deep (its far clip), 1 rad across.
+    for edges, y in ((left, 0.05), (right, -0.05)):
+        corners = edges.lines.reshape(-1, 3) - (0, y, 0)
+        assert corners[:, 0].max() == pytest.approx(0.5)
+        assert corners[:, 1].max() == pytest.approx(0.5 * math.tan(0.5))
+    assert left_sides.color[3] < 1 and right_sides.lines is None
+
+
+def test_a_robot_without_sensors_has_none_to_draw(tmp_path: Path) -> None:
+    robot = DATA / "valid" / "all_elements.urdf"
+    out = tmp_path / "x.png"
+    result = CliRunner().invoke(cli, ["render", str(robot), "-o", str(out), "--show", "sensors"])
+    assert result.exit_code == 1 and not out.exists()
+    assert result.stderr.splitlines()[-2].endswith(
+        "no link has a lidar or camera <sensor> in its <gazebo reference> block: there is "
+        'nothing to draw (write a <sensor type="ray"> or "camera" in a <gazebo '
+        'reference="LINK"> block) [nothing-drawn]'
+    )

@@ -382,7 +382,7 @@ def test_the_sensors_and_the_lumped_links_show_when_ticked(driver: Any) -> None:
         height = rays.shape[0]
         assert bottom - top > 0.5 * height  # beyond the robot, up and down the view
         changed = np.abs(rays.astype(int) - before.astype(int)).max(axis=2) > 40
-        assert (changed & _orange(rays)).sum() == _orange(rays).sum()  # new where the fan is
+        assert (changed & _orange(rays)).sum() > 0.99 * _orange(rays).sum()  # new, the fan
         # The links sdformat lumps into base_footprint (labelled so): the body, the laser
         # and the camera in the first Gazebo link's blue, in place of their grey.
         _tick(driver, "Sensors")

@@ -26,7 +26,8 @@ __all__ = [
 LIDAR = (1.0, 0.5, 0.0, 1.0)  # orange: neither an axis' colour nor the mass' red
 CAMERA = (0.6, 0.2, 0.9, 1.0)  # purple
 COLUMNS = 60
-"""The most rays of one row of a lidar's scan drawn: every k-th sample, the last one too."""
+"""The most rays of one row of a lidar's scan drawn: every k-th sample, k = ceil((samples -
+1) / (COLUMNS - 1)), from the first, and the last one."""
 ROWS = 8
 """The most rows of a 3D lidar's scan drawn, taken as its columns are."""
 CAMERA_DEPTH = 1.0
@@ -51,7 +52,7 @@ def reach(sensor: Sensor) -> float:
 
 
 def sensor_marks(np: Any, sensor: Sensor, size: float) -> list[Mark]:
-    """The marks of a lidar's rays (every :data:`COLUMNS`-th of a row, at most :data:`ROWS`
+    """The marks of a lidar's rays (at most :data:`COLUMNS` of a row, at most :data:`ROWS`
     rows) and of each camera's frustum (:data:`CAMERA_DEPTH` deep at most), posed in the
     frame of the sensor's link, their lines :data:`LINE` of ``size`` (metres: the size of
     the picture's subject) thick; none for another sensor, or a lidar with no maximum range
@@ -85,7 +86,7 @@ def _angles(scan: Scan | None, default: int, most: int) -> list[float]:
     if samples == 1 or high <= low:
         return [low]
     step = (high - low) / (samples - 1)
-    every = math.ceil(samples / most)
+    every = math.ceil((samples - 1) / (most - 1)) if most > 1 else samples
     picked = list(range(0, samples, every))
     if picked[-1] != samples - 1:
         picked.append(samples - 1)

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import re
 import warnings
-from collections.abc import Collection, Mapping
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -70,7 +70,16 @@ from ._shapes import apply, box, cylinder, origin_matrix, sphere
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
-__all__ = ["AXES_SHARE", "FARTHEST", "LAYERS", "SEEN_THROUGH", "Part", "Scene", "build_scene"]
+__all__ = [
+    "AXES_SHARE",
+    "FARTHEST",
+    "LAYERS",
+    "SEEN_THROUGH",
+    "Part",
+    "Scene",
+    "build_scene",
+    "in_gazebo_colours",
+]
 
 FARTHEST = 1e9
 """The farthest a drawn shape's corner may lie from the root, in metres: farther than any
@@ -202,7 +211,6 @@ def build_scene(
     poses = {name: poses_array[i] for i, name in enumerate(kin.links)}
     materials = {m.name: m for m in analysis.robot.materials if m.name}
     loader = _Loader(analysis)
-    tinted = tints(analysis.gazebo_lumping) if "gazebo" in layers else {}
     parts: list[Part] = []
     check = deadline()
     for link in analysis.robot.links:
@@ -211,9 +219,8 @@ def build_scene(
             continue
         pose = poses[link.name]
         shapes: list[tuple[Geometry, Origin, Material | None, str]] = []
-        if "visual" in layers or "gazebo" in layers:
-            kind = "gazebo" if "gazebo" in layers else "visual"  # the visuals, recoloured
-            shapes += [(v.geometry, v.origin, v.material, kind) for v in link.visuals]
+        if "visual" in layers or "gazebo" in layers:  # (gazebo: recoloured below)
+            shapes += [(v.geometry, v.origin, v.material, "visual") for v in link.visuals]
         if "collision" in layers:
             shapes += [(c.geometry, c.origin, None, "collision") for c in link.collisions]
         loader.unresolved(link, [geometry for geometry, _, _, _ in shapes])
@@ -224,10 +231,7 @@ def build_scene(
             placed = _placed(np, loader, link, geometry, origin_matrix(np, origin), local, pose)
             if placed is None:
                 continue
-            if layer == "gazebo":
-                color = tinted.get(link.name, GREY)
-            else:
-                color = COLLISION if layer == "collision" else _color(material, materials)
+            color = COLLISION if layer == "collision" else _color(material, materials)
             parts.append(Part(link.name, apply(np, pose, placed), color, placed, pose, layer))
         if link.inertial is not None and ("mass" in layers or "inertia" in layers):
             parts += _inertial_parts(np, loader, link, link.inertial, pose, layers)
@@ -240,6 +244,8 @@ def build_scene(
             for mark in axes(np, length):
                 world = apply(np, pose, mark.triangles)
                 parts.append(Part(name, world, mark.color, mark.triangles, pose, mark.layer))
+    if "gazebo" in layers:
+        parts = in_gazebo_colours(analysis, parts)
     if "sensors" in layers:  # after the axes' length: a lidar's reach is not the robot's size
         placed = [
             (s, poses[s.link]) for s in analysis.sensors if s.link is not None and s.link in poses
@@ -265,6 +271,23 @@ def build_scene(
     if not parts:
         findings.append(_nothing_drawn(analysis, layers, tuple(sorted(loader.missing))))
     return Scene(tuple(parts), tuple(findings), poses, length)
+
+
+def in_gazebo_colours(analysis: Analysis, parts: Sequence[Part]) -> list[Part]:
+    """``parts`` with the visuals in their Gazebo colours, of layer ``gazebo``: one colour for
+    each link of the Gazebo model sdformat's converter makes (the links it lumps into one
+    share it), a link it leaves out dark and seen through (`fishbot_urdf.drawing._lumping`).
+
+    Raises:
+        StructureError: The robot has no single root.
+    """
+    tinted = tints(analysis.gazebo_lumping)
+    return [
+        replace(part, color=tinted.get(part.link, GREY), layer="gazebo")
+        if part.layer == "visual"
+        else part
+        for part in parts
+    ]
 
 
 def _layers(show: Collection[str] | None, collision: bool) -> tuple[str, ...]:
@@ -398,6 +421,9 @@ def _nothing_drawn(
     else:
         elements = " or ".join(_ELEMENTS[tag] for tag in tags)
         what, hint = f"no link has {elements}", f"give a link {_ARTICLES[tags[0]]} <{tags[0]}>"
+        if tags[0] == "sensor":
+            hint = 'write a <sensor type="ray"> or "camera" in a <gazebo reference="LINK"> block'
+
     return NOTHING_DRAWN.report(
         f"robot {robot.name!r}: {what}: there is nothing to draw",
         robot.source,

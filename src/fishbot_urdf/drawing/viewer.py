@@ -1,6 +1,7 @@
 """The robot in a web browser, as RViz with joint_state_publisher_gui shows it: visuals in
 their colours, and on toggles the collision shapes, each link's mass and inertia as RViz's
-"Mass Properties" show them (`fishbot_urdf.drawing.scene`) and its frame as axes; one slider
+"Mass Properties" show them (`fishbot_urdf.drawing.scene`), its frame as axes, and what
+Gazebo will simulate: its sensors' rays and frustums, its links as sdformat lumps them; one slider
 per moving joint within its limits (mimic joints follow), from the root outwards; reloaded
 when the robot's files change.
 
@@ -42,7 +43,7 @@ from ._glb import glb
 from ._lumping import notes
 from ._notes import failure_note, findings_of, viewed
 from ._serving import ServeError, authority, control_id, serve, shown
-from .scene import Scene, build_scene
+from .scene import Scene, build_scene, in_gazebo_colours
 
 __all__ = ["TOGGLES", "ServeError", "Viewer"]
 
@@ -198,8 +199,9 @@ class Viewer:
             visual = build_scene(analysis, packages=self._packages)
             collision = build_scene(analysis, collision=True, packages=self._packages)
             marks = build_scene(analysis, show=("mass", "inertia"), packages=self._packages)
-            # (its findings are the visuals', said already; and no sensor is no finding)
-            gazebo = build_scene(analysis, show=("sensors", "gazebo"), packages=self._packages)
+            # (no sensor is no finding, for a toggle: nothing-drawn is left unsaid)
+            sensors = build_scene(analysis, show=("sensors",), packages=self._packages)
+            gazebo = in_gazebo_colours(analysis, visual.parts)  # the visuals, recoloured
             for node in self._nodes:
                 node.remove()
             for slider in self._sliders.values():
@@ -217,8 +219,8 @@ class Viewer:
                 )
                 self._frames[link] = frame
                 self._nodes.append(frame)  # removing a frame removes what hangs below it
-            for scene in (visual, collision, marks, gazebo):
-                for index, part in enumerate(scene.parts):
+            for parts in (visual.parts, collision.parts, marks.parts, sensors.parts, gazebo):
+                for index, part in enumerate(parts):
                     mesh = self._mesh(
                         np,
                         f"{_node(part.link)}/{part.layer}_{index}",
