@@ -148,7 +148,7 @@ def test_a_mesh_is_read_and_one_that_cannot_be_is_its_bounding_box(tmp_path: Pat
         (
             ["--show", "mass,weight"],
             "Invalid value for --show: nothing to show called 'weight' (visual, collision, "
-            "mass, inertia, frames)",
+            "mass, inertia, frames, sensors, gazebo)",
             2,
         ),
     ],
@@ -161,7 +161,14 @@ def test_wrong_options(tmp_path: Path, args: list[str], said: str, code: int) ->
 
 
 @pytest.mark.parametrize(
-    ("wrong", "meant"), [("inerta", "inertia"), ("frame", "frames"), ("visuals", "visual")]
+    ("wrong", "meant"),
+    [
+        ("inerta", "inertia"),
+        ("frame", "frames"),
+        ("visuals", "visual"),
+        ("sensor", "sensors"),
+        ("gazbo", "gazebo"),
+    ],
 )
 def test_a_layer_mistyped_is_offered_the_one_it_looks_like(
     tmp_path: Path, wrong: str, meant: str
@@ -171,7 +178,7 @@ def test_a_layer_mistyped_is_offered_the_one_it_looks_like(
     assert result.exit_code == 2
     assert result.stderr.splitlines()[-1] == (
         f"Error: Invalid value for --show: nothing to show called {wrong!r} (did you mean "
-        f"{meant!r}? visual, collision, mass, inertia, frames)"
+        f"{meant!r}? visual, collision, mass, inertia, frames, sensors, gazebo)"
     )
     assert not out.exists()
 
@@ -873,13 +880,14 @@ def test_the_library_names_the_layers_it_can_show() -> None:
     with pytest.raises(fishbot_urdf.ArgumentError) as caught:
         build_scene(fishbot_urdf.load(FISHBOT / "urdf" / "first_robot.urdf"), show=("weight",))
     assert caught.value.message == (
-        "nothing to show called 'weight' (visual, collision, mass, inertia, frames)"
+        "nothing to show called 'weight' (visual, collision, mass, inertia, frames, sensors, "
+        "gazebo)"
     )
     with pytest.raises(fishbot_urdf.ArgumentError) as caught:
         build_scene(fishbot_urdf.load(XACRO), show=("inerta",))
     assert caught.value.message == (
         "nothing to show called 'inerta' (did you mean 'inertia'? visual, collision, mass, "
-        "inertia, frames)"
+        "inertia, frames, sensors, gazebo)"
     )
     with pytest.raises(fishbot_urdf.ArgumentError, match="nothing to show: name one of"):
         build_scene(fishbot_urdf.load(XACRO), show=())

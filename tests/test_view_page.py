@@ -352,3 +352,43 @@ def _canvas(pixels: np.ndarray) -> np.ndarray:
     inside = np.zeros((height, width), dtype=bool)
     inside[:, int(0.27 * width) : int(0.7 * width)] = True
     return inside
+
+
+GAZEBO_FISHBOT = Path(__file__).parent / "data" / "gazebo" / "fishbot_description" / "urdf"
+
+
+def _orange(pixels: np.ndarray) -> np.ndarray:
+    """Where the page shows a lidar's orange rays."""
+    r, g, b = (pixels[..., i].astype(int) for i in range(3))
+    return (r > 150) & (g > 0.3 * r) & (g < 0.7 * r) & (b < 0.3 * r) & _canvas(pixels)
+
+
+def _gazebo_blue(pixels: np.ndarray) -> np.ndarray:
+    """Where the page shows the first Gazebo link's blue (not a z axis' pure blue)."""
+    r, g, b = (pixels[..., i].astype(int) for i in range(3))
+    return (b > 100) & (r < 0.4 * b) & (g > 0.45 * b) & (g < 0.85 * b) & _canvas(pixels)
+
+
+def test_the_sensors_and_the_lumped_links_show_when_ticked(driver: Any) -> None:
+    shown = Viewer(_loader(GAZEBO_FISHBOT / "fishbot.urdf.xacro"), port=_free_port())
+    try:
+        _open(driver, shown.url)
+        before = _settled(driver)
+        assert not _orange(before).any()
+        # The lidar's rays, 8 m long, reach out of the robot (framed, 0.2 m across) all round.
+        _tick(driver, "Sensors")
+        rays = _wait(lambda: (lambda p: p if _orange(p).mean() > 0.002 else None)(_settled(driver)))
+        top, bottom, _, _ = _box_of(_orange(rays))
+        height = rays.shape[0]
+        assert bottom - top > 0.5 * height  # beyond the robot, up and down the view
+        changed = np.abs(rays.astype(int) - before.astype(int)).max(axis=2) > 40
+        assert (changed & _orange(rays)).sum() > 0.99 * _orange(rays).sum()  # new, the fan
+        # The links sdformat lumps into base_footprint (labelled so): the body, the laser
+        # and the camera in the first Gazebo link's blue, in place of their grey.
+        _tick(driver, "Sensors")
+        _wait(lambda: not _orange(_settled(driver)).any())
+        assert not _gazebo_blue(_settled(driver)).any()
+        _tick(driver, "Gazebo: lumped links")
+        _wait(lambda: (lambda p: p if _gazebo_blue(p).mean() > 0.02 else None)(_settled(driver)))
+    finally:
+        shown.close()

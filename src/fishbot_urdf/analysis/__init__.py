@@ -24,6 +24,7 @@ from .gazebo import Block, Lumping, blocks, lumping
 from .meshpaths import MeshPaths
 from .plan import Plan, build
 from .poses import place
+from .sensors import Sensor, sensors
 from .topology import Topology, single_root, topology
 
 __all__ = ["Analysis", "Body", "analyse", "of"]
@@ -113,6 +114,12 @@ class Analysis:
             StructureError: There is no single root.
         """
         return lumping(self.gazebo_blocks, self.topology, self.links, self.joints, self.root)
+
+    @cached_property
+    def sensors(self) -> tuple[Sensor, ...]:
+        """The sensors of its ``<gazebo>`` blocks, in file order: the link each is on, its
+        pose there, and its rays' or cameras' settings as written."""
+        return sensors(self.gazebo_blocks)
 
     @cached_property
     def mesh_paths(self) -> MeshPaths:

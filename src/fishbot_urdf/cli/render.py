@@ -83,7 +83,9 @@ def _size(text: str) -> tuple[int, int]:
     help="What to draw, comma-separated (default: visual): visual, collision, mass (a ball "
     "of lead of each link's mass at its centre of mass), inertia (the box of uniform density "
     "with each link's inertia), frames (each link's axes); as RViz draws them, but for the "
-    "ball and box seen through when drawn with the shapes.",
+    "ball and box seen through when drawn with the shapes; sensors (each Gazebo lidar's rays "
+    "and camera's frustum), gazebo (the visuals in one colour per link of the Gazebo model: "
+    "the links sdformat lumps into one share it; a link it leaves out, dark and seen through).",
 )
 @click.option(
     "--size",
@@ -117,7 +119,10 @@ def render(
     red ball of lead at its centre of mass, its inertia as the red box of uniform density
     with the same mass and principal moments (both seen through when drawn with the
     visuals or collision shapes, which an opaque box would hide), and its frame as red,
-    green and blue axes.
+    green and blue axes. Gazebo's view of it: each lidar's rays (--show sensors) from its
+    minimum to its maximum range with the arc at the maximum, each camera's frustum (1 m
+    deep at most), at their poses on their links; what sdformat's converter makes of the
+    links (--show gazebo): one colour per link of the Gazebo model.
     A robot with no shape to draw (no visuals, or none that can be drawn) is an error
     [nothing-drawn]: no blank picture is written. Exit status: 0 written (errors
     that leave the shape as it is, such as a fault in an <inertial>, do not stop it), 1 the
@@ -131,6 +136,7 @@ def render(
       fishbot render arm.urdf -o arm.png --view side -j shoulder=45deg --size 1200x900
       fishbot render robot.urdf.xacro -o collision.png --collision
       fishbot render robot.urdf.xacro -o inertia.png --show mass,inertia
+      fishbot render robot.urdf.xacro -o gazebo.png --show sensors,gazebo --view top
     """
     width, height = _size(size_text)
     show = _show(show_text)

@@ -78,7 +78,10 @@ def view(
     joints follow). Toggles show the visuals, the collision shapes, each link's mass (a red
     ball of lead at its centre of mass) and inertia (the red box of uniform density with the
     same mass and principal moments), and the link frames, as RViz's robot model does; untick
-    Visual to see the mass and inertia inside the robot. What cannot be drawn (a mesh not
+    Visual to see the mass and inertia inside the robot. Two more show what Gazebo will
+    simulate: Sensors (each lidar's rays and camera's frustum of the <gazebo> blocks) and
+    "Gazebo: lumped links" (the visuals in one colour per Gazebo link, each link sdformat
+    lumps into another or leaves out labelled so). What cannot be drawn (a mesh not
     found, an inertia no box has) is printed as render prints it. The robot reloads when FILE or a
     file it includes changes, keeping the sliders. A change that breaks the robot is
     printed as check prints its errors and shown on the page, which keeps the robot read

@@ -39,11 +39,14 @@ _RVIZ_AXES = 0.1  # metres: RViz's axes' length (rviz_default_plugins), for a ro
 
 
 class Mark(NamedTuple):
-    """Triangles (T, 3, 3) in a link's frame, their colour and the layer they belong to."""
+    """Triangles (T, 3, 3) in a link's frame, their colour and the layer they belong to; for
+    a mark of lines, the lines too, as segments (N, 2, 3) in the link's frame, which the
+    triangles draw as thin boxes."""
 
     triangles: Any
     color: tuple[float, float, float, float]
     layer: str
+    lines: Any = None
 
 
 def inertial_marks(

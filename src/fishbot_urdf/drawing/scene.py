@@ -2,7 +2,9 @@
 its mesh file, placed by the forward kinematics at a joint configuration, in the root
 link's frame; and, on request, what RViz's "Mass Properties" and link axes show: each
 link's mass as a ball of lead at its centre of mass, its inertia as the equivalent box on
-its principal axes (`fishbot_urdf.inertia.equivalent_box`), and its frame as three axes.
+its principal axes (`fishbot_urdf.inertia.equivalent_box`), and its frame as three axes;
+and what Gazebo will simulate: its sensors' rays and frustums, and the links sdformat's
+converter lumps together (`fishbot_urdf.analysis.gazebo`) in one colour each.
 `fishbot render` rasterises a scene; `fishbot view` sends one to the browser.
 
 numpy is imported when a scene is built. Mesh files are found by the analysis's
@@ -23,7 +25,7 @@ from __future__ import annotations
 
 import re
 import warnings
-from collections.abc import Collection, Mapping
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -60,22 +62,34 @@ from ..model import (
 )
 from ..rules.meshes import unresolved
 from ..wording import did_you_mean
+from ._lumping import tints
 from ._marks import AXES_SHARE, SEEN_THROUGH, axes, axes_length, inertial_marks
+from ._sensors import reach, sensor_marks
 from ._shapes import apply, box, cylinder, origin_matrix, sphere
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
-__all__ = ["AXES_SHARE", "FARTHEST", "LAYERS", "SEEN_THROUGH", "Part", "Scene", "build_scene"]
+__all__ = [
+    "AXES_SHARE",
+    "FARTHEST",
+    "LAYERS",
+    "SEEN_THROUGH",
+    "Part",
+    "Scene",
+    "build_scene",
+    "in_gazebo_colours",
+]
 
 FARTHEST = 1e9
 """The farthest a drawn shape's corner may lie from the root, in metres: farther than any
 robot reaches, and near enough that drawing it (its normals are squares of its sizes) stays
 within floating point."""
 
-LAYERS = ("visual", "collision", "mass", "inertia", "frames")
+LAYERS = ("visual", "collision", "mass", "inertia", "frames", "sensors", "gazebo")
 """What a scene can show: the visual shapes, the collision shapes, each link's mass sphere
-and inertia box, and each link's frame as axes."""
+and inertia box, each link's frame as axes, the Gazebo sensors' rays and frustums, and the
+visual shapes coloured by the Gazebo link sdformat's converter lumps each link into."""
 
 GREY = (0.7, 0.7, 0.72, 1.0)  # RViz draws a visual without a material in a light grey
 COLLISION = (0.55, 0.7, 0.85, 1.0)
@@ -92,6 +106,9 @@ class Part:
         local: The same triangles in the link's frame (what a viewer poses itself).
         pose: The link's 4x4 pose in the root frame.
         layer: What it shows, one of :data:`LAYERS`.
+        lines: For lines (a lidar's rays, a frustum's edges), their segments (N, 2, 3) in
+            the link's frame, which a viewer may draw as lines of a width on screen; the
+            triangles draw them as thin boxes. None for a shape.
     """
 
     link: str
@@ -100,6 +117,7 @@ class Part:
     local: NDArray[Any] = field(repr=False)
     pose: NDArray[Any] = field(repr=False)
     layer: str = "visual"
+    lines: NDArray[Any] | None = field(default=None, repr=False)
 
 
 @dataclass(frozen=True)
@@ -167,8 +185,14 @@ def build_scene(
     principal axes (in the frame of the inertial's origin), both red, opaque as RViz draws
     them but seen through (alpha :data:`SEEN_THROUGH`) when drawn with the visual or
     collision shapes, which an opaque box would hide; ``frames``, each link's x, y and z
-    axes in red, green and blue, :attr:`Scene.axes_length` long. Default: the visuals
-    (with ``collision``: the collision shapes alone).
+    axes in red, green and blue, :attr:`Scene.axes_length` long; ``sensors``, the sensors of
+    the robot's ``<gazebo reference>`` blocks at their poses on their links (as sdformat
+    keeps them where they are on a link it lumps into another): each lidar's rays from its
+    minimum to its maximum range and the arc at the maximum in orange, each camera's
+    frustum in purple (`fishbot_urdf.drawing._sensors`); ``gazebo``, the visuals coloured
+    by the link of the Gazebo model sdformat's converter makes each link part of, one colour
+    for each (`fishbot_urdf.drawing._lumping`), a link it leaves out dark and seen through.
+    Default: the visuals (with ``collision``: the collision shapes alone).
 
     Raises:
         StructureError: The robot has no single root.
@@ -195,7 +219,7 @@ def build_scene(
             continue
         pose = poses[link.name]
         shapes: list[tuple[Geometry, Origin, Material | None, str]] = []
-        if "visual" in layers:
+        if "visual" in layers or "gazebo" in layers:  # (gazebo: recoloured below)
             shapes += [(v.geometry, v.origin, v.material, "visual") for v in link.visuals]
         if "collision" in layers:
             shapes += [(c.geometry, c.origin, None, "collision") for c in link.collisions]
@@ -220,12 +244,50 @@ def build_scene(
             for mark in axes(np, length):
                 world = apply(np, pose, mark.triangles)
                 parts.append(Part(name, world, mark.color, mark.triangles, pose, mark.layer))
+    if "gazebo" in layers:
+        parts = in_gazebo_colours(analysis, parts)
+    if "sensors" in layers:  # after the axes' length: a lidar's reach is not the robot's size
+        placed = [
+            (s, poses[s.link]) for s in analysis.sensors if s.link is not None and s.link in poses
+        ]
+        size = max([length / AXES_SHARE, *(reach(s) for s, _ in placed)])
+        for sensor, pose in placed:
+            for mark in sensor_marks(np, sensor, size):
+                world = apply(np, pose, mark.triangles)
+                parts.append(
+                    Part(
+                        sensor.link or "",
+                        world,
+                        mark.color,
+                        mark.triangles,
+                        pose,
+                        mark.layer,
+                        mark.lines,
+                    )
+                )
     # By place, as check lists them; but nothing-drawn, at the robot's first line, speaks of
     # the warnings that say why each shape is not drawn: it comes after them, as a summary.
     findings = sorted(loader.findings, key=sort_key)
     if not parts:
         findings.append(_nothing_drawn(analysis, layers, tuple(sorted(loader.missing))))
     return Scene(tuple(parts), tuple(findings), poses, length)
+
+
+def in_gazebo_colours(analysis: Analysis, parts: Sequence[Part]) -> list[Part]:
+    """``parts`` with the visuals in their Gazebo colours, of layer ``gazebo``: one colour for
+    each link of the Gazebo model sdformat's converter makes (the links it lumps into one
+    share it), a link it leaves out dark and seen through (`fishbot_urdf.drawing._lumping`).
+
+    Raises:
+        StructureError: The robot has no single root.
+    """
+    tinted = tints(analysis.gazebo_lumping)
+    return [
+        replace(part, color=tinted.get(part.link, GREY), layer="gazebo")
+        if part.layer == "visual"
+        else part
+        for part in parts
+    ]
 
 
 def _layers(show: Collection[str] | None, collision: bool) -> tuple[str, ...]:
@@ -340,7 +402,7 @@ def _nothing_drawn(
         "collision": [c.geometry for link in robot.links for c in link.collisions],
     }
     inertials = sum(link.inertial is not None for link in robot.links)
-    tags = list(dict.fromkeys(_TAGS[layer] for layer in layers))
+    tags = list(dict.fromkeys(_TAGS[layer] for layer in layers if layer in _TAGS))
     shapes = [shape for tag in tags for shape in shapes_of.get(tag, ())]
     count = len(shapes) + (inertials if "inertial" in tags else 0)
     other = {"visual": "collision", "collision": "visual"}.get(tags[0]) if len(tags) == 1 else None
@@ -359,6 +421,9 @@ def _nothing_drawn(
     else:
         elements = " or ".join(_ELEMENTS[tag] for tag in tags)
         what, hint = f"no link has {elements}", f"give a link {_ARTICLES[tags[0]]} <{tags[0]}>"
+        if tags[0] == "sensor":
+            hint = 'write a <sensor type="ray"> or "camera" in a <gazebo reference="LINK"> block'
+
     return NOTHING_DRAWN.report(
         f"robot {robot.name!r}: {what}: there is nothing to draw",
         robot.source,
@@ -376,13 +441,21 @@ def _nothing_drawn(
     )
 
 
-_TAGS = {"visual": "visual", "collision": "collision", "mass": "inertial", "inertia": "inertial"}
+_TAGS = {
+    "visual": "visual",
+    "collision": "collision",
+    "mass": "inertial",
+    "inertia": "inertial",
+    "sensors": "sensor",
+    "gazebo": "visual",
+}
 _ELEMENTS = {
     "visual": "a visual shape",
     "collision": "a collision shape",
     "inertial": "an <inertial>",
+    "sensor": "a lidar or camera <sensor> in its <gazebo reference> block",
 }
-_ARTICLES = {"visual": "a", "collision": "a", "inertial": "an"}
+_ARTICLES = {"visual": "a", "collision": "a", "inertial": "an", "sensor": "a"}
 
 
 def _drawable(analysis: Analysis, shape: Geometry) -> bool:

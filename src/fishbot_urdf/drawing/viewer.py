@@ -1,6 +1,7 @@
 """The robot in a web browser, as RViz with joint_state_publisher_gui shows it: visuals in
 their colours, and on toggles the collision shapes, each link's mass and inertia as RViz's
-"Mass Properties" show them (`fishbot_urdf.drawing.scene`) and its frame as axes; one slider
+"Mass Properties" show them (`fishbot_urdf.drawing.scene`), its frame as axes, and what
+Gazebo will simulate: its sensors' rays and frustums, its links as sdformat lumps them; one slider
 per moving joint within its limits (mimic joints follow), from the root outwards; reloaded
 when the robot's files change.
 
@@ -39,13 +40,16 @@ from ._controls import dropped as _dropped
 from ._controls import position as _position
 from ._controls import slider_range
 from ._glb import glb
+from ._lumping import notes
 from ._notes import failure_note, findings_of, viewed
 from ._serving import ServeError, authority, control_id, serve, shown
-from .scene import Scene, build_scene
+from .scene import Scene, build_scene, in_gazebo_colours
 
 __all__ = ["TOGGLES", "ServeError", "Viewer"]
 
 _log = logging.getLogger(__name__)
+_LINE_WIDTH = 2.0  # pixels: a sensor's rays and a frustum's edges (their thin boxes drawn by
+# the browser's software renderer took a minute a frame where the rays pass the camera)
 
 TOGGLES = {
     "visual": "Visual",
@@ -53,10 +57,15 @@ TOGGLES = {
     "mass": "Mass",
     "inertia": "Inertia",
     "frames": "Link frames",
+    "sensors": "Sensors",
+    "gazebo": "Gazebo: lumped links",
 }
 """The page's checkboxes, by the scene's layer each shows: the visuals and the link frames
 start ticked. Mass and Inertia are RViz's "Mass Properties" (a ball of lead of the link's
-mass, the box of its inertia, both red); untick Visual to see them inside the robot."""
+mass, the box of its inertia, both red); untick Visual to see them inside the robot.
+Sensors are the Gazebo lidars' rays and cameras' frustums; "Gazebo: lumped links" shows
+the visuals in one colour per link of the Gazebo model (in place of their own colours),
+each link lumped into another or left out labelled so."""
 
 
 class Viewer:
@@ -190,6 +199,9 @@ class Viewer:
             visual = build_scene(analysis, packages=self._packages)
             collision = build_scene(analysis, collision=True, packages=self._packages)
             marks = build_scene(analysis, show=("mass", "inertia"), packages=self._packages)
+            # (no sensor is no finding, for a toggle: nothing-drawn is left unsaid)
+            sensors = build_scene(analysis, show=("sensors",), packages=self._packages)
+            gazebo = in_gazebo_colours(analysis, visual.parts)  # the visuals, recoloured
             for node in self._nodes:
                 node.remove()
             for slider in self._sliders.values():
@@ -207,15 +219,21 @@ class Viewer:
                 )
                 self._frames[link] = frame
                 self._nodes.append(frame)  # removing a frame removes what hangs below it
-            for scene in (visual, collision, marks):
-                for index, part in enumerate(scene.parts):
+            for parts in (visual.parts, collision.parts, marks.parts, sensors.parts, gazebo):
+                for index, part in enumerate(parts):
                     mesh = self._mesh(
                         np,
                         f"{_node(part.link)}/{part.layer}_{index}",
                         part,
-                        visible=self._toggles[part.layer].value,
+                        visible=self._visible(part.layer),
                     )
                     self._shown[part.layer].append(mesh)
+            for link, note in notes(analysis.gazebo_lumping).items():
+                if link in self._frames:
+                    label = self.server.scene.add_label(
+                        f"{_node(link)}/gazebo_note", note, visible=self._visible("gazebo")
+                    )
+                    self._shown["gazebo"].append(label)
             self.findings = viewed(visual, collision, marks)
             if self._points is None:
                 self._frame(np, (visual, collision, marks), length)
@@ -247,6 +265,16 @@ class Viewer:
         """A part on the page: a transparent one as a GLB file, which three.js blends
         without hiding what is behind or inside it (see `fishbot_urdf.drawing._glb`)."""
         red, green, blue, alpha = part.color
+        rgb = (round(255 * red), round(255 * green), round(255 * blue))
+        if part.lines is not None:  # lines a pixel or two wide, however near: as RViz draws
+            return self.server.scene.add_line_segments(
+                name,
+                part.lines.astype(np.float32),
+                rgb,
+                thickness=_LINE_WIDTH,
+                thickness_units="screen",
+                visible=visible,
+            )
         if alpha < 1.0:
             return self.server.scene.add_glb(name, glb(np, part.local, part.color), visible=visible)
         count = len(part.local)
@@ -254,7 +282,7 @@ class Viewer:
             name,
             part.local.reshape(-1, 3).astype(np.float32),
             np.arange(3 * count, dtype=np.uint32).reshape(-1, 3),
-            color=(round(255 * red), round(255 * green), round(255 * blue)),
+            color=rgb,
             side="double",
             flat_shading=True,
             visible=visible,
@@ -384,11 +412,17 @@ class Viewer:
                 frame.position = poses[index, :3, 3]
                 frame.wxyz = _wxyz(poses[index, :3, :3])
 
+    def _visible(self, layer: str) -> bool:
+        """Whether a layer's parts show: the visuals give way to their Gazebo colours."""
+        if layer == "visual" and self._toggles["gazebo"].value:
+            return False
+        return bool(self._toggles[layer].value)
+
     def _toggle(self) -> None:
         with self._lock:
             for layer, meshes in self._shown.items():
                 for mesh in meshes:
-                    mesh.visible = self._toggles[layer].value
+                    mesh.visible = self._visible(layer)
             for frame in self._frames.values():
                 frame.show_axes = self._toggles["frames"].value
 

@@ -5,62 +5,56 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-from lxml import etree
-
 from ...analysis import Analysis
-from ...analysis.gazebo import Block, number, text
+from ...analysis.gazebo import Block
+from ...analysis.sensors import Scan, Sensor
 from ...catalog.gazebo import SENSOR_REFERENCE, SENSOR_SELF_HIT, SENSOR_SETTINGS
 from ...diagnostics import Diagnostic, Kind, Subject
 from ...model import Box, Cylinder, Geometry, Sphere
-from ...spatial import Pose, mat_vec, rpy_matrix, transpose
+from ...spatial import Pose, mat_vec, transpose
 
 __all__ = ["sensors"]
 
-_RAYS = ("ray", "gpu_ray", "lidar", "gpu_lidar")
 # Rays cast through the physics engine's collision shapes; a GPU one renders the visuals.
 _PHYSICS_RAYS = ("ray", "lidar")
-_CAMERAS = ("camera", "depth", "depth_camera", "rgbd_camera", "rgbd", "multicamera")
 _DIRECTIONS = 360  # ray directions looked at, at most
 _EPS = 1e-9
 
 
 def sensors(analysis: Analysis, block: Block, *, select: frozenset[str]) -> Iterator[Diagnostic]:
     """Findings about the sensors of ``block``, of the rules in ``select``."""
-    if block.element.tag != "gazebo":
-        return
-    for sensor in block.element.iter("sensor"):
-        kind = sensor.get("type") or ""
-        label = f"sensor {sensor.get('name') or ''!r} ({kind})"
+    for sensor in analysis.sensors:
+        if sensor.block is not block:
+            continue
+        label = f"sensor {sensor.name!r} ({sensor.kind})"
         if SENSOR_REFERENCE.id in select:
-            yield from _reference(analysis, block, sensor, label, kind)
+            yield from _reference(analysis, sensor, label)
         if SENSOR_SETTINGS.id in select:
-            for message, hint in _settings(sensor, kind):
+            for message, hint in _settings(sensor):
                 yield SENSOR_SETTINGS.report(
                     f"{label}: {message}",
-                    block.where,
+                    sensor.where,
                     path=analysis.path,
-                    subject=_subject(analysis, block),
+                    subject=_subject(analysis, sensor),
                     hint=hint,
                 )
-        if SENSOR_SELF_HIT.id in select and kind in _PHYSICS_RAYS:
-            yield from _self_hit(analysis, block, sensor, label)
+        if SENSOR_SELF_HIT.id in select and sensor.kind in _PHYSICS_RAYS:
+            yield from _self_hit(analysis, sensor, label)
 
 
-def _subject(analysis: Analysis, block: Block) -> Subject:
-    if block.reference in analysis.links:
-        return Subject(Kind.LINK, block.reference or "")
+def _subject(analysis: Analysis, sensor: Sensor) -> Subject:
+    if sensor.link in analysis.links:
+        return Subject(Kind.LINK, sensor.link or "")
     return Subject(Kind.ROBOT, analysis.robot.name)
 
 
-def _reference(
-    analysis: Analysis, block: Block, sensor: etree._Element, label: str, kind: str
-) -> Iterator[Diagnostic]:
-    name = block.reference
+def _reference(analysis: Analysis, sensor: Sensor, label: str) -> Iterator[Diagnostic]:
+    name = sensor.link
     if name is None:
         message = f"{label} is in a <gazebo> block with no reference, so no link holds it"
     elif name in analysis.links or name not in analysis.joints:
         return  # a link, or a name of nothing (unknown-reference's)
-    elif kind == "force_torque":
+    elif sensor.kind == "force_torque":
         return  # a joint's sensor
     else:
         message = f"{label} is in <gazebo reference={name!r}>, which names a joint, not a link"
@@ -69,47 +63,43 @@ def _reference(
     hint = f"write <gazebo reference={child!r}>" if child in links else "name the sensor's link"
     yield SENSOR_REFERENCE.report(
         message,
-        block.where,
+        sensor.where,
         path=analysis.path,
         subject=Subject(Kind.ROBOT, analysis.robot.name),
         hint=hint,
     )
 
 
-def _settings(sensor: etree._Element, kind: str) -> Iterator[tuple[str, str]]:
-    if kind in _CAMERAS:
-        for camera in sensor.iter("camera"):
-            fov = number(camera, "horizontal_fov")
-            if fov is not None and not 0 < fov < math.pi:
-                yield (
-                    f"<horizontal_fov> is {fov:g}, outside (0, pi) radians",
-                    f"write it in radians ({fov:g} degrees is {math.radians(fov):.4f})"
-                    if fov > math.pi
-                    else "a camera sees a field of view between 0 and pi radians",
-                )
-            for side in ("width", "height"):
-                size = number(camera, f"image/{side}")
-                if size is not None and size < 1:
-                    yield f"image <{side}> is {size:g}", "an image is at least 1 pixel each way"
-            yield from _order(camera, "clip/near", "clip/far", "clip")
-    if kind in _RAYS:
-        for ray in (*sensor.iter("ray"), *sensor.iter("lidar")):
-            samples = number(ray, "scan/horizontal/samples")
-            if samples is not None and samples < 1:
-                yield f"scan <samples> is {samples:g}", "a scan has at least 1 sample"
-            low = number(ray, "scan/horizontal/min_angle")
-            high = number(ray, "scan/horizontal/max_angle")
-            many = samples is None or samples > 1
-            if low is not None and high is not None and (low > high or (low == high and many)):
-                yield (
-                    f"scan <min_angle> {low:g} is not below <max_angle> {high:g}",
-                    "write the scan's angles from low to high (radians)",
-                )
-            yield from _order(ray, "range/min", "range/max", "range")
+def _settings(sensor: Sensor) -> Iterator[tuple[str, str]]:
+    for camera in sensor.cameras:
+        fov = camera.horizontal_fov
+        if fov is not None and not 0 < fov < math.pi:
+            yield (
+                f"<horizontal_fov> is {fov:g}, outside (0, pi) radians",
+                f"write it in radians ({fov:g} degrees is {math.radians(fov):.4f})"
+                if fov > math.pi
+                else "a camera sees a field of view between 0 and pi radians",
+            )
+        for side, size in (("width", camera.width), ("height", camera.height)):
+            if size is not None and size < 1:
+                yield f"image <{side}> is {size:g}", "an image is at least 1 pixel each way"
+        yield from _order(camera.near, camera.far, "clip")
+    for rays in sensor.rays:
+        scan = rays.horizontal
+        samples = scan.samples
+        if samples is not None and samples < 1:
+            yield f"scan <samples> is {samples:g}", "a scan has at least 1 sample"
+        low, high = scan.min_angle, scan.max_angle
+        many = samples is None or samples > 1
+        if low is not None and high is not None and (low > high or (low == high and many)):
+            yield (
+                f"scan <min_angle> {low:g} is not below <max_angle> {high:g}",
+                "write the scan's angles from low to high (radians)",
+            )
+        yield from _order(rays.range_min, rays.range_max, "range")
 
 
-def _order(element: etree._Element, low: str, high: str, what: str) -> Iterator[tuple[str, str]]:
-    near, far = number(element, low), number(element, high)
+def _order(near: float | None, far: float | None, what: str) -> Iterator[tuple[str, str]]:
     if near is not None and far is not None and near >= far:
         yield (
             f"<{what}> minimum {near:g} m is not below its maximum {far:g} m",
@@ -117,23 +107,17 @@ def _order(element: etree._Element, low: str, high: str, what: str) -> Iterator[
         )
 
 
-def _self_hit(
-    analysis: Analysis, block: Block, sensor: etree._Element, label: str
-) -> Iterator[Diagnostic]:
-    name = block.reference
+def _self_hit(analysis: Analysis, sensor: Sensor, label: str) -> Iterator[Diagnostic]:
+    name = sensor.link
     poses = analysis.zero_poses
-    if name is None or name not in poses:
+    if name is None or name not in poses or not sensor.rays:
         return
-    ray = sensor.find("ray")
-    if ray is None:
-        ray = sensor.find("lidar")
-    if ray is None:
-        return
-    shortest = number(ray, "range/min")
+    rays = sensor.rays[0]
+    shortest = rays.range_min
     if shortest is None:
         return
-    frame = poses[name].then(_pose(text(sensor, "pose")))
-    directions = _directions(ray)
+    frame = poses[name].then(sensor.pose)
+    directions = _directions(rays.horizontal)
     for link in analysis.robot.links:
         if link.name not in poses:
             continue
@@ -152,7 +136,7 @@ def _self_hit(
                     f"{label} on {name!r} starts inside link {link.name!r}'s collision shape, "
                     f"and its rays leave it only after {way_out:.3g} m, but its minimum range "
                     f"is {shortest:g} m",
-                    block.where,
+                    sensor.where,
                     path=analysis.path,
                     subject=Subject(Kind.LINK, name),
                     hint=f"raise the sensor out of the shape, or set <min> to {way_out:.3g} or "
@@ -161,22 +145,11 @@ def _self_hit(
                 return
 
 
-def _pose(written: str | None) -> Pose:
-    try:
-        values = [float(v) for v in (written or "").split()]
-    except ValueError:
-        return Pose()
-    if len(values) != 6:
-        return Pose()
-    x, y, z, roll, pitch, yaw = values
-    return Pose(rpy_matrix((roll, pitch, yaw)), (x, y, z))
-
-
-def _directions(ray: etree._Element) -> list[tuple[float, float, float]]:
+def _directions(scan: Scan) -> list[tuple[float, float, float]]:
     """The horizontal directions of a scan's rays in the sensor's frame (at most 360)."""
-    low = number(ray, "scan/horizontal/min_angle") or 0.0
-    high = number(ray, "scan/horizontal/max_angle") or 0.0
-    samples = int(number(ray, "scan/horizontal/samples") or 1)
+    low = scan.min_angle or 0.0
+    high = scan.max_angle or 0.0
+    samples = int(scan.samples or 1)
     count = max(1, min(samples, _DIRECTIONS))
     if count == 1 or high <= low:
         angles = [low]
