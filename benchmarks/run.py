@@ -1,6 +1,7 @@
 """Benchmarks: every speed goal of fishbot-urdf, each a ratio measured side by side in one
 run. Run by hand, in the venv fishbot-urdf is installed in (`pip install -e ".[test]"`), with
-check_urdf on PATH (liburdfdom-tools):
+check_urdf on PATH (liburdfdom-tools), and sdformat's `ign` for the `fishbot sdf` rows
+(ignition-tools and libsdformat-dev; without it they are left out):
 
     python benchmarks/run.py [--runs N] [--only WORD] [--pypi-corpus CACHE]
 
@@ -8,7 +9,8 @@ It prints one Markdown table for docs/performance.md: each measure, fishbot's fi
 floor it is measured against, their ratio and the goal. Whole processes are timed
 alternately, ours then the floor, and the medians compared, so that the machine's drift hits
 both sides; in-process figures are the best of several passes. Robots: robots/fishbot's
-first_robot.urdf and xacro, every URDF the test dependencies ship (example-robot-data,
+first_robot.urdf and xacro (`fishbot sdf` on the fishbot against `ign sdf -p` on the URDF it
+expands to, expanded once, untimed), every URDF the test dependencies ship (example-robot-data,
 hpp-environments, cookie-description), and generated chains and trees (robots.py). Peak
 memory is the process's maximum resident set, as the kernel counts it.
 
@@ -206,6 +208,7 @@ def rows(runs: int, folder: Path, only: str | None, cache: Path | None = None) -
             env,
         )
         yield Row(label, _ms(mine), _ms(floor), f"{mine / floor:.2f}x", "")
+    yield from _sdf_rows(runs, folder, wanted, fishbot)
 
     files = corpus()
     label = f"in process, reading the {len(files)} corpus robots vs lxml's parse"
@@ -275,6 +278,67 @@ def rows(runs: int, folder: Path, only: str | None, cache: Path | None = None) -
                 "",
                 f"<= {goal} MiB",
             )
+
+
+def _sdf_rows(
+    runs: int, folder: Path, wanted: Callable[[str], bool], fishbot: list[str]
+) -> Iterator[Row]:
+    """`fishbot sdf` against sdformat's converter, whole processes: on first_robot.urdf, and
+    on the fishbot's xacro against `ign sdf -p` on the URDF it expands to."""
+    labels = (
+        "`fishbot sdf first_robot.urdf` vs `ign sdf -p first_robot.urdf`",
+        "`fishbot sdf` on the fishbot xacro vs `ign sdf -p` on its URDF, expanded once, untimed",
+    )
+    if not any(map(wanted, labels)):
+        return
+    ign = shutil.which("ign")
+    if ign is None:
+        print("ign is not installed: the `fishbot sdf` rows are left out", file=sys.stderr)
+        return
+    if wanted(labels[0]):
+        mine, floor = pair([*fishbot, "sdf", str(FIRST)], [ign, "sdf", "-p", str(FIRST)], runs)
+        yield Row(labels[0], _ms(mine), _ms(floor), f"{mine / floor:.2f}x", "")
+    if wanted(labels[1]):
+        xacro_file, urdf, note = _fishbot_for_sdf(folder)
+        mine, floor = pair([*fishbot, "sdf", str(xacro_file)], [ign, "sdf", "-p", str(urdf)], runs)
+        yield Row(labels[1] + note, _ms(mine), _ms(floor), f"{mine / floor:.2f}x", "")
+
+
+def _fishbot_for_sdf(folder: Path) -> tuple[Path, Path, str]:
+    """The fishbot xacro to time `fishbot sdf` on, the URDF it expands to (for `ign sdf -p`),
+    and what the row's label adds. Where `fishbot_urdf.to_sdf` refuses the fishbot's
+    <gazebo> elements (it did not convert them at first), a copy of the package with them
+    taken out, which both sides convert."""
+    import fishbot_urdf
+    from fishbot_urdf.errors import ConversionError
+
+    xacro_file, note = XACRO_FILE, ""
+    text = fishbot_urdf.expand(xacro_file).text
+    try:
+        fishbot_urdf.to_sdf(fishbot_urdf.parse(text))
+    except ConversionError:
+        xacro_file = _without_gazebo(folder / "fishbot_without_gazebo")
+        text = fishbot_urdf.expand(xacro_file).text
+        note = "; its `<gazebo>` elements taken out (`fishbot sdf` refuses them)"
+    urdf = folder / "fishbot_for_ign.urdf"
+    urdf.write_text(text, encoding="utf-8")
+    return xacro_file, urdf, note
+
+
+def _without_gazebo(copy: Path) -> Path:
+    """A copy of the fishbot package at ``copy`` whose xacro files have no <gazebo>
+    elements; its top xacro file."""
+    from lxml import etree
+
+    shutil.copytree(FISHBOT_PACKAGE, copy)
+    for path in (copy / "urdf").rglob("*.xacro"):
+        tree = etree.parse(str(path), etree.XMLParser(resolve_entities=False))
+        for element in list(tree.getroot().iter("gazebo")):
+            parent = element.getparent()
+            if parent is not None:  # (the root is <robot>)
+                parent.remove(element)
+        tree.write(str(path), xml_declaration=True, encoding="utf-8")
+    return copy / XACRO_FILE.relative_to(FISHBOT_PACKAGE)
 
 
 # The attributes URDF gives numbers in.

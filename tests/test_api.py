@@ -144,8 +144,9 @@ def test_first_robot_example_output() -> None:
 def test_expand_example_output() -> None:
     proc = _run_example("expand_fishbot.py")
     lines = proc.stdout.splitlines()
-    # ten links (the fishbot's parts), read from the seven files fishbot.urdf.xacro includes
-    assert lines[0] == "robot fishbot: 10 links from 7 files"
+    # eleven links (the fishbot's parts and its camera's image frame), read from the eight
+    # files fishbot.urdf.xacro includes
+    assert lines[0] == "robot fishbot: 11 links from 8 files"
     links = [line.split()[1] for line in lines if line.startswith("  link ")]
     assert links[:2] == ["base_footprint", "base_link"]
     assert {"left_wheel_link", "right_wheel_link", "laser_link", "imu_link"} <= set(links)
@@ -156,7 +157,7 @@ def test_chain_example_output() -> None:
     proc = _run_example("fishbot_chain.py")
     lines = proc.stdout.splitlines()
     assert lines[:3] == [
-        "fishbot: 10 links, 9 joints",
+        "fishbot: 11 links, 10 joints",
         "tree: yes",
         "chain base_footprint -> laser_link:",
     ]
@@ -182,7 +183,7 @@ def test_readme_shows_the_fishbot_graph_made_by_the_tool() -> None:
     with Image.open(ROOT / "docs" / "fishbot-graph.png") as image:
         image.load()
         assert image.format == "PNG"
-        assert image.width > image.height > 300  # a wide tree: nine joints under one base
+        assert image.width > image.height > 300  # a wide tree: ten joints under one base
 
 
 def test_readme_shows_the_fishbot_rendered_by_the_tool(tmp_path: Path) -> None:

@@ -227,7 +227,7 @@ def test_the_mass_table_as_json() -> None:
     assert result.exit_code == 0
     data = json.loads(result.stdout)
     assert data["robot"] == "fishbot"
-    assert len(data["links"]) == 10
+    assert len(data["links"]) == 11
     assert data["total"]["mass"] == pytest.approx(1.41)
     assert data["total"]["frame"] == "base_footprint"
     # One vocabulary with `fishbot check --format json`: findings are "diagnostics".
@@ -407,10 +407,10 @@ def test_fill_without_output_says_which_macro_call_to_write_and_where(tmp_path: 
     assert result.stderr == ""
     assert base.read_bytes() == before  # nothing is written
     # base.urdf.xacro: <link name="base_link"> is line 24 of the macro base_xacro, which
-    # fishbot.urdf.xacro calls on its line 53.
+    # fishbot.urdf.xacro calls on its line 56.
     assert result.stdout == (
         f"{base}:24:5: note: link 'base_link' has no <inertial>; for 1.5 kg, write at line 25, "
-        f"inside the <link>, in the body of macro base_xacro (called at {robot}:53:3):\n"
+        f"inside the <link>, in the body of macro base_xacro (called at {robot}:56:3):\n"
         '  <xacro:cylinder_inertia m="1.5" r="0.1" h="0.12"/>\n'
         "  or, with the sizes as the macro's body writes them, to fit every call:\n"
         '  <xacro:cylinder_inertia m="1.5" r="${radius}" h="${length}"/>\n'
@@ -425,7 +425,7 @@ def test_fill_without_output_says_which_macro_call_to_write_and_where(tmp_path: 
     assert made["arguments"] == {"m": "1.5", "r": "0.1", "h": "0.12"}
     assert (made["source"]["path"], made["source"]["line"], made["line"]) == (str(base), 24, 25)
     assert made["made_by"] == [
-        {"macro": "base_xacro", "call": {"path": str(robot), "line": 53, "column": 3}}
+        {"macro": "base_xacro", "call": {"path": str(robot), "line": 56, "column": 3}}
     ]
     moments = made["inertial"]["inertia"]
     assert moments["ixx"] == pytest.approx(1.5 / 12 * (3 * 0.1**2 + 0.12**2))
@@ -456,14 +456,14 @@ def test_fill_without_output_turns_a_wheels_inertia_with_it(tmp_path: Path) -> N
     assert result.stdout == (
         f"{wheel}:11:5: note: links 'left_wheel_link', 'right_wheel_link' have no "
         "<inertial>; the body of macro wheel_xacro makes each of them (called at "
-        f"{robot}:60:3, {robot}:62:3): write at line 12, inside the <link>, once, to fit "
+        f"{robot}:63:3, {robot}:65:3): write at line 12, inside the <link>, once, to fit "
         "every call:\n"
         '  <xacro:cylinder_inertia m="${mass}" r="${radius}" h="${length}" '
         'rpy="1.57079 0.0 0.0"/>\n'
         "  its mass is wheel_xacro's parameter mass, as each call gives it:\n"
-        f"    left_wheel_link (0.12868 kg): the call at {robot}:60:3 gives "
+        f"    left_wheel_link (0.12868 kg): the call at {robot}:63:3 gives "
         'mass="${wheel_mass}" (0.1); write mass="0.12868" there\n'
-        f"    right_wheel_link (0.12868 kg): the call at {robot}:62:3 gives "
+        f"    right_wheel_link (0.12868 kg): the call at {robot}:65:3 gives "
         'mass="${wheel_mass}" (0.1); write mass="0.12868" there\n'
     )
     out = tmp_path / "filled.urdf"
@@ -503,14 +503,14 @@ def test_fill_gives_the_links_of_one_macro_one_call_through_its_mass_parameter(
     assert result.stdout == (
         f"{wheel}:11:5: note: links 'left_wheel_link', 'right_wheel_link' have no "
         "<inertial>; the body of macro wheel_xacro makes each of them (called at "
-        f"{robot}:60:3, {robot}:62:3): write at line 12, inside the <link>, once, to fit "
+        f"{robot}:63:3, {robot}:65:3): write at line 12, inside the <link>, once, to fit "
         "every call:\n"
         '  <xacro:cylinder_inertia m="${mass}" r="${radius}" h="${length}" '
         'rpy="1.57079 0.0 0.0"/>\n'
         "  its mass is wheel_xacro's parameter mass, as each call gives it:\n"
-        f"    left_wheel_link (0.1 kg): the call at {robot}:60:3 gives "
+        f"    left_wheel_link (0.1 kg): the call at {robot}:63:3 gives "
         'mass="${wheel_mass}" (0.1), as it should\n'
-        f"    right_wheel_link (0.2 kg): the call at {robot}:62:3 gives "
+        f"    right_wheel_link (0.2 kg): the call at {robot}:65:3 gives "
         'mass="${wheel_mass}" (0.1); write mass="0.2" there\n'
     )
     data = json.loads(run(str(robot), *args, "--format", "json").stdout)
@@ -531,7 +531,7 @@ def test_fill_gives_the_links_of_one_macro_one_call_through_its_mass_parameter(
         "calls": [
             {
                 "link": "left_wheel_link",
-                "call": {"path": str(robot), "line": 60, "column": 3},
+                "call": {"path": str(robot), "line": 63, "column": 3},
                 "mass": 0.1,
                 "argument": "${wheel_mass}",
                 "value": 0.1,
@@ -540,7 +540,7 @@ def test_fill_gives_the_links_of_one_macro_one_call_through_its_mass_parameter(
             },
             {
                 "link": "right_wheel_link",
-                "call": {"path": str(robot), "line": 62, "column": 3},
+                "call": {"path": str(robot), "line": 65, "column": 3},
                 "mass": 0.2,
                 "argument": "${wheel_mass}",
                 "value": 0.1,
@@ -977,7 +977,7 @@ def test_a_second_inertial_a_macro_call_made_names_the_calls(tmp_path: Path) -> 
         f"{common}:23:5: warning: link '{side}_wheel_link': a second <inertial> is ignored; "
         f"it is made by macro cylinder_inertia called at {wheel}:13, in macro wheel_xacro "
         f"called at {robot}:{line} (a link has at most one <inertial>) [duplicate-element]"
-        for side, line in (("left", 60), ("right", 62))
+        for side, line in (("left", 63), ("right", 65))
     ]
 
 

@@ -61,6 +61,7 @@ SKIPPED = {
         "installs sdformat's converter",
         "a long fuzzing campaign",
     ],
+    "docs/gazebo.md": ["needs ROS 2 and Gazebo Classic"],
     "docs/trust.md": ["runs a file's code"],
 }
 

@@ -169,6 +169,7 @@ LINKS = [
     "base_link",
     "imu_link",
     "camera_link",
+    "camera_optical_link",
     "laser_cylinder_link",
     "laser_link",
     "left_wheel_link",
@@ -209,7 +210,7 @@ def test_png_decodes(in_tmp: Path) -> None:
     with Image.open(in_tmp / "tree.png") as image:
         image.load()
         width, height = image.size
-    assert width > 500 and height > 300  # ten links and nine joints, four levels deep
+    assert width > 500 and height > 300  # eleven links and ten joints, four levels deep
 
 
 def test_render_and_draw_in_the_library(tmp_path: Path, fishbot_robot: fishbot_urdf.Robot) -> None:

@@ -596,7 +596,7 @@ def test_expand_command_deps(monkeypatch: pytest.MonkeyPatch) -> None:
     assert result.exit_code == 0
     reference = xacro_command(top, "--deps", packages={"fishbot_description": FISHBOT})
     assert set(result.output.split()) == set(reference.stdout.split())
-    assert len(result.output.split()) == 7
+    assert len(result.output.split()) == 8
 
 
 def test_expand_command_args_and_packages(tmp_path: Path) -> None:

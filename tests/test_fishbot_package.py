@@ -8,7 +8,10 @@ import yaml
 from conftest import FISHBOT
 
 import fishbot_urdf
+from fishbot_urdf.config import Config
 from fishbot_urdf.packages import package_name
+
+FISHBOT_XACRO = FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro"
 
 
 def test_package_manifest_and_build_file() -> None:
@@ -28,6 +31,25 @@ def test_launch_file_compiles_and_uses_the_xacro_model() -> None:
         assert needed in source
 
 
+def test_gazebo_launch_file_compiles_and_spawns_the_xacro_model() -> None:
+    source = (FISHBOT / "launch" / "gazebo_sim.launch.py").read_text(encoding="utf-8")
+    compile(source, "gazebo_sim.launch.py", "exec")
+    for needed in ("fishbot.urdf.xacro", "gazebo.launch.py", "spawn_entity.py", "use_sim_time"):
+        assert needed in source
+    manifest = (FISHBOT / "package.xml").read_text(encoding="utf-8")
+    for package in ("gazebo_ros", "gazebo_plugins"):
+        assert f"<exec_depend>{package}</exec_depend>" in manifest
+
+
+def test_the_fishbot_is_for_gazebo_and_clean_under_every_rule_and_target() -> None:
+    for targets in (None, ("all",)):
+        result = fishbot_urdf.check_file(
+            FISHBOT_XACRO, config=Config(select=("ALL",), targets=targets)
+        )
+        assert result.ok and result.diagnostics == (), targets
+        assert "gazebo" in result.targets or targets == ("all",)
+
+
 def test_rviz_config() -> None:
     config = yaml.safe_load((FISHBOT / "config" / "display_robot_model.rviz").read_text())
     manager = config["Visualization Manager"]
@@ -40,7 +62,7 @@ def test_every_robot_in_the_package_checks_clean() -> None:
     robots = [
         *sorted((FISHBOT / "urdf").rglob("*.urdf")),
         FISHBOT / "urdf" / "first_robot.urdf.xacro",
-        FISHBOT / "urdf" / "fishbot" / "fishbot.urdf.xacro",
+        FISHBOT_XACRO,
     ]
     for path in robots:
         result = fishbot_urdf.check_file(path)
