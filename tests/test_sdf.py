@@ -121,14 +121,28 @@ def test_a_robot_without_mass_is_an_empty_model() -> None:
     )
 
 
-def test_gazebo_elements_are_refused_until_they_are_converted() -> None:
+def test_a_gazebo_material_becomes_a_material_script() -> None:
     robot = fishbot_urdf.parse(
-        '<robot name="r"><link name="a"/><gazebo reference="a"><material>Gazebo/Red</material>'
+        '<robot name="r"><link name="a"><inertial><mass value="1"/><inertia ixx="1" ixy="0" '
+        'ixz="0" iyy="1" iyz="0" izz="1"/></inertial><visual><geometry><sphere radius="1"/>'
+        '</geometry></visual></link><gazebo reference="a"><material>Gazebo/Red</material>'
         "</gazebo></robot>"
     )
-    with pytest.raises(ConversionError, match="<gazebo> elements") as caught:
+    visual = ET.fromstring(fishbot_urdf.to_sdf(robot)).find("model/link/visual")
+    assert visual is not None
+    assert visual.findtext("material/script/name") == "Gazebo/Red"
+    assert visual.findtext("material/script/uri") == (
+        "file://media/materials/scripts/gazebo.material"
+    )
+
+
+def test_a_setting_that_is_no_number_is_refused() -> None:
+    robot = fishbot_urdf.parse(
+        '<robot name="r"><link name="a"/><gazebo reference="a"><mu1>${mu}</mu1></gazebo></robot>'
+    )
+    with pytest.raises(ConversionError, match="<mu1> is '\\$\\{mu\\}', not a number") as caught:
         fishbot_urdf.to_sdf(robot)
-    assert (caught.value.target, caught.value.subject) == ("sdf", None)
+    assert (caught.value.target, caught.value.subject) == ("sdf", "a")
 
 
 def test_a_robot_without_one_root_is_refused() -> None:
