@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 import random
+import re
 import subprocess
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -70,6 +71,15 @@ def differences(ours: ET.Element, theirs: ET.Element, where: str = "") -> list[s
     return found
 
 
+def _compared(ours: str, theirs: str) -> list[str]:
+    """``differences`` of two SDF texts; where one is no XML (sdformat prints names such as
+    ``ignition::corrected_offsets`` that XML namespaces do not allow), the bytes must agree."""
+    try:
+        return differences(ET.fromstring(ours), ET.fromstring(theirs))
+    except ET.ParseError:
+        return [] if ours == theirs else ["the texts differ, and one is no XML"]
+
+
 def test_the_comparer_tells_numbers_apart() -> None:
     a = ET.fromstring("<pose>0 0 0.1 0 1.570796326794897 0</pose>")
     assert (
@@ -84,7 +94,7 @@ def test_the_comparer_tells_numbers_apart() -> None:
 def test_to_sdf_is_the_golden_sdf(name: str, path: Path) -> None:
     ours = fishbot_urdf.to_sdf(fishbot_urdf.parse(_urdf(path), path=str(path)))
     golden = (SDF_GOLDEN / f"{name}.sdf").read_text(encoding="utf-8")
-    assert differences(ET.fromstring(ours), ET.fromstring(golden)) == []
+    assert _compared(ours, golden) == []
     assert ours == golden  # and, so far, byte for byte
 
 
@@ -100,7 +110,7 @@ def test_to_sdf_is_what_ign_sdf_prints(name: str, path: Path, tmp_path: Path) ->
     )
     assert run.returncode == 0, run.stderr
     ours = fishbot_urdf.to_sdf(fishbot_urdf.load(urdf))
-    assert differences(ET.fromstring(ours), ET.fromstring(run.stdout)) == []
+    assert _compared(ours, run.stdout.decode("utf-8")) == []
 
 
 def test_the_golden_files_are_of_these_inputs() -> None:
@@ -263,8 +273,9 @@ def test_the_analysis_lumping_keeps_the_links_ign_sdf_keeps(name: str, path: Pat
         for link, landing in lumping.landings.items()
         if landing.link == link and link not in lumping.lost() and link != "world"
     }
-    golden = ET.fromstring((SDF_GOLDEN / f"{name}.sdf").read_text(encoding="utf-8"))
-    assert kept == {link.get("name") for link in golden.iter("link")}
+    golden = (SDF_GOLDEN / f"{name}.sdf").read_text(encoding="utf-8")
+    # the model's links, by their place (a golden file may be no XML, see _compared)
+    assert kept == set(re.findall(r"^    <link name='([^']*)'", golden, re.MULTILINE))
 
 
 def test_the_subtree_below_a_massless_lumped_link_is_lost() -> None:

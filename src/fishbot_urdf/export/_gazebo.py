@@ -11,9 +11,9 @@ import re
 from collections.abc import Iterable
 
 from ..errors import ConversionError
-from ..spatial import urdfdom_angles, urdfdom_quaternion
+from ..spatial import urdfdom_angles
 from ._elements import LUMP, number
-from ._lumping import IDENTITY, Placement, then
+from ._lumping import IDENTITY, Placement, product, then
 from ._reader import Element, Node, copy
 
 __all__ = ["Extension", "Extensions"]
@@ -95,6 +95,31 @@ def _short(values: Iterable[float]) -> str:
     return " ".join(f"{v:g}" for v in values)
 
 
+def _quaternion(rpy: tuple[float, float, float]) -> tuple[float, float, float, float]:
+    """Roll, pitch, yaw (radians) as gz::math's Quaternion::Euler makes them ``(x, y, z, w)``."""
+    phi, the, psi = rpy[0] / 2.0, rpy[1] / 2.0, rpy[2] / 2.0
+    sin, cos = math.sin, math.cos
+    w = cos(phi) * cos(the) * cos(psi) + sin(phi) * sin(the) * sin(psi)
+    x = sin(phi) * cos(the) * cos(psi) - cos(phi) * sin(the) * sin(psi)
+    y = cos(phi) * sin(the) * cos(psi) + sin(phi) * cos(the) * sin(psi)
+    z = cos(phi) * cos(the) * sin(psi) - sin(phi) * sin(the) * cos(psi)
+    s = math.sqrt(w * w + x * x + y * y + z * z)
+    if abs(s) <= 1e-6:
+        return IDENTITY
+    return x / s, y / s, z / s, w / s
+
+
+def _compose(outer: Placement, inner: Placement) -> Placement:
+    """``inner`` placed by ``outer`` as gz::math's Pose3 product computes it (the position
+    turned as q * v * q^-1, in quaternions)."""
+    qx, qy, qz, qw = outer.rotation
+    s = qw * qw + qx * qx + qy * qy + qz * qz
+    inverse = IDENTITY if abs(s) <= 1e-6 else (-qx / s, -qy / s, -qz / s, qw / s)
+    turned = product(outer.rotation, product((*inner.xyz, 0.0), inverse))
+    xyz = (outer.xyz[0] + turned[0], outer.xyz[1] + turned[1], outer.xyz[2] + turned[2])
+    return Placement(xyz, product(outer.rotation, inner.rotation))
+
+
 def _pose(text: str) -> Placement | None:
     """A ``<pose>`` text as gz::math's stream reads it (6 numbers), or None."""
     tokens = text.split()
@@ -105,7 +130,7 @@ def _pose(text: str) -> Placement | None:
     if len(values) < 6:
         return None
     return Placement(
-        (values[0], values[1], values[2]), urdfdom_quaternion((values[3], values[4], values[5]))
+        (values[0], values[1], values[2]), _quaternion((values[3], values[4], values[5]))
     )
 
 
@@ -172,7 +197,7 @@ class Extension:
             given = _pose(text)
             if given is None:
                 continue
-            placed = then(self.reduction, given)
+            placed = _compose(self.reduction, given)
             blob.append(Element("pose", _short((*placed.xyz, *urdfdom_angles(placed.rotation)))))
 
     def rename(self, link: str, parent: str, joint: Placement) -> None:
@@ -194,7 +219,7 @@ class Extension:
                     blob.remove(offset)
                 turn = blob.find("rpyOffset")
                 if turn is not None:
-                    rotation = urdfdom_quaternion(_vector(key_value(turn)))
+                    rotation = _quaternion(_vector(key_value(turn)))
                     blob.remove(turn)
                 corrected = blob.find("ignition::corrected_offsets")
                 if corrected is not None:

@@ -10,7 +10,17 @@ from typing import NamedTuple
 from ..model import Vector3
 from ..spatial import Quaternion, urdfdom_angles
 
-__all__ = ["IDENTITY", "NO_MASS", "Mass", "Placement", "euler", "lump", "reach", "then"]
+__all__ = [
+    "IDENTITY",
+    "NO_MASS",
+    "Mass",
+    "Placement",
+    "euler",
+    "lump",
+    "product",
+    "reach",
+    "then",
+]
 
 IDENTITY: Quaternion = (0.0, 0.0, 0.0, 1.0)
 
@@ -54,7 +64,8 @@ def _rotate(q: Quaternion, v: Vector3) -> Vector3:
     )
 
 
-def _product(a: Quaternion, b: Quaternion) -> Quaternion:
+def product(a: Quaternion, b: Quaternion) -> Quaternion:
+    """The quaternion product ``a * b``, as gz::math::Quaternion computes it."""
     ax, ay, az, aw = a
     bx, by, bz, bw = b
     return (
@@ -70,7 +81,7 @@ def then(outer: Placement, inner: Placement) -> Placement:
     converter's TransformToParentFrame."""
     turned = _rotate(outer.rotation, inner.xyz)
     xyz = (outer.xyz[0] + turned[0], outer.xyz[1] + turned[1], outer.xyz[2] + turned[2])
-    return Placement(xyz, _product(outer.rotation, inner.rotation))
+    return Placement(xyz, product(outer.rotation, inner.rotation))
 
 
 def euler(q: Quaternion) -> Vector3:
