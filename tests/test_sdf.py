@@ -146,6 +146,39 @@ def test_a_gazebo_material_becomes_a_material_script() -> None:
     )
 
 
+def test_a_lumped_links_sensor_and_plugin_follow_it() -> None:
+    robot = fishbot_urdf.load(ROOT / "tests/data/sdf/gazebo_sensor.urdf")
+    sdf = fishbot_urdf.to_sdf(robot)
+    # the imu 0.05 m along imu_link's x, which is the base's y (the joint turns it 90 degrees)
+    assert "<pose>0.1 0.05 0.2 0 -0 1.5708</pose>" in sdf
+    with_plugin = fishbot_urdf.parse(
+        _urdf(ROOT / "tests/data/sdf/gazebo_sensor.urdf").replace(
+            "</robot>",
+            '<gazebo><plugin name="p" filename="libp.so"><bodyName>imu_link</bodyName>'
+            "</plugin></gazebo></robot>",
+        )
+    )
+    assert (
+        "<bodyName>base</bodyName>\n      <xyzOffset>0.1 0 0.2</xyzOffset>\n"
+        "      <rpyOffset>0 -0 1.5708</rpyOffset>"
+    ) in fishbot_urdf.to_sdf(with_plugin)
+
+
+def test_preserve_fixed_joint_keeps_a_fixed_joint() -> None:
+    sdf = ET.fromstring(
+        fishbot_urdf.to_sdf(fishbot_urdf.load(ROOT / "tests/data/sdf/gazebo_joint_lumping.urdf"))
+    )
+    types = {j.get("name"): j.get("type") for j in sdf.iter("joint")}
+    assert types == {
+        "kept_joint": "fixed",
+        "held_joint": "revolute",
+        "both_joint": "fixed",
+        "arm_joint": "revolute",
+    }
+    held = sdf.find("model/joint[@name='held_joint']/axis/limit")
+    assert held is not None and (held.findtext("lower"), held.findtext("upper")) == ("0", "0")
+
+
 def test_a_setting_that_is_no_number_is_refused() -> None:
     robot = fishbot_urdf.parse(
         '<robot name="r"><link name="a"/><gazebo reference="a"><mu1>${mu}</mu1></gazebo></robot>'
