@@ -57,9 +57,21 @@ def _stod(text: str, tag: str, reference: str) -> float:
             value = math.inf
         if math.isfinite(value) or "inf" in token.lower() or "nan" in token.lower():
             return value
-    raise ConversionError(
-        f"<gazebo reference={reference!r}>: <{tag}> is {text!r}, not a number: sdformat's "
-        "converter stops on it",
+    raise _refused(text, tag, reference)
+
+
+def _stoi(text: str, tag: str, reference: str) -> int:
+    """``text`` as C++'s std::stoi reads it: the whole number it starts with."""
+    found = re.match(r"\s*[+-]?\d+", text)
+    if found is None:
+        raise _refused(text, tag, reference)
+    return int(found.group())
+
+
+def _refused(text: str, tag: str, reference: str) -> ConversionError:
+    block = f"<gazebo reference={reference!r}>" if reference else "<gazebo>"
+    return ConversionError(
+        f"{block}: <{tag}> is {text!r}, not a number: sdformat's converter stops on it",
         target="sdf",
         subject=reference or None,
     )
@@ -166,11 +178,7 @@ class Extension:
             elif tag in _FLOATS:
                 self.settings[tag] = _stod(key_value(child), tag, reference)
             elif tag == "maxContacts":
-                text = key_value(child)
-                found = re.match(r"\s*[+-]?\d+", text)
-                if found is None:
-                    _stod("", tag, reference)
-                self.settings[tag] = int(found.group()) if found else 0
+                self.settings[tag] = _stoi(key_value(child), tag, reference)
             elif tag == "fdir1":
                 self.settings[tag] = key_value(child)
             elif tag not in _IGNORED:
