@@ -1,11 +1,13 @@
-"""The elements of an SDF model as sdformat's URDF converter writes them and its SDF reader
-completes them: inertials, visuals, collisions and their geometry, joint limits, and its
-numbers (C++'s 16 significant digits, a zero as 0)."""
+"""The elements of an SDF model as sdformat's URDF converter writes them (its reader
+completes them, see _reader): inertials, visuals, collisions and their geometry, colours,
+joint limits, and its numbers (C++'s 16 significant digits, a zero as 0)."""
 
 from __future__ import annotations
 
 import math
+import re
 import struct
+from collections.abc import Iterable
 from typing import NamedTuple
 
 from ..model import Box, Cylinder, Geometry, Joint, JointType, Material, Mesh, Sphere
@@ -24,7 +26,11 @@ __all__ = [
     "numbers",
     "pose",
     "shape",
+    "short",
     "single",
+    "stod",
+    "stoi",
+    "vector3",
 ]
 
 LUMP = "_fixed_joint_lump__"  # between a body's name and a lumped shape's
@@ -129,6 +135,54 @@ def single(value: float) -> float:
     except OverflowError:
         return math.copysign(math.inf, value)
     return held
+
+
+_STOD = re.compile(
+    r"\s*[+-]?(?:0[xX](?:[0-9a-fA-F]+\.?[0-9a-fA-F]*|\.[0-9a-fA-F]+)(?:[pP][+-]?\d+)?"
+    r"|(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)?|nan(?:\([0-9A-Za-z_]*\))?)",
+    re.IGNORECASE,
+)
+
+
+def stod(text: str) -> float | None:
+    """``text`` as C++'s std::stod reads it: the longest number it starts with (None where
+    it throws)."""
+    found = _STOD.match(text)
+    if found is None:
+        return None
+    token = found.group().strip()
+    try:
+        if token.lower().lstrip("+-").startswith("0x"):
+            return float.fromhex(token)
+        value = float(re.sub(r"\(.*\)", "", token))
+    except (ValueError, OverflowError):
+        return None
+    return value if math.isfinite(value) or token[-1].isalpha() or token[-1] == ")" else None
+
+
+def stoi(text: str) -> int | None:
+    """``text`` as C++'s std::stoi reads it: the whole number it starts with (None where it
+    throws)."""
+    found = re.match(r"\s*[+-]?\d+", text)
+    return int(found.group()) if found is not None else None
+
+
+def vector3(text: str) -> tuple[float, float, float]:
+    """Three numbers as the converter's ParseVector3 reads them (split at spaces; anything
+    but three numbers is 0 0 0)."""
+    values = []
+    for piece in text.split(" "):
+        if piece:
+            value = stod(piece)
+            if value is None:
+                return (0.0, 0.0, 0.0)
+            values.append(value)
+    return (values[0], values[1], values[2]) if len(values) == 3 else (0.0, 0.0, 0.0)
+
+
+def short(values: Iterable[float]) -> str:
+    """Numbers as C++ streams print them by default (6 significant digits)."""
+    return " ".join(f"{v:g}" for v in values)
 
 
 def number(value: float) -> str:

@@ -6,20 +6,18 @@ renamed, with offsets."""
 
 from __future__ import annotations
 
-import math
-import re
 from collections.abc import Iterable
 
 from ..errors import ConversionError
 from ..spatial import urdfdom_angles
-from ._elements import LUMP, number
-from ._lumping import IDENTITY, Placement, product, then
+from ._elements import LUMP, number, short, stod, stoi, vector3
+from ._lumping import IDENTITY, Placement, compose, quaternion, then
 from ._reader import Element, Node, copy
 
 __all__ = ["Extension", "Extensions"]
 
 _ZERO = (0.0, 0.0, 0.0)
-_FLOATS = {  # tag -> setting, read with C++'s std::stod
+_FLOATS = {  # settings read as numbers, with C++'s std::stod
     "dampingFactor",
     "maxVel",
     "minDepth",
@@ -36,36 +34,13 @@ _FLOATS = {  # tag -> setting, read with C++'s std::stod
 }
 _FLAGS = {"static", "selfCollide", "provideFeedback", "implicitSpringDamper"}
 _IGNORED = {"canonicalBody", "disableFixedJointLumping", "preserveFixedJoint"}
-_STOD = re.compile(
-    r"\s*[+-]?(?:0[xX](?:[0-9a-fA-F]+\.?[0-9a-fA-F]*|\.[0-9a-fA-F]+)(?:[pP][+-]?\d+)?"
-    r"|(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)?|nan(?:\([0-9A-Za-z_]*\))?)",
-    re.IGNORECASE,
-)
 
 
-def _stod(text: str, tag: str, reference: str) -> float:
-    """``text`` as C++'s std::stod reads it: the longest number it starts with."""
-    found = _STOD.match(text)
-    if found is not None:
-        token = found.group().strip()
-        try:
-            if token.lower().lstrip("+-").startswith("0x"):
-                value = float.fromhex(token)
-            else:
-                value = float(re.sub(r"\(.*\)", "", token))
-        except (ValueError, OverflowError):
-            value = math.inf
-        if math.isfinite(value) or "inf" in token.lower() or "nan" in token.lower():
-            return value
-    raise _refused(text, tag, reference)
-
-
-def _stoi(text: str, tag: str, reference: str) -> int:
-    """``text`` as C++'s std::stoi reads it: the whole number it starts with."""
-    found = re.match(r"\s*[+-]?\d+", text)
-    if found is None:
+def _number(text: str, tag: str, reference: str) -> float:
+    value = stod(text)
+    if value is None:
         raise _refused(text, tag, reference)
-    return int(found.group())
+    return value
 
 
 def _refused(text: str, tag: str, reference: str) -> ConversionError:
@@ -77,7 +52,7 @@ def _refused(text: str, tag: str, reference: str) -> ConversionError:
     )
 
 
-def key_value(element: Element) -> str:
+def _key_value(element: Element) -> str:
     """A setting's text as the converter reads it: its ``value`` attribute, else its text."""
     value = element.get("value")
     if value is None:
@@ -87,49 +62,6 @@ def key_value(element: Element) -> str:
 
 def _flag(text: str) -> bool:
     return text.lower() in ("true", "yes") or text == "1"
-
-
-def _vector(text: str) -> tuple[float, float, float]:
-    """Three numbers as the converter's ParseVector3 reads them (split at spaces; anything
-    but three numbers is 0 0 0)."""
-    values = []
-    for piece in text.split(" "):
-        if piece:
-            found = _STOD.match(piece)
-            if found is None:
-                return _ZERO
-            values.append(float(found.group()) if "x" not in found.group().lower() else 0.0)
-    return (values[0], values[1], values[2]) if len(values) == 3 else _ZERO
-
-
-def _short(values: Iterable[float]) -> str:
-    """Numbers as C++ streams print them by default (6 significant digits)."""
-    return " ".join(f"{v:g}" for v in values)
-
-
-def _quaternion(rpy: tuple[float, float, float]) -> tuple[float, float, float, float]:
-    """Roll, pitch, yaw (radians) as gz::math's Quaternion::Euler makes them ``(x, y, z, w)``."""
-    phi, the, psi = rpy[0] / 2.0, rpy[1] / 2.0, rpy[2] / 2.0
-    sin, cos = math.sin, math.cos
-    w = cos(phi) * cos(the) * cos(psi) + sin(phi) * sin(the) * sin(psi)
-    x = sin(phi) * cos(the) * cos(psi) - cos(phi) * sin(the) * sin(psi)
-    y = cos(phi) * sin(the) * cos(psi) + sin(phi) * cos(the) * sin(psi)
-    z = cos(phi) * cos(the) * sin(psi) - sin(phi) * sin(the) * cos(psi)
-    s = math.sqrt(w * w + x * x + y * y + z * z)
-    if abs(s) <= 1e-6:
-        return IDENTITY
-    return x / s, y / s, z / s, w / s
-
-
-def _compose(outer: Placement, inner: Placement) -> Placement:
-    """``inner`` placed by ``outer`` as gz::math's Pose3 product computes it (the position
-    turned as q * v * q^-1, in quaternions)."""
-    qx, qy, qz, qw = outer.rotation
-    s = qw * qw + qx * qx + qy * qy + qz * qz
-    inverse = IDENTITY if abs(s) <= 1e-6 else (-qx / s, -qy / s, -qz / s, qw / s)
-    turned = product(outer.rotation, product((*inner.xyz, 0.0), inverse))
-    xyz = (outer.xyz[0] + turned[0], outer.xyz[1] + turned[1], outer.xyz[2] + turned[2])
-    return Placement(xyz, product(outer.rotation, inner.rotation))
 
 
 def _pose(text: str) -> Placement | None:
@@ -142,7 +74,7 @@ def _pose(text: str) -> Placement | None:
     if len(values) < 6:
         return None
     return Placement(
-        (values[0], values[1], values[2]), _quaternion((values[3], values[4], values[5]))
+        (values[0], values[1], values[2]), quaternion((values[3], values[4], values[5]))
     )
 
 
@@ -164,23 +96,26 @@ class Extension:
         for child in block.children:
             tag = child.tag
             if tag == "material":
-                self.material = key_value(child)
+                self.material = _key_value(child)
             elif tag in ("collision", "visual"):
                 (self.collisions if tag == "collision" else self.visuals).extend(
                     c.clone() for c in child.children
                 )
             elif tag in _FLAGS:
-                self.settings[tag] = _flag(key_value(child))
+                self.settings[tag] = _flag(_key_value(child))
             elif tag == "cfmDamping":
-                self.settings["implicitSpringDamper"] = _flag(key_value(child))
+                self.settings["implicitSpringDamper"] = _flag(_key_value(child))
             elif tag == "turnGravityOff":
-                self.settings["gravity"] = key_value(child).lower() in ("false", "no", "0")
+                self.settings["gravity"] = _key_value(child).lower() in ("false", "no", "0")
             elif tag in _FLOATS:
-                self.settings[tag] = _stod(key_value(child), tag, reference)
+                self.settings[tag] = _number(_key_value(child), tag, reference)
             elif tag == "maxContacts":
-                self.settings[tag] = _stoi(key_value(child), tag, reference)
+                whole = stoi(_key_value(child))
+                if whole is None:
+                    raise _refused(_key_value(child), tag, reference)
+                self.settings[tag] = whole
             elif tag == "fdir1":
-                self.settings[tag] = key_value(child)
+                self.settings[tag] = _key_value(child)
             elif tag not in _IGNORED:
                 self.blobs.append(child.clone())
 
@@ -205,8 +140,8 @@ class Extension:
             given = _pose(text)
             if given is None:
                 continue
-            placed = _compose(self.reduction, given)
-            blob.append(Element("pose", _short((*placed.xyz, *urdfdom_angles(placed.rotation)))))
+            placed = compose(self.reduction, given)
+            blob.append(Element("pose", short((*placed.xyz, *urdfdom_angles(placed.rotation)))))
 
     def rename(self, link: str, parent: str, joint: Placement) -> None:
         """Plugins' ``bodyName`` and ``frameName`` that name ``link`` name ``parent``, their
@@ -216,25 +151,25 @@ class Extension:
                 continue
             for tag in ("bodyName", "frameName"):
                 named = blob.find(tag)
-                if named is None or key_value(named) != link:
+                if named is None or _key_value(named) != link:
                     continue
                 blob.remove(named)
                 blob.append(Element(tag, parent))
                 xyz, rotation = self.reduction
                 offset = blob.find("xyzOffset")
                 if offset is not None:
-                    xyz = _vector(key_value(offset))
+                    xyz = vector3(_key_value(offset))
                     blob.remove(offset)
                 turn = blob.find("rpyOffset")
                 if turn is not None:
-                    rotation = _quaternion(_vector(key_value(turn)))
+                    rotation = quaternion(vector3(_key_value(turn)))
                     blob.remove(turn)
                 corrected = blob.find("ignition::corrected_offsets")
                 if corrected is not None:
                     blob.remove(corrected)
                 placed = then(joint, Placement(xyz, rotation))
-                blob.append(Element("xyzOffset", _short(placed.xyz)))
-                blob.append(Element("rpyOffset", _short(urdfdom_angles(placed.rotation))))
+                blob.append(Element("xyzOffset", short(placed.xyz)))
+                blob.append(Element("rpyOffset", short(urdfdom_angles(placed.rotation))))
                 blob.append(Element("ignition::corrected_offsets", "1"))
 
 
