@@ -14,7 +14,7 @@ FILE` runs (60 s timeout) and `to_sdf(load(FILE))` in this process; each file is
 - equal: the same elements, attributes and texts, numbers within 1e-9 (relative; 1e-12
   absolute), not the same bytes;
 - differ: both succeed, and the first difference is shown;
-- we fail: ign succeeds, we refuse the file otherwise (the error is shown);
+- we fail: ign succeeds, we refuse the file (the error is shown);
 - we crash: an exception that is no FishbotUrdfError (a bug; shown);
 - ign fails, we succeed;
 - both fail.
