@@ -179,6 +179,17 @@ def test_preserve_fixed_joint_keeps_a_fixed_joint() -> None:
     assert held is not None and (held.findtext("lower"), held.findtext("upper")) == ("0", "0")
 
 
+def test_an_empty_required_element_is_refused() -> None:
+    # sdformat's reader: "Empty string used when setting a required parameter"
+    robot = fishbot_urdf.parse(
+        '<robot name="r"><link name="a"><inertial><mass value="1"/><inertia ixx="1" ixy="0" '
+        'ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link><gazebo reference="a">'
+        '<sensor name="s" type="ray"><ray><range><min/></range></ray></sensor></gazebo></robot>'
+    )
+    with pytest.raises(ConversionError, match="<min> is empty"):
+        fishbot_urdf.to_sdf(robot)
+
+
 def test_a_setting_that_is_no_number_is_refused() -> None:
     robot = fishbot_urdf.parse(
         '<robot name="r"><link name="a"/><gazebo reference="a"><mu1>${mu}</mu1></gazebo></robot>'

@@ -39,6 +39,7 @@ INPUTS = {
     "gazebo_links": "tests/data/sdf/gazebo_links.urdf",
     "gazebo_lumped": "tests/data/sdf/gazebo_lumped.urdf",
     "gazebo_model": "tests/data/sdf/gazebo_model.urdf",
+    "gazebo_reader": "tests/data/sdf/gazebo_reader.urdf",
     "gazebo_sensor": "tests/data/sdf/gazebo_sensor.urdf",
     "lumping": "tests/data/sdf/lumping.urdf",
     "materials": "tests/data/sdf/materials.urdf",

@@ -6,8 +6,8 @@ reader completes what it reads from its description of SDFormat: the attributes 
 elements it knows, in its order, required ones added with their default text, unknown
 elements copied after the rest. This command reads that description from the files sdformat
 12 installs (Debian/Ubuntu: ``apt-get install libsdformat-dev``, in
-/usr/share/sdformat12/1.9) and keeps what the reader uses of it (names, required, default
-texts, which element copies its children as they are) in
+/usr/share/sdformat12/1.9) and keeps what the reader uses of it (names, required, types,
+default texts, which element copies its children as they are) in
 src/fishbot_urdf/export/sdf_1.9.json, from ``model.sdf`` down. Descriptions are left out.
 """
 
@@ -28,6 +28,7 @@ def element(node: etree._Element) -> dict[str, object]:
     """One ``<element>`` of the description, without its texts for people."""
     found: dict[str, object] = {"name": node.get("name"), "required": node.get("required")}
     if node.get("type") is not None:
+        found["type"] = node.get("type")
         found["default"] = node.get("default", "")
     attributes = [
         [a.get("name"), a.get("required"), a.get("default", "")] for a in node.findall("attribute")

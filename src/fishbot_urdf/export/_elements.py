@@ -6,14 +6,13 @@ from __future__ import annotations
 
 import math
 import re
-import struct
 from collections.abc import Iterable
 from typing import NamedTuple
 
 from ..model import Box, Cylinder, Geometry, Joint, JointType, Material, Mesh, Sphere
 from ..spatial import urdfdom_angles
 from ._lumping import Mass, Placement, euler
-from ._reader import Element
+from ._reader import Element, single
 
 __all__ = [
     "LUMP",
@@ -27,7 +26,6 @@ __all__ = [
     "pose",
     "shape",
     "short",
-    "single",
     "stod",
     "stoi",
     "vector3",
@@ -128,15 +126,6 @@ def colours(given: Material) -> tuple[str, str]:
     return numbers((*diffuse, a)), numbers((*ambient, a))
 
 
-def single(value: float) -> float:
-    """``value`` as a C float holds it (beyond its range, an infinity)."""
-    try:
-        held: float = struct.unpack("f", struct.pack("f", value))[0]
-    except OverflowError:
-        return math.copysign(math.inf, value)
-    return held
-
-
 _STOD = re.compile(
     r"\s*[+-]?(?:0[xX](?:[0-9a-fA-F]+\.?[0-9a-fA-F]*|\.[0-9a-fA-F]+)(?:[pP][+-]?\d+)?"
     r"|(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)?|nan(?:\([0-9A-Za-z_]*\))?)",
@@ -164,7 +153,8 @@ def stoi(text: str) -> int | None:
     """``text`` as C++'s std::stoi reads it: the whole number it starts with (None where it
     throws)."""
     found = re.match(r"\s*[+-]?\d+", text)
-    return int(found.group()) if found is not None else None
+    value = int(found.group()) if found is not None else None
+    return value if value is not None and -(2**31) <= value < 2**31 else None
 
 
 def vector3(text: str) -> tuple[float, float, float]:

@@ -6,13 +6,17 @@ them, comments dropped (from SDFormat 1.9's description, sdf_1.9.json)."""
 from __future__ import annotations
 
 import json
+import math
+import struct
 from collections.abc import Iterator, Mapping
 from functools import cache
 from importlib import resources
 from typing import Any, Protocol
 from xml.sax.saxutils import escape
 
-__all__ = ["Element", "Node", "attr", "copy", "printed", "read"]
+from ..errors import ConversionError
+
+__all__ = ["Element", "Node", "attr", "copy", "printed", "read", "single"]
 
 
 class Element:
@@ -135,7 +139,7 @@ def read(element: Element, description: _Description | None = None) -> Element:
             attributes.append((name, default if value is None else value))
     text = None
     if "default" in description:
-        text = element.text.strip() if element.text is not None else description["default"]
+        text = element.text.strip() if element.text is not None else _reprinted(description)
     if description.get("copy"):
         return Element(element.tag, text, attributes, [c.clone() for c in element.children])
     children = [read(c, known[c.tag]) for c in element.children if c.tag in known]
@@ -147,6 +151,40 @@ def read(element: Element, description: _Description | None = None) -> Element:
     ]
     children += [c.clone() for c in element.children if c.tag not in known]
     return Element(element.tag, text, attributes, children)
+
+
+def _reprinted(description: _Description) -> str:
+    """The text the reader prints for a typed element it finds empty: its default value, as
+    its type prints it (a number with 17 significant digits, a bool as 1 or 0).
+
+    Raises:
+        ConversionError: The element is required (the reader refuses it empty).
+    """
+    kind, default = description["type"], description["default"]
+    if description["required"] == "1":
+        raise ConversionError(
+            f"<{description['name']}> is empty, and sdformat's reader refuses a required "
+            "element without a value",
+            target="sdf",
+        )
+    if kind in ("double", "vector3", "vector2d"):
+        return " ".join(f"{float(v):.17g}" for v in default.split())
+    if kind in ("float", "color"):
+        return " ".join(f"{single(float(v)):.9g}" for v in default.split())
+    if kind in ("int", "unsigned int"):
+        return str(int(default))
+    if kind == "bool":
+        return "1" if default.lower() in ("true", "1") else "0"
+    return str(default)
+
+
+def single(value: float) -> float:
+    """``value`` as a C float holds it (beyond its range, an infinity)."""
+    try:
+        held: float = struct.unpack("f", struct.pack("f", value))[0]
+    except OverflowError:
+        return math.copysign(math.inf, value)
+    return held
 
 
 def _default(description: _Description) -> Element:
