@@ -7,7 +7,7 @@ elements it knows, in its order, required ones added with their default text, un
 elements copied after the rest. This command reads that description from the files sdformat
 12 installs (Debian/Ubuntu: ``apt-get install libsdformat-dev``, in
 /usr/share/sdformat12/1.9) and keeps what the reader uses of it (names, required, types,
-default texts, which element copies its children as they are) in
+default texts, bounds, which element copies its children as they are) in
 src/fishbot_urdf/export/sdf_1.9.json, from ``model.sdf`` down. Descriptions are left out.
 """
 
@@ -30,6 +30,9 @@ def element(node: etree._Element) -> dict[str, object]:
     if node.get("type") is not None:
         found["type"] = node.get("type")
         found["default"] = node.get("default", "")
+        for bound in ("min", "max"):
+            if node.get(bound) is not None:
+                found[bound] = node.get(bound)
     attributes = [
         [a.get("name"), a.get("required"), a.get("default", "")] for a in node.findall("attribute")
     ]

@@ -4,7 +4,6 @@ joint limits, and its numbers (C++'s 16 significant digits, a zero as 0)."""
 
 from __future__ import annotations
 
-import math
 import re
 from collections.abc import Iterable
 from typing import NamedTuple
@@ -12,7 +11,7 @@ from typing import NamedTuple
 from ..model import Box, Cylinder, Geometry, Joint, JointType, Material, Mesh, Sphere
 from ..spatial import urdfdom_angles
 from ._lumping import Mass, Placement, euler
-from ._reader import Element, single
+from ._reader import Element, single, stod
 
 __all__ = [
     "LUMP",
@@ -26,7 +25,6 @@ __all__ = [
     "pose",
     "shape",
     "short",
-    "stod",
     "stoi",
     "vector3",
 ]
@@ -124,29 +122,6 @@ def colours(given: Material) -> tuple[str, str]:
     diffuse = [min(max(c / 0.8, 0.0), 1.0) for c in (r, g, b)]
     ambient = [min(max(0.5 * c / 0.4, 0.0), 1.0) for c in (r, g, b)]
     return numbers((*diffuse, a)), numbers((*ambient, a))
-
-
-_STOD = re.compile(
-    r"\s*[+-]?(?:0[xX](?:[0-9a-fA-F]+\.?[0-9a-fA-F]*|\.[0-9a-fA-F]+)(?:[pP][+-]?\d+)?"
-    r"|(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)?|nan(?:\([0-9A-Za-z_]*\))?)",
-    re.IGNORECASE,
-)
-
-
-def stod(text: str) -> float | None:
-    """``text`` as C++'s std::stod reads it: the longest number it starts with (None where
-    it throws)."""
-    found = _STOD.match(text)
-    if found is None:
-        return None
-    token = found.group().strip()
-    try:
-        if token.lower().lstrip("+-").startswith("0x"):
-            return float.fromhex(token)
-        value = float(re.sub(r"\(.*\)", "", token))
-    except (ValueError, OverflowError):
-        return None
-    return value if math.isfinite(value) or token[-1].isalpha() or token[-1] == ")" else None
 
 
 def stoi(text: str) -> int | None:

@@ -10,9 +10,9 @@ from collections.abc import Iterable
 
 from ..errors import ConversionError
 from ..spatial import urdfdom_angles
-from ._elements import LUMP, number, short, stod, stoi, vector3
+from ._elements import LUMP, number, short, stoi, vector3
 from ._lumping import IDENTITY, Placement, compose, quaternion, then
-from ._reader import Element, Node, copy
+from ._reader import Element, Node, copy, stod
 
 __all__ = ["Extension", "Extensions"]
 

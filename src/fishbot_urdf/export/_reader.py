@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import struct
 from collections.abc import Iterator, Mapping
 from functools import cache
@@ -16,7 +17,7 @@ from xml.sax.saxutils import escape
 
 from ..errors import ConversionError
 
-__all__ = ["Element", "Node", "attr", "copy", "printed", "read", "single"]
+__all__ = ["Element", "Node", "attr", "copy", "printed", "read", "single", "stod"]
 
 
 class Element:
@@ -139,7 +140,11 @@ def read(element: Element, description: _Description | None = None) -> Element:
             attributes.append((name, default if value is None else value))
     text = None
     if "default" in description:
-        text = element.text.strip() if element.text is not None else _reprinted(description)
+        if element.text is None:
+            text = _reprinted(description)
+        else:
+            text = element.text.strip()
+            _check(description, text)
     if description.get("copy"):
         return Element(element.tag, text, attributes, [c.clone() for c in element.children])
     children = [read(c, known[c.tag]) for c in element.children if c.tag in known]
@@ -151,6 +156,68 @@ def read(element: Element, description: _Description | None = None) -> Element:
     ]
     children += [c.clone() for c in element.children if c.tag not in known]
     return Element(element.tag, text, attributes, children)
+
+
+_STOD = re.compile(
+    r"\s*[+-]?(?:0[xX](?:[0-9a-fA-F]+\.?[0-9a-fA-F]*|\.[0-9a-fA-F]+)(?:[pP][+-]?\d+)?"
+    r"|(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)?|nan(?:\([0-9A-Za-z_]*\))?)",
+    re.IGNORECASE,
+)
+
+
+def stod(text: str) -> float | None:
+    """``text`` as C++'s std::stod reads it: the longest number it starts with (None where
+    it throws)."""
+    found = _STOD.match(text)
+    if found is None:
+        return None
+    token = found.group().strip()
+    try:
+        if token.lower().lstrip("+-").startswith("0x"):
+            return float.fromhex(token)
+        value = float(re.sub(r"\(.*\)", "", token))
+    except (ValueError, OverflowError):
+        return None
+    return value if math.isfinite(value) or token[-1].isalpha() or token[-1] == ")" else None
+
+
+_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
+_SIZES = {"vector3": 3, "vector2d": 2, "color": 3}
+
+
+def _check(description: _Description, text: str) -> None:
+    """Refuse a value the reader refuses for its element's type: a bool that is none of
+    true, false, 1, 0; a number that does not start as one (as std::stod reads it), or is
+    out of the element's bounds; a vector of fewer numbers than it has, a pose of other
+    than 6.
+
+    Raises:
+        ConversionError: The reader refuses ``text``.
+    """
+    kind, name = description["type"], description["name"]
+    why = None
+    if kind == "bool" and text.lower() not in ("true", "false", "1", "0"):
+        why = "is no bool"
+    elif kind in ("double", "float", "int", "unsigned int"):
+        value = stod(text)
+        if value is None:
+            why = "is no number"
+        elif "min" in description and value < float(description["min"]):
+            why = f"is less than {description['min']}, its least"
+        elif "max" in description and value > float(description["max"]):
+            why = f"is more than {description['max']}, its most"
+    elif kind in _SIZES:
+        tokens = text.split()[: _SIZES[kind]]
+        if len(tokens) < _SIZES[kind] or not all(_NUMBER.fullmatch(t) for t in tokens):
+            why = f"is not {_SIZES[kind]} numbers"
+    elif kind == "pose":
+        tokens = text.split()
+        if len(tokens) != 6 or not all(_NUMBER.fullmatch(t) for t in tokens):
+            why = "is not 6 numbers"
+    if why is not None:
+        raise ConversionError(
+            f"<{name}> {text!r} {why}: sdformat's reader refuses it", target="sdf"
+        )
 
 
 def _reprinted(description: _Description) -> str:
