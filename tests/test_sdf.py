@@ -190,6 +190,27 @@ def test_an_empty_required_element_is_refused() -> None:
         fishbot_urdf.to_sdf(robot)
 
 
+@pytest.mark.parametrize(
+    ("blob", "why"),
+    [
+        ("<kinematic>yes</kinematic>", "<kinematic> 'yes' is no bool"),
+        ("<sensor name='s' type='imu'><pose>1 2 3</pose></sensor>", "'1 2 3' is not 6 numbers"),
+        (
+            "<collision><surface><friction><ode><mu>-1</mu></ode></friction></surface></collision>",
+            "<mu> '-1' is less than 0.0, its least",
+        ),
+    ],
+)
+def test_a_value_sdformats_reader_refuses_is_refused(blob: str, why: str) -> None:
+    robot = fishbot_urdf.parse(
+        '<robot name="r"><link name="a"><inertial><mass value="1"/><inertia ixx="1" ixy="0" '
+        'ixz="0" iyy="1" iyz="0" izz="1"/></inertial><collision><geometry><sphere radius="1"/>'
+        f'</geometry></collision></link><gazebo reference="a">{blob}</gazebo></robot>'
+    )
+    with pytest.raises(ConversionError, match=re.escape(why)):
+        fishbot_urdf.to_sdf(robot)
+
+
 def test_a_setting_that_is_no_number_is_refused() -> None:
     robot = fishbot_urdf.parse(
         '<robot name="r"><link name="a"/><gazebo reference="a"><mu1>${mu}</mu1></gazebo></robot>'
