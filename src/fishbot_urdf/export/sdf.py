@@ -2,9 +2,10 @@
 `ign sdf -p robot.urdf` prints), from the analysis of the robot.
 
 The converter lumps every link hung on a fixed joint into its parent (inertials summed as
-ODE sums them, visuals and collisions carried over and renamed), leaves out each link that
-then has no mass, with everything below it, and writes the rest as links and joints of one
-model, in its own order and number format.
+ODE sums them, visuals and collisions carried over and renamed, `<gazebo>` blocks moved),
+leaves out each link that then has no mass, with everything below it, and writes the rest
+as links and joints of one model, in its own order and number format, `<gazebo>` blocks
+turned into SDF; sdformat's reader then completes and prints that document.
 """
 
 from __future__ import annotations
@@ -62,8 +63,10 @@ def to_sdf(robot: Robot | Analysis) -> str:
         StructureError: The robot has no single root or has a joint loop (sdformat's
             URDF reader refuses it).
         ConversionError: sdformat's reader refuses the robot (a revolute or prismatic
-            joint without limits; links lumped into one that weigh 0 kg together), or its
-            converter stops on a ``<gazebo>`` setting that is no number where it reads one.
+            joint without limits; links lumped into one that weigh 0 kg together; a value
+            in a ``<gazebo>`` block not of its SDF element's type or out of its bounds, a
+            required one empty), or its converter stops on a ``<gazebo>`` setting that is
+            no number where it reads one.
     """
     analysis = of(robot)
     root = analysis.root
