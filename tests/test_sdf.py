@@ -199,13 +199,23 @@ def test_an_empty_required_element_is_refused() -> None:
             "<collision><surface><friction><ode><mu>-1</mu></ode></friction></surface></collision>",
             "<mu> '-1' is less than 0.0, its least",
         ),
+        (
+            "<sensor name='c' type='camera'><camera><image><width>nan</width></image></camera>"
+            "</sensor>",
+            "<width> 'nan' is no number",
+        ),
+        (
+            "<visual><material><diffuse>1 0 0 2</diffuse></material></visual>",
+            "<diffuse> '1 0 0 2' is not a colour",
+        ),
     ],
 )
 def test_a_value_sdformats_reader_refuses_is_refused(blob: str, why: str) -> None:
     robot = fishbot_urdf.parse(
         '<robot name="r"><link name="a"><inertial><mass value="1"/><inertia ixx="1" ixy="0" '
         'ixz="0" iyy="1" iyz="0" izz="1"/></inertial><collision><geometry><sphere radius="1"/>'
-        f'</geometry></collision></link><gazebo reference="a">{blob}</gazebo></robot>'
+        f'</geometry></collision><visual><geometry><sphere radius="1"/></geometry></visual>'
+        f'</link><gazebo reference="a">{blob}</gazebo></robot>'
     )
     with pytest.raises(ConversionError, match=re.escape(why)):
         fishbot_urdf.to_sdf(robot)

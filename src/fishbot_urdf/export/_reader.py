@@ -187,9 +187,9 @@ _SIZES = {"vector3": 3, "vector2d": 2, "color": 3}
 
 def _check(description: _Description, text: str) -> None:
     """Refuse a value the reader refuses for its element's type: a bool that is none of
-    true, false, 1, 0; a number that does not start as one (as std::stod reads it), or is
-    out of the element's bounds; a vector of fewer numbers than it has, a pose of other
-    than 6.
+    true, false, 1, 0; a number that does not start as one (as std::stod reads it; a whole
+    number, with a digit), or is out of the element's bounds; a vector of fewer numbers than
+    it has, a pose of other than 6, a colour with a number beyond 0 to 1.
 
     Raises:
         ConversionError: The reader refuses ``text``.
@@ -199,7 +199,8 @@ def _check(description: _Description, text: str) -> None:
     if kind == "bool" and text.lower() not in ("true", "false", "1", "0"):
         why = "is no bool"
     elif kind in ("double", "float", "int", "unsigned int"):
-        value = stod(text)
+        whole = kind.endswith("int")
+        value = stod(text) if not whole or re.match(r"\s*[+-]?\d", text) else None
         if value is None:
             why = "is no number"
         elif "min" in description and value < float(description["min"]):
@@ -210,6 +211,8 @@ def _check(description: _Description, text: str) -> None:
         tokens = text.split()[: _SIZES[kind]]
         if len(tokens) < _SIZES[kind] or not all(_NUMBER.fullmatch(t) for t in tokens):
             why = f"is not {_SIZES[kind]} numbers"
+        elif kind == "color" and not all(0 <= float(t) <= 1 for t in text.split()[:4]):
+            why = "is not a colour (each of its numbers from 0 to 1)"
     elif kind == "pose":
         tokens = text.split()
         if len(tokens) != 6 or not all(_NUMBER.fullmatch(t) for t in tokens):
