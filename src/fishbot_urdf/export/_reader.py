@@ -137,7 +137,7 @@ def read(element: Element, description: _Description | None = None) -> Element:
     for name, required, default in description.get("attributes", ()):
         value = element.get(name)
         if value is not None or required == "1":
-            attributes.append((name, default if value is None else value))
+            attributes.append((name, default if value is None else value.strip()))
     text = None
     if "default" in description:
         if element.text is None:
@@ -146,7 +146,7 @@ def read(element: Element, description: _Description | None = None) -> Element:
             text = element.text.strip()
             _check(description, text)
     if description.get("copy"):
-        return Element(element.tag, text, attributes, [c.clone() for c in element.children])
+        return Element(element.tag, text, attributes, [_copied(c) for c in element.children])
     children = [read(c, known[c.tag]) for c in element.children if c.tag in known]
     present = {c.tag for c in children}
     children += [
@@ -154,8 +154,15 @@ def read(element: Element, description: _Description | None = None) -> Element:
         for d in _children(description)
         if d["required"] == "1" and d["name"] not in present
     ]
-    children += [c.clone() for c in element.children if c.tag not in known]
+    children += [_copied(c) for c in element.children if c.tag not in known]
     return Element(element.tag, text, attributes, children)
+
+
+def _copied(element: Element) -> Element:
+    """An element the reader copies as it is (unknown, or in a plugin), but for its
+    attributes' values, which it trims."""
+    attributes = [(name, value.strip()) for name, value in element.attributes]
+    return Element(element.tag, element.text, attributes, [_copied(c) for c in element.children])
 
 
 _STOD = re.compile(
