@@ -17,7 +17,7 @@ from xml.sax.saxutils import escape
 
 from ..errors import ConversionError
 
-__all__ = ["Element", "Node", "attr", "copy", "printed", "read", "single", "stod"]
+__all__ = ["Element", "Node", "copy", "printed", "read", "single", "stod"]
 
 
 class Element:
@@ -45,10 +45,6 @@ class Element:
     def find(self, tag: str) -> Element | None:
         """The first child named ``tag``."""
         return next((child for child in self.children if child.tag == tag), None)
-
-    def last(self, tag: str) -> Element | None:
-        """The last child named ``tag``."""
-        return next((child for child in reversed(self.children) if child.tag == tag), None)
 
     def append(self, child: Element) -> Element:
         self.children.append(child)
@@ -100,7 +96,7 @@ def _written(name: str, prefixes: dict[str, str]) -> str:
     return f"{prefixes[uri]}:{local}" if uri in prefixes else local
 
 
-def attr(value: str) -> str:
+def _attr(value: str) -> str:
     """An attribute's value in single quotes, as sdformat writes one."""
     return "'" + escape(value, {"'": "&apos;"}) + "'"
 
@@ -274,7 +270,7 @@ def _default(description: _Description) -> Element:
 def printed(element: Element, indent: str = "") -> list[str]:
     """The lines sdformat prints for ``element``, attributes in single quotes. (It escapes
     nothing, so that a ``&`` in a text makes what it prints no XML; here it is escaped.)"""
-    head = indent + "<" + element.tag + "".join(f" {k}={attr(v)}" for k, v in element.attributes)
+    head = indent + "<" + element.tag + "".join(f" {k}={_attr(v)}" for k, v in element.attributes)
     if element.children:
         lines = [head + ">"]
         for child in element.children:
