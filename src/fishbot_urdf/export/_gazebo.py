@@ -60,6 +60,14 @@ def _key_value(element: Element) -> str:
     return value.strip()
 
 
+def _text(value: float | bool | str) -> str:
+    """A setting as the converter writes it: a text as it is, a whole number (maxContacts)
+    in digits, a number as its other numbers."""
+    if isinstance(value, str):
+        return value
+    return str(value) if isinstance(value, int) else number(value)
+
+
 def _flag(text: str) -> bool:
     return text.lower() in ("true", "yes") or text == "1"
 
@@ -266,16 +274,8 @@ class Extensions:
                 ("maxContacts", element, "max_contacts"),
             ):
                 value = settings.get(key)
-                if value is None or (key == "fdir1" and not value):
-                    continue
-                text = (
-                    value
-                    if isinstance(value, str)
-                    else str(value)
-                    if key == "maxContacts"
-                    else number(float(value))
-                )
-                into.put(tag, text)
+                if value is not None and value != "":
+                    into.put(tag, _text(value))
 
     def visual(self, element: Element, link: str) -> None:
         """A visual's material script and blobs."""
