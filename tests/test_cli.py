@@ -992,12 +992,22 @@ def test_sdf_writes_a_file(tmp_path: Path) -> None:
     assert out.read_text(encoding="utf-8") == (SDF_GOLDEN / "first_robot.sdf").read_text()
 
 
-def test_sdf_refuses_a_robot_with_gazebo_elements(tmp_path: Path) -> None:
+def test_sdf_converts_gazebo_blocks() -> None:
+    xacro = Path(__file__).parent / "data" / "gazebo" / "fishbot_description" / "urdf"
+    result = CliRunner().invoke(cli, ["sdf", str(xacro / "fishbot.urdf.xacro")])
+    assert (result.exit_code, result.stderr) == (0, "")
+    golden = (SDF_GOLDEN / "gazebo_fishbot_ament.sdf").read_text(encoding="utf-8")
+    assert result.stdout == golden
+
+
+def test_sdf_refuses_a_gazebo_setting_the_converter_stops_on(tmp_path: Path) -> None:
     robot = tmp_path / "r.urdf"
-    robot.write_text('<robot name="r"><link name="a"/><gazebo reference="a"/></robot>')
+    robot.write_text(
+        '<robot name="r"><link name="a"/><gazebo reference="a"><kp>x</kp></gazebo></robot>'
+    )
     result = CliRunner().invoke(cli, ["sdf", str(robot)])
     assert (result.exit_code, result.stdout) == (1, "")
     assert result.stderr == (
-        f"{robot}: error: robot 'r' has <gazebo> elements, which are not converted to SDF yet "
-        "[conversion]\n"
+        f"{robot}: error: <gazebo reference='a'>: <kp> is 'x', not a number: sdformat's "
+        "converter stops on it [conversion]\n"
     )

@@ -141,13 +141,18 @@ def test_argument_error() -> None:
 
 
 def test_conversion_error() -> None:
-    robot = fishbot_urdf.parse('<robot name="r"><link name="a"/><gazebo/></robot>')
+    robot = fishbot_urdf.parse(
+        '<robot name="r"><link name="a"/><gazebo><static>1</static><maxContacts>many'
+        "</maxContacts></gazebo></robot>"
+    )
     with pytest.raises(ConversionError) as info:
         fishbot_urdf.to_sdf(robot)
     error = info.value
     assert isinstance(error, FishbotUrdfError) and isinstance(error, ValueError)
     assert (error.rule, error.target, error.subject) == ("conversion", "sdf", None)
-    assert error.message == "robot 'r' has <gazebo> elements, which are not converted to SDF yet"
+    assert error.message == (
+        "<gazebo>: <maxContacts> is 'many', not a number: sdformat's converter stops on it"
+    )
 
 
 def test_shape_error() -> None:

@@ -113,7 +113,8 @@ WORKSPACE["frames.urdf"] = WORKSPACE["fishbot.urdf"].replace(
     '    <visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>\n', ""
 )
 
-# The conversion's example: an arm, and the same with a <gazebo> block (not converted yet).
+# The conversion's example: an arm whose <gazebo> block has a number, and the same with a
+# xacro expression left where the converter reads a number.
 _ARM = """\
 <robot name="arm">
   <link name="base_link">
@@ -128,9 +129,11 @@ _ARM = """\
   </joint>{gazebo}
 </robot>
 """
-WORKSPACE["arm.urdf"] = _ARM.format(gazebo="")
+WORKSPACE["arm.urdf"] = _ARM.format(
+    gazebo='\n  <gazebo reference="upper_arm"><mu1>0.8</mu1></gazebo>'
+)
 WORKSPACE["gazebo.urdf"] = _ARM.format(
-    gazebo='\n  <gazebo reference="upper_arm"><material>Gazebo/Red</material></gazebo>'
+    gazebo='\n  <gazebo reference="upper_arm"><mu1>${mu}</mu1></gazebo>'
 )
 
 # Rules of what render and view cannot draw: the picture is drawn without it, exit status 0.

@@ -153,7 +153,7 @@ class ArgumentError(FishbotUrdfError, ValueError):
 
 
 class ConversionError(FishbotUrdfError, ValueError):
-    """A robot the target's own converter refuses, or that is not converted yet.
+    """A robot the target's own converter, or the reader of what it writes, refuses.
 
     ``target`` names the format (``sdf``), ``subject`` the link or joint at fault (None for
     the whole robot)."""

@@ -104,19 +104,19 @@ CONVERSION = Rule(
     "conversion",
     E,
     Family.SETUP,
-    summary="A robot cannot be converted to another format: its converter refuses it, or it "
-    "holds what is not converted yet.",
-    explanation="`fishbot sdf` writes what sdformat's own URDF converter writes, and refuses "
-    "what it refuses beyond what the reader does: links lumped over fixed joints that weigh "
-    "0 kg together (the converter divides by their mass). Robots with `<gazebo>` elements are "
-    "not converted yet. The message names the link at fault, nothing is written, and the "
-    "command stops with exit status 1.",
+    summary="A robot cannot be converted to another format: its converter refuses it.",
+    explanation="`fishbot sdf` writes what sdformat's own URDF converter writes, `<gazebo>` "
+    "blocks included, and refuses what it refuses beyond what the reader does: links lumped "
+    "over fixed joints that weigh 0 kg together (the converter divides by their mass), and a "
+    "`<gazebo>` setting it reads as a number that is none, such as a xacro expression left "
+    "in `<mu1>${mu}</mu1>` (the converter stops on it). The message names the link or the "
+    "block at fault, nothing is written, and the command stops with exit status 1.",
     bad="""\
-# gazebo.urdf: the arm, with a <gazebo reference="upper_arm"> block
+# gazebo.urdf: the arm, its <gazebo reference="upper_arm"> block with <mu1>${mu}</mu1>
 fishbot sdf gazebo.urdf -o arm.sdf
 """,
     good="""\
-# arm.urdf: the same arm without it
+# arm.urdf: the same arm, the block with <mu1>0.8</mu1>
 fishbot sdf arm.urdf -o arm.sdf
 """,
     consumers=(Consumer.GAZEBO,),

@@ -43,8 +43,11 @@ def sdf(file: str, args: Sequence[str], output: str, package_items: Sequence[str
     lumped into its parent (masses, centres of mass and inertias summed, its visuals and
     collisions renamed PARENT_fixed_joint_lump__NAME_visual), a link without mass is left
     out with everything below it, floating and planar joints are left out (their links
-    stay), and package:// mesh names become model://. Robots with <gazebo> elements are
-    not converted yet. ARGS are name:=value values for a xacro file's <xacro:arg>. Findings
+    stay), and package:// mesh names become model://. <gazebo> blocks become what the
+    converter makes of them (settings as SDF elements, sensors and plugins copied, those
+    of a lumped link moved to the link it went into, poses and plugin frames with them;
+    preserveFixedJoint and disableFixedJointLumping keep a fixed joint). ARGS are
+    name:=value values for a xacro file's <xacro:arg>. Findings
     about the robot are printed as check prints them. Exit status: 0 written, 1 the robot
     has errors that leave its tree in doubt or cannot be converted (nothing is written), 2
     a file could not be read or written, or the command line is wrong.

@@ -1,22 +1,22 @@
-"""The elements of an SDF model as sdformat's URDF converter writes them and its SDF reader
-completes them: inertials, visuals, collisions and their geometry, joint limits, and its
-numbers (C++'s 16 significant digits, a zero as 0)."""
+"""The elements of an SDF model as sdformat's URDF converter writes them (its reader
+completes them, see _reader): inertials, visuals, collisions and their geometry, colours,
+joint limits, and its numbers (C++'s 16 significant digits, a zero as 0)."""
 
 from __future__ import annotations
 
-import math
-import struct
+import re
+from collections.abc import Iterable
 from typing import NamedTuple
-from xml.sax.saxutils import escape
 
 from ..model import Box, Cylinder, Geometry, Joint, JointType, Material, Mesh, Sphere
 from ..spatial import urdfdom_angles
 from ._lumping import Mass, Placement, euler
+from ._reader import Element, single, stod
 
 __all__ = [
     "LUMP",
     "Shape",
-    "attr",
+    "colours",
     "geometry",
     "inertial",
     "limits",
@@ -24,7 +24,9 @@ __all__ = [
     "numbers",
     "pose",
     "shape",
-    "single",
+    "short",
+    "stoi",
+    "vector3",
 ]
 
 LUMP = "_fixed_joint_lump__"  # between a body's name and a lumped shape's
@@ -40,108 +42,112 @@ class Shape(NamedTuple):
     material: Material | None = None
 
 
-def limits(joint: Joint) -> list[str]:
-    """The limit's children as the converter writes them and the SDF reader completes them
-    (a missing lower and upper read as -1e16 and 1e16)."""
+def limits(joint: Joint) -> list[Element]:
+    """The limit's children as the converter writes them (the reader adds a missing lower
+    and upper, as -1e16 and 1e16)."""
     limit = joint.limit
-    lines = []
-    if limit is not None:
-        if joint.type is not JointType.CONTINUOUS:
-            lower, upper = sorted((limit.lower, limit.upper))  # sdformat swaps reversed ones
-            lines += [f"<lower>{number(lower)}</lower>", f"<upper>{number(upper)}</upper>"]
-        lines += [f"<effort>{number(limit.effort)}</effort>"]
-        lines += [f"<velocity>{number(limit.velocity)}</velocity>"]
-    if limit is None or joint.type is JointType.CONTINUOUS:
-        lines += ["<lower>-1e16</lower>", "<upper>1e16</upper>"]
-    return lines
-
-
-def inertial(mass: Mass) -> list[str]:
-    """An ``inertial`` element: its frame, mass (kg) and inertia (kg*m^2)."""
-    ixx, ixy, ixz, iyy, iyz, izz = mass.inertia
+    if limit is None:
+        return []
+    found = []
+    if joint.type is not JointType.CONTINUOUS:
+        lower, upper = sorted((limit.lower, limit.upper))  # sdformat swaps reversed ones
+        found += [Element("lower", number(lower)), Element("upper", number(upper))]
     return [
-        "<inertial>",
-        f"  <pose>{pose(mass.frame.xyz, euler(mass.frame.rotation))}</pose>",
-        f"  <mass>{number(mass.mass)}</mass>",
-        "  <inertia>",
-        *(
-            f"    <{tag}>{number(value)}</{tag}>"
-            for tag, value in zip(
-                ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"),
-                (ixx, ixy, ixz, iyy, iyz, izz),
-                strict=True,
-            )
-        ),
-        "  </inertia>",
-        "</inertial>",
+        *found,
+        Element("effort", number(limit.effort)),
+        Element("velocity", number(limit.velocity)),
     ]
 
 
-def shape(kind: str, link: str, count: int, item: Shape) -> list[str]:
+def inertial(mass: Mass) -> Element:
+    """An ``inertial`` element: its frame, mass (kg) and inertia (kg*m^2)."""
+    tags = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+    inertia = [Element(tag, number(value)) for tag, value in zip(tags, mass.inertia, strict=True)]
+    return Element(
+        "inertial",
+        children=[
+            Element("pose", pose(mass.frame.xyz, euler(mass.frame.rotation))),
+            Element("mass", number(mass.mass)),
+            Element("inertia", children=inertia),
+        ],
+    )
+
+
+def shape(kind: str, link: str, count: int, item: Shape) -> Element:
     """A ``visual`` or ``collision`` element, the ``count``-th of ``link``, named as the
-    converter names it (``LINK_fixed_joint_lump__NAME_visual_1`` for a lumped one)."""
+    converter names it (``LINK_fixed_joint_lump__NAME_visual_1`` for a lumped one), without
+    its material."""
     name = f"{item.name or link}_{kind}" + (f"_{count}" if count else "")
     if not name.startswith(link):
         name = f"{link}{LUMP}{name}"
-    lines = [
-        f"<{kind} name={attr(name)}>",
-        f"  <pose>{pose(item.placement.xyz, urdfdom_angles(item.placement.rotation))}</pose>",
-        *(f"  {line}" for line in geometry(item.geometry)),
-    ]
-    if item.material is not None:
-        lines += [f"  {line}" for line in material(item.material)]
-    return [*lines, f"</{kind}>"]
+    placed = pose(item.placement.xyz, urdfdom_angles(item.placement.rotation))
+    children = [Element("pose", placed), *geometry(item.geometry)]
+    return Element(kind, attributes=[("name", name)], children=children)
 
 
-def geometry(solid: Geometry) -> list[str]:
+def geometry(solid: Geometry) -> list[Element]:
     """A ``geometry`` element; a mesh's ``package://`` becomes ``model://``."""
     if isinstance(solid, Box):
-        inner = ["<box>", f"  <size>{numbers(solid.size)}</size>", "</box>"]
+        inner = Element("box", children=[Element("size", numbers(solid.size))])
     elif isinstance(solid, Cylinder):
-        inner = [
-            "<cylinder>",
-            f"  <length>{number(solid.length)}</length>",
-            f"  <radius>{number(solid.radius)}</radius>",
-            "</cylinder>",
-        ]
+        inner = Element(
+            "cylinder",
+            children=[
+                Element("length", number(solid.length)),
+                Element("radius", number(solid.radius)),
+            ],
+        )
     elif isinstance(solid, Sphere):
-        inner = ["<sphere>", f"  <radius>{number(solid.radius)}</radius>", "</sphere>"]
+        inner = Element("sphere", children=[Element("radius", number(solid.radius))])
     elif isinstance(solid, Mesh):
         scale = solid.scale or (1.0, 1.0, 1.0)
         uri = solid.filename.replace("package://", "model://", 1)
-        inner = [
-            "<mesh>",
-            # the converter writes a mesh's scale with C++'s default 6 digits
-            f"  <scale>{' '.join(f'{v:g}' for v in scale)}</scale>",
-            f"  <uri>{escape(uri)}</uri>",
-            "</mesh>",
-        ]
+        inner = Element(
+            "mesh",
+            children=[
+                # the converter writes a mesh's scale with C++'s default 6 digits
+                Element("scale", " ".join(f"{v:g}" for v in scale)),
+                Element("uri", uri),
+            ],
+        )
     else:  # pragma: no cover - the model has no other geometry
         return []
-    return ["<geometry>", *(f"  {line}" for line in inner), "</geometry>"]
+    return [Element("geometry", children=[inner])]
 
 
-def material(given: Material) -> list[str]:
+def colours(given: Material) -> tuple[str, str]:
     """urdfdom's colour (single precision; black if none) as Gazebo's diffuse and ambient."""
     rgba = given.color or (0.0, 0.0, 0.0, 1.0)
     r, g, b, a = (single(v) for v in rgba)
     diffuse = [min(max(c / 0.8, 0.0), 1.0) for c in (r, g, b)]
     ambient = [min(max(0.5 * c / 0.4, 0.0), 1.0) for c in (r, g, b)]
-    return [
-        "<material>",
-        f"  <diffuse>{numbers((*diffuse, a))}</diffuse>",
-        f"  <ambient>{numbers((*ambient, a))}</ambient>",
-        "</material>",
-    ]
+    return numbers((*diffuse, a)), numbers((*ambient, a))
 
 
-def single(value: float) -> float:
-    """``value`` as a C float holds it (beyond its range, an infinity)."""
-    try:
-        held: float = struct.unpack("f", struct.pack("f", value))[0]
-    except OverflowError:
-        return math.copysign(math.inf, value)
-    return held
+def stoi(text: str) -> int | None:
+    """``text`` as C++'s std::stoi reads it: the whole number it starts with (None where it
+    throws)."""
+    found = re.match(r"\s*[+-]?\d+", text)
+    value = int(found.group()) if found is not None else None
+    return value if value is not None and -(2**31) <= value < 2**31 else None
+
+
+def vector3(text: str) -> tuple[float, float, float]:
+    """Three numbers as the converter's ParseVector3 reads them (split at spaces; anything
+    but three numbers is 0 0 0)."""
+    values = []
+    for piece in text.split(" "):
+        if piece:
+            value = stod(piece)
+            if value is None:
+                return (0.0, 0.0, 0.0)
+            values.append(value)
+    return (values[0], values[1], values[2]) if len(values) == 3 else (0.0, 0.0, 0.0)
+
+
+def short(values: Iterable[float]) -> str:
+    """Numbers as C++ streams print them by default (6 significant digits)."""
+    return " ".join(f"{v:g}" for v in values)
 
 
 def number(value: float) -> str:
@@ -157,8 +163,3 @@ def numbers(values: tuple[float, ...] | list[float]) -> str:
 def pose(xyz: tuple[float, float, float], rpy: tuple[float, float, float]) -> str:
     """A pose's text: x y z (metres), roll pitch yaw (radians)."""
     return numbers((*xyz, *rpy))
-
-
-def attr(value: str) -> str:
-    """An attribute's value in single quotes, as sdformat writes one."""
-    return "'" + escape(value, {"'": "&apos;"}) + "'"

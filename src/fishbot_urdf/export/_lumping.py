@@ -10,7 +10,19 @@ from typing import NamedTuple
 from ..model import Vector3
 from ..spatial import Quaternion, urdfdom_angles
 
-__all__ = ["IDENTITY", "NO_MASS", "Mass", "Placement", "euler", "lump", "reach", "then"]
+__all__ = [
+    "IDENTITY",
+    "NO_MASS",
+    "Mass",
+    "Placement",
+    "compose",
+    "euler",
+    "lump",
+    "product",
+    "quaternion",
+    "reach",
+    "then",
+]
 
 IDENTITY: Quaternion = (0.0, 0.0, 0.0, 1.0)
 
@@ -54,7 +66,8 @@ def _rotate(q: Quaternion, v: Vector3) -> Vector3:
     )
 
 
-def _product(a: Quaternion, b: Quaternion) -> Quaternion:
+def product(a: Quaternion, b: Quaternion) -> Quaternion:
+    """The quaternion product ``a * b``, as gz::math::Quaternion computes it."""
     ax, ay, az, aw = a
     bx, by, bz, bw = b
     return (
@@ -70,7 +83,32 @@ def then(outer: Placement, inner: Placement) -> Placement:
     converter's TransformToParentFrame."""
     turned = _rotate(outer.rotation, inner.xyz)
     xyz = (outer.xyz[0] + turned[0], outer.xyz[1] + turned[1], outer.xyz[2] + turned[2])
-    return Placement(xyz, _product(outer.rotation, inner.rotation))
+    return Placement(xyz, product(outer.rotation, inner.rotation))
+
+
+def quaternion(rpy: Vector3) -> Quaternion:
+    """Roll, pitch, yaw (radians) as gz::math's Quaternion::Euler makes them ``(x, y, z, w)``."""
+    phi, the, psi = rpy[0] / 2.0, rpy[1] / 2.0, rpy[2] / 2.0
+    sin, cos = math.sin, math.cos
+    w = cos(phi) * cos(the) * cos(psi) + sin(phi) * sin(the) * sin(psi)
+    x = sin(phi) * cos(the) * cos(psi) - cos(phi) * sin(the) * sin(psi)
+    y = cos(phi) * sin(the) * cos(psi) + sin(phi) * cos(the) * sin(psi)
+    z = cos(phi) * cos(the) * sin(psi) - sin(phi) * sin(the) * cos(psi)
+    s = math.sqrt(w * w + x * x + y * y + z * z)
+    if abs(s) <= 1e-6:
+        return IDENTITY
+    return x / s, y / s, z / s, w / s
+
+
+def compose(outer: Placement, inner: Placement) -> Placement:
+    """``inner`` placed by ``outer`` as gz::math's Pose3 product computes it (the position
+    turned as q * v * q^-1, in quaternions)."""
+    qx, qy, qz, qw = outer.rotation
+    s = qw * qw + qx * qx + qy * qy + qz * qz
+    inverse = IDENTITY if abs(s) <= 1e-6 else (-qx / s, -qy / s, -qz / s, qw / s)
+    turned = product(outer.rotation, product((*inner.xyz, 0.0), inverse))
+    xyz = (outer.xyz[0] + turned[0], outer.xyz[1] + turned[1], outer.xyz[2] + turned[2])
+    return Placement(xyz, product(outer.rotation, inner.rotation))
 
 
 def euler(q: Quaternion) -> Vector3:

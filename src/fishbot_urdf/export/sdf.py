@@ -2,16 +2,16 @@
 `ign sdf -p robot.urdf` prints), from the analysis of the robot.
 
 The converter lumps every link hung on a fixed joint into its parent (inertials summed as
-ODE sums them, visuals and collisions carried over and renamed), leaves out each link that
-then has no mass, with everything below it, and writes the rest as links and joints of one
-model, in its own order and number format.
+ODE sums them, visuals and collisions carried over and renamed, `<gazebo>` blocks moved),
+leaves out each link that then has no mass, with everything below it, and writes the rest
+as links and joints of one model, in its own order and number format, `<gazebo>` blocks
+turned into SDF; sdformat's reader then completes and prints that document.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator, Mapping
-from xml.sax.saxutils import escape
+from collections.abc import Mapping
 
 from ..analysis import Analysis, of
 from ..errors import ConversionError, StructureError
@@ -24,8 +24,10 @@ from ..model import (
     Robot,
 )
 from ..spatial import urdfdom_quaternion
-from ._elements import Shape, attr, inertial, limits, number, numbers, pose, shape
+from ._elements import Shape, colours, inertial, limits, number, numbers, pose, shape
+from ._gazebo import Extensions
 from ._lumping import Mass, Placement, euler, lump, reach
+from ._reader import Element, printed, read
 
 __all__ = ["to_sdf"]
 
@@ -35,7 +37,6 @@ _TYPES = {  # URDF joint type -> SDF's; floating and planar joints are left out
     JointType.PRISMATIC: "prismatic",
     JointType.FIXED: "fixed",
 }
-_ZERO_POSE = "0 0 0 0 0 0"
 
 
 def to_sdf(robot: Robot | Analysis) -> str:
@@ -44,39 +45,43 @@ def to_sdf(robot: Robot | Analysis) -> str:
     SDF version 1.9, numbers as the converter prints them (16 significant digits, a zero as
     ``0``): masses in kg, lengths in metres, angles in radians, inertias in kg*m^2.
 
-    Links on fixed joints are lumped into their parents; a link left without mass (none,
-    or within 1e-6 kg of 0) is left out with all below it; ``package://`` mesh names become
-    ``model://``.
+    Links on fixed joints are lumped into their parents (unless a ``<gazebo reference>`` on
+    the joint has ``preserveFixedJoint``, which keeps it, or ``disableFixedJointLumping``,
+    which makes it a revolute joint held at 0); a link left without mass (none, or within
+    1e-6 kg of 0) is left out with all below it; ``package://`` mesh names become
+    ``model://``. ``<gazebo>`` blocks become what the converter makes of them: the settings
+    it knows (``material``, ``mu1``, ``kp``, ``turnGravityOff``, ``selfCollide``,
+    ``provideFeedback``, ``stopErp``, ``static``, ...) as SDF elements of the link, its
+    collisions and visuals, the joint or the model, everything else (sensors, plugins)
+    copied in. A lumped link's blocks go with it: its sensors' poses become poses in the
+    link it is lumped into (printed with 6 digits, as the converter prints them), and
+    plugins whose ``bodyName`` or ``frameName`` names it name that link instead, with
+    ``xyzOffset`` and ``rpyOffset`` carried through the fixed joint. Blocks on names that
+    are no link or joint the SDF keeps are left out.
 
     Raises:
         StructureError: The robot has no single root or has a joint loop (sdformat's
             URDF reader refuses it).
         ConversionError: sdformat's reader refuses the robot (a revolute or prismatic
-            joint without limits; links lumped into one that weigh 0 kg together), or it has
-            ``<gazebo>`` elements (not converted yet).
+            joint without limits; links lumped into one that weigh 0 kg together; a value
+            in a ``<gazebo>`` block not of its SDF element's type or out of its bounds, a
+            required one empty), or its converter stops on a ``<gazebo>`` setting that is
+            no number where it reads one.
     """
     analysis = of(robot)
-    if any(text.startswith("<gazebo") for text in analysis.robot.extras):
-        raise ConversionError(
-            f"robot {analysis.robot.name!r} has <gazebo> elements, which are not converted "
-            "to SDF yet",
-            target="sdf",
-        )
     root = analysis.root
     _refuse_what_urdfdom_refuses(analysis)
     model = _Model(analysis)
     model.reduce(root)
-    body = list(model.emit(root)) if root != "world" else []
+    document = Element("model", attributes=[("name", analysis.robot.name)])
     if root == "world":
         for joint in analysis.topology.children[root]:
-            body += model.emit(joint.child)
-    name = attr(analysis.robot.name)
-    if not body:
-        return f"<sdf version='1.9'>\n  <model name={name}/>\n</sdf>\n"
-    lines = [f"    {line}" for element in body for line in element]
-    return "\n".join(
-        ["<sdf version='1.9'>", f"  <model name={name}>", *lines, "  </model>", "</sdf>", ""]
-    )
+            document.children += model.emit(joint.child)
+    else:
+        document.children += model.emit(root)
+    model.extensions.model(document)
+    lines = printed(read(document), "  ")
+    return "\n".join(["<sdf version='1.9'>", *lines, "</sdf>", ""])
 
 
 def _refuse_what_urdfdom_refuses(analysis: Analysis) -> None:
@@ -111,6 +116,12 @@ class _Model:
 
     def __init__(self, analysis: Analysis) -> None:
         self.analysis = analysis
+        self.kept = analysis.gazebo_lumping.preserved | analysis.gazebo_lumping.revolute
+        self.extensions = Extensions(
+            (block.reference or "", block.element)
+            for block in analysis.gazebo_blocks
+            if block.element.tag == "gazebo"
+        )
         materials = _materials(analysis.robot)
         self.mass: dict[str, Mass | None] = {}
         self.visuals: dict[str, list[Shape]] = {}
@@ -136,8 +147,12 @@ class _Model:
         parents = self.analysis.topology.parents.get(link)
         return parents[0] if parents else None
 
+    def _reduced(self, joint: Joint) -> bool:
+        """Whether the converter lumps ``joint`` (fixed, and no block keeps it)."""
+        return joint.type is JointType.FIXED and joint.name not in self.kept
+
     def _lumped(self, joint: Joint | None) -> bool:
-        return joint is not None and joint.type is JointType.FIXED and joint.parent != "world"
+        return joint is not None and self._reduced(joint) and joint.parent != "world"
 
     def reduce(self, root: str) -> None:
         """Lump every link on a fixed joint into its parent, in ReduceFixedJoints' order: a
@@ -149,17 +164,18 @@ class _Model:
             link, lumping = stack.pop()
             if not lumping:
                 stack.append((link, True))
-                fixed = [j for j in children[link] if j.type is JointType.FIXED]
+                fixed = [j for j in children[link] if self._reduced(j)]
                 stack.extend((j.child, False) for j in reversed(fixed))
                 continue
             above = self._above(link)
             if above is not None and self._lumped(above):
                 self._lump(link, above)
-            moving = [j for j in children[link] if j.type is not JointType.FIXED]
+            moving = [j for j in children[link] if not self._reduced(j)]
             stack.extend((j.child, False) for j in reversed(moving))
 
     def _lump(self, link: str, joint: Joint) -> None:
         parent, at = joint.parent, self.placement[joint.name]
+        self.extensions.lump(link, parent, at)
         mass = self.mass[link]
         if mass is not None:
             self.mass[parent] = lump(self.mass[parent], mass, at)
@@ -169,7 +185,7 @@ class _Model:
                 for s in shapes[link]
             ]
         for below in self.analysis.topology.children[link]:
-            if below.type is JointType.FIXED:
+            if self._reduced(below):
                 continue
             # the joint now hangs from the first link up that no fixed joint holds
             holder, up = link, self._above(link)
@@ -181,8 +197,9 @@ class _Model:
                 up = self._above(holder)
             self.parent[below.name] = holder
 
-    def emit(self, top: str) -> Iterator[list[str]]:
-        """The elements of ``top`` and below (each as lines), in CreateSDF's order."""
+    def emit(self, top: str) -> list[Element]:
+        """The elements of ``top`` and below, in CreateSDF's order."""
+        found: list[Element] = []
         stack = [top]
         while stack:
             link = stack.pop()
@@ -192,40 +209,53 @@ class _Model:
             above = self._above(link)
             if not self._lumped(above):
                 if above is not None and above.type in _TYPES:
-                    yield self._joint(above)
-                yield self._link(link, above, mass)
+                    found.append(self._joint(above))
+                found.append(self._link(link, above, mass))
             stack.extend(j.child for j in reversed(self.analysis.topology.children[link]))
+        return found
 
-    def _joint(self, joint: Joint) -> list[str]:
+    def _joint(self, joint: Joint) -> Element:
         kind = _TYPES[joint.type]
         parent = self.parent.get(joint.name, joint.parent)
         at = self.placement[joint.name]
         relative = "__model__" if parent == "world" else parent
-        lines = [
-            f"<joint name={attr(joint.name)} type='{kind}'>",
-            f"  <pose relative_to={attr(relative)}>{pose(at.xyz, euler(at.rotation))}</pose>",
-            f"  <parent>{escape(parent)}</parent>",
-            f"  <child>{escape(joint.child)}</child>",
-        ]
-        if kind != "fixed":
-            lines += ["  <axis>", f"    <xyz>{numbers(joint.axis)}</xyz>", "    <limit>"]
-            lines += [f"      {line}" for line in limits(joint)]
-            lines += ["    </limit>", "    <dynamics>"]
+        element = Element(
+            "joint",
+            attributes=[("name", joint.name), ("type", kind)],
+            children=[
+                Element("pose", pose(at.xyz, euler(at.rotation)), [("relative_to", relative)]),
+                Element("parent", parent),
+                Element("child", joint.child),
+            ],
+        )
+        if joint.name in self.analysis.gazebo_lumping.revolute:
+            element.attributes[1] = ("type", "revolute")
+            zero = [Element("lower", "0"), Element("upper", "0")]
+            still = [Element("damping", "0"), Element("friction", "0")]
+            element.append(
+                Element(
+                    "axis",
+                    children=[Element("limit", children=zero), Element("dynamics", children=still)],
+                )
+            )
+        elif kind != "fixed":
+            dynamics = []
             if joint.dynamics is not None:
-                lines.append(f"      <damping>{number(joint.dynamics.damping)}</damping>")
-                lines.append(f"      <friction>{number(joint.dynamics.friction)}</friction>")
-            lines += [
-                "      <spring_reference>0</spring_reference>",
-                "      <spring_stiffness>0</spring_stiffness>",
-                "    </dynamics>",
-                "  </axis>",
+                dynamics.append(Element("damping", number(joint.dynamics.damping)))
+                dynamics.append(Element("friction", number(joint.dynamics.friction)))
+            axis = [
+                Element("xyz", numbers(joint.axis)),
+                Element("limit", children=limits(joint)),
+                Element("dynamics", children=dynamics),
             ]
-        return [*lines, "</joint>"]
+            element.append(Element("axis", children=axis))
+        self.extensions.joint(element, joint.name)
+        return element
 
-    def _link(self, name: str, above: Joint | None, mass: Mass | None) -> list[str]:
-        lines = [f"<link name={attr(name)}>"]
+    def _link(self, name: str, above: Joint | None, mass: Mass | None) -> Element:
+        element = Element("link", attributes=[("name", name)])
         if above is not None:
-            lines.append(f"  <pose relative_to={attr(above.name)}>{_ZERO_POSE}</pose>")
+            element.append(Element("pose", attributes=[("relative_to", above.name)]))
         if mass is not None:
             if not all(map(math.isfinite, mass.frame.xyz)):
                 # ODE's sum of parts weighing 0 kg together divides by 0
@@ -235,11 +265,21 @@ class _Model:
                     target="sdf",
                     subject=name,
                 )
-            lines += [f"  {line}" for line in inertial(mass)]
-        for kind, shapes in (("collision", self.collisions[name]), ("visual", self.visuals[name])):
-            for count, item in enumerate(shapes):
-                lines += [f"  {line}" for line in shape(kind, name, count, item)]
-        return [*lines, "</link>"]
+            element.append(inertial(mass))
+        for count, item in enumerate(self.collisions[name]):
+            collision = element.append(shape("collision", name, count, item))
+            self.extensions.collision(collision, name)
+        for count, item in enumerate(self.visuals[name]):
+            visual = element.append(shape("visual", name, count, item))
+            self.extensions.visual(visual, name)
+            if item.material is not None:
+                material = visual.find("material") or visual.append(Element("material"))
+                if material.find("diffuse") is None and material.find("ambient") is None:
+                    diffuse, ambient = colours(item.material)
+                    material.put("diffuse", diffuse)
+                    material.put("ambient", ambient)
+        self.extensions.link(element, name)
+        return element
 
 
 def _materials(robot: Robot) -> Mapping[int, Material | None]:

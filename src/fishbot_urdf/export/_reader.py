@@ -1,0 +1,281 @@
+"""The document sdformat's URDF converter builds, and what sdformat's reader makes of it
+when `ign sdf -p` prints it: attributes and elements it knows kept in their order, those
+it requires and does not find added with their default text, unknown ones copied after
+them, comments dropped (from SDFormat 1.9's description, sdf_1.9.json)."""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import struct
+from collections.abc import Iterator, Mapping
+from functools import cache
+from importlib import resources
+from typing import Any, Protocol
+from xml.sax.saxutils import escape
+
+from ..errors import ConversionError
+
+__all__ = ["Element", "Node", "copy", "printed", "read", "single", "stod"]
+
+
+class Element:
+    """An element of the converter's document: a tag, attributes in order, a text (None
+    for none) and child elements. The converter edits its document as it goes (settings
+    replace earlier ones, blobs are moved and re-posed), so this one can be edited."""
+
+    __slots__ = ("attributes", "children", "tag", "text")
+
+    def __init__(
+        self,
+        tag: str,
+        text: str | None = None,
+        attributes: list[tuple[str, str]] | None = None,
+        children: list[Element] | None = None,
+    ) -> None:
+        self.tag = tag
+        self.text = text
+        self.attributes = attributes or []
+        self.children = children or []
+
+    def get(self, name: str) -> str | None:
+        return next((value for key, value in self.attributes if key == name), None)
+
+    def find(self, tag: str) -> Element | None:
+        """The first child named ``tag``."""
+        return next((child for child in self.children if child.tag == tag), None)
+
+    def append(self, child: Element) -> Element:
+        self.children.append(child)
+        return child
+
+    def remove(self, child: Element) -> None:
+        self.children = [c for c in self.children if c is not child]
+
+    def put(self, tag: str, text: str) -> Element:
+        """A ``<tag>text</tag>`` appended in place of the first one there was (the
+        converter's AddKeyValue)."""
+        old = self.find(tag)
+        if old is not None:
+            self.remove(old)
+        return self.append(Element(tag, text))
+
+    def clone(self) -> Element:
+        return Element(
+            self.tag, self.text, list(self.attributes), [c.clone() for c in self.children]
+        )
+
+
+class Node(Protocol):
+    """What is read of an element of the robot's text (an lxml element)."""
+
+    tag: object
+    text: str | None
+    attrib: Mapping[Any, Any]
+    nsmap: Mapping[str | None, str]
+
+    def __iter__(self) -> Iterator[Node]: ...
+
+
+def copy(node: Node) -> Element:
+    """An element of the robot's text as the converter's XML parser holds it: comments
+    dropped, a text kept only when it is not all white space and comes before any child."""
+    children = [copy(child) for child in node if isinstance(child.tag, str)]
+    text = node.text if node.text is not None and node.text.strip() else None
+    prefixes = {uri: prefix for prefix, uri in node.nsmap.items() if prefix}
+    attributes = [(_written(str(k), prefixes), str(v)) for k, v in node.attrib.items()]
+    return Element(_written(str(node.tag), prefixes), text, attributes, children)
+
+
+def _written(name: str, prefixes: dict[str, str]) -> str:
+    """A name as written (``xacro:q``), not as the namespace-aware reader holds it."""
+    if not name.startswith("{"):
+        return name
+    uri, local = name[1:].split("}", 1)
+    return f"{prefixes[uri]}:{local}" if uri in prefixes else local
+
+
+def _attr(value: str) -> str:
+    """An attribute's value in single quotes, as sdformat writes one."""
+    return "'" + escape(value, {"'": "&apos;"}) + "'"
+
+
+_Description = dict[str, Any]
+
+
+@cache
+def _files() -> dict[str, _Description]:
+    text = resources.files(__package__).joinpath("sdf_1.9.json").read_text(encoding="utf-8")
+    files: dict[str, _Description] = json.loads(text)
+    return files
+
+
+def _children(description: _Description) -> list[_Description]:
+    """The element descriptions below ``description``, includes resolved."""
+    found = []
+    for child in description.get("children", ()):
+        if "include" in child:
+            included = _files().get(child["include"])
+            if included is not None:
+                found.append({**included, "required": child["required"]})
+        else:
+            found.append(child)
+    return found
+
+
+def read(element: Element, description: _Description | None = None) -> Element:
+    """``element`` as sdformat's reader keeps it (``description`` its element's; the
+    model's when not given)."""
+    description = description or _files()["model.sdf"]
+    known = {d["name"]: d for d in reversed(_children(description))}
+    attributes = []
+    for name, required, default in description.get("attributes", ()):
+        value = element.get(name)
+        if value is not None or required == "1":
+            attributes.append((name, default if value is None else value.strip()))
+    text = None
+    if "default" in description:
+        if element.text is None:
+            text = _reprinted(description)
+        else:
+            text = element.text.strip()
+            _check(description, text)
+    if description.get("copy"):
+        return Element(element.tag, text, attributes, [_copied(c) for c in element.children])
+    children = [read(c, known[c.tag]) for c in element.children if c.tag in known]
+    present = {c.tag for c in children}
+    children += [
+        _default(d)
+        for d in _children(description)
+        if d["required"] == "1" and d["name"] not in present
+    ]
+    children += [_copied(c) for c in element.children if c.tag not in known]
+    return Element(element.tag, text, attributes, children)
+
+
+def _copied(element: Element) -> Element:
+    """An element the reader copies as it is (unknown, or in a plugin), but for its
+    attributes' values, which it trims."""
+    attributes = [(name, value.strip()) for name, value in element.attributes]
+    return Element(element.tag, element.text, attributes, [_copied(c) for c in element.children])
+
+
+_STOD = re.compile(
+    r"\s*[+-]?(?:0[xX](?:[0-9a-fA-F]+\.?[0-9a-fA-F]*|\.[0-9a-fA-F]+)(?:[pP][+-]?\d+)?"
+    r"|(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)?|nan(?:\([0-9A-Za-z_]*\))?)",
+    re.IGNORECASE,
+)
+
+
+def stod(text: str) -> float | None:
+    """``text`` as C++'s std::stod reads it: the longest number it starts with (None where
+    it throws)."""
+    found = _STOD.match(text)
+    if found is None:
+        return None
+    token = found.group().strip()
+    try:
+        if token.lower().lstrip("+-").startswith("0x"):
+            return float.fromhex(token)
+        value = float(re.sub(r"\(.*\)", "", token))
+    except (ValueError, OverflowError):
+        return None
+    return value if math.isfinite(value) or token[-1].isalpha() or token[-1] == ")" else None
+
+
+_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
+_SIZES = {"vector3": 3, "vector2d": 2, "color": 3}
+
+
+def _check(description: _Description, text: str) -> None:
+    """Refuse a value the reader refuses for its element's type: a bool that is none of
+    true, false, 1, 0; a number that does not start as one (as std::stod reads it; a whole
+    number, with a digit), or is out of the element's bounds; a vector of fewer numbers than
+    it has, a pose of other than 6, a colour with a number beyond 0 to 1.
+
+    Raises:
+        ConversionError: The reader refuses ``text``.
+    """
+    kind, name = description["type"], description["name"]
+    why = None
+    if kind == "bool" and text.lower() not in ("true", "false", "1", "0"):
+        why = "is no bool"
+    elif kind in ("double", "float", "int", "unsigned int"):
+        whole = kind.endswith("int")
+        value = stod(text) if not whole or re.match(r"\s*[+-]?\d", text) else None
+        if value is None:
+            why = "is no number"
+        elif "min" in description and value < float(description["min"]):
+            why = f"is less than {description['min']}, its least"
+        elif "max" in description and value > float(description["max"]):
+            why = f"is more than {description['max']}, its most"
+    elif kind in _SIZES:
+        tokens = text.split()[: _SIZES[kind]]
+        if len(tokens) < _SIZES[kind] or not all(_NUMBER.fullmatch(t) for t in tokens):
+            why = f"is not {_SIZES[kind]} numbers"
+        elif kind == "color" and not all(0 <= float(t) <= 1 for t in text.split()[:4]):
+            why = "is not a colour (each of its numbers from 0 to 1)"
+    elif kind == "pose":
+        tokens = text.split()
+        if len(tokens) != 6 or not all(_NUMBER.fullmatch(t) for t in tokens):
+            why = "is not 6 numbers"
+    if why is not None:
+        raise ConversionError(
+            f"<{name}> {text!r} {why}: sdformat's reader refuses it", target="sdf"
+        )
+
+
+def _reprinted(description: _Description) -> str:
+    """The text the reader prints for a typed element it finds empty: its default value, as
+    its type prints it (a number with 17 significant digits, a bool as 1 or 0).
+
+    Raises:
+        ConversionError: The element is required (the reader refuses it empty).
+    """
+    kind, default = description["type"], description["default"]
+    if description["required"] == "1":
+        raise ConversionError(
+            f"<{description['name']}> is empty, and sdformat's reader refuses a required "
+            "element without a value",
+            target="sdf",
+        )
+    if kind in ("double", "vector3", "vector2d"):
+        return " ".join(f"{float(v):.17g}" for v in default.split())
+    if kind in ("float", "color"):
+        return " ".join(f"{single(float(v)):.9g}" for v in default.split())
+    if kind in ("int", "unsigned int"):
+        return str(int(default))
+    if kind == "bool":
+        return "1" if default.lower() in ("true", "1") else "0"
+    return str(default)
+
+
+def single(value: float) -> float:
+    """``value`` as a C float holds it (beyond its range, an infinity)."""
+    try:
+        held: float = struct.unpack("f", struct.pack("f", value))[0]
+    except OverflowError:
+        return math.copysign(math.inf, value)
+    return held
+
+
+def _default(description: _Description) -> Element:
+    """The element the reader adds where a required one is missing."""
+    attributes = [(n, d) for n, r, d in description.get("attributes", ()) if r == "1"]
+    children = [_default(d) for d in _children(description) if d["required"] == "1"]
+    return Element(description["name"], description.get("default"), attributes, children)
+
+
+def printed(element: Element, indent: str = "") -> list[str]:
+    """The lines sdformat prints for ``element``, attributes in single quotes. (It escapes
+    nothing, so that a ``&`` in a text makes what it prints no XML; here it is escaped.)"""
+    head = indent + "<" + element.tag + "".join(f" {k}={_attr(v)}" for k, v in element.attributes)
+    if element.children:
+        lines = [head + ">"]
+        for child in element.children:
+            lines += printed(child, indent + "  ")
+        return [*lines, f"{indent}</{element.tag}>"]
+    if element.text is not None:
+        return [f"{head}>{escape(element.text)}</{element.tag}>"]
+    return [head + "/>"]
