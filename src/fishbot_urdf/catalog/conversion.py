@@ -1,0 +1,111 @@
+"""The rules on what sdformat's URDF converter loses or moves before Gazebo simulates a robot
+(Gazebo Classic and the new Gazebo both read a URDF through it, as `ign sdf -p` does).
+
+Data only: the checks that report them are in `fishbot_urdf.rules`.
+"""
+
+from __future__ import annotations
+
+from ..diagnostics import Severity
+from ._rule import Consumer, Family, Rule
+
+E, W = Severity.ERROR, Severity.WARNING
+_MASS = (
+    '\n    <inertial><mass value="{}"/>'
+    '<inertia ixx="{}" iyy="{}" izz="{}" ixy="0" ixz="0" iyz="0"/>'
+)
+_HEAVY = _MASS.format(1, *["0.01"] * 3) + "</inertial>"
+_LIGHT = _MASS.format(0.1, *["1e-4"] * 3) + "</inertial>"
+_ARM = f"""\
+<robot name="fishbot">
+  <link name="base_link">{_HEAVY}</link>
+  <link name="arm_mount"{{mount}}
+  <joint name="mount_joint" type="fixed"><origin xyz="0 0 0.1"/>
+    <parent link="base_link"/><child link="arm_mount"/></joint>
+  <link name="arm">{_LIGHT}</link>
+  <joint name="arm_joint" type="continuous"><axis xyz="0 0 1"/>
+    <parent link="arm_mount"/><child link="arm"/></joint>
+</robot>
+"""
+_CAMERA = f"""\
+<robot name="fishbot">
+  <link name="base_link">{_HEAVY}</link>
+  <link name="camera_link">{_LIGHT}</link>
+  <joint name="camera_joint" type="fixed"><origin xyz="0.1 0 0.05"/>
+    <parent link="base_link"/><child link="camera_link"/></joint>
+  {{blocks}}
+</robot>
+"""
+_KEEP = '<gazebo reference="{}"><preserveFixedJoint>true</preserveFixedJoint></gazebo>'
+
+_SENSOR = """<gazebo reference="camera_link"><sensor name="camera" type="camera">
+    <camera><horizontal_fov>1.39</horizontal_fov></camera></sensor></gazebo>"""
+_P3D = """<gazebo><plugin name="ground_truth" filename="libgazebo_ros_p3d.so">
+    <body_name>{body}</body_name><frame_name>world</frame_name></plugin></gazebo>"""
+
+GAZEBO_DROPPED_LINK = Rule(
+    "gazebo-dropped-link",
+    E,
+    Family.GAZEBO,
+    summary="Gazebo leaves a link out of the robot, with links below it, for lack of mass.",
+    explanation="sdformat's URDF converter, through which Gazebo reads a URDF, writes no link "
+    "whose mass, with the masses of the links fixed below it, is 0, and goes no further down "
+    "the tree from it: every link below is lost too, with no message but in "
+    "`~/.sdformat/sdformat.log` (it exits 0, and `ign sdf -k` says the file is valid). Below a "
+    "massless link on a fixed joint, such as a mount frame, that loses moving links that have "
+    "mass of their own, which no mass rule sees. A moving link whose own body has no mass is "
+    "`missing-inertial`'s or `massless-link`'s, which name the links lost below it; this rule "
+    "reports the losses they do not: give the massless link, or one fixed to it, a mass.",
+    bad=_ARM.format(mount="/>"),
+    good=_ARM.format(mount=f">{_LIGHT}</link>"),
+    consumers=(Consumer.GAZEBO,),
+)
+GAZEBO_LUMPING_FLAG = Rule(
+    "gazebo-lumping-flag",
+    W,
+    Family.GAZEBO,
+    summary="<preserveFixedJoint> or <disableFixedJointLumping> is in a <gazebo reference> that "
+    "names no fixed joint, where it does nothing.",
+    explanation="sdformat's converter merges the links of each fixed joint into one (lumping) "
+    "unless the joint's own `<gazebo reference>` holds `<preserveFixedJoint>` (keep the joint) "
+    "or `<disableFixedJointLumping>` (write it as a revolute joint held at 0). It reads these "
+    "switches on a fixed joint's name only: on a link, or on a moving joint, they are passed "
+    "over without a word and the link is lumped all the same. Write the switch in a block that "
+    "names the fixed joint.",
+    bad=_CAMERA.format(blocks=_KEEP.format("camera_link")),
+    good=_CAMERA.format(blocks=_KEEP.format("camera_joint")),
+    consumers=(Consumer.GAZEBO,),
+)
+GAZEBO_LUMPED_LINK = Rule(
+    "gazebo-lumped-link",
+    W,
+    Family.GAZEBO,
+    summary="A <gazebo reference> names a link Gazebo lumps into another: its sensors, plugins "
+    "and link settings move to that link.",
+    explanation="The converter merges a link held by a fixed joint into the link above it, and "
+    "hands that link the merged one's `<gazebo>` blocks: a sensor is re-posed in the new "
+    "link's frame and named under it (so its Gazebo topic and scoped name change), a plugin "
+    "runs in it, and link settings such as `<gravity>`, `<selfCollide>` or `<dampingFactor>` "
+    "then apply to the whole merged link. Colours and friction stay with the merged link's own "
+    "shapes and are not reported. Keep the link with `<preserveFixedJoint>` on its joint (the "
+    "link then needs a mass), or write the block for the link it lands in.",
+    bad=_CAMERA.format(blocks=_SENSOR),
+    good=_CAMERA.format(blocks=_KEEP.format("camera_joint") + "\n  " + _SENSOR),
+    consumers=(Consumer.GAZEBO,),
+)
+GAZEBO_PLUGIN_LINK = Rule(
+    "gazebo-plugin-link",
+    E,
+    Family.GAZEBO,
+    summary="A Gazebo plugin names a link the converter lumps into another and does not "
+    "rename for it.",
+    explanation="After lumping, Gazebo's model has no link of the merged link's name. The "
+    "converter renames it only in `<bodyName>` and `<frameName>` of a `<plugin>` written "
+    "directly in a `<gazebo>` block (ROS 1's spelling); `<body_name>`, `<link_name>`, a p3d "
+    "plugin's `<frame_name>` and any name in a sensor's plugin keep the old name, and the "
+    "plugin finds no such link and does nothing. Name the link it lands in, or keep the link "
+    "with `<preserveFixedJoint>` on its joint.",
+    bad=_CAMERA.format(blocks=_P3D.format(body="camera_link")),
+    good=_CAMERA.format(blocks=_P3D.format(body="base_link")),
+    consumers=(Consumer.GAZEBO,),
+)

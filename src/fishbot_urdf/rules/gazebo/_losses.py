@@ -1,0 +1,238 @@
+"""What sdformat's URDF converter loses or moves before Gazebo sees the robot: links left out
+for lack of mass, the blocks and plugin names of lumped links, switches it passes over."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+
+from lxml import etree
+
+from ...analysis import Analysis, Body
+from ...analysis.gazebo import Block, Lumping, place, text
+from ...catalog.conversion import (
+    GAZEBO_DROPPED_LINK,
+    GAZEBO_LUMPED_LINK,
+    GAZEBO_LUMPING_FLAG,
+    GAZEBO_PLUGIN_LINK,
+)
+from ...diagnostics import Diagnostic, Kind, Subject
+from ...errors import FishbotUrdfError
+from ...model import JointType
+from ...spatial import Pose, euler_ypr, rpy_matrix
+
+__all__ = ["losses", "pose_text"]
+
+_SWITCHES = ("preserveFixedJoint", "disableFixedJointLumping")
+# Link settings of a <gazebo reference> block the converter writes into the link it names.
+_LINK_SETTINGS = ("gravity", "turnGravityOff", "selfCollide", "dampingFactor")
+# Plugin parameters a plugin looks up as a link of Gazebo's model; a p3d plugin looks up its
+# reference frame too. Others (a camera's frame_name) name a frame for ROS's tf, which keeps
+# every link.
+_LINK_NAMES = frozenset({"bodyName", "body_name", "linkName", "link_name"})
+_P3D_NAMES = frozenset({"frameName", "frame_name"})
+# The converter renames these in a <plugin> written directly in a <gazebo> block
+# (ReduceSDFExtensionPluginFrameReplace).
+_RENAMED = frozenset({"bodyName", "frameName"})
+_MASSLESS = 1e-15  # the mass rules' (`fishbot_urdf.rules.physics`) zero
+
+
+def losses(analysis: Analysis, *, select: frozenset[str]) -> Iterator[Diagnostic]:
+    """Findings about what the converter loses or moves, of the rules in ``select``."""
+    try:
+        lumping = analysis.gazebo_lumping
+    except FishbotUrdfError:  # no single root: the structure rules' finding
+        return
+    if GAZEBO_DROPPED_LINK.id in select:
+        yield from _dropped(analysis, lumping)
+    if GAZEBO_LUMPING_FLAG.id in select:
+        yield from _switches(analysis, lumping)
+    for block in analysis.gazebo_blocks:
+        if block.element.tag != "gazebo":
+            continue
+        if GAZEBO_LUMPED_LINK.id in select:
+            yield from _lumped_block(analysis, lumping, block)
+        if GAZEBO_PLUGIN_LINK.id in select:
+            yield from _plugin_links(analysis, lumping, block)
+
+
+def pose_text(pose: Pose) -> str:
+    """``xyz X Y Z rpy R P Y`` (metres, radians), as short as the numbers allow."""
+    rpy = euler_ypr([list(row) for row in pose.rotation])
+    return f"xyz {_numbers(pose.translation)} rpy {_numbers(rpy)}"
+
+
+def _numbers(values: tuple[float, float, float]) -> str:
+    return " ".join(f"{round(v, 6) + 0.0:g}" for v in values)
+
+
+def _names(names: tuple[str, ...] | list[str]) -> str:
+    shown = ", ".join(repr(n) for n in names[:8])
+    return shown + (f" and {len(names) - 8} more" if len(names) > 8 else "")
+
+
+# -- links left out ------------------------------------------------------------------------
+
+
+def _dropped(analysis: Analysis, lumping: Lumping) -> Iterator[Diagnostic]:
+    bodies = {body.base.name: body for body in analysis.bodies}
+    root = analysis.root
+    for name, gone in lumping.dropped.items():
+        body = bodies.get(name)
+        if body is not None and _mass_rules_report(analysis, body):
+            continue  # missing-inertial's or massless-link's, which name the links lost
+        link = analysis.links.get(name)
+        landing = lumping.landings[name]
+        below = [n for n in gone if n != name]
+        if landing.link != name:
+            joint = landing.chain[0]
+            message = (
+                f"link {name!r} is fixed to {joint.parent!r} (joint {joint.name!r}) and has no "
+                "mass, nor has anything fixed below it: sdformat's converter goes no further "
+                f"down the tree, so Gazebo leaves out {_names(below)} below it"
+            )
+            hint = f"give {name!r} a mass, or hang what moves below it on {landing.link!r}"
+        else:
+            fixed = len([n for n, there in lumping.landings.items() if there.link == name]) > 1
+            what = "nor has anything fixed to it" if fixed else "and nothing is fixed to it"
+            whole = " (the whole robot: the model is empty)" if name == root else ""
+            lost = f", and with it {_names(below)}" if below else ""
+            message = f"link {name!r} has no mass, {what}: Gazebo leaves it out{lost}{whole}"
+            hint = f"give {name!r}, or a link fixed to it, a mass"
+        yield GAZEBO_DROPPED_LINK.report(
+            message,
+            link.source if link is not None else None,
+            path=analysis.path,
+            subject=Subject(Kind.LINK, name),
+            hint=hint,
+        )
+
+
+def _mass_rules_report(analysis: Analysis, body: Body) -> bool:
+    """Whether `missing-inertial` or `massless-link` reports ``body`` (links welded by fixed
+    joints) for having no mass, as `fishbot_urdf.rules.physics` judges it."""
+    having = [link.inertial for link, _ in body.members if link.inertial is not None]
+    collides = any(link.collisions for link, _ in body.members)
+    if body.moved_by is None:  # the robot's base: only missing-inertial speaks of it
+        return not having and collides and bool(analysis.robot.joints)
+    if not having:
+        return collides
+    masses = [inertial.mass for inertial in having]
+    if any(m < 0 or not math.isfinite(m) for m in masses):
+        return False  # a negative or unreadable mass: another rule's
+    return sum(masses) <= _MASSLESS
+
+
+# -- switches the converter passes over ----------------------------------------------------
+
+
+def _switches(analysis: Analysis, lumping: Lumping) -> Iterator[Diagnostic]:
+    for name, block in lumping.ignored.items():
+        written = [tag for tag in _SWITCHES if block.element.find(tag) is not None]
+        switch = " and ".join(f"<{tag}>" for tag in written)
+        joint = analysis.joints.get(name)
+        if joint is not None:
+            message = (
+                f"<gazebo reference={name!r}>: {switch} does nothing on a "
+                f"{joint.type.value} joint: the converter lumps only fixed joints"
+            )
+            hint = "leave it out"
+        elif name in analysis.links:
+            up = analysis.parent_joint.get(name)
+            message = (
+                f"<gazebo reference={name!r}>: {switch} does nothing on a link: the converter "
+                "reads it on a fixed joint's name only"
+            )
+            hint = (
+                f"write it in <gazebo reference={up.name!r}>"
+                if up is not None and up.type is JointType.FIXED
+                else "write it in the block of the fixed joint to keep"
+            )
+        else:
+            continue  # a name of nothing: unknown-reference's
+        yield GAZEBO_LUMPING_FLAG.report(
+            message,
+            block.where,
+            path=analysis.path,
+            subject=Subject(Kind.JOINT if joint is not None else Kind.LINK, name),
+            hint=hint,
+        )
+
+
+# -- blocks and names of lumped links ------------------------------------------------------
+
+
+def _lumped_block(analysis: Analysis, lumping: Lumping, block: Block) -> Iterator[Diagnostic]:
+    name = block.reference
+    if name is None or name not in analysis.links or not lumping.lumped(name):
+        return
+    landing = lumping.landings[name]
+    into = landing.link
+    moved: list[str] = []
+    for sensor in block.element.findall("sensor"):
+        label = f"sensor {sensor.get('name') or ''!r} ({sensor.get('type') or ''})"
+        pose = sensor.find("pose")
+        if pose is not None and pose.get("relative_to"):
+            moved.append(f"{label}, its pose left as written")
+            continue
+        at = landing.pose.then(_pose(text(sensor, "pose")))
+        moved.append(f"{label} at {pose_text(at)}")
+    for plugin in block.element.findall("plugin"):
+        moved.append(f"plugin {plugin.get('name') or ''!r} ({plugin.get('filename') or ''})")
+    settings = [tag for tag in _LINK_SETTINGS if block.element.find(tag) is not None]
+    if settings:
+        listed = ", ".join(f"<{tag}>" for tag in settings)
+        moved.append(f"{listed}, which then apply to all of {into!r}")
+    if not moved:
+        return  # colours and friction stay with the lumped link's own shapes
+    joint = landing.chain[0]
+    yield GAZEBO_LUMPED_LINK.report(
+        f"link {name!r} is lumped into {into!r} (at {pose_text(landing.pose)}): Gazebo puts "
+        f"its block's {'; '.join(moved)} in link {into!r}",
+        block.where,
+        path=analysis.path,
+        subject=Subject(Kind.LINK, name),
+        hint=f"to keep link {name!r}, write <preserveFixedJoint>true</preserveFixedJoint> "
+        f"in <gazebo reference={joint.name!r}> and give the link a mass",
+    )
+
+
+def _plugin_links(analysis: Analysis, lumping: Lumping, block: Block) -> Iterator[Diagnostic]:
+    for plugin in block.element.iter("plugin"):
+        filename = plugin.get("filename") or ""
+        direct = plugin.getparent() is block.element
+        for child in plugin.iter(etree.Element):
+            tag = child.tag
+            if not isinstance(tag, str) or not (
+                tag in _LINK_NAMES or (tag in _P3D_NAMES and "p3d" in filename)
+            ):
+                continue
+            name = (child.text or "").strip()
+            if name not in analysis.links or not lumping.lumped(name):
+                continue
+            if direct and tag in _RENAMED:
+                continue  # the converter renames it, and moves the plugin's offsets with it
+            landing = lumping.landings[name]
+            yield GAZEBO_PLUGIN_LINK.report(
+                f"plugin {plugin.get('name') or ''!r} ({filename}): <{tag}> names link "
+                f"{name!r}, which the converter lumps into {landing.link!r} (at "
+                f"{pose_text(landing.pose)}) without renaming it here: Gazebo has no link "
+                f"{name!r}",
+                place(analysis.references, block, child),
+                path=analysis.path,
+                subject=Subject(Kind.LINK, name),
+                hint=f"name {landing.link!r}, or keep link {name!r} with <preserveFixedJoint> "
+                f"in <gazebo reference={landing.chain[0].name!r}>",
+            )
+
+
+def _pose(written: str | None) -> Pose:
+    """A sensor's ``<pose>`` (``x y z roll pitch yaw``), identity when absent or unread."""
+    try:
+        values = [float(v) for v in (written or "").split()]
+    except ValueError:
+        return Pose()
+    if len(values) != 6:
+        return Pose()
+    x, y, z, roll, pitch, yaw = values
+    return Pose(rpy_matrix((roll, pitch, yaw)), (x, y, z))
