@@ -39,7 +39,9 @@ _CAMERA = f"""\
 _KEEP = '<gazebo reference="{}"><preserveFixedJoint>true</preserveFixedJoint></gazebo>'
 
 _SENSOR = """<gazebo reference="camera_link"><sensor name="camera" type="camera">
-    <camera><horizontal_fov>1.39</horizontal_fov></camera></sensor></gazebo>"""
+    <camera><horizontal_fov>1.39</horizontal_fov></camera>
+    <plugin name="camera" filename="libgazebo_ros_camera.so">{frame}</plugin>
+  </sensor></gazebo>"""
 _P3D = """<gazebo><plugin name="ground_truth" filename="libgazebo_ros_p3d.so">
     <body_name>{body}</body_name><frame_name>world</frame_name></plugin></gazebo>"""
 
@@ -80,17 +82,18 @@ GAZEBO_LUMPED_LINK = Rule(
     "gazebo-lumped-link",
     W,
     Family.GAZEBO,
-    summary="A <gazebo reference> names a link Gazebo lumps into another: its sensors, plugins "
-    "and link settings move to that link.",
-    explanation="The converter merges a link held by a fixed joint into the link above it, and "
-    "hands that link the merged one's `<gazebo>` blocks: a sensor is re-posed in the new "
-    "link's frame and named under it (so its Gazebo topic and scoped name change), a plugin "
-    "runs in it, and link settings such as `<gravity>`, `<selfCollide>` or `<dampingFactor>` "
-    "then apply to the whole merged link. Colours and friction stay with the merged link's own "
-    "shapes and are not reported. Keep the link with `<preserveFixedJoint>` on its joint (the "
-    "link then needs a mass), or write the block for the link it lands in.",
-    bad=_CAMERA.format(blocks=_SENSOR),
-    good=_CAMERA.format(blocks=_KEEP.format("camera_joint") + "\n  " + _SENSOR),
+    summary="A <gazebo reference> names a link Gazebo lumps into another, and its sensor's "
+    "messages or its link settings go with that link.",
+    explanation="The converter merges a link held by a fixed joint into the link above it and "
+    "hands that link the merged one's `<gazebo>` blocks: a sensor moves into it, re-posed in "
+    "its frame, and link settings such as `<gravity>`, `<selfCollide>` or `<dampingFactor>` then "
+    "apply to the whole merged link. A ROS 2 gazebo_ros sensor plugin with no `<frame_name>` "
+    "stamps its messages with the sensor's link, so a scan or image is placed at the base, not "
+    "at the sensor; colours, friction and sensors whose plugin names its frame stay right and "
+    "are not reported. Write `<frame_name>` in the plugin, or keep the link with "
+    "`<preserveFixedJoint>` on its joint (it then needs a mass).",
+    bad=_CAMERA.format(blocks=_SENSOR.format(frame="")),
+    good=_CAMERA.format(blocks=_SENSOR.format(frame="<frame_name>camera_link</frame_name>")),
     consumers=(Consumer.GAZEBO,),
 )
 GAZEBO_PLUGIN_LINK = Rule(

@@ -4,9 +4,8 @@ for lack of mass, the blocks and plugin names of lumped links, switches it passe
 from __future__ import annotations
 
 import math
+from collections import Counter
 from collections.abc import Iterator
-
-from lxml import etree
 
 from ...analysis import Analysis, Body
 from ...analysis.gazebo import Block, Lumping, place, text
@@ -18,7 +17,7 @@ from ...catalog.conversion import (
 )
 from ...diagnostics import Diagnostic, Kind, Subject
 from ...errors import FishbotUrdfError
-from ...model import JointType
+from ...model import Joint, JointType, Link
 from ...spatial import Pose, euler_ypr, rpy_matrix
 
 __all__ = ["losses", "pose_text"]
@@ -77,7 +76,11 @@ def _names(names: tuple[str, ...] | list[str]) -> str:
 def _dropped(analysis: Analysis, lumping: Lumping) -> Iterator[Diagnostic]:
     bodies = {body.base.name: body for body in analysis.bodies}
     root = analysis.root
+    held = Counter(landing.link for landing in lumping.landings.values())
+    links = analysis.links
     for name, gone in lumping.dropped.items():
+        if not any(_mass(links.get(n)) > 0 for n in gone):
+            continue  # frames without matter: they move nothing in Gazebo (nor in the others)
         body = bodies.get(name)
         if body is not None and _mass_rules_report(analysis, body):
             continue  # missing-inertial's or massless-link's, which name the links lost
@@ -85,7 +88,7 @@ def _dropped(analysis: Analysis, lumping: Lumping) -> Iterator[Diagnostic]:
         landing = lumping.landings[name]
         below = [n for n in gone if n != name]
         if landing.link != name:
-            joint = landing.chain[0]
+            joint = _lumping_joint(analysis, name)
             message = (
                 f"link {name!r} is fixed to {joint.parent!r} (joint {joint.name!r}) and has no "
                 "mass, nor has anything fixed below it: sdformat's converter goes no further "
@@ -93,7 +96,7 @@ def _dropped(analysis: Analysis, lumping: Lumping) -> Iterator[Diagnostic]:
             )
             hint = f"give {name!r} a mass, or hang what moves below it on {landing.link!r}"
         else:
-            fixed = len([n for n, there in lumping.landings.items() if there.link == name]) > 1
+            fixed = held[name] > 1  # itself and the links lumped into it
             what = "nor has anything fixed to it" if fixed else "and nothing is fixed to it"
             whole = " (the whole robot: the model is empty)" if name == root else ""
             lost = f", and with it {_names(below)}" if below else ""
@@ -106,6 +109,10 @@ def _dropped(analysis: Analysis, lumping: Lumping) -> Iterator[Diagnostic]:
             subject=Subject(Kind.LINK, name),
             hint=hint,
         )
+
+
+def _mass(link: Link | None) -> float:
+    return link.inertial.mass if link is not None and link.inertial is not None else 0.0
 
 
 def _mass_rules_report(analysis: Analysis, body: Body) -> bool:
@@ -167,42 +174,60 @@ def _lumped_block(analysis: Analysis, lumping: Lumping, block: Block) -> Iterato
     if name is None or name not in analysis.links or not lumping.lumped(name):
         return
     landing = lumping.landings[name]
-    into = landing.link
-    moved: list[str] = []
+    into, joint = landing.link, _lumping_joint(analysis, name)
+    lumped = f"link {name!r} is lumped into {into!r} (at {pose_text(landing.pose)})"
+    keep = (
+        f"or keep link {name!r} with <preserveFixedJoint>true</preserveFixedJoint> in "
+        f"<gazebo reference={joint.name!r}> and give it a mass"
+    )
     for sensor in block.element.findall("sensor"):
+        # ROS 2's gazebo_ros plugins name their messages' frame by the sensor's link when
+        # they name none (gazebo_ros's SensorFrameID)
+        plugin = next(
+            (
+                p
+                for p in sensor.iter("plugin")
+                if (p.get("filename") or "").startswith("libgazebo_ros")
+                and p.find(".//frame_name") is None
+                and p.find(".//frameName") is None
+            ),
+            None,
+        )
+        if plugin is None:
+            continue  # its messages name their frame, or are not ROS's
         label = f"sensor {sensor.get('name') or ''!r} ({sensor.get('type') or ''})"
         pose = sensor.find("pose")
         if pose is not None and pose.get("relative_to"):
-            moved.append(f"{label}, its pose left as written")
-            continue
-        at = landing.pose.then(_pose(text(sensor, "pose")))
-        moved.append(f"{label} at {pose_text(at)}")
-    for plugin in block.element.findall("plugin"):
-        moved.append(f"plugin {plugin.get('name') or ''!r} ({plugin.get('filename') or ''})")
+            at = "with its pose as written"
+        else:
+            at = f"at {pose_text(landing.pose.then(_pose(text(sensor, 'pose'))))}"
+        yield GAZEBO_LUMPED_LINK.report(
+            f"{lumped}: Gazebo puts {label} in link {into!r} {at}, and its plugin "
+            f"{plugin.get('name') or ''!r} ({plugin.get('filename')}), which names no "
+            f"<frame_name>, stamps its messages with frame {into!r}",
+            block.where,
+            path=analysis.path,
+            subject=Subject(Kind.LINK, name),
+            hint=f"write <frame_name>{name}</frame_name> in the plugin, " + keep,
+        )
     settings = [tag for tag in _LINK_SETTINGS if block.element.find(tag) is not None]
     if settings:
         listed = ", ".join(f"<{tag}>" for tag in settings)
-        moved.append(f"{listed}, which then apply to all of {into!r}")
-    if not moved:
-        return  # colours and friction stay with the lumped link's own shapes
-    joint = landing.chain[0]
-    yield GAZEBO_LUMPED_LINK.report(
-        f"link {name!r} is lumped into {into!r} (at {pose_text(landing.pose)}): Gazebo puts "
-        f"its block's {'; '.join(moved)} in link {into!r}",
-        block.where,
-        path=analysis.path,
-        subject=Subject(Kind.LINK, name),
-        hint=f"to keep link {name!r}, write <preserveFixedJoint>true</preserveFixedJoint> "
-        f"in <gazebo reference={joint.name!r}> and give the link a mass",
-    )
+        yield GAZEBO_LUMPED_LINK.report(
+            f"{lumped}: Gazebo applies the block's {listed} to all of link {into!r}",
+            block.where,
+            path=analysis.path,
+            subject=Subject(Kind.LINK, name),
+            hint=f"write them in <gazebo reference={into!r}> if they are meant for it, " + keep,
+        )
 
 
 def _plugin_links(analysis: Analysis, lumping: Lumping, block: Block) -> Iterator[Diagnostic]:
     for plugin in block.element.iter("plugin"):
         filename = plugin.get("filename") or ""
         direct = plugin.getparent() is block.element
-        for child in plugin.iter(etree.Element):
-            tag = child.tag
+        for child in plugin.iter():
+            tag = child.tag  # (a comment's is no str)
             if not isinstance(tag, str) or not (
                 tag in _LINK_NAMES or (tag in _P3D_NAMES and "p3d" in filename)
             ):
@@ -222,8 +247,13 @@ def _plugin_links(analysis: Analysis, lumping: Lumping, block: Block) -> Iterato
                 path=analysis.path,
                 subject=Subject(Kind.LINK, name),
                 hint=f"name {landing.link!r}, or keep link {name!r} with <preserveFixedJoint> "
-                f"in <gazebo reference={landing.chain[0].name!r}>",
+                f"in <gazebo reference={_lumping_joint(analysis, name).name!r}>",
             )
+
+
+def _lumping_joint(analysis: Analysis, link: str) -> Joint:
+    """The fixed joint that lumps ``link``, a link the converter lumps."""
+    return analysis.parent_joint[link]
 
 
 def _pose(written: str | None) -> Pose:
