@@ -197,3 +197,44 @@ def test_a_body_name_the_converter_renames_is_not_reported(tmp_path: Path) -> No
     assert plugin is not None
     assert plugin.findtext("bodyName") == "base_link"
     assert _numbers(plugin.findtext("xyzOffset")) == [0, 0, 0.2]
+
+
+_GRAVITY = """\
+<robot name="fishbot">
+  <link name="base_link">
+    <inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <link name="arm">
+    <inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <joint name="arm_joint" type="revolute"><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/>
+    <parent link="base_link"/><child link="arm"/></joint>
+  <link name="balloon">
+    <inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <joint name="balloon_joint" type="fixed"><origin xyz="0 0 0.3"/>
+    <parent link="arm"/><child link="balloon"/></joint>
+  <gazebo reference="balloon"><gravity>false</gravity></gazebo>
+  <gazebo reference="arm_joint"><disableFixedJointLumping>true</disableFixedJointLumping></gazebo>
+</robot>
+"""
+
+
+def test_a_lumped_links_gravity_is_the_whole_links(tmp_path: Path) -> None:
+    path = _write(tmp_path, _GRAVITY)
+    assert _check(path) == (
+        0,
+        f"{path}:16:11: warning: link 'balloon' is lumped into 'arm' (at xyz 0 0 0.3 rpy 0 0 0): "
+        "Gazebo applies the block's <gravity> to all of link 'arm' (write it in <gazebo "
+        "reference='arm'> if meant for that link, or keep link 'balloon' with "
+        "<preserveFixedJoint>true</preserveFixedJoint> in <gazebo reference='balloon_joint'> and "
+        "give it a mass) [gazebo-lumped-link]\n"
+        f"{path}:17:11: warning: <gazebo reference='arm_joint'>: <disableFixedJointLumping> does "
+        "nothing on a revolute joint: the converter lumps only fixed joints (leave it out) "
+        "[gazebo-lumping-flag]\n",
+    )
+    model = _sdf(tmp_path, _GRAVITY)
+    assert _links(model) == ["base_link", "arm"]
+    assert model.findtext("link[@name='arm']/gravity") == "false"  # the arm's, not the balloon's
+    assert [j.get("type") for j in model.findall("joint")] == ["revolute"]

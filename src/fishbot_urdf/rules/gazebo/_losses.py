@@ -218,7 +218,8 @@ def _lumped_block(analysis: Analysis, lumping: Lumping, block: Block) -> Iterato
             block.where,
             path=analysis.path,
             subject=Subject(Kind.LINK, name),
-            hint=f"write them in <gazebo reference={into!r}> if they are meant for it, " + keep,
+            hint=f"write {'them' if len(settings) > 1 else 'it'} in <gazebo reference={into!r}> "
+            "if meant for that link, " + keep,
         )
 
 
