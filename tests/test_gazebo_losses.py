@@ -17,6 +17,7 @@ from fishbot_urdf.catalog.conversion import (
     GAZEBO_DROPPED_LINK,
     GAZEBO_LUMPED_LINK,
     GAZEBO_LUMPING_FLAG,
+    GAZEBO_MODEL_PATH,
     GAZEBO_PLUGIN_LINK,
 )
 from fishbot_urdf.cli import cli
@@ -238,3 +239,76 @@ def test_a_lumped_links_gravity_is_the_whole_links(tmp_path: Path) -> None:
     assert _links(model) == ["base_link", "arm"]
     assert model.findtext("link[@name='arm']/gravity") == "false"  # the arm's, not the balloon's
     assert [j.get("type") for j in model.findall("joint")] == ["revolute"]
+
+
+# -- package:// meshes Gazebo looks for as model:// ----------------------------------------
+
+
+def _package(tmp_path: Path, folder: str, export: str = "") -> Path:
+    """A package fishbot_description in ``tmp_path/folder`` with the mesh the example names,
+    and the example robot in it."""
+    package = tmp_path / folder
+    (package / "meshes").mkdir(parents=True)
+    (package / "meshes" / "base_link.stl").write_text("solid box\nendsolid box\n")
+    (package / "package.xml").write_text(
+        f"<package><name>fishbot_description</name><export>{export}</export></package>\n"
+    )
+    return _write(package, GAZEBO_MODEL_PATH.bad)
+
+
+def test_a_package_mesh_is_a_model_uri_gazebo_looks_up(tmp_path: Path) -> None:
+    robot = _package(tmp_path, "fishbot_description")
+    env = {"GZ_SIM_RESOURCE_PATH": "", "IGN_GAZEBO_RESOURCE_PATH": "", "GAZEBO_MODEL_PATH": ""}
+    result = CliRunner().invoke(
+        cli, ["check", "--isolated", "--target", "gazebo", str(robot)], env=env
+    )
+    assert (result.exit_code, result.stderr) == (
+        0,
+        f"{robot}:4:23: warning: link 'base_link': mesh "
+        "'package://fishbot_description/meshes/base_link.stl' is "
+        "model://fishbot_description/meshes/base_link.stl to Gazebo, which looks for folder "
+        "'fishbot_description' on GZ_SIM_RESOURCE_PATH (Gazebo Classic: GAZEBO_MODEL_PATH), and "
+        f'{tmp_path} is on neither (add <gazebo_ros gazebo_model_path="${{prefix}}/.."/> to the '
+        f"<export> of {robot.parent / 'package.xml'}, or put {tmp_path} on the path) "
+        "[gazebo-model-path]\n",
+    )
+    # the folder above the package on Gazebo's path: found
+    env["GZ_SIM_RESOURCE_PATH"] = str(tmp_path)
+    result = CliRunner().invoke(
+        cli, ["check", "--isolated", "--target", "gazebo", str(robot)], env=env
+    )
+    assert (result.exit_code, result.stderr) == (0, "")
+    model = _sdf(tmp_path, GAZEBO_MODEL_PATH.bad)
+    assert model.findtext("link/visual/geometry/mesh/uri") == (
+        "model://fishbot_description/meshes/base_link.stl"
+    )
+    fixed = _sdf(tmp_path, GAZEBO_MODEL_PATH.good)
+    assert fixed.findtext("link/visual/geometry/mesh/uri") == "meshes/base_link.stl"
+
+
+def test_a_package_that_exports_its_model_path_is_found(tmp_path: Path) -> None:
+    robot = _package(tmp_path, "src", '<gazebo_ros gazebo_model_path="${prefix}/.."/>')
+    assert _check(robot) == (0, "")
+
+
+def test_a_package_in_a_folder_of_another_name_is_found_only_installed(tmp_path: Path) -> None:
+    robot = _package(tmp_path, "fishbot-description")
+    status, found = _check(robot)
+    assert status == 0
+    assert (
+        "; its folder is named 'fishbot-description', so Gazebo finds it only where it is "
+        "installed, as share/fishbot_description (add" in found
+    )
+    assert found.endswith(", and install the package) [gazebo-model-path]\n")
+
+
+def test_where_gazebo_looks_for_meshes_is_judged_only_for_gazebo(tmp_path: Path) -> None:
+    # a robot with no <gazebo> block is checked for ROS alone; `fishbot sdf` writes for Gazebo
+    robot = _package(tmp_path, "fishbot_description")
+    env = {"GZ_SIM_RESOURCE_PATH": "", "IGN_GAZEBO_RESOURCE_PATH": "", "GAZEBO_MODEL_PATH": ""}
+    checked = CliRunner().invoke(cli, ["check", "--isolated", "-q", str(robot)], env=env)
+    assert (checked.exit_code, checked.stderr) == (0, "")
+    converted = CliRunner().invoke(cli, ["sdf", str(robot)], env=env)
+    assert converted.exit_code == 0
+    assert converted.stderr.endswith("[gazebo-model-path]\n")
+    assert converted.stderr.count("\n") == 1

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 
 from .analysis import Analysis, analyse, of
 from .analysis.topology import Topology
-from .catalog import Rule
+from .catalog import Consumer, Rule
 from .catalog.reading import BAD_NUMBER, MISSING_ATTRIBUTE, ROBOT_NAME
 from .config import Config
 from .diagnostics import (
@@ -27,7 +27,7 @@ from .parsing import is_xacro_path, read
 from .rules import CHECKS, Settings
 from .rules.physics import GROUND_TOLERANCE
 from .suppress import apply_suppressions, suppressions
-from .targets import retarget, targets_of, urdfdom_refuses
+from .targets import consumers_of, retarget, targets_of, urdfdom_refuses
 from .validation import values
 from .validation._readable import finite, readable
 
@@ -212,7 +212,8 @@ def _rule_findings(
         if d.is_error and d.subject is not None and d.subject.kind in (Kind.LINK, Kind.JOINT):
             unread.setdefault(d.subject, []).append(d)
     mm = config.ground_tolerance
-    settings = Settings(packages, GROUND_TOLERANCE if mm is None else mm / 1000.0)
+    for_gazebo = Consumer.GAZEBO in consumers_of(targets_of(analysis.robot, config.targets))
+    settings = Settings(packages, GROUND_TOLERANCE if mm is None else mm / 1000.0, for_gazebo)
     # A check runs only when one of its rules is selected (--ignore meshes reads no mesh file).
     for check in CHECKS:
         if not _selected(check.reports, config):

@@ -112,3 +112,29 @@ GAZEBO_PLUGIN_LINK = Rule(
     good=_CAMERA.format(blocks=_P3D.format(body="base_link")),
     consumers=(Consumer.GAZEBO,),
 )
+_MESH = f"""\
+<robot name="fishbot">
+  <link name="base_link">{_HEAVY}
+    <visual><geometry><mesh filename="{{name}}"/></geometry></visual>
+  </link>
+</robot>
+"""
+GAZEBO_MODEL_PATH = Rule(
+    "gazebo-model-path",
+    W,
+    Family.GAZEBO,
+    summary="A `package://` mesh becomes `model://` for Gazebo, and nothing tells Gazebo "
+    "where that package is.",
+    explanation="sdformat's converter writes `package://PKG/meshes/x.stl` as "
+    "`model://PKG/meshes/x.stl`, which Gazebo looks for in a folder named PKG on its resource "
+    "path: `GZ_SIM_RESOURCE_PATH` (Fortress: `IGN_GAZEBO_RESOURCE_PATH`), or "
+    "`GAZEBO_MODEL_PATH` for Gazebo Classic. When the folder above the package is on none of "
+    "them and the package's package.xml exports no `gazebo_model_path` (which gazebo_ros puts "
+    "on `GAZEBO_MODEL_PATH`), the mesh is not found and the part is drawn and collides as "
+    'nothing. Add `<gazebo_ros gazebo_model_path="${prefix}/.."/>` to the package\'s '
+    "`<export>`, put the folder above it on the path, or name the mesh relative to the robot "
+    "file, which Gazebo reads beside the file it loads.",
+    bad=_MESH.format(name="package://fishbot_description/meshes/base_link.stl"),
+    good=_MESH.format(name="meshes/base_link.stl"),
+    consumers=(Consumer.GAZEBO,),
+)

@@ -49,10 +49,11 @@ def sdf(file: str, args: Sequence[str], output: str, package_items: Sequence[str
     stay), and package:// mesh names become model://. Robots with <gazebo> elements are
     not converted yet. ARGS are name:=value values for a xacro file's <xacro:arg>. Findings
     about the robot are printed as check prints them, and so is what the conversion loses
-    (the gazebo-dropped-link, gazebo-lumped-link, gazebo-lumping-flag and gazebo-plugin-link
-    rules, judged for Gazebo); the SDF is written all the same. Exit status: 0 written, 1
-    the robot has errors that leave its tree in doubt or cannot be converted (nothing is
-    written), 2 a file could not be read or written, or the command line is wrong.
+    (the gazebo-dropped-link, gazebo-lumped-link, gazebo-lumping-flag, gazebo-model-path and
+    gazebo-plugin-link rules, judged for Gazebo); the SDF is written all the same. Exit
+    status: 0 written, 1 the robot has errors that leave its tree in doubt or cannot be
+    converted (nothing is written), 2 a file could not be read or written, or the command
+    line is wrong.
 
     \b
     Examples:

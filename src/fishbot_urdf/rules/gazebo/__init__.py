@@ -17,10 +17,15 @@ from ._versions import ros_versions, simulators
 __all__ = ["REPORTS", "gazebo"]
 
 
-def gazebo(analysis: Analysis, select: frozenset[str] | None = None) -> Iterator[Diagnostic]:
+def gazebo(
+    analysis: Analysis, select: frozenset[str] | None = None, *, for_gazebo: bool = True
+) -> Iterator[Diagnostic]:
     """Every finding about the robot's Gazebo plugins and sensors, and about what Gazebo's
-    URDF converter loses (of the rules in ``select``, by id; None: all of them)."""
+    URDF converter loses (of the rules in ``select``, by id; None: all of them; where Gazebo
+    looks for meshes only ``for_gazebo``, when the robot is checked for Gazebo)."""
     chosen = frozenset(r.id for r in REPORTS) if select is None else select
+    if not for_gazebo:
+        chosen -= {conversion.GAZEBO_MODEL_PATH.id}
     if chosen & _LOSSES:
         yield from losses(analysis, select=chosen)
     found = analysis.gazebo_blocks

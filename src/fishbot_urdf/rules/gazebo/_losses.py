@@ -4,20 +4,24 @@ for lack of mass, the blocks and plugin names of lumped links, switches it passe
 from __future__ import annotations
 
 import math
+import os
 from collections import Counter
 from collections.abc import Iterator
 
 from ...analysis import Analysis, Body
 from ...analysis.gazebo import Block, Lumping, place, text
+from ...analysis.meshpaths import robot_meshes
 from ...catalog.conversion import (
     GAZEBO_DROPPED_LINK,
     GAZEBO_LUMPED_LINK,
     GAZEBO_LUMPING_FLAG,
+    GAZEBO_MODEL_PATH,
     GAZEBO_PLUGIN_LINK,
 )
 from ...diagnostics import Diagnostic, Kind, Subject
 from ...errors import FishbotUrdfError
 from ...model import Joint, JointType, Link
+from ...packages import gazebo_model_path
 from ...spatial import Pose, euler_ypr, rpy_matrix
 
 __all__ = ["losses", "pose_text"]
@@ -46,6 +50,8 @@ def losses(analysis: Analysis, *, select: frozenset[str]) -> Iterator[Diagnostic
         yield from _dropped(analysis, lumping)
     if GAZEBO_LUMPING_FLAG.id in select:
         yield from _switches(analysis, lumping)
+    if GAZEBO_MODEL_PATH.id in select:
+        yield from _model_paths(analysis)
     for block in analysis.gazebo_blocks:
         if block.element.tag != "gazebo":
             continue
@@ -163,6 +169,59 @@ def _switches(analysis: Analysis, lumping: Lumping) -> Iterator[Diagnostic]:
             path=analysis.path,
             subject=Subject(Kind.JOINT if joint is not None else Kind.LINK, name),
             hint=hint,
+        )
+
+
+# -- meshes Gazebo looks for on its resource path ------------------------------------------
+
+# Where Gazebo looks for model://: the new Gazebo, Fortress, and Gazebo Classic.
+_RESOURCE_PATHS = ("GZ_SIM_RESOURCE_PATH", "IGN_GAZEBO_RESOURCE_PATH", "GAZEBO_MODEL_PATH")
+
+
+def _model_paths(analysis: Analysis) -> Iterator[Diagnostic]:
+    paths = analysis.mesh_paths
+    environ = paths.packages.environ
+    env = os.environ if environ is None else environ
+    on_path = {
+        os.path.abspath(entry)
+        for variable in _RESOURCE_PATHS
+        for entry in env.get(variable, "").split(os.pathsep)
+        if entry
+    }
+    seen: set[str] = set()
+    for link, mesh, _ in robot_meshes(analysis.robot):
+        name = mesh.filename
+        if not name.startswith("package://") or name.startswith("package:///") or "$(" in name:
+            continue
+        package, _, rest = name[len("package://") :].partition("/")
+        if package in seen or not package:
+            continue
+        seen.add(package)
+        folder = paths.package_folder(package)
+        if folder is None:
+            continue  # package-not-found's
+        if gazebo_model_path(folder / "package.xml") is not None:
+            continue  # gazebo_ros puts it on GAZEBO_MODEL_PATH
+        above = os.path.dirname(os.path.abspath(folder))
+        named = folder.name == package
+        if named and above in on_path:
+            continue
+        renamed = (
+            ""
+            if named
+            else f"; its folder is named {folder.name!r}, so Gazebo finds it only where it "
+            f"is installed, as share/{package}"
+        )
+        yield GAZEBO_MODEL_PATH.report(
+            f"link {link.name!r}: mesh {name!r} is model://{package}/{rest} to Gazebo, which "
+            f"looks for folder {package!r} on GZ_SIM_RESOURCE_PATH (Gazebo Classic: "
+            f"GAZEBO_MODEL_PATH), and {above} is on neither{renamed}",
+            mesh.source,
+            path=analysis.path,
+            subject=Subject(Kind.LINK, link.name),
+            hint=f'add <gazebo_ros gazebo_model_path="${{prefix}}/.."/> to the <export> of '
+            f"{folder / 'package.xml'}"
+            + (f", or put {above} on the path" if named else ", and install the package"),
         )
 
 
