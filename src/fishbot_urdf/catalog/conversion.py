@@ -57,7 +57,8 @@ GAZEBO_DROPPED_LINK = Rule(
     "massless link on a fixed joint, such as a mount frame, that loses moving links that have "
     "mass of their own, which no mass rule sees. A moving link whose own body has no mass is "
     "`missing-inertial`'s or `massless-link`'s, which name the links lost below it; this rule "
-    "reports the losses they do not: give the massless link, or one fixed to it, a mass.",
+    "reports the losses they do not, where a link with mass is lost (massless frames move "
+    "nothing): give the massless link, or one fixed to it, a mass.",
     bad=_ARM.format(mount="/>"),
     good=_ARM.format(mount=f">{_LIGHT}</link>"),
     consumers=(Consumer.GAZEBO,),
