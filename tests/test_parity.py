@@ -58,6 +58,8 @@ STRICTER = {
     "mesh-not-found": "a mesh that is not there is drawn by nobody",
     "shape-size": "a collision shape of size 0 or less, which MuJoCo refuses",
     "unknown-reference": "Gazebo and ros2_control cannot attach to a part that does not exist",
+    "gazebo-dropped-link": "Gazebo leaves out the links, and their mass, below a massless one",
+    "gazebo-plugin-link": "a Gazebo plugin that names a link lumped into another finds none",
 }
 
 # Corpus robots check_urdf accepts and we reject, each for a fault in the file itself.
@@ -76,6 +78,7 @@ FAULTY = {
 FAULTY_FOR_SIMULATORS = {
     "romeo.urdf": "moving finger links whose mass is 0",
     "romeo_small.urdf": "arm inertias that break the triangle inequality",
+    "human.urdf": "massless links between a limb's two revolute joints: Gazebo leaves the limb out",
 }
 
 

@@ -357,7 +357,8 @@ def test_an_isotropic_inertia_on_a_cylinder_is_a_size_not_an_axis(tmp_path: Path
     path.write_text(
         """\
 <robot name="r">
-  <link name="base_link"/>
+  <link name="base_link"><inertial><mass value="1"/>
+    <inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>
   <link name="wheel">
     <collision><origin rpy="1.5708 0 0"/>
       <geometry><cylinder radius="0.032" length="0.04"/></geometry></collision>

@@ -173,6 +173,10 @@ def _check(tmp_path: Path, rule: Rule, text: str) -> Result:
     (tmp_path / "meshes" / "base_link_flat.stl").write_bytes(box_stl(0.2, 0.2, 0.0))
     if "base_link_fine" in text:
         (tmp_path / "meshes" / "base_link_fine.stl").write_bytes(fine_stl(30_000))
+    if "package://fishbot_description/" in text:  # the package the examples name
+        (tmp_path / "package.xml").write_text(
+            "<package><name>fishbot_description</name></package>\n", encoding="utf-8"
+        )
     name = tmp_path / ("robot.urdf.xacro" if rule.language == "xacro" else "robot.urdf")
     name.write_text(text, encoding="utf-8")
     # For every program (--target all): each finding at its rule's severity.

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 
 from .analysis import Analysis, analyse, of
 from .analysis.topology import Topology
-from .catalog import Rule
+from .catalog import Consumer, Rule
 from .catalog.reading import BAD_NUMBER, MISSING_ATTRIBUTE, ROBOT_NAME
 from .config import Config
 from .diagnostics import (
@@ -27,14 +27,14 @@ from .parsing import is_xacro_path, read
 from .rules import CHECKS, Settings
 from .rules.physics import GROUND_TOLERANCE
 from .suppress import apply_suppressions, suppressions
-from .targets import retarget, targets_of, urdfdom_refuses
+from .targets import consumers_of, retarget, targets_of, urdfdom_refuses
 from .validation import values
 from .validation._readable import finite, readable
 
 if TYPE_CHECKING:
     from .packages import PackageFinder
 
-__all__ = ["CheckResult", "check", "check_file"]
+__all__ = ["CheckResult", "check", "check_again", "check_file"]
 
 _UNNAMED = (MISSING_ATTRIBUTE, ROBOT_NAME)
 
@@ -114,11 +114,7 @@ def check_file(
     if parsed.robot is not None:
         analysis = analyse(parsed.robot, parsed.path, parsed.references, packages)
         found.extend(_rule_findings(analysis, found, config, packages))
-    if parsed.files and is_xacro_path(parsed.files[0]):  # the comments are in the sources
-        sources: dict[str, bytes | None] = {shown_path(f): None for f in parsed.files}
-    else:
-        sources = {parsed.path: parsed.data}
-    marks = suppressions(sources)
+    marks = suppressions(_sources(parsed.path, parsed.files, parsed.data))
     targets = targets_of(parsed.robot, config.targets)
     refused = urdfdom_refuses(config.apply(found), analysis)
     kept, silenced = apply_suppressions(
@@ -180,6 +176,28 @@ def check(
     return tuple(sorted(without_consequences(config.apply(targeted)), key=sort_key))
 
 
+def check_again(result: CheckResult, config: Config) -> tuple[Diagnostic, ...]:
+    """The findings of ``config``'s rules on the robot ``result`` read, its analysis reused
+    (a file read once, standard input too), silenced by the same ``fishbot: ignore``
+    comments, for the programs ``config`` targets (default: those of the first check)."""
+    analysis = result.analysis
+    if analysis is None:
+        return ()
+    found = _rule_findings(analysis, [], config, analysis.packages)
+    marks = suppressions(_sources(result.path, result.files, result.data))
+    targets = targets_of(result.robot, config.targets) if config.targets else result.targets
+    kept, _ = apply_suppressions(config.apply(retarget(found, targets, analysis)), marks, config)
+    return tuple(sorted(without_consequences(kept), key=sort_key))
+
+
+def _sources(path: str, files: tuple[str, ...], data: bytes) -> dict[str, bytes | None]:
+    """The texts whose comments silence findings: a xacro file's sources (read again), or
+    the URDF read."""
+    if files and is_xacro_path(files[0]):  # the comments are in the sources
+        return {shown_path(f): None for f in files}
+    return {path: data}
+
+
 def _rule_findings(
     analysis: Analysis,
     read_findings: list[Diagnostic] | tuple[()],
@@ -194,7 +212,8 @@ def _rule_findings(
         if d.is_error and d.subject is not None and d.subject.kind in (Kind.LINK, Kind.JOINT):
             unread.setdefault(d.subject, []).append(d)
     mm = config.ground_tolerance
-    settings = Settings(packages, GROUND_TOLERANCE if mm is None else mm / 1000.0)
+    for_gazebo = Consumer.GAZEBO in consumers_of(targets_of(analysis.robot, config.targets))
+    settings = Settings(packages, GROUND_TOLERANCE if mm is None else mm / 1000.0, for_gazebo)
     # A check runs only when one of its rules is selected (--ignore meshes reads no mesh file).
     for check in CHECKS:
         if not _selected(check.reports, config):

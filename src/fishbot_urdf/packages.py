@@ -34,6 +34,7 @@ __all__ = [
     "PackageFinder",
     "PackageNotFoundError",
     "find_package",
+    "gazebo_model_path",
     "package_name",
     "resolve_package_uri",
     "ros_version",
@@ -128,6 +129,42 @@ def ros_version(package_xml: str | Path) -> int | None:
     if any(tool.startswith("ament") for tool in tools):
         return 2
     return 1 if "catkin" in tools else None
+
+
+def gazebo_model_path(package_xml: str | Path) -> str | None:
+    """The ``gazebo_model_path`` a package.xml exports (``<export><gazebo_ros
+    gazebo_model_path="${prefix}/.."/>``), which gazebo_ros puts on GAZEBO_MODEL_PATH; None
+    when it exports none or cannot be read (as for `package_name`)."""
+    try:
+        data = read_input(package_xml)
+    except InputError:
+        return None
+    found: list[str] = []
+    path: list[str] = []
+
+    def start(tag: str, attributes: dict[str, str]) -> None:
+        path.append(tag.rpartition(" ")[2])
+        if path[-3:] == ["package", "export", "gazebo_ros"] and len(path) == 3:
+            value = attributes.get("gazebo_model_path")
+            if value is not None:
+                found.append(value)
+
+    def end(tag: str) -> None:
+        path.pop()
+
+    def refuse(*_: object) -> None:
+        raise _NotRead
+
+    parser = expat.ParserCreate(namespace_separator=" ")
+    parser.SetParamEntityParsing(expat.XML_PARAM_ENTITY_PARSING_NEVER)
+    parser.StartElementHandler = start
+    parser.EndElementHandler = end
+    parser.EntityDeclHandler = refuse
+    try:
+        parser.Parse(data, True)
+    except (expat.ExpatError, _NotRead, ValueError):
+        return None
+    return found[0] if found else None
 
 
 class _NotRead(Exception):

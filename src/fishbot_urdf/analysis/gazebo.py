@@ -150,12 +150,13 @@ class Landing:
         link: The link of the SDF model it becomes part of: itself when it stays a link,
             the first link up that no lumped fixed joint holds when it is lumped.
         pose: Its frame in ``link``'s frame (identity when it stays a link).
-        chain: The fixed joints lumped between it and ``link``, innermost first.
+        joint: The fixed joint that lumps it into the link above it (None when it stays a
+            link); the joints above that one lump that link in turn.
     """
 
     link: str
     pose: Pose
-    chain: tuple[Joint, ...]
+    joint: Joint | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -245,7 +246,7 @@ def lumping(
             and joint.name not in revolute
         )
 
-    landings: dict[str, Landing] = {root: Landing(root, Pose(), ())}
+    landings: dict[str, Landing] = {root: Landing(root, Pose())}
     parents: dict[str, Joint] = {}
     order = [root]
     stack = [root]
@@ -255,11 +256,9 @@ def lumping(
         below = [j for j in topology.children.get(name, ()) if j.child not in landings]
         for joint in below:
             if lumped(joint):
-                landing = Landing(
-                    here.link, here.pose.then(Pose.of(joint.origin)), (joint, *here.chain)
-                )
+                landing = Landing(here.link, here.pose.then(Pose.of(joint.origin)), joint)
             else:
-                landing = Landing(joint.child, Pose(), ())
+                landing = Landing(joint.child, Pose())
             landings[joint.child] = landing
             parents[joint.child] = joint
             order.append(joint.child)
@@ -276,8 +275,12 @@ def lumping(
             mass[joint.parent] = mass.get(joint.parent, 0.0) + mass[name]
     dropped: dict[str, tuple[str, ...]] = {}
     lost: set[str] = set()
+    # links walked below a lumped link with no mass: lost, or lumped with no mass into the
+    # same link (masses are summed upwards), so that what they would lose is lost already;
+    # each link is walked once, not once for each massless link above it
+    walked: set[str] = set()
     for name in order:  # from the root outwards: the first link it stops at holds the rest
-        if name in lost or name == "world":
+        if name in lost or name in walked or name == "world":
             continue
         held = landings[name].link
         weight = mass.get(name)
@@ -286,9 +289,13 @@ def lumping(
         # the converter goes no further down the tree than a link with no mass; one it
         # lumped has already given its fixed subtree to the link it lumped into
         subtree = [name]
-        for link in subtree:
-            subtree.extend(j.child for j in topology.children.get(link, ()) if j.child in landings)
+        for link in subtree:  # the tree the landings were found on (a loop is walked once)
+            subtree.extend(
+                j.child for j in topology.children.get(link, ()) if parents.get(j.child) is j
+            )
         gone = tuple(n for n in subtree if held == name or landings[n].link != held)
+        if held != name:
+            walked.update(subtree)
         if gone:
             lost.update(gone)
             dropped[name] = gone

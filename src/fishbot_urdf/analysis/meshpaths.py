@@ -187,6 +187,12 @@ class MeshPaths:
             return f"is not found (looked for {path.file}; {RULE})"
         return f"is not found (looked for {path.file})"
 
+    def package_folder(self, package: str) -> Path | None:
+        """The folder of ROS package ``package``, as ``package://`` names are found (looked
+        up once), None when it is not found."""
+        folder = self._package(package)
+        return None if isinstance(folder, PackageNotFound) else folder
+
     def beside_writer(self, mesh: Mesh) -> Path | None:
         """For a relative name not found beside the robot file: the file beside the file
         that wrote the ``<mesh>`` (an included xacro file), if it is there. That is where

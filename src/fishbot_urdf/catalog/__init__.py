@@ -15,6 +15,7 @@ from types import MappingProxyType, ModuleType
 
 from ..errors import UnknownNameError
 from . import (
+    conversion,
     gazebo,
     joints,
     meshes,
@@ -69,7 +70,19 @@ def rules_in(module: ModuleType) -> tuple[Rule, ...]:
 def _collect() -> dict[str, Rule]:
     found: dict[str, Rule] = {}
     order = list(Family)
-    modules = (xml, reading, structure, joints, references, meshes, physics, gazebo, xacro, setup)
+    modules = (
+        xml,
+        reading,
+        structure,
+        joints,
+        references,
+        meshes,
+        physics,
+        gazebo,
+        conversion,
+        xacro,
+        setup,
+    )
     rules = [r for module in modules for r in rules_in(module)]
     for rule in sorted(rules, key=lambda r: (order.index(r.family), r.id)):
         if rule.id in found and found[rule.id] is not rule:

@@ -12,7 +12,8 @@ W = Severity.WARNING
 _ALL = (Consumer.URDFDOM, Consumer.GAZEBO, Consumer.MUJOCO, Consumer.DRAKE, Consumer.PYBULLET)
 _WHEEL = """\
 <robot name="fishbot">
-  <link name="base_link"/>
+  <link name="base_link"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
   <link name="wheel_link">
     <collision><origin rpy="1.5708 0 0"/>
       <geometry><cylinder radius="0.03" length="0.02"/></geometry>
@@ -20,9 +21,8 @@ _WHEEL = """\
     <inertial><mass value="0.1"/>
       <inertia ixx="2.583e-5" iyy="4.5e-5" izz="2.583e-5" ixy="0" ixz="0" iyz="0"/></inertial>
   </link>
-  <joint name="wheel_joint" type="continuous">
-    <parent link="base_link"/><child link="wheel_link"/><axis xyz="{axis}"/>
-  </joint>
+  <joint name="wheel_joint" type="continuous"><axis xyz="{axis}"/>
+    <parent link="base_link"/><child link="wheel_link"/></joint>
 </robot>
 """
 _ARM = """\

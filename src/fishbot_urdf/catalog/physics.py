@@ -79,14 +79,16 @@ MASSLESS_LINK = Rule(
     "whose mass or a principal moment is below 1e-15 (`mjMINVAL`), Gazebo drops a link of mass 0 "
     "together with everything below it, Drake stops with a mass matrix that is not positive "
     "definite, and in PyBullet the joint never moves. A moving link with no `<inertial>` at all is "
-    "`missing-inertial`'s, an error too: Gazebo drops it in the same way. Give the link its real "
+    "`missing-inertial`'s, an error too: Gazebo drops it in the same way (the finding names the "
+    "links lost below it; `gazebo-dropped-link` reports the links Gazebo leaves out that no mass "
+    "rule sees). Give the link its real "
     "mass, and the inertia of its shape (`fishbot inertia cylinder ...` prints one).",
     bad="""\
 <robot name="fishbot">
-  <link name="base_link"/>
+  <link name="base_link"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
   <link name="left_wheel_link">
-    <inertial>
-      <mass value="0"/>
+    <inertial><mass value="0"/>
       <inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/>
     </inertial>
   </link>
@@ -97,10 +99,10 @@ MASSLESS_LINK = Rule(
 """,
     good="""\
 <robot name="fishbot">
-  <link name="base_link"/>
+  <link name="base_link"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
   <link name="left_wheel_link">
-    <inertial>
-      <mass value="0.1"/>
+    <inertial><mass value="0.1"/>
       <inertia ixx="3.9e-05" ixy="0" ixz="0" iyy="3.9e-05" iyz="0" izz="5.1e-05"/>
     </inertial>
   </link>
@@ -126,10 +128,10 @@ INERTIA_NOT_POSITIVE = Rule(
     "shape or its CAD model.",
     bad="""\
 <robot name="fishbot">
-  <link name="base_link"/>
+  <link name="base_link"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
   <link name="left_wheel_link">
-    <inertial>
-      <mass value="0.1"/>
+    <inertial><mass value="0.1"/>
       <inertia ixx="-3.9e-05" ixy="0" ixz="0" iyy="3.9e-05" iyz="0" izz="5.1e-05"/>
     </inertial>
   </link>
@@ -140,10 +142,10 @@ INERTIA_NOT_POSITIVE = Rule(
 """,
     good="""\
 <robot name="fishbot">
-  <link name="base_link"/>
+  <link name="base_link"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
   <link name="left_wheel_link">
-    <inertial>
-      <mass value="0.1"/>
+    <inertial><mass value="0.1"/>
       <inertia ixx="3.9e-05" ixy="0" ixz="0" iyy="3.9e-05" iyz="0" izz="5.1e-05"/>
     </inertial>
   </link>
@@ -168,10 +170,10 @@ INERTIA_TRIANGLE = Rule(
     "shape.",
     bad="""\
 <robot name="fishbot">
-  <link name="base_link"/>
+  <link name="base_link"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
   <link name="left_wheel_link">
-    <inertial>
-      <mass value="0.1"/>
+    <inertial><mass value="0.1"/>
       <inertia ixx="3.9e-05" ixy="0" ixz="0" iyy="3.9e-05" iyz="0" izz="1.02e-04"/>
     </inertial>
   </link>
@@ -182,10 +184,10 @@ INERTIA_TRIANGLE = Rule(
 """,
     good="""\
 <robot name="fishbot">
-  <link name="base_link"/>
+  <link name="base_link"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
   <link name="left_wheel_link">
-    <inertial>
-      <mass value="0.1"/>
+    <inertial><mass value="0.1"/>
       <inertia ixx="3.9e-05" ixy="0" ixz="0" iyy="3.9e-05" iyz="0" izz="5.1e-05"/>
     </inertial>
   </link>
@@ -206,7 +208,8 @@ MISSING_INERTIAL = Rule(
     "take it as a link of mass 0, so a moving link without one is an error, as a moving link of "
     "mass 0 is (`massless-link`): sdformat, through which Gazebo (classic and gz-sim) loads a "
     "URDF, drops a link that has no `<inertial>` exactly as one whose mass is 0, with its joint "
-    "and everything below it (for the robot's base, the whole robot); Drake stops because the "
+    "and everything below it, which the finding names (for the robot's base, the whole robot; "
+    "one with no collision shapes is `gazebo-dropped-link`'s); Drake stops because the "
     "body has no mass; pinocchio and KDL take it as massless. Others make one up: PyBullet gives "
     "it 1 kg and an inertia of 1 `kg*m^2` about each axis, and MuJoCo computes one from the "
     "collision shapes at the density of water. robot_state_publisher and RViz only place frames "
@@ -217,7 +220,8 @@ MISSING_INERTIAL = Rule(
     "writes a copy with them.",
     bad="""\
 <robot name="fishbot">
-  <link name="base_link"/>
+  <link name="base_link"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
   <link name="left_wheel_link">
     <collision>
       <geometry><cylinder radius="0.032" length="0.04"/></geometry>
@@ -230,11 +234,11 @@ MISSING_INERTIAL = Rule(
 """,
     good="""\
 <robot name="fishbot">
-  <link name="base_link"/>
+  <link name="base_link"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
   <link name="left_wheel_link">
     <collision><geometry><cylinder radius="0.032" length="0.04"/></geometry></collision>
-    <inertial>
-      <mass value="0.1"/>
+    <inertial><mass value="0.1"/>
       <inertia ixx="3.9e-05" ixy="0" ixz="0" iyy="3.9e-05" iyz="0" izz="5.1e-05"/>
     </inertial>
   </link>

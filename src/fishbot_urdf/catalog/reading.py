@@ -471,10 +471,10 @@ NEGATIVE_MASS = Rule(
     "Gazebo loads the robot, and Drake warns and simulates it anyway. Write the part's real mass.",
     bad="""\
 <robot name="fishbot">
-  <link name="base_link"/>
+  <link name="base_link"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
   <link name="left_wheel_link">
-    <inertial>
-      <mass value="-0.1"/>
+    <inertial><mass value="-0.1"/>
       <inertia ixx="3.9e-05" ixy="0" ixz="0" iyy="3.9e-05" iyz="0" izz="5.1e-05"/>
     </inertial>
   </link>
@@ -485,10 +485,10 @@ NEGATIVE_MASS = Rule(
 """,
     good="""\
 <robot name="fishbot">
-  <link name="base_link"/>
+  <link name="base_link"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
   <link name="left_wheel_link">
-    <inertial>
-      <mass value="0.1"/>
+    <inertial><mass value="0.1"/>
       <inertia ixx="3.9e-05" ixy="0" ixz="0" iyy="3.9e-05" iyz="0" izz="5.1e-05"/>
     </inertial>
   </link>

@@ -7,12 +7,15 @@ from collections.abc import Sequence
 
 import click
 
+from ..catalog import conversion, rules_in
 from ..errors import ConversionError, FishbotUrdfError
 from ..export.sdf import to_sdf
+from ..lint import check_again
 from ..output import write_atomic
-from ._checking import posable_input, read_files
+from ._checking import nearest_config, posable_input, read_files
 from ._common import (
     EXIT_OK,
+    emit_findings,
     inputs_read,
     limit_options,
     package_option,
@@ -47,10 +50,12 @@ def sdf(file: str, args: Sequence[str], output: str, package_items: Sequence[str
     converter makes of them (settings as SDF elements, sensors and plugins copied, those
     of a lumped link moved to the link it went into, poses and plugin frames with them;
     preserveFixedJoint and disableFixedJointLumping keep a fixed joint). ARGS are
-    name:=value values for a xacro file's <xacro:arg>. Findings
-    about the robot are printed as check prints them. Exit status: 0 written, 1 the robot
-    has errors that leave its tree in doubt or cannot be converted (nothing is written), 2
-    a file could not be read or written, or the command line is wrong.
+    name:=value values for a xacro file's <xacro:arg>. Findings about the robot are printed
+    as check prints them, and so is what the conversion loses (the gazebo-dropped-link,
+    gazebo-lumped-link, gazebo-lumping-flag, gazebo-model-path and gazebo-plugin-link
+    rules, judged for Gazebo); the SDF is written all the same. Exit status: 0 written, 1
+    the robot has errors that leave its tree in doubt or cannot be converted (nothing is
+    written), 2 a file could not be read or written, or the command line is wrong.
 
     \b
     Examples:
@@ -63,7 +68,8 @@ def sdf(file: str, args: Sequence[str], output: str, package_items: Sequence[str
         raise click.UsageError("name:=value arguments are for a .xacro file, not standard input")
     values = xacro_args(args)
     read = inputs_read()
-    result = posable_input(file, values, packages_option(package_items))
+    config = nearest_config(file)
+    result = posable_input(file, values, packages_option(package_items), config=config)
     assert result.analysis is not None
     try:
         text = to_sdf(result.analysis)
@@ -76,4 +82,13 @@ def sdf(file: str, args: Sequence[str], output: str, package_items: Sequence[str
         if isinstance(exc, ConversionError) and exc.path is None:  # about the robot read
             exc.path = result.analysis.path
         stop_on(exc)
+    # what the SDF lacks that the robot says, judged for Gazebo, which reads the SDF (of the
+    # rules the configuration applies)
+    losses = [rule for rule in _LOSSES if config.applies(rule)]
+    if losses:
+        targets = (*result.targets, "gazebo")
+        emit_findings(check_again(result, config.updated(select=losses, targets=targets)))
     sys.exit(EXIT_OK)
+
+
+_LOSSES = tuple(rule.id for rule in rules_in(conversion))

@@ -39,10 +39,13 @@ class Settings:
         packages: Where ``package://`` names are looked up (folders by package name, or a
             `PackageFinder` that keeps its answers); None: the analysis's own.
         ground_tolerance: How far (m) the lowest collision point may be from z = 0.
+        for_gazebo: Whether the robot is checked for Gazebo: what only Gazebo's set-up
+            decides (where it looks for meshes) is judged only then.
     """
 
     packages: Mapping[str, str | Path] | PackageFinder | None = None
     ground_tolerance: float = physics.GROUND_TOLERANCE
+    for_gazebo: bool = True
 
 
 @dataclass(frozen=True, slots=True)
@@ -85,6 +88,10 @@ CHECKS: tuple[Check, ...] = (
         physics.REPORTS,
         lambda analysis, s: physics.physics(analysis, ground_tolerance=s.ground_tolerance),
     ),
-    Check("gazebo", gazebo.REPORTS, lambda analysis, _: gazebo.gazebo(analysis)),
+    Check(
+        "gazebo",
+        gazebo.REPORTS,
+        lambda analysis, s: gazebo.gazebo(analysis, for_gazebo=s.for_gazebo),
+    ),
 )
 """Every check, in the order its findings come."""

@@ -1,24 +1,33 @@
-"""Rules about Gazebo's plugins and sensors: each held to the robot it is written in."""
+"""Rules about Gazebo's plugins and sensors, each held to the robot it is written in, and
+about what sdformat's URDF converter loses or moves before Gazebo sees the robot."""
 
 from __future__ import annotations
 
 from collections.abc import Iterator
 
 from ...analysis import Analysis
-from ...catalog import Rule, rules_in
+from ...catalog import Rule, conversion, rules_in
 from ...catalog import gazebo as catalog
 from ...diagnostics import Diagnostic
 from ._drive import drives
+from ._losses import losses
 from ._sensors import sensors
 from ._versions import ros_versions, simulators
 
 __all__ = ["REPORTS", "gazebo"]
 
 
-def gazebo(analysis: Analysis, select: frozenset[str] | None = None) -> Iterator[Diagnostic]:
-    """Every finding about the robot's Gazebo plugins and sensors (of the rules in
-    ``select``, by id; None: all of them)."""
+def gazebo(
+    analysis: Analysis, select: frozenset[str] | None = None, *, for_gazebo: bool = True
+) -> Iterator[Diagnostic]:
+    """Every finding about the robot's Gazebo plugins and sensors, and about what Gazebo's
+    URDF converter loses (of the rules in ``select``, by id; None: all of them; where Gazebo
+    looks for meshes only ``for_gazebo``, when the robot is checked for Gazebo)."""
     chosen = frozenset(r.id for r in REPORTS) if select is None else select
+    if not for_gazebo:
+        chosen -= {conversion.GAZEBO_MODEL_PATH.id}
+    if chosen & _LOSSES:
+        yield from losses(analysis, select=chosen)
     found = analysis.gazebo_blocks
     if not found:
         return
@@ -33,5 +42,6 @@ def gazebo(analysis: Analysis, select: frozenset[str] | None = None) -> Iterator
         yield from simulators(analysis, found)
 
 
-REPORTS: tuple[Rule, ...] = rules_in(catalog)
+_LOSSES = frozenset(r.id for r in rules_in(conversion))
+REPORTS: tuple[Rule, ...] = (*rules_in(catalog), *rules_in(conversion))
 """Every rule this module's check may report: the check runs only when one is selected."""

@@ -23,6 +23,7 @@ from ...catalog.physics import (
 )
 from ...catalog.reading import BAD_NUMBER, NEGATIVE_MASS
 from ...diagnostics import Diagnostic
+from ...errors import FishbotUrdfError
 from ...model import Inertia, Vector3
 from ...spatial import eigenvalues
 from ._ground import GROUND_TOLERANCE, ground
@@ -76,9 +77,18 @@ def physics(
     scaled = millimetres(robot)
     if scaled is not None:
         yield units(robot, path, scaled)
+    try:
+        dropped = analysis.gazebo_lumping.dropped
+    except FishbotUrdfError:  # no single root: the structure rules' finding
+        dropped = {}
     for body in analysis.bodies:
         yield from body_findings(
-            body, path, moments, bool(robot.joints), millimetres=scaled is not None
+            body,
+            path,
+            moments,
+            bool(robot.joints),
+            millimetres=scaled is not None,
+            lost=dropped.get(body.base.name, ()),
         )
     for link in robot.links:
         own = moments.get(link.name)

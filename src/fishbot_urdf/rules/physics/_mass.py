@@ -42,10 +42,11 @@ def body_findings(
     jointed: bool,
     *,
     millimetres: bool = False,
+    lost: tuple[str, ...] = (),
 ) -> Iterator[Diagnostic]:
     """The findings about one body's masses and inertias (``millimetres``: the robot reads
     as written in millimetres, so an inertial is computed from its shapes only once they are
-    in metres)."""
+    in metres; ``lost``: the links Gazebo leaves out below the body for its lack of mass)."""
     having = _inertials(body)
     all_finite = all(link.name in moments for link, _, _ in having)
     # Fused with its fixed neighbours a body may be physical although one link's own numbers
@@ -60,7 +61,7 @@ def body_findings(
         if own is None or inertial.mass < 0 or not physical(own):  # (seldom)
             yield from _inertial(link, inertial, path, merged, own)
     if all_finite:
-        yield from _moving(body, having, path, moments, jointed, millimetres)
+        yield from _moving(body, having, path, moments, jointed, millimetres, lost)
 
 
 def _inertial(
@@ -147,8 +148,12 @@ def _moving(
     moments: Mapping[str, Vector3],
     jointed: bool,
     millimetres: bool,
+    lost: tuple[str, ...],
 ) -> Iterator[Diagnostic]:
     joint = body.moved_by
+    below = ", ".join(repr(name) for name in lost if name != body.base.name)
+    # what Gazebo loses with it (gazebo-dropped-link reports only what these rules do not)
+    with_it = f" ({below})" if below else ""
     shapes = "collision shapes" + (" once they are in metres" if millimetres else "")
     # A body without inertial: its first link with collision shapes, if any.
     link = None if having else next((link for link, _ in body.members if link.collisions), None)
@@ -172,7 +177,8 @@ def _moving(
                 link.source,
                 path=path,
                 subject=link_subject(link),
-                hint="Gazebo drops it with everything below it, as it drops one of mass 0; "
+                hint=f"Gazebo drops it with everything below it{with_it}, as it drops one of "
+                "mass 0; "
                 "give it one computed from its " + shapes,
             )
         return
@@ -194,7 +200,9 @@ def _moving(
             place(first_link, first.source),
             path=path,
             subject=owner,
-            hint="a moving body needs a mass (MuJoCo: above 1e-15); give its real mass",
+            hint="a moving body needs a mass (MuJoCo: above 1e-15)"
+            + (f"; Gazebo drops it with everything below it{with_it}" if below else "")
+            + "; give its real mass",
             data=MassFacts(mass=mass),
         )
     else:  # flat
