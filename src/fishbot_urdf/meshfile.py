@@ -15,8 +15,8 @@ is wrong and where, never a foreign exception. Both readers check the deadline i
 (:func:`fishbot_urdf.inputs.deadline`) as they go.
 
 Each function reads the file's bytes with ``read`` (by default
-:func:`~fishbot_urdf.inputs.read_input`): a caller that keeps a file's bytes passes its own,
-so that the file is read once whatever is asked of it.
+:func:`~fishbot_urdf.inputs.read_input`): the owner of a robot's mesh contents
+(`fishbot_urdf.analysis.meshcontents`) passes its own, which reads each file once.
 """
 
 from __future__ import annotations

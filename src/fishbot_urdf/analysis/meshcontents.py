@@ -1,0 +1,108 @@
+"""What a robot's mesh files hold, each file read at most once per analysis.
+
+A robot's `MeshContents` is built with its analysis (``Analysis.meshes``); the checks ask
+it for what they need of a file that ``Analysis.mesh_paths`` found: its facts
+(`fishbot_urdf.meshfile.MeshFacts`: faces, box, how far from flat), whether it is closed,
+its triangles, the box around what of it can be read. Each file's bytes are read once (by
+`fishbot_urdf.inputs.read_input`) and kept as long as the analysis, and each answer is
+made once.
+
+The formats are read by `fishbot_urdf.meshfile`. What cannot be read is the error it was
+the first time (a `ShapeError`); a file that cannot be read at all, and the deadline, are
+not kept: the limits in force may differ next time.
+"""
+
+from __future__ import annotations
+
+import os
+import threading
+from collections.abc import Callable
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, TypeVar
+
+from ..errors import ShapeError
+from ..inputs import read_input
+from ..meshfile import MeshFacts, mesh_bounds, mesh_closed, mesh_facts, mesh_triangles
+from ..model import Vector3
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+__all__ = ["MeshContents"]
+
+_T = TypeVar("_T")
+
+
+class _Once:
+    """One answer, made by the first thread that asks; the others wait for it."""
+
+    __slots__ = ("done", "error", "lock", "value")
+
+    def __init__(self) -> None:
+        self.lock = threading.Lock()
+        self.done = False
+        self.value: Any = None
+        self.error: ShapeError | None = None
+
+
+class MeshContents:
+    """The contents of mesh files, each read at most once and each answer made once, by
+    file. Safe to share between threads (a thread asking what another is reading waits for
+    it)."""
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._answers: dict[tuple[str, Path, Vector3 | None], _Once] = {}
+
+    def facts(self, file: Path) -> MeshFacts | None:
+        """The facts of an STL or OBJ file (see `fishbot_urdf.meshfile.mesh_facts`); None
+        for other formats, files that cannot be read and files with no vertices."""
+        return self._once("facts", file, lambda: mesh_facts(file, self._bytes))
+
+    def closed(self, file: Path) -> bool | None:
+        """Whether every edge of an STL or OBJ file's mesh is shared by exactly two of its
+        triangles (see `fishbot_urdf.meshfile.mesh_closed`); None when it is not well formed
+        or cannot be read."""
+        return self._once("closed", file, lambda: mesh_closed(file, self._bytes))
+
+    def triangles(self, file: Path) -> NDArray[Any]:
+        """The triangles (T, 3, 3) of an STL or OBJ file, in its units, as
+        `fishbot_urdf.meshfile.mesh_triangles` reads them.
+
+        Raises:
+            InputError: The file cannot be read (or is bigger than the size limit).
+            ShapeError: The file is not STL or OBJ, not well formed, or holds no triangles.
+            TimeLimitError: Reading went past the deadline in force.
+        """
+        return self._once("triangles", file, lambda: mesh_triangles(file, self._bytes))
+
+    def bounds(self, file: Path) -> tuple[Vector3, Vector3] | None:
+        """The box around what vertices of a mesh file can be read, even when it is not well
+        formed (see `fishbot_urdf.meshfile.mesh_bounds`); None when no finite box is found."""
+        return self._once("bounds", file, lambda: mesh_bounds(file, self._bytes))
+
+    def _bytes(self, file: str | Path) -> bytes:
+        """The file's bytes, read once."""
+        return self._once("bytes", Path(file), lambda: read_input(file))
+
+    def _once(
+        self, what: str, file: Path, make: Callable[[], _T], scale: Vector3 | None = None
+    ) -> _T:
+        """``what`` of ``file`` (at ``scale``), made by ``make`` when first asked; the
+        ShapeError it raised, raised again."""
+        key = (what, Path(os.path.abspath(file)), scale)
+        with self._lock:
+            answer = self._answers.get(key)
+            if answer is None:
+                answer = self._answers[key] = _Once()
+        with answer.lock:
+            if not answer.done:
+                try:
+                    answer.value = make()
+                except ShapeError as exc:
+                    answer.error = exc
+                answer.done = True
+        if answer.error is not None:
+            raise answer.error
+        value: _T = answer.value
+        return value
