@@ -1,28 +1,30 @@
 """What a robot's mesh files hold, each file read at most once per analysis.
 
-A robot's `MeshContents` is built with its analysis (``Analysis.meshes``); the checks ask
-it for what they need of a file that ``Analysis.mesh_paths`` found: its facts
-(`fishbot_urdf.meshfile.MeshFacts`: faces, box, how far from flat), whether it is closed,
-its triangles, the box around what of it can be read. Each file's bytes are read once (by
-`fishbot_urdf.inputs.read_input`) and kept as long as the analysis, and each answer is
-made once.
+A robot's `MeshContents` is built with its analysis (``Analysis.meshes``); the checks and
+the drawings ask it for what they need of a file that ``Analysis.mesh_paths`` found: its
+facts (`fishbot_urdf.meshfile.MeshFacts`: faces, box, how far from flat), whether it is
+closed, its triangles, the box around what of it can be read. Each file's bytes are read
+once (by `fishbot_urdf.inputs.read_input`) and kept as long as the analysis, and each
+answer is made once: a file that one robot checks and draws is not read twice.
 
-The formats are read by `fishbot_urdf.meshfile`. What cannot be read is the error it was
-the first time (a `ShapeError`); a file that cannot be read at all, and the deadline, are
-not kept: the limits in force may differ next time.
+The formats are read by `fishbot_urdf.meshfile` (STL and OBJ, strictly) and by trimesh (the
+`mesh` extra) for the others. What cannot be read is the error it was the first time (a
+`ShapeError`); a file that cannot be read at all, and the deadline, are not kept: the limits
+in force may differ next time.
 """
 
 from __future__ import annotations
 
+import io
 import os
 import threading
 from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeVar
 
-from ..errors import ShapeError
+from ..errors import ShapeError, ToolNotFoundError
 from ..inputs import read_input
-from ..meshfile import MeshFacts, mesh_bounds, mesh_closed, mesh_facts, mesh_triangles
+from ..meshfile import MeshFacts, Reader, mesh_bounds, mesh_closed, mesh_facts, mesh_triangles
 from ..model import Vector3
 
 if TYPE_CHECKING:
@@ -66,15 +68,18 @@ class MeshContents:
         return self._once("closed", file, lambda: mesh_closed(file, self._bytes))
 
     def triangles(self, file: Path) -> NDArray[Any]:
-        """The triangles (T, 3, 3) of an STL or OBJ file, in its units, as
-        `fishbot_urdf.meshfile.mesh_triangles` reads them.
+        """The triangles (T, 3, 3) of a mesh file, in its units: STL and OBJ as
+        `fishbot_urdf.meshfile.mesh_triangles` reads them, other formats through trimesh.
 
         Raises:
             InputError: The file cannot be read (or is bigger than the size limit).
-            ShapeError: The file is not STL or OBJ, not well formed, or holds no triangles.
+            ShapeError: The file is not well formed, or holds no triangles.
+            ToolNotFoundError: The file is not STL or OBJ and trimesh is not installed.
             TimeLimitError: Reading went past the deadline in force.
         """
-        return self._once("triangles", file, lambda: mesh_triangles(file, self._bytes))
+        if file.suffix.lower() in (".stl", ".obj"):
+            return self._once("triangles", file, lambda: mesh_triangles(file, self._bytes))
+        return self._once("triangles", file, lambda: _foreign_triangles(file, self._bytes))
 
     def bounds(self, file: Path) -> tuple[Vector3, Vector3] | None:
         """The box around what vertices of a mesh file can be read, even when it is not well
@@ -106,3 +111,37 @@ class MeshContents:
             raise answer.error
         value: _T = answer.value
         return value
+
+
+def _foreign_triangles(file: Path, read: Reader) -> NDArray[Any]:
+    """Triangles (T, 3, 3) of a mesh file that is not STL or OBJ, through trimesh."""
+    import numpy as np  # numpy: ~190 ms to load, only where arrays are made
+
+    kind = file.suffix.lower()
+    trimesh = _trimesh(f"reading a {kind or 'file without extension'} mesh")
+    data = read(file)
+    try:
+        loaded: Any = trimesh.load(io.BytesIO(data), file_type=kind.lstrip("."), force="mesh")
+        if not hasattr(loaded, "triangles") or not len(loaded.faces):
+            raise ShapeError("no triangles")
+        triangles = np.asarray(loaded.triangles, dtype=float)
+    except ShapeError:
+        raise
+    except Exception as exc:  # whatever a foreign reader makes of a file it cannot read
+        raise ShapeError(str(exc) or type(exc).__name__) from exc
+    if triangles.ndim != 3 or triangles.shape[1:] != (3, 3) or not np.isfinite(triangles).all():
+        raise ShapeError("a vertex is not a finite number")
+    return triangles
+
+
+def _trimesh(what: str) -> Any:
+    """The trimesh module, or an error that says ``what`` needs it and how to install it."""
+    try:
+        import trimesh  # the mesh extra (optional): ~600 ms to load
+    except ImportError:
+        raise ToolNotFoundError(
+            f"{what} needs the trimesh package",
+            tool="trimesh",
+            hint="pip install 'fishbot-urdf[mesh]'",
+        ) from None
+    return trimesh
