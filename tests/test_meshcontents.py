@@ -1,5 +1,6 @@
-"""What a robot's mesh files hold has one owner, the analysis's ``meshes``: a file is read
-once, and each answer made once, from any number of threads."""
+"""What a robot's mesh files hold has one owner, the analysis's ``meshes``: a file that the
+checks, a drawing and the mass computations all use is read once, and each answer made
+once, from any number of threads."""
 
 from __future__ import annotations
 
@@ -10,9 +11,14 @@ from pathlib import Path
 import pytest
 from conftest import box_stl
 
-from fishbot_urdf.analysis import meshcontents
+import fishbot_urdf
+from fishbot_urdf.analysis import analyse, meshcontents
 from fishbot_urdf.analysis.meshcontents import MeshContents
+from fishbot_urdf.drawing.scene import build_scene
 from fishbot_urdf.errors import InputError, ShapeError
+from fishbot_urdf.inertia import fill_inertials
+from fishbot_urdf.inputs import recording_inputs
+from fishbot_urdf.lint import check
 
 
 def _counted(monkeypatch: pytest.MonkeyPatch, name: str) -> list[str]:
@@ -26,6 +32,42 @@ def _counted(monkeypatch: pytest.MonkeyPatch, name: str) -> list[str]:
 
     monkeypatch.setattr(meshcontents, name, counting)
     return calls
+
+
+def test_a_mesh_checked_drawn_and_weighed_is_read_once(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    trimesh = pytest.importorskip("trimesh")
+    mesh = tmp_path / "part.stl"
+    mesh.write_bytes(box_stl(200.0, 100.0, 100.0))  # in millimetres
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="a">'
+        '<visual><geometry><mesh filename="part.stl"/></geometry></visual>'
+        '<collision><geometry><mesh filename="part.stl" scale="0.001 0.001 0.001"/>'
+        "</geometry></collision></link></robot>\n"
+    )
+    analysis = analyse(fishbot_urdf.load(robot))
+    reads = _counted(monkeypatch, "read_input")
+    parses = _counted(monkeypatch, "mesh_triangles")
+    loads: list[object] = []
+    load = trimesh.load
+    monkeypatch.setattr(trimesh, "load", lambda *a, **k: loads.append(a) or load(*a, **k))
+    with recording_inputs() as read:
+        findings = check(analysis)
+        scene = build_scene(analysis, show=("visual", "collision"))
+        filled = fill_inertials(analysis, density=1000.0)
+    # The mesh rules read its facts: the visual, unscaled, is 200 m across.
+    assert [d.rule for d in findings if d.rule.startswith("mesh")] == ["mesh-units"]
+    assert [part.layer for part in scene.parts] == ["visual", "collision"]
+    assert filled.inertials["a"].mass == pytest.approx(2.0)  # 0.2 * 0.1 * 0.1 m^3 of water
+    # One read of the file by anyone (every read goes through read_input, and is recorded),
+    # by the analysis's meshes; its triangles made once for both scales, its solid once for
+    # the three questions the inertia asks of it (too large? its volume, its inertia).
+    assert read.count(str(mesh)) == 1
+    assert reads == [str(mesh)]
+    assert parses == [str(mesh)]
+    assert len(loads) == 1
 
 
 def test_threads_asking_at_once_share_one_read(
