@@ -9,9 +9,10 @@ read once (by `fishbot_urdf.inputs.read_input`) and kept as long as the analysis
 answer is made once: a file that one robot draws, checks and weighs is not read three times.
 
 The formats are read by `fishbot_urdf.meshfile` (STL and OBJ, strictly) and by trimesh (the
-`mesh` extra) for the others and for solids. What cannot be read is the error it was the
-first time (a `ShapeError`); a file that cannot be read at all, and the deadline, are not
-kept: the limits in force may differ next time.
+`mesh` extra) for the others and for solids. Errors are not kept: a file that cannot be read
+is tried again (the limits in force may differ), one that is not a mesh is read as one again
+from its bytes, to raise its error again (a kept error's traceback would keep the frames of
+the first caller, and all they hold).
 """
 
 from __future__ import annotations
@@ -61,13 +62,12 @@ class Solid:
 class _Once:
     """One answer, made by the first thread that asks; the others wait for it."""
 
-    __slots__ = ("done", "error", "lock", "value")
+    __slots__ = ("done", "lock", "value")
 
     def __init__(self) -> None:
         self.lock = threading.Lock()
         self.done = False
         self.value: Any = None
-        self.error: ShapeError | None = None
 
 
 class MeshContents:
@@ -77,7 +77,7 @@ class MeshContents:
 
     def __init__(self) -> None:
         self._lock = threading.Lock()
-        self._answers: dict[tuple[str, Path, Vector3 | None], _Once] = {}
+        self._answers: dict[tuple[str, str, Vector3 | None], _Once] = {}
 
     def facts(self, file: Path) -> MeshFacts | None:
         """The facts of an STL or OBJ file (see `fishbot_urdf.meshfile.mesh_facts`); None
@@ -122,27 +122,22 @@ class MeshContents:
 
     def _bytes(self, file: str | Path) -> bytes:
         """The file's bytes, read once."""
-        return self._once("bytes", Path(file), lambda: read_input(file))
+        return self._once("bytes", file, lambda: read_input(file))
 
     def _once(
-        self, what: str, file: Path, make: Callable[[], _T], scale: Vector3 | None = None
+        self, what: str, file: str | Path, make: Callable[[], _T], scale: Vector3 | None = None
     ) -> _T:
-        """``what`` of ``file`` (at ``scale``), made by ``make`` when first asked; the
-        ShapeError it raised, raised again."""
-        key = (what, Path(os.path.abspath(file)), scale)
+        """``what`` of ``file`` (at ``scale``), made by ``make`` when first asked (and asked
+        again of it when it raised)."""
+        key = (what, os.path.abspath(file), scale)
         with self._lock:
             answer = self._answers.get(key)
             if answer is None:
                 answer = self._answers[key] = _Once()
         with answer.lock:
             if not answer.done:
-                try:
-                    answer.value = make()
-                except ShapeError as exc:
-                    answer.error = exc
+                answer.value = make()
                 answer.done = True
-        if answer.error is not None:
-            raise answer.error
         value: _T = answer.value
         return value
 
