@@ -4,8 +4,10 @@ once, from any number of threads."""
 
 from __future__ import annotations
 
+import gc
 import threading
 import time
+import weakref
 from pathlib import Path
 
 import pytest
@@ -18,7 +20,8 @@ from fishbot_urdf.drawing.scene import build_scene
 from fishbot_urdf.errors import InputError, ShapeError
 from fishbot_urdf.inertia import fill_inertials
 from fishbot_urdf.inputs import recording_inputs
-from fishbot_urdf.lint import check
+from fishbot_urdf.lint import check, check_file
+from fishbot_urdf.packages import PackageFinder
 
 
 def _counted(monkeypatch: pytest.MonkeyPatch, name: str) -> list[str]:
@@ -127,3 +130,37 @@ def test_a_file_that_cannot_be_read_is_tried_again(tmp_path: Path) -> None:
         contents.triangles(mesh)
     mesh.write_bytes(box_stl(0.2, 0.1, 0.1))
     assert contents.triangles(mesh).shape == (12, 3, 3)
+
+
+@pytest.mark.parametrize(
+    ("name", "mesh", "data"),
+    [
+        ("r &amp; co", "part.stl", box_stl(0.2, 0.1, 0.1)),
+        ("r & co", "part.stl", box_stl(0.2, 0.1, 0.1)),  # read by recovery: xml-escape
+        ("r", "package://no_such_package/part.stl", b""),  # its error kept by the finder
+        ("r", "part.stl", box_stl(0.2, 0.1, 0.1)[:-10]),  # not a mesh: mesh-invalid
+    ],
+)
+def test_an_analysis_and_the_mesh_bytes_it_keeps_are_let_go_with_the_check(
+    tmp_path: Path, name: str, mesh: str, data: bytes
+) -> None:
+    # The command line runs without the cycle collector: nothing may hold the analysis in a
+    # cycle (an error's traceback holds the frames that made it), nor longer than a finder.
+    (tmp_path / "part.stl").write_bytes(data)
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(
+        f'<robot name="{name}"><link name="a"><visual><geometry><mesh filename="{mesh}"/>'
+        "</geometry></visual></link></robot>\n"
+    )
+    finder = PackageFinder()
+    collecting = gc.isenabled()
+    gc.disable()
+    try:
+        result = check_file(str(robot), packages=finder)
+        assert result.analysis is not None
+        analysis = weakref.ref(result.analysis)
+        del result
+        assert analysis() is None
+    finally:
+        if collecting:
+            gc.enable()
