@@ -37,18 +37,24 @@ def _counted(monkeypatch: pytest.MonkeyPatch, name: str) -> list[str]:
     return calls
 
 
+def _robot(folder: Path, shapes: str, name: str = "r") -> Path:
+    """A robot file of one link, ``a``, with ``shapes`` (its visual and collision elements)."""
+    robot = folder / "robot.urdf"
+    robot.write_text(f'<robot name="{name}"><link name="a">{shapes}</link></robot>\n')
+    return robot
+
+
 def test_a_mesh_checked_drawn_and_weighed_is_read_once(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     trimesh = pytest.importorskip("trimesh")
     mesh = tmp_path / "part.stl"
     mesh.write_bytes(box_stl(200.0, 100.0, 100.0))  # in millimetres
-    robot = tmp_path / "robot.urdf"
-    robot.write_text(
-        '<robot name="r"><link name="a">'
+    robot = _robot(
+        tmp_path,
         '<visual><geometry><mesh filename="part.stl"/></geometry></visual>'
         '<collision><geometry><mesh filename="part.stl" scale="0.001 0.001 0.001"/>'
-        "</geometry></collision></link></robot>\n"
+        "</geometry></collision>",
     )
     analysis = analyse(fishbot_urdf.load(robot))
     reads = _counted(monkeypatch, "read_input")
@@ -147,11 +153,8 @@ def test_an_analysis_and_the_mesh_bytes_it_keeps_are_let_go_with_the_check(
     # The command line runs without the cycle collector: nothing may hold the analysis in a
     # cycle (an error's traceback holds the frames that made it), nor longer than a finder.
     (tmp_path / "part.stl").write_bytes(data)
-    robot = tmp_path / "robot.urdf"
-    robot.write_text(
-        f'<robot name="{name}"><link name="a"><visual><geometry><mesh filename="{mesh}"/>'
-        "</geometry></visual></link></robot>\n"
-    )
+    visual = f'<visual><geometry><mesh filename="{mesh}"/></geometry></visual>'
+    robot = _robot(tmp_path, visual, name)
     finder = PackageFinder()
     collecting = gc.isenabled()
     gc.disable()
