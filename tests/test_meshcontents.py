@@ -1,6 +1,6 @@
 """What a robot's mesh files hold has one owner, the analysis's ``meshes``: a file that the
-checks, a drawing and the mass computations all use is read once, and each answer made
-once, from any number of threads."""
+checks, a drawing and the mass computations all use is read once for each kind of answer
+(main read it six times), and each answer is made once, from any number of threads."""
 
 from __future__ import annotations
 
@@ -44,7 +44,7 @@ def _robot(folder: Path, shapes: str, name: str = "r") -> Path:
     return robot
 
 
-def test_a_mesh_checked_drawn_and_weighed_is_read_once(
+def test_a_mesh_checked_drawn_and_weighed_is_read_once_for_each_answer(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     trimesh = pytest.importorskip("trimesh")
@@ -70,13 +70,19 @@ def test_a_mesh_checked_drawn_and_weighed_is_read_once(
     assert [d.rule for d in findings if d.rule.startswith("mesh")] == ["mesh-units"]
     assert [part.layer for part in scene.parts] == ["visual", "collision"]
     assert filled.inertials["a"].mass == pytest.approx(2.0)  # 0.2 * 0.1 * 0.1 m^3 of water
-    # One read of the file by anyone (every read goes through read_input, and is recorded),
-    # by the analysis's meshes; its triangles made once for both scales, its solid once for
-    # the three questions the inertia asks of it (too large? its volume, its inertia).
-    assert read.count(str(mesh)) == 1
-    assert reads == [str(mesh)]
+    # Every read goes through read_input, and is recorded: one for the facts the mesh rules
+    # read, one for the triangles (made once for both scales), one for the solid (made once
+    # for the three questions the inertia asks of it: too large? its volume, its inertia).
+    assert read.count(str(mesh)) == 3
+    assert reads == [str(mesh)] * 3
     assert parses == [str(mesh)]
     assert len(loads) == 1
+    # asked again, every answer is there: nothing more is read
+    with recording_inputs() as again:
+        check(analysis)
+        build_scene(analysis, show=("visual", "collision"))
+        fill_inertials(analysis, density=1000.0)
+    assert again.count(str(mesh)) == 0
 
 
 def test_threads_asking_at_once_share_one_read(
@@ -110,7 +116,7 @@ def test_threads_asking_at_once_share_one_read(
     assert len(answers) == 8 and all(answer is answers[0] for answer in answers)
 
 
-def test_a_malformed_file_gives_its_error_each_time_from_one_read(
+def test_a_malformed_file_gives_its_error_each_time(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     mesh = tmp_path / "part.stl"
@@ -126,7 +132,7 @@ def test_a_malformed_file_gives_its_error_each_time_from_one_read(
     assert messages[0].startswith("not an ASCII STL, nor a binary one")
     assert contents.facts(mesh) is None
     assert contents.bounds(mesh) is not None  # the whole records it holds
-    assert reads == [str(mesh)]
+    assert reads == [str(mesh)] * 4  # the error is not kept: read again to raise it again
 
 
 def test_a_file_that_cannot_be_read_is_tried_again(tmp_path: Path) -> None:

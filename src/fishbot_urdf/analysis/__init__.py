@@ -60,7 +60,7 @@ class Analysis:
         packages: Where the ``package://`` names of its meshes are found (None: as
             `fishbot_urdf.packages.find_package` finds them, with no folders given).
         meshes: What the files of its meshes (found by ``mesh_paths``) hold, each file read
-            at most once (see `fishbot_urdf.analysis.meshcontents`).
+            once for each kind of answer (see `fishbot_urdf.analysis.meshcontents`).
     """
 
     robot: Robot

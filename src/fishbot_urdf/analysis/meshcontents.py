@@ -1,17 +1,18 @@
-"""What a robot's mesh files hold, each file read at most once per analysis.
+"""What a robot's mesh files hold, each answer about a file made once per analysis.
 
 A robot's `MeshContents` is built with its analysis (``Analysis.meshes``); the checks, the
 drawings and the mass computations ask it for what they need of a file that
 ``Analysis.mesh_paths`` found: its facts (`fishbot_urdf.meshfile.MeshFacts`: faces, box,
 how far from flat), whether it is closed, its triangles, the box around what of it can be
-read, and the volume, centre and inertia of the solid it encloses. Each file's bytes are
-read once (by `fishbot_urdf.inputs.read_input`) and kept as long as the analysis, and each
-answer is made once: a file that one robot draws, checks and weighs is not read three times.
+read, and the volume, centre and inertia of the solid it encloses. Each answer is made once,
+from the file's bytes read for it (by `fishbot_urdf.inputs.read_input`), and kept as long
+as the analysis: a file the checks, a drawing and the mass computations all ask of is read
+once for each kind of answer, not once for each caller and question.
 
 The formats are read by `fishbot_urdf.meshfile` (STL and OBJ, strictly) and by trimesh (the
 `mesh` extra) for the others and for solids. Errors are not kept: a file that cannot be read
-is tried again (the limits in force may differ), one that is not a mesh is read as one again
-from its bytes, to raise its error again (a kept error's traceback would keep the frames of
+is tried again (the limits in force may differ), one that is not a mesh is read again, to
+raise its error again (a kept error's traceback would keep the frames of
 the first caller, and all they hold).
 """
 
@@ -71,7 +72,7 @@ class _Once:
 
 
 class MeshContents:
-    """The contents of mesh files, each read at most once and each answer made once, by
+    """The contents of mesh files, each answer made once (from one read of the file), by
     file. Safe to share between threads (a thread asking what another is reading waits for
     it)."""
 
@@ -121,8 +122,11 @@ class MeshContents:
         return self._once("solid", file, lambda: _solid(file, self._bytes, scale), scale)
 
     def _bytes(self, file: str | Path) -> bytes:
-        """The file's bytes, read once."""
-        return self._once("bytes", file, lambda: read_input(file))
+        """The file's bytes, read for the answer being made. (Not kept: kept for as long as
+        the analysis, a robot's meshes cost a check of the PyPI corpus in one process 6% of
+        its time and 40 MB more at its peak, for the second read of a file that a drawing
+        or an inertia asks of beside the checks.)"""
+        return read_input(file)
 
     def _once(
         self, what: str, file: str | Path, make: Callable[[], _T], scale: Vector3 | None = None
