@@ -153,6 +153,17 @@ def test_mesh_bounds_finds_the_box_of_a_malformed_file(tmp_path: Path) -> None:
         assert mesh_bounds(tmp_path / name) is None
 
 
+def test_mesh_bounds_finds_the_box_of_a_collada_files_positions(tmp_path: Path) -> None:
+    source = '<source id="positions"><float_array id="positions-array">{}</float_array>'
+    (tmp_path / "part.dae").write_text(source.format("0 0 0 0.3 0.2 0.1 -1 0.5 0 7"))
+    assert mesh_bounds(tmp_path / "part.dae") == ((-1, 0, 0), (0.3, 0.5, 0.1))  # 7 left over
+    (tmp_path / "nan.dae").write_text(source.format("0 0 0 nan 0.2 0.1"))
+    assert mesh_bounds(tmp_path / "nan.dae") is None
+    reads: list[str] = []
+    box = mesh_bounds(tmp_path / "part.dae", lambda path: reads.append(str(path)) or b"")
+    assert (box, reads) == (None, [str(tmp_path / "part.dae")])  # the reader given
+
+
 def test_reading_a_mesh_stops_at_the_deadline(tmp_path: Path) -> None:
     path = tmp_path / "big.obj"
     path.write_bytes(_TRIANGLE + b"f 1 2 3\n" * 10)
@@ -243,7 +254,9 @@ def test_closed_welds_corners_at_one_place_and_reads_each_file_once(
     path.write_bytes(binary_stl([(*a, *c, *b), (*a0, *b, *d), (*a0, *d, *c), (*b, *c, *d)]))
     reads: list[str] = []
     real = meshfile.mesh_triangles
-    monkeypatch.setattr(meshfile, "mesh_triangles", lambda p: reads.append(str(p)) or real(p))
+    monkeypatch.setattr(
+        meshfile, "mesh_triangles", lambda p, read=None: reads.append(str(p)) or real(p, read)
+    )
     assert mesh_closed(path) is True
     assert mesh_closed(path) is True
     assert reads == [str(path)]

@@ -5,23 +5,30 @@ The facts are enough to tell a mesh exported in millimetres, or a collision mesh
 a simulator, without trimesh: `check` reads STL (binary and ASCII) and OBJ this way, every
 vertex looked at in numpy (the count of a binary STL is in its header). A file's facts are
 read once per process while its size and time of change stay the same. Whether a mesh is
-closed is read only when asked. COLLADA files carry their own unit and are not read here.
+closed is read only when asked. COLLADA files carry their own unit: only the box around their
+positions is read (:func:`mesh_bounds`).
 
 The triangles (:func:`mesh_triangles`, for drawing) are read only from a well-formed file: a
 binary STL as long as its header says, numbers that are numbers and finite, OBJ faces whose
 vertices exist. Anything else is a :class:`~fishbot_urdf.errors.ShapeError` that says what
 is wrong and where, never a foreign exception. Both readers check the deadline in force
 (:func:`fishbot_urdf.inputs.deadline`) as they go.
+
+Each function reads the file's bytes with ``read`` (by default
+:func:`~fishbot_urdf.inputs.read_input`): the owner of a robot's mesh contents
+(`fishbot_urdf.analysis.meshcontents`) passes its own, which reads each file once.
 """
 
 from __future__ import annotations
 
 import bisect
 import io
+import math
 import os
 import re
 import struct
 import threading
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -36,6 +43,7 @@ if TYPE_CHECKING:
 __all__ = [
     "EmptyMeshError",
     "MeshFacts",
+    "Reader",
     "mesh_bounds",
     "mesh_closed",
     "mesh_facts",
@@ -68,6 +76,11 @@ _OBJ_FACE_LINE = re.compile(rb"^[ \t]*f[ \t]+([^\r\n]*)", re.MULTILINE)
 # The bytes of the vertex lines numpy's reader takes as the patterns above do: numbers
 # written plainly, spaces and tabs, line ends.
 _PLAIN_VERTICES = b"v0123456789+-.eE \t\r\n"
+_COLLADA_POSITIONS = re.compile(rb"<float_array[^>]*positions?[^>]*>([^<]*)<", re.IGNORECASE)
+
+Reader = Callable[[str | Path], bytes]
+"""What reads a file's bytes: :func:`~fishbot_urdf.inputs.read_input`, or one that keeps
+them."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -108,7 +121,7 @@ class MeshFacts:
         return None if self.path is None else mesh_closed(self.path)
 
 
-def mesh_facts(path: str | Path) -> MeshFacts | None:
+def mesh_facts(path: str | Path, read: Reader | None = None) -> MeshFacts | None:
     """The facts of an STL or OBJ file (by its extension); None for other formats, files
     that cannot be read, and files with no vertices.
 
@@ -125,7 +138,7 @@ def mesh_facts(path: str | Path) -> MeshFacts | None:
         if key in _KNOWN:
             return _KNOWN[key]
     try:
-        data = read_input(path)
+        data = (read or read_input)(path)
     except (InputError, OSError):
         return None  # (not kept: the size limit in force may differ next time)
     facts = _read_facts(kind, data)
@@ -138,7 +151,7 @@ def mesh_facts(path: str | Path) -> MeshFacts | None:
     return facts
 
 
-def mesh_closed(path: str | Path) -> bool | None:
+def mesh_closed(path: str | Path, read: Reader | None = None) -> bool | None:
     """Whether every edge of an STL or OBJ file's mesh is shared by exactly two of its
     triangles, corners at the same place taken as one vertex (a mesh that encloses a
     volume, as a mass computed from it needs); None when the file is not well formed
@@ -155,7 +168,7 @@ def mesh_closed(path: str | Path) -> bool | None:
         if key in _CLOSED:
             return _CLOSED[key]
     try:
-        triangles = mesh_triangles(path)
+        triangles = mesh_triangles(path, read)
     except (ShapeError, InputError):
         return None
     closed = _closed(triangles)
@@ -252,25 +265,48 @@ def _obj_facts(data: bytes) -> MeshFacts | None:
     return _facts(faces, lows, highs, list(numbers.T))
 
 
-def mesh_bounds(path: str | Path) -> tuple[Vector3, Vector3] | None:
-    """The smallest and largest corner of the box around what vertices of an STL or OBJ
-    file can be read, even when the file is not well formed: those of its facts (numbers
-    that are not numbers left out), or, for a binary STL longer or shorter than its header
-    says, those of the whole records it holds. None when no finite box is found."""
-    facts = mesh_facts(path)
+def mesh_bounds(path: str | Path, read: Reader | None = None) -> tuple[Vector3, Vector3] | None:
+    """The smallest and largest corner of the box around what vertices of a mesh file can
+    be read, even when the file is not well formed. For an STL or OBJ file: those of its
+    facts (numbers that are not numbers left out), or, for a binary STL longer or shorter
+    than its header says, those of the whole records it holds; for any other (COLLADA):
+    those of its position arrays, its nodes' transforms left out. None when no finite box
+    is found.
+
+    Raises:
+        TimeLimitError: Reading went past the deadline in force.
+    """
+    kind = Path(path).suffix.lower()
+    facts = mesh_facts(path, read) if kind in (".stl", ".obj") else None
     if facts is not None:
         return facts.low, facts.high
-    if Path(path).suffix.lower() != ".stl":
+    if kind == ".obj":
         return None
     try:
-        data = read_input(path)
+        data = (read or read_input)(path)
     except (InputError, OSError):
         return None
+    if kind != ".stl":
+        return _positions_bounds(data)
     if len(data) < 84 + 50 or _ASCII_VERTEX.search(data):
         return None
     records = (len(data) - 84) // 50
     facts = _binary_stl(data[: 84 + 50 * records], records)
     return None if facts is None else (facts.low, facts.high)
+
+
+def _positions_bounds(data: bytes) -> tuple[Vector3, Vector3] | None:
+    """The box around a COLLADA file's position arrays, when all are finite numbers."""
+    arrays = _COLLADA_POSITIONS.findall(data)
+    try:
+        numbers = [float(v) for chunk in arrays for v in chunk.split()]
+    except ValueError:
+        return None
+    points = numbers[: len(numbers) // 3 * 3]
+    if not points or not all(math.isfinite(v) for v in points):
+        return None
+    low, high = [min(points[k::3]) for k in range(3)], [max(points[k::3]) for k in range(3)]
+    return (low[0], low[1], low[2]), (high[0], high[1], high[2])
 
 
 def _binary_count(data: bytes) -> int | None:
@@ -383,7 +419,7 @@ def _spread(axes: list[Any]) -> tuple[tuple[float, float | None], int | None]:
     return (plane, line), vertices
 
 
-def mesh_triangles(path: str | Path) -> NDArray[Any]:
+def mesh_triangles(path: str | Path, read: Reader | None = None) -> NDArray[Any]:
     """The triangles of an STL (binary or ASCII) or OBJ file (by its extension), in the
     file's units: an array (T, 3, 3) of every triangle's corners. An OBJ polygon is cut
     into a fan of triangles.
@@ -399,7 +435,7 @@ def mesh_triangles(path: str | Path) -> NDArray[Any]:
     kind = Path(name).suffix.lower()
     if kind not in (".stl", ".obj"):
         raise ShapeError(f"{kind or 'no extension'}: not an STL or OBJ file", path=name)
-    data = read_input(path)
+    data = (read or read_input)(path)
     if not data.strip():
         raise EmptyMeshError("the file is empty", path=name)
     import numpy as np  # numpy: ~190 ms to load, only where arrays are made

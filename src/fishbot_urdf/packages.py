@@ -298,7 +298,9 @@ class PackageFinder:
                         name, near=near, packages=self.packages, environ=self.environ
                     )
                 except PackageNotFoundError as exc:
-                    found = exc
+                    # (kept without its traceback, whose frames would keep what the first
+                    # caller's frames hold, a robot and its analysis, as long as the finder)
+                    found = exc.with_traceback(None)
             self._found[key] = (found, tuple(read))
         else:
             found, manifests = known

@@ -2,9 +2,9 @@
 
 An `Analysis` holds the robot with its topology, its links and joints by name, each link's
 parent joint, the joint loops, the rigid bodies simulators make of links welded by fixed
-joints, the kinematic plan, the links' poses and the files its meshes name, computed on
-first use. Build it with `analyse` and pass it on; functions that take a robot take an
-analysis too.
+joints, the kinematic plan, the links' poses, the files its meshes name and what those files
+hold, computed on first use. Build it with `analyse` and pass it on; functions that take a
+robot take an analysis too.
 """
 
 from __future__ import annotations
@@ -21,6 +21,7 @@ from ..model import Joint, JointType, Link, Robot
 from ..packages import PackageFinder
 from ..spatial import Pose
 from .gazebo import Block, Lumping, blocks, lumping
+from .meshcontents import MeshContents
 from .meshpaths import MeshPaths
 from .plan import Plan, build
 from .poses import place
@@ -59,6 +60,8 @@ class Analysis:
         parent_joint: Each link's parent joint (the first in file order, if it has several).
         packages: Where the ``package://`` names of its meshes are found (None: as
             `fishbot_urdf.packages.find_package` finds them, with no folders given).
+        meshes: What the files of its meshes (found by ``mesh_paths``) hold, each file read
+            once for each kind of answer (see `fishbot_urdf.analysis.meshcontents`).
     """
 
     robot: Robot
@@ -69,6 +72,7 @@ class Analysis:
     parent_joint: Mapping[str, Joint] = field(repr=False)
     given_references: tuple[Reference, ...] | None = field(default=None, repr=False)
     packages: PackageFinder | None = field(default=None, repr=False)
+    meshes: MeshContents = field(default_factory=MeshContents, init=False, repr=False)
 
     @property
     def root(self) -> str:

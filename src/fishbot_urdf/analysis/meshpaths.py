@@ -18,7 +18,8 @@
 - ``http(s)://`` and ``model://``: not ours to fetch.
 
 A robot's `MeshPaths` is built once, by its analysis (``Analysis.mesh_paths``), and every
-command and library function that opens a mesh asks it.
+command and library function that opens a mesh asks it; what the files hold, it asks the
+analysis's ``meshes`` (`fishbot_urdf.analysis.meshcontents`).
 """
 
 from __future__ import annotations
@@ -30,15 +31,12 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..errors import FishbotUrdfError
-from ..meshfile import mesh_facts
 from ..model import Link, Mesh, Robot
 from ..packages import PackageFinder, PackageNotFoundError, package_name
 from ..wording import closest
 
 if TYPE_CHECKING:
     from collections.abc import Iterator
-
-    from ..meshfile import MeshFacts
 
 __all__ = ["RULE", "MeshNotFoundError", "MeshPath", "MeshPaths", "State", "robot_meshes"]
 
@@ -137,7 +135,6 @@ class MeshPaths:
         self._paths: dict[str, MeshPath] = {}
         self._folders: dict[str, Path | PackageNotFound] = {}
         self._listings: dict[Path, list[str] | None] = {}
-        self._facts: dict[Path, MeshFacts | None] = {}
 
     def get(self, name: str) -> MeshPath:
         """Where mesh name ``name`` leads (looked up once)."""
@@ -263,12 +260,6 @@ class MeshPaths:
             return None
         close = closest(file.name, names)
         return None if close is None else str(file.parent / close)
-
-    def facts(self, file: Path) -> MeshFacts | None:
-        """The facts of an STL or OBJ file found (see `fishbot_urdf.meshfile.mesh_facts`)."""
-        if file not in self._facts:
-            self._facts[file] = mesh_facts(file)
-        return self._facts[file]
 
     def found(self, robot: Robot) -> list[Path]:
         """Every file the robot's meshes lead to that is there, once each, in file order."""

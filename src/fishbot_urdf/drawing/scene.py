@@ -8,9 +8,9 @@ converter lumps together (`fishbot_urdf.analysis.gazebo`) in one colour each.
 `fishbot render` rasterises a scene; `fishbot view` sends one to the browser.
 
 numpy is imported when a scene is built. Mesh files are found by the analysis's
-``mesh_paths`` (`fishbot_urdf.analysis.meshpaths`: the files `check` finds) and read from STL
-and OBJ
-(by `fishbot_urdf.meshfile`); other formats need trimesh (the `mesh` extra). A mesh whose
+``mesh_paths`` (`fishbot_urdf.analysis.meshpaths`: the files `check` finds) and read by its
+``meshes`` (`fishbot_urdf.analysis.meshcontents`: STL and OBJ by `fishbot_urdf.meshfile`,
+other formats through trimesh, the `mesh` extra), as `check` reads them. A mesh whose
 file is not found is left out; one that cannot be read (malformed, not finite) is drawn as
 its bounding box when its size is known (the vertices found in an STL or OBJ file, a
 COLLADA file's positions), else left out; so is a shape whose coordinates, scaled and posed,
@@ -23,7 +23,6 @@ says why (`fishbot_urdf.inertia.why_no_box`).
 
 from __future__ import annotations
 
-import re
 import warnings
 from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass, field, replace
@@ -43,11 +42,10 @@ from ..catalog.meshes import (
 )
 from ..catalog.setup import TOOL_MISSING
 from ..diagnostics import Diagnostic, Kind, Severity, Subject, sort_key
-from ..errors import ArgumentError, FishbotUrdfError, LimitError, ShapeError, ToolNotFoundError
+from ..errors import ArgumentError, FishbotUrdfError, LimitError, ToolNotFoundError
 from ..inertia import NoBox
-from ..inputs import deadline, read_input
+from ..inputs import deadline
 from ..kinematics import Kinematics
-from ..meshfile import mesh_bounds, mesh_triangles
 from ..model import (
     Box,
     Cylinder,
@@ -487,11 +485,12 @@ def _color(
 
 
 class _Loader:
-    """Shapes to triangles in their own frame; each mesh file read once."""
+    """Shapes to triangles in their own frame; each mesh file scaled once."""
 
     def __init__(self, analysis: Analysis) -> None:
         self.analysis = analysis
         self.paths = analysis.mesh_paths
+        self.meshes = analysis.meshes
         self.read: dict[tuple[Path, tuple[float, ...]], Any] = {}
         self.findings: list[Diagnostic] = []
         self.missing: set[str] = set()  # packages not found, said once
@@ -544,7 +543,7 @@ class _Loader:
 
     def _mesh(self, np: Any, link: Link, mesh: Mesh, file: Path, scale: tuple[float, ...]) -> Any:
         try:
-            triangles = _read_mesh(np, file)
+            triangles = self.meshes.triangles(file)
         except (OSError, FishbotUrdfError) as exc:
             if isinstance(exc, LimitError):  # the deadline: the whole scene stops
                 raise
@@ -556,12 +555,11 @@ class _Loader:
         if triangles is not None:
             with np.errstate(over="ignore", invalid="ignore"):
                 return triangles * factors  # (not finite: left out by build_scene)
-        bounds = _bounds_of(np, file)
-        if bounds is not None:
-            with np.errstate(over="ignore", invalid="ignore"):
-                bounds = bounds[0] * factors, bounds[1] * factors
-            if not (np.abs(bounds) <= FARTHEST).all():  # garbage read as numbers: no size
-                bounds = None
+        found = self.meshes.bounds(file)
+        with np.errstate(over="ignore", invalid="ignore"):
+            bounds = None if found is None else np.array(found) * factors  # low, high
+        if bounds is not None and not (np.abs(bounds) <= FARTHEST).all():
+            bounds = None  # garbage read as numbers: no size
         reason = getattr(failure, "message", None) or str(failure) or type(failure).__name__
         drawn = "nor its size: not drawn" if bounds is None else "drawn as its bounding box"
         kind = file.suffix.lower()
@@ -576,56 +574,3 @@ class _Loader:
             return None
         low, high = bounds
         return box(np, *(high - low)) + (low + high) / 2
-
-
-def _read_mesh(np: Any, file: Path) -> Any:
-    """Triangles (T, 3, 3) of an STL or OBJ file (others through trimesh, if installed)."""
-    kind = file.suffix.lower()
-    if kind in (".stl", ".obj"):
-        return mesh_triangles(file)
-    try:
-        import trimesh  # the mesh extra (optional): ~600 ms to load
-    except ImportError:
-        raise ToolNotFoundError(
-            f"reading a {kind or 'file without extension'} mesh needs the trimesh package",
-            tool="trimesh",
-            hint="pip install 'fishbot-urdf[mesh]'",
-        ) from None
-    try:
-        loaded: Any = trimesh.load(str(file), force="mesh")
-        if not hasattr(loaded, "triangles") or not len(loaded.faces):
-            raise ShapeError("no triangles")
-        triangles = np.asarray(loaded.triangles, dtype=float)
-    except ShapeError:
-        raise
-    except Exception as exc:  # whatever a foreign reader makes of a file it cannot read
-        raise ShapeError(str(exc) or type(exc).__name__) from exc
-    if triangles.ndim != 3 or triangles.shape[1:] != (3, 3) or not np.isfinite(triangles).all():
-        raise ShapeError("a vertex is not a finite number")
-    return triangles
-
-
-def _bounds_of(np: Any, file: Path) -> tuple[Any, Any] | None:
-    """The box around a mesh file's vertices without reading it as a mesh: those an STL or
-    OBJ file's facts found, or a COLLADA file's position arrays (its nodes' transforms left
-    out); None when no finite box is found."""
-    if file.suffix.lower() in (".stl", ".obj"):
-        box = mesh_bounds(file)
-        return None if box is None else (np.array(box[0]), np.array(box[1]))
-    try:
-        data = read_input(file)
-    except LimitError:
-        raise
-    except (OSError, FishbotUrdfError):
-        return None
-    arrays = re.findall(rb"<float_array[^>]*positions?[^>]*>([^<]*)<", data, re.IGNORECASE)
-    try:
-        numbers = [float(v) for chunk in arrays for v in chunk.split()]
-    except ValueError:
-        return None
-    if len(numbers) < 3:
-        return None
-    points = np.array(numbers[: len(numbers) // 3 * 3]).reshape(-1, 3)
-    if not np.isfinite(points).all():
-        return None
-    return points.min(axis=0), points.max(axis=0)

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..analysis import Analysis, of
+from ..analysis.meshcontents import MeshContents
 from ..catalog.setup import FILL_SKIPPED, FillFacts
 from ..diagnostics import Diagnostic, Kind, Subject
 from ..errors import ArgumentError, FishbotUrdfError, ShapeError, UnknownNameError
@@ -55,6 +56,7 @@ def link_inertial(
     density: float | None = None,
     mass: float | None = None,
     resolve: Callable[[Mesh], Path] | None = None,
+    meshes: MeshContents | None = None,
 ) -> Inertial:
     """The inertial of a link filled uniformly, from its collision shapes.
 
@@ -63,7 +65,8 @@ def link_inertial(
     origin (the numbers common_inertia.xacro gives); several shapes are added up about
     their joint centre of mass. Closed meshes count when trimesh is installed; ``resolve``
     turns one into its file (by default, as `geometry_inertia` does; for a link of a robot,
-    give its analysis's ``mesh_paths.file``).
+    give its analysis's ``mesh_paths.file``) and ``meshes`` reads it (for a link of a
+    robot, give its analysis's ``meshes``; by default, each file is read once for the link).
 
     Raises:
         ArgumentError: Neither or both of density and mass are given, or one is not a
@@ -81,10 +84,11 @@ def link_inertial(
         raise ArgumentError("give the density or the mass, not both", name="density")
     _positive(density, "density")
     _positive(mass, "mass")
+    meshes = meshes if meshes is not None else MeshContents()
     for collision in link.collisions:
         if isinstance(collision.geometry, Mesh):
-            plausible_mesh(collision.geometry, resolve)
-    shapes = [(c, volume(c.geometry, resolve)) for c in link.collisions]
+            plausible_mesh(collision.geometry, resolve, meshes=meshes)
+    shapes = [(c, volume(c.geometry, resolve, meshes=meshes)) for c in link.collisions]
     if not shapes:
         raise ShapeError(f"link {link.name!r} has no collision shape")
     total = exact_sum([v for _, v in shapes])
@@ -96,7 +100,7 @@ def link_inertial(
         assert mass is not None
         masses = [mass * v / total for _, v in shapes]
     parts = [
-        geometry_inertia(collision.geometry, part, collision.origin, resolve)
+        geometry_inertia(collision.geometry, part, collision.origin, resolve, meshes=meshes)
         for (collision, _), part in zip(shapes, masses, strict=True)
     ]
     if len(parts) == 1:
@@ -152,7 +156,7 @@ def fill_inertials(
         masses: The mass of some links (kg), by name; a link given here ignores
             ``density``.
         resolve: Finds a mesh's file (default: the analysis's ``mesh_paths``, as every
-            command finds it).
+            command finds it); the analysis's ``meshes`` read it.
 
     Raises:
         ArgumentError: Neither density nor masses are given; a mass or the density is not
@@ -188,7 +192,11 @@ def fill_inertials(
             continue
         try:
             computed[link.name] = link_inertial(
-                link, mass=given, density=None if given is not None else density, resolve=resolve
+                link,
+                mass=given,
+                density=None if given is not None else density,
+                resolve=resolve,
+                meshes=analysis.meshes,
             )
         except FishbotUrdfError as exc:  # an open mesh, a package not found, no trimesh
             hint = getattr(exc, "hint", None)

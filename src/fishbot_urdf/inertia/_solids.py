@@ -8,18 +8,16 @@ frame: pass the ``origin`` of the visual or collision it belongs to.
 
 from __future__ import annotations
 
-import io
 import math
 import os
 import sys
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
+from ..analysis.meshcontents import MeshContents
 from ..analysis.meshpaths import MeshPaths
-from ..errors import ArgumentError, InertiaUnderflowError, ShapeError, ToolNotFoundError
-from ..inputs import read_input
+from ..errors import ArgumentError, InertiaUnderflowError, ShapeError
 from ..model import (
     ZERO3,
     Box,
@@ -152,6 +150,8 @@ def geometry_inertia(
     mass: float,
     origin: Origin = _AT_LINK,
     resolve: Callable[[Mesh], Path] | None = None,
+    *,
+    meshes: MeshContents | None = None,
 ) -> Inertial:
     """The inertia of a URDF shape filled uniformly with ``mass`` (kg).
 
@@ -161,7 +161,8 @@ def geometry_inertia(
     A mesh's file is found by ``resolve`` (for a robot's mesh, its analysis's
     ``mesh_paths.file``, as every command finds it), or else by the rule of
     `fishbot_urdf.analysis.meshpaths` with the file the mesh was read from as the robot file (the
-    working folder for a mesh made in Python).
+    working folder for a mesh made in Python); it is read by ``meshes`` (for a robot's
+    mesh, its analysis's ``meshes``, which read each file once), or else read for this call.
 
     Raises:
         ArgumentError: The geometry is not a box, cylinder, sphere or mesh.
@@ -180,7 +181,7 @@ def geometry_inertia(
         return sphere_inertia(mass, geometry.radius, origin)
     if isinstance(geometry, Mesh):
         where = resolve(geometry) if resolve is not None else _mesh_file(geometry)
-        return mesh_inertia(where, mass, origin, geometry.scale)
+        return mesh_inertia(where, mass, origin, geometry.scale, meshes=meshes)
     raise ArgumentError(
         f"no closed form for {type(geometry).__name__} (box, cylinder, sphere, mesh)",
         name="geometry",
@@ -253,11 +254,16 @@ def combine(parts: Iterable[tuple[Inertial, Pose]]) -> MassProperties:
     return MassProperties(mass, com, _inertia(total))
 
 
-def volume(geometry: Geometry, resolve: Callable[[Mesh], Path] | None = None) -> float:
+def volume(
+    geometry: Geometry,
+    resolve: Callable[[Mesh], Path] | None = None,
+    *,
+    meshes: MeshContents | None = None,
+) -> float:
     """The volume of a URDF shape (m^3).
 
     A box, cylinder or sphere, or a closed mesh when the optional trimesh package is
-    installed (found as `geometry_inertia` finds it).
+    installed (found and read as `geometry_inertia` finds and reads it).
 
     Raises:
         ShapeError: The mesh is not closed.
@@ -274,92 +280,31 @@ def volume(geometry: Geometry, resolve: Callable[[Mesh], Path] | None = None) ->
         return 4.0 / 3.0 * math.pi * geometry.radius * geometry.radius * geometry.radius
     if isinstance(geometry, Mesh):
         where = resolve(geometry) if resolve is not None else _mesh_file(geometry)
-        return _solid(where, geometry.scale).volume
+        return _contents(meshes).solid(where, geometry.scale).volume
     raise ArgumentError(
         f"no closed form for {type(geometry).__name__} (box, cylinder, sphere, mesh)",
         name="geometry",
     )
 
 
-_MESH_FORMATS = ("stl", "obj", "dae", "ply", "off", "glb")
-"""Mesh files read for their volume (archives and formats that name other files are not)."""
-
-
-@dataclass(frozen=True, slots=True)
-class _Solid:
-    """What a closed mesh holds, filled with a density of 1 kg/m^3."""
-
-    volume: float
-    centre: Vector3
-    inertia: Matrix3  # about the centre
-    extent: float  # the largest side of the box around it (m)
-
-
-def _solid(path: Path, scale: Vector3 | None) -> _Solid:
-    """The closed trimesh mesh read from ``path``, scaled, as plain numbers."""
-    try:
-        import numpy as np  # numpy: ~190 ms to load, only where arrays are made
-        import trimesh  # the mesh extra (optional): ~600 ms to load
-    except ImportError:
-        raise ToolNotFoundError(
-            "the inertia of a mesh needs the trimesh package",
-            tool="trimesh",
-            hint="pip install 'fishbot-urdf[mesh]'",
-        ) from None
-    kind = path.suffix.lower().lstrip(".")
-    if kind not in _MESH_FORMATS:
-        raise ShapeError(
-            f"the mesh {path} is not a file fishbot reads ({', '.join(_MESH_FORMATS)}, by "
-            "its extension)",
-            path=str(path),
-        )
-    data = read_input(path)  # a regular file within the size limit
-    # Coordinates near the floats' limit overflow inside trimesh: the numbers come out as
-    # inf or nan, refused by the caller, rather than as warnings on stderr.
-    with np.errstate(all="ignore"):
-        try:
-            mesh: Any = trimesh.load(io.BytesIO(data), file_type=kind, force="mesh")
-        except ImportError as exc:
-            if kind == "dae":  # COLLADA is read by the pycollada package, which is optional
-                raise ToolNotFoundError(
-                    f"reading the COLLADA mesh {path} needs the pycollada package",
-                    tool="pycollada",
-                    hint="pip install pycollada",
-                ) from exc
-            raise ShapeError(
-                f"cannot read the mesh {path} as {kind.upper()}", path=str(path)
-            ) from exc
-        except Exception as exc:  # whatever a foreign reader makes of bytes that are no mesh
-            raise ShapeError(
-                f"cannot read the mesh {path} as {kind.upper()}: {exc}", path=str(path)
-            ) from exc
-        if type(mesh).__name__ != "Trimesh" or len(mesh.faces) == 0:
-            raise ShapeError(f"the mesh {path} holds no triangles", path=str(path))
-        if scale is not None:
-            mesh.apply_scale(scale)
-        if not mesh.is_watertight:
-            raise ShapeError(f"the mesh {path} is not closed, so it has no volume", path=str(path))
-        mesh.density = 1.0
-        return _Solid(
-            float(mesh.volume),
-            tuple(float(c) for c in mesh.center_mass),  # type: ignore[arg-type]
-            _matrix3(mesh.moment_inertia),
-            float(max(mesh.extents)),
-        )
-
-
 LARGEST_PART = 5.0
 """Metres: a mesh larger than this is no robot part (a file in millimetres, read as metres)."""
 
 
-def plausible_mesh(geometry: Mesh, resolve: Callable[[Mesh], Path] | None = None) -> None:
-    """Refuse a mesh too large to be a robot part: its inertia would be written in tonnes.
+def plausible_mesh(
+    geometry: Mesh,
+    resolve: Callable[[Mesh], Path] | None = None,
+    *,
+    meshes: MeshContents | None = None,
+) -> None:
+    """Refuse a mesh too large to be a robot part: its inertia would be written in tonnes
+    (found and read as `geometry_inertia` finds and reads it).
 
     Raises:
         ShapeError: The mesh is more than `LARGEST_PART` across (or not closed, or unread).
     """
     where = resolve(geometry) if resolve is not None else _mesh_file(geometry)
-    extent = _solid(where, geometry.scale).extent
+    extent = _contents(meshes).solid(where, geometry.scale).extent
     if extent > LARGEST_PART:
         raise ShapeError(
             f"the mesh {where} is {extent:.4g} m across, too large for a robot part: "
@@ -373,11 +318,14 @@ def mesh_inertia(
     mass: float,
     origin: Origin = _AT_LINK,
     scale: Vector3 | None = None,
+    *,
+    meshes: MeshContents | None = None,
 ) -> Inertial:
     """The inertia of a closed mesh file filled uniformly with ``mass`` (kg).
 
     About its centre of mass, placed by ``origin`` (that of its collision). Needs trimesh
-    (``pip install 'fishbot-urdf[mesh]'``).
+    (``pip install 'fishbot-urdf[mesh]'``). The file is read by ``meshes`` (a robot's
+    analysis's ``meshes``, which read each file once), or else read for this call.
 
     Raises:
         ShapeError: The mesh is not closed, or cannot be read as a mesh.
@@ -386,7 +334,7 @@ def mesh_inertia(
         InputError: The file cannot be read.
         ToolNotFoundError: trimesh is not installed.
     """
-    solid = _solid(Path(path), scale)
+    solid = _contents(meshes).solid(Path(path), scale)
     density = mass / solid.volume if solid.volume else math.inf
     frame = Pose.of(origin)
     unit = tuple(tuple(density * v + 0.0 for v in row) for row in solid.inertia)
@@ -400,6 +348,6 @@ def mesh_inertia(
     return Inertial(mass=mass, inertia=_inertia(tensor), origin=Origin(xyz=centre))
 
 
-def _matrix3(array: Any) -> Matrix3:
-    rows = [tuple(float(v) + 0.0 for v in row) for row in array]  # + 0.0: no -0
-    return (rows[0], rows[1], rows[2])  # type: ignore[return-value]
+def _contents(meshes: MeshContents | None) -> MeshContents:
+    """``meshes``, or contents of their own for a mesh read outside a robot's analysis."""
+    return meshes if meshes is not None else MeshContents()

@@ -1,5 +1,5 @@
 """What a mesh file's contents say against the robot: a collision mesh too flat to hull, a
-mesh in millimetres (its facts are read once, by `fishbot_urdf.meshfile`)."""
+mesh in millimetres (its facts are read once, by the analysis's ``meshes``)."""
 
 from __future__ import annotations
 

@@ -9,6 +9,7 @@ from pathlib import Path
 
 from .. import catalog
 from ..analysis import Analysis, of
+from ..analysis.meshcontents import MeshContents
 from ..analysis.meshpaths import MeshPath, State, robot_meshes
 from ..catalog import Rule, rules_in
 from ..catalog.meshes import (
@@ -26,7 +27,7 @@ from ..catalog.meshes import (
 from ..diagnostics import Diagnostic, Kind, Severity, Subject
 from ..errors import FishbotUrdfError, ShapeError
 from ..expansion import EXPAND_HINT, unexpanded
-from ..meshfile import EmptyMeshError, mesh_triangles
+from ..meshfile import EmptyMeshError
 from ..model import Link, Mesh
 from ..packages import PackageFinder
 from ..parsing import is_xacro_path
@@ -203,9 +204,9 @@ def _mesh(analysis: Analysis, link: Link, mesh: Mesh, collides: bool) -> Iterato
         )
     if not path.found or path.file is None:
         return
-    facts = paths.facts(path.file)
+    facts = analysis.meshes.facts(path.file)
     if facts is None:
-        fault = _fault(path.file) if extension in (".stl", ".obj") else None
+        fault = _fault(analysis.meshes, path.file) if extension in (".stl", ".obj") else None
         if fault is not None:
             yield report(MESH_INVALID, fault, "export the mesh again")
         return
@@ -273,12 +274,12 @@ def _fix(name: str) -> str:
     return "write package://PACKAGE/path for a file of a ROS package"
 
 
-def _fault(file: Path) -> str | None:
+def _fault(meshes: MeshContents, file: Path) -> str | None:
     """What is wrong with an STL or OBJ file whose facts could not be read (looked at only
     then: a file read well pays nothing); None for a file that holds nothing (an empty
     placeholder) or cannot be read at all."""
     try:
-        mesh_triangles(file)
+        meshes.triangles(file)
     except EmptyMeshError:
         return None
     except ShapeError as exc:

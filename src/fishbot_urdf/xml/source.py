@@ -129,6 +129,10 @@ def read_xml(
             line=line if refusal.offset is not None else None,
             column=column if refusal.offset is not None else None,
         ) from refusal
+    # The strict parser's error, through its cause's traceback, holds this frame and its
+    # callers' (and what they made: the robot, its analysis) until the cycle collector
+    # runs, which the command line keeps from running: let go of it now.
+    del strict
     locator = Locator(data, path, starts=recovered.starts, tags=recovered.tags)
 
     findings = []
