@@ -76,8 +76,8 @@ REPORTED = {
     "0.05 rpy 0 0 0, and its plugin 'camera' (libgazebo_ros_camera.so), which names no "
     "<frame_name>, stamps its messages with frame 'base_link' (write "
     "<frame_name>camera_link</frame_name> in the plugin, or keep link 'camera_link' with "
-    "<preserveFixedJoint>true</preserveFixedJoint> in <gazebo reference='camera_joint'> and give "
-    "it a mass) [gazebo-lumped-link]",
+    "<preserveFixedJoint>true</preserveFixedJoint> in <gazebo reference='camera_joint'>) "
+    "[gazebo-lumped-link]",
     GAZEBO_PLUGIN_LINK: "9:5: error: plugin 'ground_truth' (libgazebo_ros_p3d.so): <body_name> "
     "names link 'camera_link', which the converter lumps into 'base_link' (at xyz 0.1 0 0.05 rpy "
     "0 0 0) without renaming it here: Gazebo has no link 'camera_link' (name 'base_link', or "
@@ -229,8 +229,8 @@ def test_a_lumped_links_gravity_is_the_whole_links(tmp_path: Path) -> None:
         f"{path}:16:11: warning: link 'balloon' is lumped into 'arm' (at xyz 0 0 0.3 rpy 0 0 0): "
         "Gazebo applies the block's <gravity> to all of link 'arm' (write it in <gazebo "
         "reference='arm'> if meant for that link, or keep link 'balloon' with "
-        "<preserveFixedJoint>true</preserveFixedJoint> in <gazebo reference='balloon_joint'> and "
-        "give it a mass) [gazebo-lumped-link]\n"
+        "<preserveFixedJoint>true</preserveFixedJoint> in <gazebo reference='balloon_joint'>) "
+        "[gazebo-lumped-link]\n"
         f"{path}:17:11: warning: <gazebo reference='arm_joint'>: <disableFixedJointLumping> does "
         "nothing on a revolute joint: the converter lumps only fixed joints (leave it out) "
         "[gazebo-lumping-flag]\n",
@@ -312,3 +312,48 @@ def test_where_gazebo_looks_for_meshes_is_judged_only_for_gazebo(tmp_path: Path)
     assert converted.exit_code == 0
     assert converted.stderr.endswith("[gazebo-model-path]\n")
     assert converted.stderr.count("\n") == 1
+
+
+_KG = (
+    '<inertial><mass value="1"/>'
+    '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>'
+)
+
+
+def test_a_finding_about_the_second_block_on_a_link_is_at_that_block(tmp_path: Path) -> None:
+    path = _write(
+        tmp_path,
+        f"""<robot name="r">
+  <link name="base">{_KG}</link>
+  <link name="cam">{_KG}</link>
+  <joint name="j" type="fixed"><parent link="base"/><child link="cam"/></joint>
+  <gazebo reference="cam"><material>Gazebo/Red</material></gazebo>
+  <gazebo reference="cam"><preserveFixedJoint>true</preserveFixedJoint></gazebo>
+</robot>
+""",
+    )
+    status, err = _check(path)
+    assert (status, err.split(": warning:")[0]) == (0, f"{path}:6:11")
+    assert err.rstrip().endswith("[gazebo-lumping-flag]")
+
+
+def test_a_dropped_links_hint_names_its_parent_in_the_urdf(tmp_path: Path) -> None:
+    # mount hangs on base, which is lumped into footprint: moving arm up means base
+    path = _write(
+        tmp_path,
+        f"""<robot name="r">
+  <link name="footprint"/>
+  <link name="base">{_KG}</link>
+  <link name="mount"/>
+  <link name="arm">{_KG}</link>
+  <joint name="b" type="fixed"><parent link="footprint"/><child link="base"/></joint>
+  <joint name="m" type="fixed"><parent link="base"/><child link="mount"/></joint>
+  <joint name="a" type="continuous"><parent link="mount"/><child link="arm"/></joint>
+</robot>
+""",
+    )
+    status, err = _check(path)
+    assert status == 1
+    assert (
+        "(give 'mount' a mass, or hang what moves below it on 'base') [gazebo-dropped-link]" in err
+    )

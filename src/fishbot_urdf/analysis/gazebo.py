@@ -61,6 +61,13 @@ def blocks(robot: Robot, references: tuple[Reference, ...]) -> tuple[Block, ...]
     """Every ``<gazebo>`` and ``<ros2_control>`` element of ``robot``, in file order, placed
     by the places of ``references`` (the names they give)."""
     places = _places(references)
+    # each <gazebo reference> gives one reference, in file order: the k-th block naming a
+    # part is placed at the k-th reference to it
+    named: dict[str, list[Location]] = {}
+    for ref in references:
+        if ref.context == "<gazebo reference>" and ref.source is not None:
+            named.setdefault(ref.name, []).append(ref.source)
+    seen: dict[str, int] = {}
     found: list[Block] = []
     for index, text in enumerate(robot.extras):
         if not text.startswith(("<gazebo", "<ros2_control")):
@@ -73,7 +80,11 @@ def blocks(robot: Robot, references: tuple[Reference, ...]) -> tuple[Block, ...]
             continue
         reference = element.get("reference") if element.tag == "gazebo" else None
         given = robot.extra_places[index] if index < len(robot.extra_places) else ()
-        where = places.get(("<gazebo reference>", reference)) if reference is not None else None
+        where = None
+        if reference is not None:
+            count = seen[reference] = seen.get(reference, -1) + 1
+            at = named.get(reference, [])
+            where = at[count] if count < len(at) else None
         if where is None and given:
             where = given[0]
         if where is None:

@@ -100,7 +100,7 @@ def _dropped(analysis: Analysis, lumping: Lumping) -> Iterator[Diagnostic]:
                 "mass, nor has anything fixed below it: sdformat's converter goes no further "
                 f"down the tree, so Gazebo leaves out {_names(below)} below it"
             )
-            hint = f"give {name!r} a mass, or hang what moves below it on {landing.link!r}"
+            hint = f"give {name!r} a mass, or hang what moves below it on {joint.parent!r}"
         else:
             fixed = held[name] > 1  # itself and the links lumped into it
             what = "nor has anything fixed to it" if fixed else "and nothing is fixed to it"
@@ -237,7 +237,8 @@ def _lumped_block(analysis: Analysis, lumping: Lumping, block: Block) -> Iterato
     lumped = f"link {name!r} is lumped into {into!r} (at {pose_text(landing.pose)})"
     keep = (
         f"or keep link {name!r} with <preserveFixedJoint>true</preserveFixedJoint> in "
-        f"<gazebo reference={joint.name!r}> and give it a mass"
+        f"<gazebo reference={joint.name!r}>"
+        + ("" if _mass(analysis.links.get(name)) > 0 else " and give it a mass")
     )
     for sensor in block.element.findall("sensor"):
         # ROS 2's gazebo_ros plugins name their messages' frame by the sensor's link when
