@@ -357,3 +357,22 @@ def test_a_dropped_links_hint_names_its_parent_in_the_urdf(tmp_path: Path) -> No
     assert (
         "(give 'mount' a mass, or hang what moves below it on 'base') [gazebo-dropped-link]" in err
     )
+
+
+def test_sdf_says_a_block_on_nothing_is_dropped_with_its_sensor(tmp_path: Path) -> None:
+    text = f"""<robot name="r">
+  <link name="base">{_KG}</link>
+  <gazebo reference="bse"><sensor name="imu_sensor" type="imu">
+    <plugin name="imu" filename="libgazebo_ros_imu_sensor.so"/></sensor></gazebo>
+</robot>
+"""
+    path = _write(tmp_path, text)
+    result = CliRunner().invoke(cli, ["sdf", str(path)])
+    assert (result.exit_code, result.stderr) == (
+        0,
+        f"{path}:3:11: error: <gazebo reference> names link or joint 'bse', which the robot does "
+        "not have: Gazebo's converter drops the block without a word, and with it sensor "
+        "'imu_sensor', plugin 'imu' (did you mean 'base'?) [unknown-reference]\n",
+    )
+    model = _sdf(tmp_path, text)  # the real converter's output
+    assert model.find(".//sensor") is None and model.find(".//plugin") is None

@@ -38,7 +38,8 @@ def test_a_gazebo_reference_is_located_at_its_attribute_and_suggests_the_name(
     path = tmp_path / "robot.urdf"
     assert [f[2] for f in found] == [
         f"{path}:11:11: error: <gazebo reference> names link or joint 'left_wheel_lnk', which "
-        "the robot does not have (did you mean 'left_wheel_link'?) [unknown-reference]"
+        "the robot does not have: Gazebo's converter drops the block without a word (did you "
+        "mean 'left_wheel_link'?) [unknown-reference]"
     ]
 
 

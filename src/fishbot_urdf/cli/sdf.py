@@ -8,6 +8,7 @@ from collections.abc import Sequence
 import click
 
 from ..catalog import conversion, rules_in
+from ..catalog.references import UNKNOWN_REFERENCE
 from ..errors import ConversionError, FishbotUrdfError
 from ..export.sdf import to_sdf
 from ..lint import check_again
@@ -53,7 +54,8 @@ def sdf(file: str, args: Sequence[str], output: str, package_items: Sequence[str
     name:=value values for a xacro file's <xacro:arg>. Findings about the robot are printed
     as check prints them, and so is what the conversion loses (the gazebo-dropped-link,
     gazebo-lumped-link, gazebo-lumping-flag, gazebo-model-path and gazebo-plugin-link
-    rules, judged for Gazebo); the SDF is written all the same. Exit status: 0 written, 1
+    rules, and unknown-reference for a <gazebo reference> block it drops, judged for
+    Gazebo); the SDF is written all the same. Exit status: 0 written, 1
     the robot has errors that leave its tree in doubt or cannot be converted (nothing is
     written), 2 a file could not be read or written, or the command line is wrong.
 
@@ -91,4 +93,5 @@ def sdf(file: str, args: Sequence[str], output: str, package_items: Sequence[str
     sys.exit(EXIT_OK)
 
 
-_LOSSES = tuple(rule.id for rule in rules_in(conversion))
+# the conversion's rules, and a <gazebo reference> to nothing, a block the converter drops
+_LOSSES = (*(rule.id for rule in rules_in(conversion)), UNKNOWN_REFERENCE.id)

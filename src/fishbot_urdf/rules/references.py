@@ -32,6 +32,24 @@ def references(analysis: Analysis) -> Iterator[Diagnostic]:
     yield from _materials(analysis)
 
 
+def _dropped_with(analysis: Analysis, ref: Reference) -> str:
+    """What Gazebo's converter drops with a ``<gazebo reference>`` block naming nothing: its
+    sensors and plugins, said by name (empty for other references)."""
+    if ref.context != "<gazebo reference>":
+        return ""
+    block = next(
+        (b for b in analysis.gazebo_blocks if b.reference == ref.name and b.where == ref.source),
+        None,
+    )
+    if block is None:
+        return ""
+    parts = [f"sensor {s.get('name')!r}" for s in block.element.iter("sensor")]
+    parts += [f"plugin {p.get('name')!r}" for p in block.element.iter("plugin")]
+    if not parts:
+        return ": Gazebo's converter drops the block without a word"
+    return f": Gazebo's converter drops the block without a word, and with it {', '.join(parts)}"
+
+
 def _reference(analysis: Analysis, ref: Reference) -> Iterator[Diagnostic]:
     path, robot = analysis.path, analysis.robot
     subject = Subject(Kind.ROBOT, robot.name)
@@ -45,7 +63,8 @@ def _reference(analysis: Analysis, ref: Reference) -> Iterator[Diagnostic]:
         listed = listing(names, near=ref.name)
         hint = f"did you mean {close!r}?" if close else f"{ref.target.value}s: {listed}"
         yield UNKNOWN_REFERENCE.report(
-            f"{ref.context} names {ref.target.value} {ref.name!r}, which the robot does not have",
+            f"{ref.context} names {ref.target.value} {ref.name!r}, which the robot does not "
+            f"have{_dropped_with(analysis, ref)}",
             ref.source,
             path=path,
             subject=subject,
