@@ -17,6 +17,7 @@ from PIL import Image
 import fishbot_urdf
 from fishbot_urdf.analysis import analyse
 from fishbot_urdf.cli import cli
+from fishbot_urdf.drawing._sensors import LIDAR_DEPTH
 from fishbot_urdf.drawing.scene import build_scene
 
 ROBOT = DATA / "gazebo" / "fishbot_description" / "urdf" / "fishbot.urdf.xacro"
@@ -95,11 +96,12 @@ def test_the_fishbots_lidar_and_camera_as_gazebo_sees_them(tmp_path: Path) -> No
         tmp_path, ROBOT, "--show", "visual,sensors", "--view", "top", "--size", "800x800"
     )
     orange, purple = _orange(pixels), _purple(pixels)
-    # The lidar's rays, 8 m long all round (0 to 6.28 rad), frame the picture: 16 m across.
-    metre = 800 / (16 * MARGIN)
+    # The lidar's rays, all round (0 to 6.28 rad), reach 8 m: drawn 2 m long (LIDAR_DEPTH,
+    # more than 4 times the robot's 0.3 m), they frame the picture: 4 m across.
+    metre = 800 / (4 * MARGIN)
     rows, columns = np.nonzero(orange)
-    assert rows.max() + 1 - rows.min() == pytest.approx(16 * metre, abs=4)
-    assert columns.max() + 1 - columns.min() == pytest.approx(16 * metre, abs=4)
+    assert rows.max() + 1 - rows.min() == pytest.approx(4 * metre, abs=4)
+    assert columns.max() + 1 - columns.min() == pytest.approx(4 * metre, abs=4)
     # The camera, on camera_link at x = 0.1 m (the lidar, the middle of the picture, is at
     # x = 0.05), looks ahead (+x, up the picture): its frustum is drawn 1 m deep (its far
     # clip is 300 m), 2 tan(80 deg / 2) = 1.68 m across there; the depth camera's 60 deg.
@@ -221,21 +223,20 @@ def test_a_3d_lidar_is_drawn_in_rows_of_rays_and_a_multicamera_in_frustums() -> 
     scene = build_scene(fishbot_urdf.parse(LIDAR_3D), show=("sensors",))
     fan, left, left_sides, right, right_sides = scene.parts
     assert {p.link for p in scene.parts} == {"roof"}
-    # The roof is 0.5 m up, the lidar 0.2 m above it: its rays start 0.9 m from there and
-    # end 30 m away.
+    # The roof is 0.5 m up, the lidar 0.2 m above it: its rays start 0.9 m from there; they
+    # reach 30 m, drawn 2 m long (LIDAR_DEPTH: the robot is small), with no arc at their end.
     assert fan.lines is not None
     start, end = fan.lines[:, 0] - (0, 0, 0.2), fan.lines[:, 1] - (0, 0, 0.2)
     rays = np.isclose(np.linalg.norm(start, axis=1), 0.9)
-    assert np.allclose(np.linalg.norm(end, axis=1), 30)
+    assert np.allclose(np.linalg.norm(end, axis=1), LIDAR_DEPTH)
     # 1800 samples: every 31st (ceil(1799 / 59)) and the last, 60 rays a row; 16 rows: every
     # 3rd (ceil(15 / 7)), 6 rows, the last (0.26 rad up) among them.
     assert rays.sum() == 60 * 6
-    elevations = np.unique(np.round(np.arcsin(end[rays, 2] / 30), 6))
+    elevations = np.unique(np.round(np.arcsin(end[rays, 2] / LIDAR_DEPTH), 6))
     assert elevations == pytest.approx(np.linspace(-0.26, 0.26, 16)[::3])
-    # The arcs at 30 m, one a row, in pieces of 3 degrees or less round the 2 pi of the scan.
-    assert (~rays).sum() == 6 * math.ceil(2 * 3.14159 / math.radians(3))
+    assert rays.all()
     assert fan.triangles.reshape(-1, 3)[:, 2].max() == pytest.approx(
-        0.5 + 0.2 + 30 * math.sin(0.26), abs=0.1
+        0.5 + 0.2 + LIDAR_DEPTH * math.sin(0.26), abs=0.02
     )
     # Each camera's frustum at its own pose: 0.5 m deep (its far clip), 1 rad across.
     for edges, y in ((left, 0.05), (right, -0.05)):

@@ -17,6 +17,8 @@ __all__ = [
     "CAMERA_DEPTH",
     "COLUMNS",
     "LIDAR",
+    "LIDAR_DEPTH",
+    "LIDAR_ROBOTS",
     "LINE",
     "ROWS",
     "reach",
@@ -33,6 +35,11 @@ ROWS = 8
 CAMERA_DEPTH = 1.0
 """How deep a camera's frustum is drawn at most (metres): to its far clip when nearer. A far
 clip of hundreds of metres would dwarf the robot."""
+LIDAR_DEPTH = 2.0
+"""How far a lidar's rays are drawn at least (metres): to its maximum range when nearer, else
+to the larger of this and :data:`LIDAR_ROBOTS` times the robot's size; a scan of 30 m would
+make the robot a speck. Rays cut short end without the arc of the maximum range."""
+LIDAR_ROBOTS = 4.0
 _ARC_STEP = math.radians(3)  # the arc at the maximum range, in straight pieces this long
 LINE = 0.003
 """A ray or a frustum's edge is this share of the drawing's size thick: about a pixel."""
@@ -43,24 +50,24 @@ _SAMPLES, _VERTICAL_SAMPLES = 640, 1
 _FOV, _WIDTH, _HEIGHT, _NEAR, _FAR = 1.047, 320, 240, 0.1, 100.0
 
 
-def reach(sensor: Sensor) -> float:
-    """How far from the sensor its marks go, at most (metres): its lidar's maximum range, its
-    cameras' frustums' depth; 0 for another sensor."""
-    far = [rays.range_max or 0.0 for rays in sensor.rays]
+def reach(sensor: Sensor, depth: float = math.inf) -> float:
+    """How far from the sensor its marks go, at most (metres): its lidar's maximum range (to
+    ``depth`` at most), its cameras' frustums' depth; 0 for another sensor."""
+    far = [min(rays.range_max or 0.0, depth) for rays in sensor.rays]
     far += [_view(camera)[-1] for camera in sensor.cameras]
     return max(far, default=0.0)
 
 
-def sensor_marks(np: Any, sensor: Sensor, size: float) -> list[Mark]:
+def sensor_marks(np: Any, sensor: Sensor, size: float, depth: float = math.inf) -> list[Mark]:
     """The marks of a lidar's rays (at most :data:`COLUMNS` of a row, at most :data:`ROWS`
     rows) and of each camera's frustum (:data:`CAMERA_DEPTH` deep at most), posed in the
     frame of the sensor's link, their lines :data:`LINE` of ``size`` (metres: the size of
-    the picture's subject) thick; none for another sensor, or a lidar with no maximum range
-    beyond its minimum."""
+    the picture's subject) thick, the rays ``depth`` long at most; none for another sensor,
+    or a lidar with no maximum range beyond its minimum."""
     thick = LINE * size
     marks: list[Mark] = []
     for rays in sensor.rays:
-        segments = _fan(np, rays)
+        segments = _fan(np, rays, depth)
         if segments is not None:
             segments = _placed(np, sensor.pose, segments)
             marks.append(Mark(_lines(np, segments, thick), LIDAR, "sensors", segments))
@@ -93,13 +100,15 @@ def _angles(scan: Scan | None, default: int, most: int) -> list[float]:
     return [low + i * step for i in picked]
 
 
-def _fan(np: Any, rays: Rays) -> Any:
-    """The rays and the arcs at the maximum range, as segments (N, 2, 3) in the sensor's
-    frame; None when there is no range to draw."""
+def _fan(np: Any, rays: Rays, depth: float) -> Any:
+    """The rays (``depth`` long at most) and the arcs at the maximum range (when they reach
+    it), as segments (N, 2, 3) in the sensor's frame; None when there is no range to draw."""
     far = rays.range_max
     near = max(rays.range_min or 0.0, 0.0)
     if far is None or not far > near:
         return None
+    cut = far > depth
+    far = min(far, max(depth, near))
     columns = _angles(rays.horizontal, _SAMPLES, COLUMNS)
     rows = _angles(rays.vertical, _VERTICAL_SAMPLES, ROWS)
     h = np.array(columns)[None, :]
@@ -109,7 +118,7 @@ def _fan(np: Any, rays: Rays) -> Any:
     ).reshape(-1, 3)
     segments = [np.stack([near * ways, far * ways], axis=1)]
     low, high = columns[0], columns[-1]
-    if high > low:
+    if high > low and not cut:
         pieces = max(1, math.ceil((high - low) / _ARC_STEP))
         a = np.linspace(low, high, pieces + 1)[None, :]
         arc = far * np.stack(

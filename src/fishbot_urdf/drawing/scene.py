@@ -62,7 +62,7 @@ from ..rules.meshes import unresolved
 from ..wording import did_you_mean
 from ._lumping import tints
 from ._marks import AXES_SHARE, SEEN_THROUGH, axes, axes_length, inertial_marks
-from ._sensors import reach, sensor_marks
+from ._sensors import LIDAR_DEPTH, LIDAR_ROBOTS, reach, sensor_marks
 from ._shapes import apply, box, cylinder, origin_matrix, sphere
 
 if TYPE_CHECKING:
@@ -248,9 +248,11 @@ def build_scene(
         placed = [
             (s, poses[s.link]) for s in analysis.sensors if s.link is not None and s.link in poses
         ]
-        size = max([length / AXES_SHARE, *(reach(s) for s, _ in placed)])
+        robot = length / AXES_SHARE
+        depth = max(LIDAR_DEPTH, LIDAR_ROBOTS * robot)
+        size = max([robot, *(reach(s, depth) for s, _ in placed)])
         for sensor, pose in placed:
-            for mark in sensor_marks(np, sensor, size):
+            for mark in sensor_marks(np, sensor, size, depth):
                 world = apply(np, pose, mark.triangles)
                 parts.append(
                     Part(
