@@ -12,6 +12,7 @@ from ...analysis import Analysis
 from ...analysis.gazebo import Block, place, plugins, text, texts
 from ...catalog.gazebo import DIFF_DRIVE_SIZE, DIFF_DRIVE_WHEELS
 from ...diagnostics import Diagnostic, Kind, Subject
+from ...location import call_chain, calls_of
 from ...model import Cylinder, Joint, JointType, Location
 from ...spatial import Pose, dot, mat_vec, rpy_matrix, scale
 
@@ -82,7 +83,7 @@ def _drive(
                     path=analysis.path,
                     subject=subject,
                     hint="name the wheels' continuous joints, turning about the axle, left as "
-                    "the wheel on +y",
+                    f"the wheel on +y{_through(_at(block, plugin, named, index))}",
                 )
             continue
         if pair is None:
@@ -139,8 +140,16 @@ def _size(analysis: Analysis, message: str, where: Location | None, hint: str) -
         where,
         path=analysis.path,
         subject=Subject(Kind.ROBOT, analysis.robot.name),
-        hint=hint,
+        hint=hint + _through(where),
     )
+
+
+def _through(where: Location | None) -> str:
+    """For a setting a macro call made: the call, where its value is given."""
+    calls = calls_of(where)
+    if not calls:
+        return ""
+    return f", or what {call_chain(calls)} passes for it"
 
 
 def _is(value: float, written: bool) -> str:
