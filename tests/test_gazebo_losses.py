@@ -17,6 +17,7 @@ from fishbot_urdf.catalog.conversion import (
     GAZEBO_DROPPED_LINK,
     GAZEBO_LUMPED_LINK,
     GAZEBO_LUMPING_FLAG,
+    GAZEBO_MIMIC,
     GAZEBO_MODEL_PATH,
     GAZEBO_PLUGIN_LINK,
 )
@@ -64,6 +65,10 @@ def _numbers(text: str | None) -> list[float]:
 # -- each rule's examples ------------------------------------------------------------------
 
 REPORTED = {
+    GAZEBO_MIMIC: "11:83: warning: joint 'right_joint' follows 'left_joint' by <mimic>, which "
+    "sdformat 12's converter leaves out: in Gazebo Fortress and Classic it moves on its own "
+    "(drive it with a controller or plugin of its own, or use Gazebo Harmonic (sdformat 14), "
+    "whose converter keeps it) [gazebo-mimic]",
     GAZEBO_DROPPED_LINK: "4:3: error: link 'arm_mount' is fixed to 'base_link' (joint "
     "'mount_joint') and has no mass, nor has anything fixed below it: sdformat's converter goes "
     "no further down the tree, so Gazebo leaves out 'arm' below it (give 'arm_mount' a mass, or "
@@ -376,3 +381,10 @@ def test_sdf_says_a_block_on_nothing_is_dropped_with_its_sensor(tmp_path: Path) 
     )
     model = _sdf(tmp_path, text)  # the real converter's output
     assert model.find(".//sensor") is None and model.find(".//plugin") is None
+
+
+def test_the_converter_writes_a_mimic_joint_as_a_joint_of_its_own(tmp_path: Path) -> None:
+    model = _sdf(tmp_path, GAZEBO_MIMIC.bad)
+    (joint,) = model.findall("joint[@name='right_joint']")
+    assert joint.get("type") == "prismatic"
+    assert not [e for e in joint.iter() if "mimic" in e.tag]

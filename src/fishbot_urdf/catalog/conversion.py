@@ -113,6 +113,35 @@ GAZEBO_PLUGIN_LINK = Rule(
     good=_CAMERA.format(blocks=_P3D.format(body="base_link")),
     consumers=(Consumer.GAZEBO,),
 )
+_GRIPPER = f"""\
+<robot name="gripper">
+  <link name="palm">{_HEAVY}</link>
+  <link name="left">{_LIGHT}</link>
+  <link name="right">{_LIGHT}</link>
+  <joint name="left_joint" type="prismatic"><parent link="palm"/><child link="left"/>
+    <axis xyz="0 1 0"/><limit lower="0" upper="0.04" effort="10" velocity="0.1"/></joint>
+  <joint name="right_joint" type="prismatic"><parent link="palm"/><child link="right"/>
+    <axis xyz="0 -1 0"/><limit lower="0" upper="0.04" effort="10" velocity="0.1"/>{{mimic}}
+  </joint>
+</robot>
+"""
+GAZEBO_MIMIC = Rule(
+    "gazebo-mimic",
+    W,
+    Family.GAZEBO,
+    summary="A joint follows another by <mimic>, which sdformat 12's converter leaves out: in "
+    "Gazebo Fortress and Classic it moves on its own.",
+    explanation="SDFormat 1.9, what sdformat 12 (Gazebo Fortress, the Gazebo of ROS 2 Humble) "
+    "and Gazebo Classic's sdformat read, has no mimic joints: the URDF converter writes the "
+    "joint without its `<mimic>`, and exits 0. In the simulation the joint is a free joint of "
+    "its own (a gripper's second finger hangs loose, or is pushed about) unless something "
+    "drives it. SDFormat 1.11 added `<mimic>` under a joint's `<axis>`, and sdformat 14 (Gazebo "
+    "Harmonic) converts URDF's into it. For the older Gazebo, drive the joint with a controller "
+    "or plugin of its own, or target the newer one.",
+    bad=_GRIPPER.format(mimic='<mimic joint="left_joint"/>'),
+    good=_GRIPPER.format(mimic=""),
+    consumers=(Consumer.GAZEBO,),
+)
 _MESH = f"""\
 <robot name="fishbot">
   <link name="base_link">{_HEAVY}

@@ -53,9 +53,9 @@ def sdf(file: str, args: Sequence[str], output: str, package_items: Sequence[str
     preserveFixedJoint and disableFixedJointLumping keep a fixed joint). ARGS are
     name:=value values for a xacro file's <xacro:arg>. Findings about the robot are printed
     as check prints them, and so is what the conversion loses (the gazebo-dropped-link,
-    gazebo-lumped-link, gazebo-lumping-flag, gazebo-model-path and gazebo-plugin-link
-    rules, and unknown-reference for a <gazebo reference> block it drops, judged for
-    Gazebo); the SDF is written all the same. Exit status: 0 written, 1
+    gazebo-lumped-link, gazebo-lumping-flag, gazebo-mimic, gazebo-model-path and
+    gazebo-plugin-link rules, and unknown-reference for a <gazebo reference> block it
+    drops, judged for Gazebo); the SDF is written all the same. Exit status: 0 written, 1
     the robot has errors that leave its tree in doubt or cannot be converted (nothing is
     written), 2 a file could not be read or written, or the command line is wrong.
 

@@ -22,10 +22,11 @@ def gazebo(
 ) -> Iterator[Diagnostic]:
     """Every finding about the robot's Gazebo plugins and sensors, and about what Gazebo's
     URDF converter loses (of the rules in ``select``, by id; None: all of them; where Gazebo
-    looks for meshes only ``for_gazebo``, when the robot is checked for Gazebo)."""
+    looks for meshes and what it makes of mimic joints only ``for_gazebo``, when the robot is
+    checked for Gazebo: common to robots that never meet Gazebo, they would be noise)."""
     chosen = frozenset(r.id for r in REPORTS) if select is None else select
     if not for_gazebo:
-        chosen -= {conversion.GAZEBO_MODEL_PATH.id}
+        chosen -= {conversion.GAZEBO_MODEL_PATH.id, conversion.GAZEBO_MIMIC.id}
     if chosen & _LOSSES:
         yield from losses(analysis, select=chosen)
     found = analysis.gazebo_blocks

@@ -15,6 +15,7 @@ from ...catalog.conversion import (
     GAZEBO_DROPPED_LINK,
     GAZEBO_LUMPED_LINK,
     GAZEBO_LUMPING_FLAG,
+    GAZEBO_MIMIC,
     GAZEBO_MODEL_PATH,
     GAZEBO_PLUGIN_LINK,
 )
@@ -52,6 +53,8 @@ def losses(analysis: Analysis, *, select: frozenset[str]) -> Iterator[Diagnostic
         yield from _switches(analysis, lumping)
     if GAZEBO_MODEL_PATH.id in select:
         yield from _model_paths(analysis)
+    if GAZEBO_MIMIC.id in select:
+        yield from _mimics(analysis, lumping)
     for block in analysis.gazebo_blocks:
         if block.element.tag != "gazebo":
             continue
@@ -134,6 +137,26 @@ def _mass_rules_report(analysis: Analysis, body: Body) -> bool:
     if any(m < 0 or not math.isfinite(m) for m in masses):
         return False  # a negative or unreadable mass: another rule's
     return sum(masses) <= _MASSLESS
+
+
+# -- mimic joints ---------------------------------------------------------------------------
+
+
+def _mimics(analysis: Analysis, lumping: Lumping) -> Iterator[Diagnostic]:
+    lost = lumping.lost()
+    for joint in analysis.robot.joints:
+        mimic = joint.mimic
+        if mimic is None or joint.type is JointType.FIXED or joint.child in lost:
+            continue
+        yield GAZEBO_MIMIC.report(
+            f"joint {joint.name!r} follows {mimic.joint!r} by <mimic>, which sdformat 12's "
+            "converter leaves out: in Gazebo Fortress and Classic it moves on its own",
+            mimic.source or joint.source,
+            path=analysis.path,
+            subject=Subject(Kind.JOINT, joint.name),
+            hint="drive it with a controller or plugin of its own, or use Gazebo Harmonic "
+            "(sdformat 14), whose converter keeps it",
+        )
 
 
 # -- switches the converter passes over ----------------------------------------------------
