@@ -65,8 +65,9 @@ FAULTS = [
         ["left_joint:=right_wheel_joint", "right_joint:=left_wheel_joint"],
         "84:9: error: plugin 'diff_drive' (libgazebo_ros_diff_drive.so): left wheel joint "
         "'right_wheel_joint' is on the robot's right (y -0.1 m in the base frame) and right wheel "
-        "joint 'left_wheel_joint' on its left (y 0.1 m): left and right are swapped (name the "
-        "wheels' continuous joints, turning about the axle, left as the wheel on +y) "
+        "joint 'left_wheel_joint' on its left (y 0.1 m): left and right are swapped, so the robot "
+        "turns the other way from what it is told, and so does its odometry (name the wheels' "
+        "continuous joints, turning about the axle, left as the wheel on +y) "
         "[diff-drive-wheels]",
     ),
     (
@@ -90,7 +91,8 @@ FAULTS = [
         ["laser_z:=0.03"],
         "108:3: warning: sensor 'laser' (ray) on 'laser_link' starts inside link 'base_link''s "
         "collision shape, and its rays leave it only after 0.15 m, but its minimum range is "
-        "0.12 m (raise the sensor out of the shape, or set <min> to 0.15 or more) "
+        "0.12 m: rays that start inside hit the shape, and the scan sees the robot itself (raise "
+        "the sensor out of the shape, or set <min> to 0.15 or more) "
         "[sensor-self-hit]",
     ),
     (

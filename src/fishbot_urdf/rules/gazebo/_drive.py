@@ -228,7 +228,8 @@ def _pair(
             (
                 f"left wheel joint {left!r} is on the robot's right (y {ly:.4g} m in the base "
                 f"frame) and right wheel joint {right!r} on its left (y {ry:.4g} m): left and "
-                "right are swapped",
+                "right are swapped, so the robot turns the other way from what it is told, "
+                "and so does its odometry",
                 Subject(Kind.JOINT, left),
             )
         )

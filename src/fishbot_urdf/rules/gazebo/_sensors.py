@@ -135,7 +135,8 @@ def _self_hit(analysis: Analysis, sensor: Sensor, label: str) -> Iterator[Diagno
                 yield SENSOR_SELF_HIT.report(
                     f"{label} on {name!r} starts inside link {link.name!r}'s collision shape, "
                     f"and its rays leave it only after {way_out:.3g} m, but its minimum range "
-                    f"is {shortest:g} m",
+                    f"is {shortest:g} m: rays that start inside hit the shape, and the scan sees "
+                    "the robot itself",
                     sensor.where,
                     path=analysis.path,
                     subject=Subject(Kind.LINK, name),
