@@ -113,18 +113,7 @@ def ros_version(package_xml: str | Path) -> int | None:
         if inside:
             parts.append(chunk)
 
-    def refuse(*_: object) -> None:
-        raise _NotRead
-
-    parser = expat.ParserCreate(namespace_separator=" ")
-    parser.SetParamEntityParsing(expat.XML_PARAM_ENTITY_PARSING_NEVER)
-    parser.StartElementHandler = start
-    parser.EndElementHandler = end
-    parser.CharacterDataHandler = text
-    parser.EntityDeclHandler = refuse
-    try:
-        parser.Parse(data, True)
-    except (expat.ExpatError, _NotRead, ValueError):
+    if not _walk(data, start, end, text):
         return None
     if any(tool.startswith("ament") for tool in tools):
         return 2
@@ -152,6 +141,22 @@ def gazebo_model_path(package_xml: str | Path) -> str | None:
     def end(tag: str) -> None:
         path.pop()
 
+    if not _walk(data, start, end):
+        return None
+    return found[0] if found else None
+
+
+def _walk(
+    data: bytes,
+    start: Callable[[str, dict[str, str]], None],
+    end: Callable[[str], None],
+    text: Callable[[str], None] | None = None,
+    other: Callable[..., None] | None = None,
+) -> bool:
+    """Run a package.xml's bytes through expat with these handlers (tags as ``namespace
+    name``; ``other`` for comments and processing instructions); False when it is no
+    well-formed XML or declares entities."""
+
     def refuse(*_: object) -> None:
         raise _NotRead
 
@@ -159,12 +164,17 @@ def gazebo_model_path(package_xml: str | Path) -> str | None:
     parser.SetParamEntityParsing(expat.XML_PARAM_ENTITY_PARSING_NEVER)
     parser.StartElementHandler = start
     parser.EndElementHandler = end
+    if text is not None:
+        parser.CharacterDataHandler = text
+    if other is not None:
+        parser.CommentHandler = other
+        parser.ProcessingInstructionHandler = other
     parser.EntityDeclHandler = refuse
     try:
         parser.Parse(data, True)
     except (expat.ExpatError, _NotRead, ValueError):
-        return None
-    return found[0] if found else None
+        return False
+    return True
 
 
 class _NotRead(Exception):
@@ -206,20 +216,7 @@ def _name_in(data: bytes) -> str | None:
         if state == _IN:
             state = _AFTER
 
-    def refuse(*_: object) -> None:
-        raise _NotRead
-
-    parser = expat.ParserCreate(namespace_separator=" ")
-    parser.SetParamEntityParsing(expat.XML_PARAM_ENTITY_PARSING_NEVER)
-    parser.StartElementHandler = start
-    parser.EndElementHandler = end
-    parser.CharacterDataHandler = text
-    parser.CommentHandler = other
-    parser.ProcessingInstructionHandler = other
-    parser.EntityDeclHandler = refuse
-    try:
-        parser.Parse(data, True)
-    except (expat.ExpatError, _NotRead, ValueError):
+    if not _walk(data, start, end, text, other):
         return None
     if not root_ok or state == _BEFORE:
         return None

@@ -248,9 +248,9 @@ def build_scene(
         placed = [
             (s, poses[s.link]) for s in analysis.sensors if s.link is not None and s.link in poses
         ]
-        robot = length / AXES_SHARE
-        depth = max(LIDAR_DEPTH, LIDAR_ROBOTS * robot)
-        size = max([robot, *(reach(s, depth) for s, _ in placed)])
+        body = length / AXES_SHARE  # the robot's size
+        depth = max(LIDAR_DEPTH, LIDAR_ROBOTS * body)
+        size = max([body, *(reach(s, depth) for s, _ in placed)])
         for sensor, pose in placed:
             for mark in sensor_marks(np, sensor, size, depth):
                 world = apply(np, pose, mark.triangles)

@@ -11,6 +11,7 @@ from collections.abc import Iterator
 from ...analysis import Analysis, Body
 from ...analysis.gazebo import Block, Lumping, place, text
 from ...analysis.meshpaths import robot_meshes
+from ...analysis.sensors import sdf_pose
 from ...catalog.conversion import (
     GAZEBO_DROPPED_LINK,
     GAZEBO_LUMPED_LINK,
@@ -23,7 +24,7 @@ from ...diagnostics import Diagnostic, Kind, Subject
 from ...errors import FishbotUrdfError
 from ...model import Joint, JointType, Link
 from ...packages import gazebo_model_path
-from ...spatial import Pose, euler_ypr, rpy_matrix
+from ...spatial import Pose, euler_ypr
 
 __all__ = ["losses", "pose_text"]
 
@@ -283,7 +284,7 @@ def _lumped_block(analysis: Analysis, lumping: Lumping, block: Block) -> Iterato
         if pose is not None and pose.get("relative_to"):
             at = "with its pose as written"
         else:
-            at = f"at {pose_text(landing.pose.then(_pose(text(sensor, 'pose'))))}"
+            at = f"at {pose_text(landing.pose.then(sdf_pose(text(sensor, 'pose'))))}"
         yield GAZEBO_LUMPED_LINK.report(
             f"{lumped}: Gazebo puts {label} in link {into!r} {at}, and its plugin "
             f"{plugin.get('name') or ''!r} ({plugin.get('filename')}), which names no "
@@ -338,15 +339,3 @@ def _plugin_links(analysis: Analysis, lumping: Lumping, block: Block) -> Iterato
 def _lumping_joint(analysis: Analysis, link: str) -> Joint:
     """The fixed joint that lumps ``link``, a link the converter lumps."""
     return analysis.parent_joint[link]
-
-
-def _pose(written: str | None) -> Pose:
-    """A sensor's ``<pose>`` (``x y z roll pitch yaw``), identity when absent or unread."""
-    try:
-        values = [float(v) for v in (written or "").split()]
-    except ValueError:
-        return Pose()
-    if len(values) != 6:
-        return Pose()
-    x, y, z, roll, pitch, yaw = values
-    return Pose(rpy_matrix((roll, pitch, yaw)), (x, y, z))
