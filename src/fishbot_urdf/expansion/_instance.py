@@ -115,6 +115,8 @@ def _builtins(own: dict[str, types.ModuleType], trust: bool) -> dict[str, Any]:
             return own[name]
         if level == 1 and name in _SHARED:
             return _shared(name)
+        if level == 0 and name == "yaml" and not fromlist:
+            return _LAZY_YAML
         return builtins.__import__(name, globals, locals, fromlist, level)
 
     if not trust:
@@ -122,6 +124,18 @@ def _builtins(own: dict[str, types.ModuleType], trust: bool) -> dict[str, Any]:
             names[name] = _refusing(name)
     names["__import__"] = importing
     return names
+
+
+class _Lazy(types.ModuleType):
+    """A module imported on first use of one of its names. (substitution_args imports yaml
+    for the rare ``$(arg)`` it parses as YAML: loaded at once, yaml was a tenth of `fishbot
+    sdf`'s time on the fishbot.)"""
+
+    def __getattr__(self, attribute: str) -> Any:
+        return getattr(importlib.import_module(self.__name__), attribute)
+
+
+_LAZY_YAML = _Lazy("yaml")
 
 
 def _refusing(name: str) -> Callable[..., Any]:
