@@ -8,32 +8,16 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
+from ..analysis.sdformat import FLAGS, IGNORED, NUMBERS, stod, stoi
 from ..errors import ConversionError
 from ..spatial import urdfdom_angles
-from ._elements import LUMP, number, short, stoi, vector3
+from ._elements import LUMP, number, short, vector3
 from ._lumping import IDENTITY, Placement, compose, quaternion, then
-from ._reader import Element, Node, copy, stod
+from ._reader import Element, Node, copy
 
 __all__ = ["Extension", "Extensions"]
 
 _ZERO = (0.0, 0.0, 0.0)
-_FLOATS = {  # settings read as numbers, with C++'s std::stod
-    "dampingFactor",
-    "maxVel",
-    "minDepth",
-    "mu1",
-    "mu2",
-    "kp",
-    "kd",
-    "laserRetro",
-    "springReference",
-    "springStiffness",
-    "stopCfm",
-    "stopErp",
-    "fudgeFactor",
-}
-_FLAGS = {"static", "selfCollide", "provideFeedback", "implicitSpringDamper"}
-_IGNORED = {"canonicalBody", "disableFixedJointLumping", "preserveFixedJoint"}
 
 
 def _number(text: str, tag: str, reference: str) -> float:
@@ -109,13 +93,13 @@ class Extension:
                 (self.collisions if tag == "collision" else self.visuals).extend(
                     c.clone() for c in child.children
                 )
-            elif tag in _FLAGS:
+            elif tag in FLAGS:
                 self.settings[tag] = _flag(_key_value(child))
             elif tag == "cfmDamping":
                 self.settings["implicitSpringDamper"] = _flag(_key_value(child))
             elif tag == "turnGravityOff":
                 self.settings["gravity"] = _key_value(child).lower() in ("false", "no", "0")
-            elif tag in _FLOATS:
+            elif tag in NUMBERS:
                 self.settings[tag] = _number(_key_value(child), tag, reference)
             elif tag == "maxContacts":
                 whole = stoi(_key_value(child))
@@ -124,7 +108,7 @@ class Extension:
                 self.settings[tag] = whole
             elif tag == "fdir1":
                 self.settings[tag] = _key_value(child)
-            elif tag not in _IGNORED:
+            elif tag not in IGNORED:
                 self.blobs.append(child.clone())
 
     def repose(self) -> None:

@@ -5,18 +5,16 @@ them, comments dropped (from SDFormat 1.9's description, sdf_1.9.json)."""
 
 from __future__ import annotations
 
-import json
 import math
-import re
 import struct
 from collections.abc import Iterator, Mapping
-from functools import cache
-from importlib import resources
 from typing import Any, Protocol
 
+from ..analysis import sdformat
+from ..analysis.sdformat import Description, describe, refusal
 from ..errors import ConversionError
 
-__all__ = ["Element", "Node", "copy", "printed", "read", "single", "stod"]
+__all__ = ["Element", "Node", "copy", "printed", "read", "single"]
 
 
 class Element:
@@ -100,34 +98,11 @@ def _attr(value: str) -> str:
     return "'" + _escape(value).replace("'", "&apos;") + "'"
 
 
-_Description = dict[str, Any]
-
-
-@cache
-def _files() -> dict[str, _Description]:
-    text = resources.files(__package__).joinpath("sdf_1.9.json").read_text(encoding="utf-8")
-    files: dict[str, _Description] = json.loads(text)
-    return files
-
-
-def _children(description: _Description) -> list[_Description]:
-    """The element descriptions below ``description``, includes resolved."""
-    found = []
-    for child in description.get("children", ()):
-        if "include" in child:
-            included = _files().get(child["include"])
-            if included is not None:
-                found.append({**included, "required": child["required"]})
-        else:
-            found.append(child)
-    return found
-
-
-def read(element: Element, description: _Description | None = None) -> Element:
+def read(element: Element, description: Description | None = None) -> Element:
     """``element`` as sdformat's reader keeps it (``description`` its element's; the
     model's when not given)."""
-    description = description or _files()["model.sdf"]
-    known = {d["name"]: d for d in reversed(_children(description))}
+    description = description or describe("model.sdf") or {}
+    known = {d["name"]: d for d in reversed(sdformat.children(description))}
     attributes = []
     for name, required, default in description.get("attributes", ()):
         value = element.get(name)
@@ -146,7 +121,7 @@ def read(element: Element, description: _Description | None = None) -> Element:
     present = {c.tag for c in children}
     children += [
         _default(d)
-        for d in _children(description)
+        for d in sdformat.children(description)
         if d["required"] == "1" and d["name"] not in present
     ]
     children += [_copied(c) for c in element.children if c.tag not in known]
@@ -160,72 +135,20 @@ def _copied(element: Element) -> Element:
     return Element(element.tag, element.text, attributes, [_copied(c) for c in element.children])
 
 
-_STOD = re.compile(
-    r"\s*[+-]?(?:0[xX](?:[0-9a-fA-F]+\.?[0-9a-fA-F]*|\.[0-9a-fA-F]+)(?:[pP][+-]?\d+)?"
-    r"|(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)?|nan(?:\([0-9A-Za-z_]*\))?)",
-    re.IGNORECASE,
-)
-
-
-def stod(text: str) -> float | None:
-    """``text`` as C++'s std::stod reads it: the longest number it starts with (None where
-    it throws)."""
-    found = _STOD.match(text)
-    if found is None:
-        return None
-    token = found.group().strip()
-    try:
-        if token.lower().lstrip("+-").startswith("0x"):
-            return float.fromhex(token)
-        value = float(re.sub(r"\(.*\)", "", token))
-    except (ValueError, OverflowError):
-        return None
-    return value if math.isfinite(value) or token[-1].isalpha() or token[-1] == ")" else None
-
-
-_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
-_SIZES = {"vector3": 3, "vector2d": 2, "color": 3}
-
-
-def _check(description: _Description, text: str) -> None:
-    """Refuse a value the reader refuses for its element's type: a bool that is none of
-    true, false, 1, 0; a number that does not start as one (as std::stod reads it; a whole
-    number, with a digit), or is out of the element's bounds; a vector of fewer numbers than
-    it has, a pose of other than 6, a colour with a number beyond 0 to 1.
+def _check(description: Description, text: str) -> None:
+    """Refuse a value the reader refuses for its element's type (see `refusal`).
 
     Raises:
         ConversionError: The reader refuses ``text``.
     """
-    kind, name = description["type"], description["name"]
-    why = None
-    if kind == "bool" and text.lower() not in ("true", "false", "1", "0"):
-        why = "is no bool"
-    elif kind in ("double", "float", "int", "unsigned int"):
-        whole = kind.endswith("int")
-        value = stod(text) if not whole or re.match(r"\s*[+-]?\d", text) else None
-        if value is None:
-            why = "is no number"
-        elif "min" in description and value < float(description["min"]):
-            why = f"is less than {description['min']}, its least"
-        elif "max" in description and value > float(description["max"]):
-            why = f"is more than {description['max']}, its most"
-    elif kind in _SIZES:
-        tokens = text.split()[: _SIZES[kind]]
-        if len(tokens) < _SIZES[kind] or not all(_NUMBER.fullmatch(t) for t in tokens):
-            why = f"is not {_SIZES[kind]} numbers"
-        elif kind == "color" and not all(0 <= float(t) <= 1 for t in text.split()[:4]):
-            why = "is not a colour (each of its numbers from 0 to 1)"
-    elif kind == "pose":
-        tokens = text.split()
-        if len(tokens) != 6 or not all(_NUMBER.fullmatch(t) for t in tokens):
-            why = "is not 6 numbers"
+    why = refusal(description, text)
     if why is not None:
         raise ConversionError(
-            f"<{name}> {text!r} {why}: sdformat's reader refuses it", target="sdf"
+            f"<{description['name']}> {text!r} {why}: sdformat's reader refuses it", target="sdf"
         )
 
 
-def _reprinted(description: _Description) -> str:
+def _reprinted(description: Description) -> str:
     """The text the reader prints for a typed element it finds empty: its default value, as
     its type prints it (a number with 17 significant digits, a bool as 1 or 0).
 
@@ -259,10 +182,10 @@ def single(value: float) -> float:
     return held
 
 
-def _default(description: _Description) -> Element:
+def _default(description: Description) -> Element:
     """The element the reader adds where a required one is missing."""
     attributes = [(n, d) for n, r, d in description.get("attributes", ()) if r == "1"]
-    children = [_default(d) for d in _children(description) if d["required"] == "1"]
+    children = [_default(d) for d in sdformat.children(description) if d["required"] == "1"]
     return Element(description["name"], description.get("default"), attributes, children)
 
 
