@@ -190,6 +190,10 @@ class Node(Protocol):
 
     def __iter__(self) -> Iterator[Node]: ...
 
+    def __len__(self) -> int: ...
+
+    def get(self, key: str) -> str | None: ...
+
 
 class Refusal(NamedTuple):
     """An element the reader refuses, why, and what it would take."""
