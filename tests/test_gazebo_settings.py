@@ -163,3 +163,21 @@ def test_ign_refuses_what_is_reported(tmp_path: Path, setting: str, message: str
         check=False,
     )
     assert fixed.returncode == 0, fixed.stderr
+
+
+SDF_REFUSALS = [
+    (
+        "<mu1>abc</mu1>",
+        "<gazebo reference='a'>: <mu1> is 'abc', not a number: sdformat's converter stops on it",
+    ),
+    ("<mu1>-1</mu1>", "<mu> '-1' is less than 0.0, its least: sdformat's reader refuses it"),
+    ("<kinematic>yes</kinematic>", "<kinematic> 'yes' is no bool: sdformat's reader refuses it"),
+]
+
+
+@pytest.mark.parametrize(("setting", "message"), SDF_REFUSALS, ids=[s for s, _ in SDF_REFUSALS])
+def test_fishbot_sdf_refuses_at_the_same_place(tmp_path: Path, setting: str, message: str) -> None:
+    path = _robot(tmp_path, setting)
+    result = CliRunner().invoke(cli, ["sdf", str(path), "-o", str(tmp_path / "r.sdf")])
+    assert (result.exit_code, result.stderr) == (1, f"{path}:7:5: error: {message} [conversion]\n")
+    assert not (tmp_path / "r.sdf").exists()

@@ -7,12 +7,13 @@ from __future__ import annotations
 
 import math
 import struct
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from typing import Any, Protocol
 
 from ..analysis import sdformat
 from ..analysis.sdformat import Description, describe, refusal
 from ..errors import ConversionError
+from ..location import Location
 
 __all__ = ["Element", "Node", "copy", "printed", "read", "single"]
 
@@ -22,7 +23,7 @@ class Element:
     for none) and child elements. The converter edits its document as it goes (settings
     replace earlier ones, blobs are moved and re-posed), so this one can be edited."""
 
-    __slots__ = ("attributes", "children", "tag", "text")
+    __slots__ = ("attributes", "children", "tag", "text", "where")
 
     def __init__(
         self,
@@ -35,6 +36,7 @@ class Element:
         self.text = text
         self.attributes = attributes or []
         self.children = children or []
+        self.where: Location | None = None  # where the robot's text writes it, if it does
 
     def get(self, name: str) -> str | None:
         return next((value for key, value in self.attributes if key == name), None)
@@ -50,18 +52,22 @@ class Element:
     def remove(self, child: Element) -> None:
         self.children = [c for c in self.children if c is not child]
 
-    def put(self, tag: str, text: str) -> Element:
+    def put(self, tag: str, text: str, where: Location | None = None) -> Element:
         """A ``<tag>text</tag>`` appended in place of the first one there was (the
-        converter's AddKeyValue)."""
+        converter's AddKeyValue); ``where`` the setting it is written from."""
         old = self.find(tag)
         if old is not None:
             self.remove(old)
-        return self.append(Element(tag, text))
+        put = self.append(Element(tag, text))
+        put.where = where
+        return put
 
     def clone(self) -> Element:
-        return Element(
+        cloned = Element(
             self.tag, self.text, list(self.attributes), [c.clone() for c in self.children]
         )
+        cloned.where = self.where
+        return cloned
 
 
 class Node(Protocol):
@@ -75,14 +81,17 @@ class Node(Protocol):
     def __iter__(self) -> Iterator[Node]: ...
 
 
-def copy(node: Node) -> Element:
+def copy(node: Node, place: Callable[[Node], Location | None] | None = None) -> Element:
     """An element of the robot's text as the converter's XML parser holds it: comments
-    dropped, a text kept only when it is not all white space and comes before any child."""
-    children = [copy(child) for child in node if isinstance(child.tag, str)]
+    dropped, a text kept only when it is not all white space and comes before any child
+    (each placed by ``place``, when given)."""
+    children = [copy(child, place) for child in node if isinstance(child.tag, str)]
     text = node.text if node.text is not None and node.text.strip() else None
     prefixes = {uri: prefix for prefix, uri in node.nsmap.items() if prefix}
     attributes = [(_written(str(k), prefixes), str(v)) for k, v in node.attrib.items()]
-    return Element(_written(str(node.tag), prefixes), text, attributes, children)
+    copied = Element(_written(str(node.tag), prefixes), text, attributes, children)
+    copied.where = place(node) if place is not None else None
+    return copied
 
 
 def _written(name: str, prefixes: dict[str, str]) -> str:
@@ -111,10 +120,10 @@ def read(element: Element, description: Description | None = None) -> Element:
     text = None
     if "default" in description:
         if element.text is None:
-            text = _reprinted(description)
+            text = _reprinted(description, element.where)
         else:
             text = element.text.strip()
-            _check(description, text)
+            _check(description, text, element.where)
     if description.get("copy"):
         return Element(element.tag, text, attributes, [_copied(c) for c in element.children])
     children = [read(c, known[c.tag]) for c in element.children if c.tag in known]
@@ -135,7 +144,7 @@ def _copied(element: Element) -> Element:
     return Element(element.tag, element.text, attributes, [_copied(c) for c in element.children])
 
 
-def _check(description: Description, text: str) -> None:
+def _check(description: Description, text: str, where: Location | None) -> None:
     """Refuse a value the reader refuses for its element's type (see `refusal`).
 
     Raises:
@@ -144,11 +153,20 @@ def _check(description: Description, text: str) -> None:
     why = refusal(description, text)
     if why is not None:
         raise ConversionError(
-            f"<{description['name']}> {text!r} {why}: sdformat's reader refuses it", target="sdf"
+            f"<{description['name']}> {text!r} {why}: sdformat's reader refuses it",
+            target="sdf",
+            **_at(where),
         )
 
 
-def _reprinted(description: Description) -> str:
+def _at(where: Location | None) -> dict[str, Any]:
+    """A ConversionError's place: where the value at fault is written, when known."""
+    if where is None:
+        return {}
+    return {"path": where.path, "line": where.line, "column": where.column}
+
+
+def _reprinted(description: Description, where: Location | None = None) -> str:
     """The text the reader prints for a typed element it finds empty: its default value, as
     its type prints it (a number with 17 significant digits, a bool as 1 or 0).
 
@@ -161,6 +179,7 @@ def _reprinted(description: Description) -> str:
             f"<{description['name']}> is empty, and sdformat's reader refuses a required "
             "element without a value",
             target="sdf",
+            **_at(where),
         )
     if kind in ("double", "vector3", "vector2d"):
         return " ".join(f"{float(v):.17g}" for v in default.split())
