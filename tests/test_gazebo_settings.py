@@ -181,3 +181,68 @@ def test_fishbot_sdf_refuses_at_the_same_place(tmp_path: Path, setting: str, mes
     result = CliRunner().invoke(cli, ["sdf", str(path), "-o", str(tmp_path / "r.sdf")])
     assert (result.exit_code, result.stderr) == (1, f"{path}:7:5: error: {message} [conversion]\n")
     assert not (tmp_path / "r.sdf").exists()
+
+
+ARM = """\
+<robot name="r">
+  <link name="a">
+    <inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="1 1 1"/></geometry></collision>
+    <visual><geometry><box size="1 1 1"/></geometry></visual>
+  </link>
+  <link name="b">
+    <inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <joint name="j" type="revolute"><parent link="a"/><child link="b"/>
+    <limit lower="0" upper="1" effort="1" velocity="1"/></joint>
+  {block}
+</robot>
+"""
+# (block, refused): what ign sdf -p crashes on or refuses, and what it takes
+BLOCKS = [
+    (
+        '<gazebo reference="a"><collision><surface><friction><ode><mu>-2</mu></ode></friction>'
+        "</surface></collision></gazebo>",
+        True,
+    ),
+    ('<gazebo reference="a"><maxContacts>x</maxContacts></gazebo>', True),
+    ('<gazebo reference="a"><fdir1>a b</fdir1></gazebo>', True),
+    ('<gazebo reference="j"><stopErp>abc</stopErp></gazebo>', True),
+    ("<gazebo><self_collide>yes</self_collide></gazebo>", True),
+    (
+        '<gazebo reference="a"><visual><material><ambient>2 0 0 1</ambient></material></visual>'
+        "</gazebo>",
+        True,
+    ),
+    (
+        '<gazebo reference="a"><sensor name="s" type="camera"><pose>1 2 3</pose></sensor></gazebo>',
+        True,
+    ),
+    ('<gazebo reference="a"><maxContacts>-3</maxContacts><kp>-3</kp></gazebo>', False),
+    ('<gazebo reference="j"><stopErp>-1</stopErp><fudgeFactor>2</fudgeFactor></gazebo>', False),
+    ("<gazebo><static>maybe</static></gazebo>", False),
+    (
+        '<gazebo reference="a"><material>x</material><turnGravityOff>maybe</turnGravityOff>'
+        "<selfCollide>yes</selfCollide></gazebo>",
+        False,
+    ),
+    ('<gazebo reference="nothing"><mu1>-1</mu1></gazebo>', False),
+    (
+        '<gazebo reference="a"><plugin name="p" filename="x.so"><foo>yes</foo></plugin></gazebo>',
+        False,
+    ),
+]
+
+
+@pytest.mark.parametrize(("block", "refused"), BLOCKS, ids=[b for b, _ in BLOCKS])
+def test_a_finding_exactly_where_ign_refuses(tmp_path: Path, block: str, refused: bool) -> None:
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM.format(block=block), encoding="utf-8")
+    assert len(_findings(path)) == refused
+    ign = live_tool("ign", "ignition-tools libsdformat-dev")
+    if ign is None:
+        return
+    run = subprocess.run(
+        [ign, "sdf", "-p", str(path)], capture_output=True, timeout=120, check=False
+    )
+    assert (run.returncode != 0) == refused, run.stderr

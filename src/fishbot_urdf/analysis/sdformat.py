@@ -17,6 +17,7 @@ __all__ = [
     "FLAGS",
     "IGNORED",
     "NUMBERS",
+    "SETTINGS",
     "TEXTS",
     "WHOLE",
     "Description",
@@ -53,6 +54,9 @@ WHOLE = {"maxContacts": ("collision.sdf", "max_contacts")}  # read with std::sto
 TEXTS = {"fdir1": ("collision.sdf", "surface", "friction", "ode", "fdir1")}  # put as written
 FLAGS = {"static", "selfCollide", "provideFeedback", "implicitSpringDamper"}
 IGNORED = {"canonicalBody", "disableFixedJointLumping", "preserveFixedJoint"}
+SETTINGS = frozenset(  # every element the converter reads as a setting, not copies
+    {*NUMBERS, *WHOLE, *TEXTS, *FLAGS, *IGNORED, "material", "cfmDamping", "turnGravityOff"}
+)
 
 
 @cache

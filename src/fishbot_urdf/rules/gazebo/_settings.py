@@ -11,6 +11,7 @@ from ...analysis.gazebo import Block
 from ...analysis.sdformat import (
     IGNORED,
     NUMBERS,
+    SETTINGS,
     TEXTS,
     WHOLE,
     Description,
@@ -75,6 +76,8 @@ def _setting(child: Node, lands: frozenset[str]) -> _Found:
         if described is None or why is None:
             return []
         return [(child, f"<{tag}> {value!r} {why}: {_REFUSED} (write {allowed(described)})")]
+    if tag in SETTINGS:
+        return []  # a flag or a name, which the converter never refuses
     if tag in ("collision", "visual"):
         parent = describe(f"{tag}.sdf") if f"{tag}.sdf" in lands else None
         if parent is None:
