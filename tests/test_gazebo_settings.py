@@ -246,3 +246,14 @@ def test_a_finding_exactly_where_ign_refuses(tmp_path: Path, block: str, refused
         [ign, "sdf", "-p", str(path)], capture_output=True, timeout=120, check=False
     )
     assert (run.returncode != 0) == refused, run.stderr
+
+
+def test_a_robot_without_one_root_is_left_to_the_structure_rules(tmp_path: Path) -> None:
+    path = tmp_path / "r.urdf"
+    path.write_text(
+        '<robot name="r"><link name="a"/><link name="b"/>'
+        '<gazebo reference="a"><mu1>abc</mu1></gazebo></robot>',
+        encoding="utf-8",
+    )
+    rules = {d.rule for d in check_file(path).diagnostics}
+    assert rules == {"multiple-roots"}

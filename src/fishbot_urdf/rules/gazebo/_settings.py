@@ -7,9 +7,8 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from ...analysis import Analysis
-from ...analysis.gazebo import Block
+from ...analysis.gazebo import Block, Lumping
 from ...analysis.sdformat import (
-    IGNORED,
     NUMBERS,
     SETTINGS,
     TEXTS,
@@ -27,6 +26,7 @@ from ...analysis.sdformat import (
 )
 from ...catalog.gazebo import GAZEBO_SETTING
 from ...diagnostics import Diagnostic, Kind, Subject
+from ...errors import FishbotUrdfError
 from ...model import JointType
 
 __all__ = ["settings"]
@@ -40,12 +40,16 @@ def settings(analysis: Analysis, block: Block) -> Iterator[Diagnostic]:
     """A finding for each value of ``block`` that sdformat crashes on or refuses."""
     if block.element.tag != "gazebo":
         return
+    try:
+        lumping = analysis.gazebo_lumping
+    except FishbotUrdfError:  # no single root: the structure rules' finding, and urdfdom's
+        return  # refusal before the converter reads a block
     reference = block.reference
     head = f"<gazebo reference={reference!r}>" if reference is not None else "<gazebo>"
-    lands = _lands(analysis, reference)
+    lands = _lands(analysis, lumping, reference)
     subject = _subject(analysis, reference)
     for child in block.element:
-        if isinstance(child.tag, str) and child.tag not in IGNORED:
+        if isinstance(child.tag, str):
             for element, message in _setting(child, lands):
                 yield GAZEBO_SETTING.report(
                     f"{head}: {message}",
@@ -116,13 +120,12 @@ def _key_value(element: Node) -> str:
     return str(value).strip()
 
 
-def _lands(analysis: Analysis, reference: str | None) -> frozenset[str]:
+def _lands(analysis: Analysis, lumping: Lumping, reference: str | None) -> frozenset[str]:
     """The SDF elements the converter writes the block's elements into: the model's for a
     block with no reference; a kept link's (and its collisions' and visuals', when it has
     some) or a joint's it writes; none for a name it drops or does not know."""
     if reference is None:
         return frozenset({"model.sdf"})
-    lumping = analysis.gazebo_lumping
     lost = {name for names in lumping.dropped.values() for name in names} | set(lumping.dropped)
     link = analysis.links.get(reference)
     if link is not None:
