@@ -1008,6 +1008,6 @@ def test_sdf_refuses_a_gazebo_setting_the_converter_stops_on(tmp_path: Path) -> 
     result = CliRunner().invoke(cli, ["sdf", str(robot)])
     assert (result.exit_code, result.stdout) == (1, "")
     assert result.stderr == (
-        f"{robot}: error: <gazebo reference='a'>: <kp> is 'x', not a number: sdformat's "
+        f"{robot}:1:55: error: <gazebo reference='a'>: <kp> is 'x', not a number: sdformat's "
         "converter stops on it [conversion]\n"
     )

@@ -108,7 +108,11 @@ FAULTS = [
     (
         ["fov:=80"],
         "126:3: error: sensor 'camera' (camera): <horizontal_fov> is 80, outside (0, pi) radians "
-        "(write it in radians (80 degrees is 1.3963)) [sensor-settings]",
+        "(write it in radians (80 degrees is 1.3963)) [sensor-settings]\n"
+        # past 2 pi, sdformat's reader (ign sdf -p) refuses the whole robot
+        f"{shown_path(str(ROBOT))}:130:9: error: <gazebo reference='camera_link'>: "
+        "<horizontal_fov> '80' is more than 6.283186, its most: sdformat's reader refuses the "
+        "robot, so Gazebo cannot load it (write a number from 0.1 to 6.283186) [gazebo-setting]",
     ),
     (
         ["width:=0"],

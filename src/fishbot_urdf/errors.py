@@ -156,12 +156,22 @@ class ConversionError(FishbotUrdfError, ValueError):
     """A robot the target's own converter, or the reader of what it writes, refuses.
 
     ``target`` names the format (``sdf``), ``subject`` the link or joint at fault (None for
-    the whole robot)."""
+    the whole robot); ``path``, ``line`` and ``column`` where the value at fault is written,
+    when it is known."""
 
     rule = "conversion"
 
-    def __init__(self, message: str, *, target: str, subject: str | None = None) -> None:
-        super().__init__(message)
+    def __init__(
+        self,
+        message: str,
+        *,
+        target: str,
+        subject: str | None = None,
+        path: str | None = None,
+        line: int | None = None,
+        column: int | None = None,
+    ) -> None:
+        super().__init__(message, path=path, line=line, column=column)
         self.target = target
         self.subject = subject
 

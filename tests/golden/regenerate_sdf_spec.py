@@ -8,7 +8,7 @@ elements copied after the rest. This command reads that description from the fil
 12 installs (Debian/Ubuntu: ``apt-get install libsdformat-dev``, in
 /usr/share/sdformat12/1.9) and keeps what the reader uses of it (names, required, types,
 default texts, bounds, which element copies its children as they are) in
-src/fishbot_urdf/export/sdf_1.9.json, from ``model.sdf`` down. Descriptions are left out.
+src/fishbot_urdf/analysis/sdf_1.9.json, from ``model.sdf`` down. Descriptions are left out.
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ from pathlib import Path
 from lxml import etree
 
 ROOT = Path(__file__).resolve().parent.parent.parent
-OUT = ROOT / "src" / "fishbot_urdf" / "export" / "sdf_1.9.json"
+OUT = ROOT / "src" / "fishbot_urdf" / "analysis" / "sdf_1.9.json"
 SPEC = Path("/usr/share/sdformat12/1.9")
 
 

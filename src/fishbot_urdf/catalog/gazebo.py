@@ -186,3 +186,33 @@ SENSOR_SELF_HIT = Rule(
     good=_LASER.format(z="0.08"),
     consumers=(Consumer.GAZEBO,),
 )
+_SETTING = """\
+<robot name="fishbot">
+  <link name="base_link">
+    <collision><geometry><box size="0.2 0.2 0.12"/></geometry></collision>
+    <inertial><mass value="1"/>
+      <inertia ixx="0.004533" iyy="0.004533" izz="0.006667" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <gazebo reference="base_link">
+    <mu1>{mu1}</mu1>
+    <mu2>{mu2}</mu2>
+    <kinematic>{kinematic}</kinematic>
+  </gazebo>
+</robot>
+"""
+GAZEBO_SETTING = Rule(
+    "gazebo-setting",
+    E,
+    Family.GAZEBO,
+    summary="A value in a <gazebo> block that sdformat refuses: Gazebo cannot load the robot.",
+    explanation="Gazebo reads a URDF through sdformat's URDF converter. The converter reads "
+    "settings such as `<mu1>`, `<kp>` or `<dampingFactor>` as numbers with C++'s std::stod, "
+    "and crashes (std::invalid_argument) on one that does not start as a number, such as a "
+    "xacro expression left in `<mu1>${mu}</mu1>`. sdformat's reader then refuses the robot "
+    "for a value its element's type or bounds do not allow: a friction `<mu1>` below 0, a "
+    "`<kinematic>yes</kinematic>` that is none of true, false, 1, 0, a `<pose>` of other than "
+    "6 numbers. Either way Gazebo loads nothing. Write what the message says is allowed.",
+    bad=_SETTING.format(mu1="-1", mu2="abc", kinematic="yes"),
+    good=_SETTING.format(mu1="1", mu2="0.8", kinematic="false"),
+    consumers=(Consumer.GAZEBO,),
+)

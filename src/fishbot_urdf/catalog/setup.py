@@ -110,7 +110,8 @@ CONVERSION = Rule(
     "over fixed joints that weigh 0 kg together (the converter divides by their mass), and a "
     "`<gazebo>` setting it reads as a number that is none, such as a xacro expression left "
     "in `<mu1>${mu}</mu1>` (the converter stops on it). The message names the link or the "
-    "block at fault, nothing is written, and the command stops with exit status 1.",
+    "block at fault (and the line and column of a value at fault), nothing is written, and "
+    "the command stops with exit status 1.",
     bad="""\
 # gazebo.urdf: the arm, its <gazebo reference="upper_arm"> block with <mu1>${mu}</mu1>
 fishbot sdf gazebo.urdf -o arm.sdf

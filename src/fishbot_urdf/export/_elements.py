@@ -4,14 +4,14 @@ joint limits, and its numbers (C++'s 16 significant digits, a zero as 0)."""
 
 from __future__ import annotations
 
-import re
 from collections.abc import Iterable
 from typing import NamedTuple
 
+from ..analysis.sdformat import stod
 from ..model import Box, Cylinder, Geometry, Joint, JointType, Material, Mesh, Sphere
 from ..spatial import urdfdom_angles
 from ._lumping import Mass, Placement, euler
-from ._reader import Element, single, stod
+from ._reader import Element, single
 
 __all__ = [
     "LUMP",
@@ -25,7 +25,6 @@ __all__ = [
     "pose",
     "shape",
     "short",
-    "stoi",
     "vector3",
 ]
 
@@ -122,14 +121,6 @@ def colours(given: Material) -> tuple[str, str]:
     diffuse = [min(max(c / 0.8, 0.0), 1.0) for c in (r, g, b)]
     ambient = [min(max(0.5 * c / 0.4, 0.0), 1.0) for c in (r, g, b)]
     return numbers((*diffuse, a)), numbers((*ambient, a))
-
-
-def stoi(text: str) -> int | None:
-    """``text`` as C++'s std::stoi reads it: the whole number it starts with (None where it
-    throws)."""
-    found = re.match(r"\s*[+-]?\d+", text)
-    value = int(found.group()) if found is not None else None
-    return value if value is not None and -(2**31) <= value < 2**31 else None
 
 
 def vector3(text: str) -> tuple[float, float, float]:

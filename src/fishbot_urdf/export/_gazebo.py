@@ -6,49 +6,38 @@ renamed, with offsets."""
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 
+from ..analysis.sdformat import FLAGS, IGNORED, NUMBERS, stod, stoi
 from ..errors import ConversionError
+from ..location import Location
 from ..spatial import urdfdom_angles
-from ._elements import LUMP, number, short, stoi, vector3
+from ._elements import LUMP, number, short, vector3
 from ._lumping import IDENTITY, Placement, compose, quaternion, then
-from ._reader import Element, Node, copy, stod
+from ._reader import Element, Node, copy
 
 __all__ = ["Extension", "Extensions"]
 
 _ZERO = (0.0, 0.0, 0.0)
-_FLOATS = {  # settings read as numbers, with C++'s std::stod
-    "dampingFactor",
-    "maxVel",
-    "minDepth",
-    "mu1",
-    "mu2",
-    "kp",
-    "kd",
-    "laserRetro",
-    "springReference",
-    "springStiffness",
-    "stopCfm",
-    "stopErp",
-    "fudgeFactor",
-}
-_FLAGS = {"static", "selfCollide", "provideFeedback", "implicitSpringDamper"}
-_IGNORED = {"canonicalBody", "disableFixedJointLumping", "preserveFixedJoint"}
 
 
-def _number(text: str, tag: str, reference: str) -> float:
+def _number(setting: Element, text: str, reference: str) -> float:
     value = stod(text)
     if value is None:
-        raise _refused(text, tag, reference)
+        raise _refused(setting, text, reference)
     return value
 
 
-def _refused(text: str, tag: str, reference: str) -> ConversionError:
+def _refused(setting: Element, text: str, reference: str) -> ConversionError:
     block = f"<gazebo reference={reference!r}>" if reference else "<gazebo>"
+    where = setting.where
     return ConversionError(
-        f"{block}: <{tag}> is {text!r}, not a number: sdformat's converter stops on it",
+        f"{block}: <{setting.tag}> is {text!r}, not a number: sdformat's converter stops on it",
         target="sdf",
         subject=reference or None,
+        path=where.path if where is not None else None,
+        line=where.line if where is not None else None,
+        column=where.column if where is not None else None,
     )
 
 
@@ -96,6 +85,7 @@ class Extension:
         self.old = reference if block.children else ""  # the converter's oldLinkName
         self.material = ""
         self.settings: dict[str, float | bool | str] = {}
+        self.where: dict[str, Location | None] = {}  # where each setting is written
         self.collisions: list[Element] = []
         self.visuals: list[Element] = []
         self.blobs: list[Element] = []
@@ -109,22 +99,25 @@ class Extension:
                 (self.collisions if tag == "collision" else self.visuals).extend(
                     c.clone() for c in child.children
                 )
-            elif tag in _FLAGS:
+            elif tag in FLAGS:
                 self.settings[tag] = _flag(_key_value(child))
             elif tag == "cfmDamping":
                 self.settings["implicitSpringDamper"] = _flag(_key_value(child))
             elif tag == "turnGravityOff":
                 self.settings["gravity"] = _key_value(child).lower() in ("false", "no", "0")
-            elif tag in _FLOATS:
-                self.settings[tag] = _number(_key_value(child), tag, reference)
+            elif tag in NUMBERS:
+                self.settings[tag] = _number(child, _key_value(child), reference)
+                self.where[tag] = child.where
             elif tag == "maxContacts":
                 whole = stoi(_key_value(child))
                 if whole is None:
-                    raise _refused(_key_value(child), tag, reference)
+                    raise _refused(child, _key_value(child), reference)
                 self.settings[tag] = whole
+                self.where[tag] = child.where
             elif tag == "fdir1":
                 self.settings[tag] = _key_value(child)
-            elif tag not in _IGNORED:
+                self.where[tag] = child.where
+            elif tag not in IGNORED:
                 self.blobs.append(child.clone())
 
     def repose(self) -> None:
@@ -185,10 +178,12 @@ class Extensions:
     """Every ``<gazebo>`` block by the name it is on (the model's under ""), as lumping
     moves them."""
 
-    def __init__(self, blocks: Iterable[tuple[str, Node]]) -> None:
+    def __init__(
+        self, blocks: Iterable[tuple[str, Node, Callable[[Node], Location | None]]]
+    ) -> None:
         self.on: dict[str, list[Extension]] = {}
-        for reference, element in blocks:
-            self.on.setdefault(reference, []).append(Extension(reference, copy(element)))
+        for reference, element, place in blocks:
+            self.on.setdefault(reference, []).append(Extension(reference, copy(element, place)))
 
     def lump(self, link: str, parent: str, joint: Placement) -> None:
         """``link``'s blocks moved onto ``parent``, welded at ``joint`` (its frame in the
@@ -212,12 +207,9 @@ class Extensions:
                 element.put("gravity", "true" if settings["gravity"] else "false")
             if "dampingFactor" in settings:
                 factor = number(float(settings["dampingFactor"]))
-                element.append(
-                    Element(
-                        "velocity_decay",
-                        children=[Element("linear", factor), Element("angular", factor)],
-                    )
-                )
+                linear, angular = Element("linear", factor), Element("angular", factor)
+                linear.where = angular.where = extension.where.get("dampingFactor")
+                element.append(Element("velocity_decay", children=[linear, angular]))
             if "selfCollide" in settings:
                 element.put("self_collide", "1" if settings["selfCollide"] else "0")
             element.children += [blob.clone() for blob in extension.blobs]
@@ -275,7 +267,7 @@ class Extensions:
             ):
                 value = settings.get(key)
                 if value is not None and value != "":
-                    into.put(tag, _text(value))
+                    into.put(tag, _text(value), extension.where.get(key))
 
     def visual(self, element: Element, link: str) -> None:
         """A visual's material script and blobs."""
@@ -317,7 +309,7 @@ class Extensions:
                 ("springStiffness", dynamics, "spring_stiffness"),
             ):
                 if key in settings:
-                    into.put(tag, number(float(settings[key])))
+                    into.put(tag, number(float(settings[key])), extension.where.get(key))
             if "provideFeedback" in settings:
                 feedback = "true" if settings["provideFeedback"] else "false"
                 physics.put("provide_feedback", feedback)
@@ -327,7 +319,11 @@ class Extensions:
                 ode.put("implicit_spring_damper", implicit)
                 ode.put("cfm_damping", implicit)
             if "fudgeFactor" in settings:
-                ode.put("fudge_factor", number(float(settings["fudgeFactor"])))
+                ode.put(
+                    "fudge_factor",
+                    number(float(settings["fudgeFactor"])),
+                    extension.where.get("fudgeFactor"),
+                )
             for parent, child in (
                 (axis, dynamics),
                 (element, axis),

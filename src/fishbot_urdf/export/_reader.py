@@ -5,18 +5,17 @@ them, comments dropped (from SDFormat 1.9's description, sdf_1.9.json)."""
 
 from __future__ import annotations
 
-import json
 import math
-import re
 import struct
-from collections.abc import Iterator, Mapping
-from functools import cache
-from importlib import resources
+from collections.abc import Callable, Iterator, Mapping
 from typing import Any, Protocol
 
+from ..analysis import sdformat
+from ..analysis.sdformat import Description, describe, refusal
 from ..errors import ConversionError
+from ..location import Location
 
-__all__ = ["Element", "Node", "copy", "printed", "read", "single", "stod"]
+__all__ = ["Element", "Node", "copy", "printed", "read", "single"]
 
 
 class Element:
@@ -24,7 +23,7 @@ class Element:
     for none) and child elements. The converter edits its document as it goes (settings
     replace earlier ones, blobs are moved and re-posed), so this one can be edited."""
 
-    __slots__ = ("attributes", "children", "tag", "text")
+    __slots__ = ("attributes", "children", "tag", "text", "where")
 
     def __init__(
         self,
@@ -37,6 +36,7 @@ class Element:
         self.text = text
         self.attributes = attributes or []
         self.children = children or []
+        self.where: Location | None = None  # where the robot's text writes it, if it does
 
     def get(self, name: str) -> str | None:
         return next((value for key, value in self.attributes if key == name), None)
@@ -52,18 +52,22 @@ class Element:
     def remove(self, child: Element) -> None:
         self.children = [c for c in self.children if c is not child]
 
-    def put(self, tag: str, text: str) -> Element:
+    def put(self, tag: str, text: str, where: Location | None = None) -> Element:
         """A ``<tag>text</tag>`` appended in place of the first one there was (the
-        converter's AddKeyValue)."""
+        converter's AddKeyValue); ``where`` the setting it is written from."""
         old = self.find(tag)
         if old is not None:
             self.remove(old)
-        return self.append(Element(tag, text))
+        put = self.append(Element(tag, text))
+        put.where = where
+        return put
 
     def clone(self) -> Element:
-        return Element(
+        cloned = Element(
             self.tag, self.text, list(self.attributes), [c.clone() for c in self.children]
         )
+        cloned.where = self.where
+        return cloned
 
 
 class Node(Protocol):
@@ -77,14 +81,17 @@ class Node(Protocol):
     def __iter__(self) -> Iterator[Node]: ...
 
 
-def copy(node: Node) -> Element:
+def copy(node: Node, place: Callable[[Node], Location | None] | None = None) -> Element:
     """An element of the robot's text as the converter's XML parser holds it: comments
-    dropped, a text kept only when it is not all white space and comes before any child."""
-    children = [copy(child) for child in node if isinstance(child.tag, str)]
+    dropped, a text kept only when it is not all white space and comes before any child
+    (each placed by ``place``, when given)."""
+    children = [copy(child, place) for child in node if isinstance(child.tag, str)]
     text = node.text if node.text is not None and node.text.strip() else None
     prefixes = {uri: prefix for prefix, uri in node.nsmap.items() if prefix}
     attributes = [(_written(str(k), prefixes), str(v)) for k, v in node.attrib.items()]
-    return Element(_written(str(node.tag), prefixes), text, attributes, children)
+    copied = Element(_written(str(node.tag), prefixes), text, attributes, children)
+    copied.where = place(node) if place is not None else None
+    return copied
 
 
 def _written(name: str, prefixes: dict[str, str]) -> str:
@@ -100,34 +107,11 @@ def _attr(value: str) -> str:
     return "'" + _escape(value).replace("'", "&apos;") + "'"
 
 
-_Description = dict[str, Any]
-
-
-@cache
-def _files() -> dict[str, _Description]:
-    text = resources.files(__package__).joinpath("sdf_1.9.json").read_text(encoding="utf-8")
-    files: dict[str, _Description] = json.loads(text)
-    return files
-
-
-def _children(description: _Description) -> list[_Description]:
-    """The element descriptions below ``description``, includes resolved."""
-    found = []
-    for child in description.get("children", ()):
-        if "include" in child:
-            included = _files().get(child["include"])
-            if included is not None:
-                found.append({**included, "required": child["required"]})
-        else:
-            found.append(child)
-    return found
-
-
-def read(element: Element, description: _Description | None = None) -> Element:
+def read(element: Element, description: Description | None = None) -> Element:
     """``element`` as sdformat's reader keeps it (``description`` its element's; the
     model's when not given)."""
-    description = description or _files()["model.sdf"]
-    known = {d["name"]: d for d in reversed(_children(description))}
+    description = description or describe("model.sdf") or {}
+    known = {d["name"]: d for d in reversed(sdformat.children(description))}
     attributes = []
     for name, required, default in description.get("attributes", ()):
         value = element.get(name)
@@ -136,17 +120,17 @@ def read(element: Element, description: _Description | None = None) -> Element:
     text = None
     if "default" in description:
         if element.text is None:
-            text = _reprinted(description)
+            text = _reprinted(description, element.where)
         else:
             text = element.text.strip()
-            _check(description, text)
+            _check(description, text, element.where)
     if description.get("copy"):
         return Element(element.tag, text, attributes, [_copied(c) for c in element.children])
     children = [read(c, known[c.tag]) for c in element.children if c.tag in known]
     present = {c.tag for c in children}
     children += [
         _default(d)
-        for d in _children(description)
+        for d in sdformat.children(description)
         if d["required"] == "1" and d["name"] not in present
     ]
     children += [_copied(c) for c in element.children if c.tag not in known]
@@ -160,72 +144,29 @@ def _copied(element: Element) -> Element:
     return Element(element.tag, element.text, attributes, [_copied(c) for c in element.children])
 
 
-_STOD = re.compile(
-    r"\s*[+-]?(?:0[xX](?:[0-9a-fA-F]+\.?[0-9a-fA-F]*|\.[0-9a-fA-F]+)(?:[pP][+-]?\d+)?"
-    r"|(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)?|nan(?:\([0-9A-Za-z_]*\))?)",
-    re.IGNORECASE,
-)
-
-
-def stod(text: str) -> float | None:
-    """``text`` as C++'s std::stod reads it: the longest number it starts with (None where
-    it throws)."""
-    found = _STOD.match(text)
-    if found is None:
-        return None
-    token = found.group().strip()
-    try:
-        if token.lower().lstrip("+-").startswith("0x"):
-            return float.fromhex(token)
-        value = float(re.sub(r"\(.*\)", "", token))
-    except (ValueError, OverflowError):
-        return None
-    return value if math.isfinite(value) or token[-1].isalpha() or token[-1] == ")" else None
-
-
-_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
-_SIZES = {"vector3": 3, "vector2d": 2, "color": 3}
-
-
-def _check(description: _Description, text: str) -> None:
-    """Refuse a value the reader refuses for its element's type: a bool that is none of
-    true, false, 1, 0; a number that does not start as one (as std::stod reads it; a whole
-    number, with a digit), or is out of the element's bounds; a vector of fewer numbers than
-    it has, a pose of other than 6, a colour with a number beyond 0 to 1.
+def _check(description: Description, text: str, where: Location | None) -> None:
+    """Refuse a value the reader refuses for its element's type (see `refusal`).
 
     Raises:
         ConversionError: The reader refuses ``text``.
     """
-    kind, name = description["type"], description["name"]
-    why = None
-    if kind == "bool" and text.lower() not in ("true", "false", "1", "0"):
-        why = "is no bool"
-    elif kind in ("double", "float", "int", "unsigned int"):
-        whole = kind.endswith("int")
-        value = stod(text) if not whole or re.match(r"\s*[+-]?\d", text) else None
-        if value is None:
-            why = "is no number"
-        elif "min" in description and value < float(description["min"]):
-            why = f"is less than {description['min']}, its least"
-        elif "max" in description and value > float(description["max"]):
-            why = f"is more than {description['max']}, its most"
-    elif kind in _SIZES:
-        tokens = text.split()[: _SIZES[kind]]
-        if len(tokens) < _SIZES[kind] or not all(_NUMBER.fullmatch(t) for t in tokens):
-            why = f"is not {_SIZES[kind]} numbers"
-        elif kind == "color" and not all(0 <= float(t) <= 1 for t in text.split()[:4]):
-            why = "is not a colour (each of its numbers from 0 to 1)"
-    elif kind == "pose":
-        tokens = text.split()
-        if len(tokens) != 6 or not all(_NUMBER.fullmatch(t) for t in tokens):
-            why = "is not 6 numbers"
+    why = refusal(description, text)
     if why is not None:
         raise ConversionError(
-            f"<{name}> {text!r} {why}: sdformat's reader refuses it", target="sdf"
+            f"<{description['name']}> {text!r} {why}: sdformat's reader refuses it",
+            target="sdf",
+            **_at(where),
         )
 
 
-def _reprinted(description: _Description) -> str:
+def _at(where: Location | None) -> dict[str, Any]:
+    """A ConversionError's place: where the value at fault is written, when known."""
+    if where is None:
+        return {}
+    return {"path": where.path, "line": where.line, "column": where.column}
+
+
+def _reprinted(description: Description, where: Location | None = None) -> str:
     """The text the reader prints for a typed element it finds empty: its default value, as
     its type prints it (a number with 17 significant digits, a bool as 1 or 0).
 
@@ -238,6 +179,7 @@ def _reprinted(description: _Description) -> str:
             f"<{description['name']}> is empty, and sdformat's reader refuses a required "
             "element without a value",
             target="sdf",
+            **_at(where),
         )
     if kind in ("double", "vector3", "vector2d"):
         return " ".join(f"{float(v):.17g}" for v in default.split())
@@ -259,10 +201,10 @@ def single(value: float) -> float:
     return held
 
 
-def _default(description: _Description) -> Element:
+def _default(description: Description) -> Element:
     """The element the reader adds where a required one is missing."""
     attributes = [(n, d) for n, r, d in description.get("attributes", ()) if r == "1"]
-    children = [_default(d) for d in _children(description) if d["required"] == "1"]
+    children = [_default(d) for d in sdformat.children(description) if d["required"] == "1"]
     return Element(description["name"], description.get("default"), attributes, children)
 
 

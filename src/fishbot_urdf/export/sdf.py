@@ -122,7 +122,7 @@ class _Model:
         self.analysis = analysis
         self.kept = analysis.gazebo_lumping.preserved | analysis.gazebo_lumping.revolute
         self.extensions = Extensions(
-            (block.reference or "", block.element)
+            (block.reference or "", block.element, block.place_of)
             for block in analysis.gazebo_blocks
             if block.element.tag == "gazebo"
         )

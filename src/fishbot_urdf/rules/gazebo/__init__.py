@@ -12,6 +12,7 @@ from ...diagnostics import Diagnostic
 from ._drive import drives
 from ._losses import losses
 from ._sensors import sensors
+from ._settings import settings
 from ._versions import ros_versions, simulators
 
 __all__ = ["REPORTS", "gazebo"]
@@ -37,6 +38,8 @@ def gazebo(
         if chosen & drive:
             yield from drives(analysis, block)
         yield from sensors(analysis, block, select=chosen)
+        if catalog.GAZEBO_SETTING.id in chosen:
+            yield from settings(analysis, block)
     if catalog.PLUGIN_ROS_VERSION.id in chosen:
         yield from ros_versions(analysis, found)
     if catalog.PLUGIN_SIMULATOR.id in chosen:
