@@ -23,9 +23,11 @@ import subprocess
 import sys
 import tempfile
 from pathlib import Path
+from typing import Any
 
 ROOT = Path(__file__).resolve().parent.parent.parent
 OUT = Path(__file__).resolve().parent / "sdf"
+CORPUS_OUT = OUT / "corpus"
 
 # name -> input, relative to the repository
 INPUTS = {
@@ -47,6 +49,15 @@ INPUTS = {
 }
 
 
+def _corpus() -> list[Any]:
+    """The check_urdf golden files' robots that are URDF files (tests/conftest.py's
+    golden_inputs: their ids name them on any machine)."""
+    sys.path.insert(0, str(ROOT / "tests"))
+    from conftest import golden_inputs
+
+    return [item for item in golden_inputs() if not item.is_xacro]
+
+
 def urdf_text(path: Path) -> str:
     """The URDF the converter is given: the file, or the xacro file expanded."""
     if path.suffix != ".xacro":
@@ -61,6 +72,11 @@ def digest(text: str) -> str:
     """The sha256 of a converter's input without its comments: xacro's banner names the file
     it expanded by the path it was given, which is another on every checkout."""
     return hashlib.sha256(re.sub(r"<!--.*?-->", "", text, flags=re.S).encode("utf-8")).hexdigest()
+
+
+def file_digest(path: Path) -> str:
+    """The sha256 of a file, as it is on disk."""
+    return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
 def version() -> str:
@@ -103,6 +119,23 @@ def main() -> int:
         "inputs": {},
     }
     changed = []
+    corpus: dict[str, object] = {}
+    index["corpus"] = corpus
+    kept: set[Path] = set()
+    for item in _corpus():
+        run = subprocess.run(
+            [ign, "sdf", "-p", str(item.path)], capture_output=True, text=True, timeout=120
+        )
+        entry: dict[str, object] = {"sha256": file_digest(item.path)}
+        if run.returncode != 0:
+            entry["refused"] = run.returncode
+        else:
+            out = CORPUS_OUT / f"{item.id}.sdf"
+            out.parent.mkdir(parents=True, exist_ok=True)
+            kept.add(out)
+            if _write(out, run.stdout):
+                changed.append(f"corpus/{item.id}.sdf")
+        corpus[item.id] = entry
     with tempfile.TemporaryDirectory() as folder:
         for name, relative in INPUTS.items():
             text = urdf_text(ROOT / relative)
@@ -122,6 +155,10 @@ def main() -> int:
     removed = [p.name for p in OUT.glob("*.sdf") if p.stem not in INPUTS]
     for name in removed:
         (OUT / name).unlink()
+    for path in CORPUS_OUT.rglob("*.sdf"):
+        if path not in kept:
+            path.unlink()
+            removed.append(str(path.relative_to(OUT)))
     for name in changed:
         print(f"written: {name}")
     for name in removed:
