@@ -124,8 +124,9 @@ MESH_FORMAT = Rule(
     W,
     Family.MESHES,
     summary="A mesh is in a format most robot programs cannot load (not STL, OBJ or COLLADA).",
-    explanation="RViz loads many formats, but Gazebo Classic loads STL, OBJ and COLLADA (.dae) "
-    "only, MuJoCo and PyBullet STL and OBJ, and CAD formats (STEP, IGES) or files without an "
+    explanation="RViz loads many formats, but Gazebo Classic and Gazebo Fortress (ignition-common "
+    "4) load STL, OBJ and COLLADA (.dae) only (glTF and GLB from the Gazebo of gz-common 5 on), "
+    "MuJoCo and PyBullet STL and OBJ, and CAD formats (STEP, IGES) or files without an "
     "extension load nowhere. Export the mesh as STL or OBJ (COLLADA keeps colours for RViz and "
     "Gazebo).",
     bad=_ONE_BOX.format(name="meshes/base_link.step"),
