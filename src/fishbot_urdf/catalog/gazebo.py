@@ -24,13 +24,20 @@ _DRIVE = """\
   </plugin></gazebo>
 </robot>
 """
-_LASER = """\
-<robot name="fishbot">
+# a body 0.12 m high, 1 kg, with its inertia
+_BOX_BASE = """\
   <link name="base_link">
     <collision><geometry><box size="0.2 0.2 0.12"/></geometry></collision>
     <inertial><mass value="1"/>
       <inertia ixx="0.004533" iyy="0.004533" izz="0.006667" ixy="0" ixz="0" iyz="0"/></inertial>
   </link>
+"""
+_LASER = (
+    """\
+<robot name="fishbot">
+"""
+    + _BOX_BASE
+    + """\
   <link name="laser_link"/>
   <joint name="laser_joint" type="fixed"><origin xyz="0 0 {z}"/>
     <parent link="base_link"/><child link="laser_link"/></joint>
@@ -38,6 +45,7 @@ _LASER = """\
     <ray><range><min>0.05</min><max>8</max></range></ray></sensor></gazebo>
 </robot>
 """
+)
 _CAMERA = """\
 <robot name="fishbot">
   <link name="base_link"/>
@@ -186,13 +194,12 @@ SENSOR_SELF_HIT = Rule(
     good=_LASER.format(z="0.08"),
     consumers=(Consumer.GAZEBO,),
 )
-_SETTING = """\
+_SETTING = (
+    """\
 <robot name="fishbot">
-  <link name="base_link">
-    <collision><geometry><box size="0.2 0.2 0.12"/></geometry></collision>
-    <inertial><mass value="1"/>
-      <inertia ixx="0.004533" iyy="0.004533" izz="0.006667" ixy="0" ixz="0" iyz="0"/></inertial>
-  </link>
+"""
+    + _BOX_BASE
+    + """\
   <gazebo reference="base_link">
     <mu1>{mu1}</mu1>
     <mu2>{mu2}</mu2>
@@ -200,6 +207,7 @@ _SETTING = """\
   </gazebo>
 </robot>
 """
+)
 GAZEBO_SETTING = Rule(
     "gazebo-setting",
     E,
