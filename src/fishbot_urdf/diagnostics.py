@@ -15,7 +15,9 @@ __all__ = [
     "ELEMENT",
     "FOLLOWS",
     "Diagnostic",
+    "Edit",
     "Facts",
+    "Fix",
     "Kind",
     "Severity",
     "Subject",
@@ -105,6 +107,56 @@ def _plain(value: Any) -> Any:
 
 _NO_DATA: Mapping[str, Any] = MappingProxyType({})
 
+
+@dataclass(frozen=True, slots=True)
+class Edit:
+    """Text to put in the place of a range of a file (an insertion: an empty range).
+
+    Lines and columns are 1-based, columns in characters; ``end_line``/``end_column`` are
+    just past the range.
+    """
+
+    path: str
+    line: int
+    column: int
+    end_line: int
+    end_column: int
+    text: str
+
+    def to_dict(self) -> dict[str, Any]:
+        """A JSON-ready dict of every field."""
+        return {
+            "path": self.path,
+            "line": self.line,
+            "column": self.column,
+            "end_line": self.end_line,
+            "end_column": self.end_column,
+            "text": self.text,
+        }
+
+
+@dataclass(frozen=True, slots=True)
+class Fix:
+    """A change that mends a finding, as edits of its files.
+
+    Attributes:
+        title: What it does, for a person choosing it (``replace 'base_lnk' with
+            'base_link'``).
+        edits: The edits, none overlapping another.
+        safe: Whether ``fishbot check --fix`` applies it: it changes only what the finding
+            is about and keeps the author's intent (a suppression comment is offered to an
+            editor but not applied by ``--fix``, nor is a guess).
+    """
+
+    title: str
+    edits: tuple[Edit, ...]
+    safe: bool = True
+
+    def to_dict(self) -> dict[str, Any]:
+        """A JSON-ready dict of every field."""
+        return {"title": self.title, "safe": self.safe, "edits": [e.to_dict() for e in self.edits]}
+
+
 FOLLOWS = "follows"
 """The key under which `Diagnostic.to_dict` lists the rules a finding follows from (see
 `Diagnostic.follows`)."""
@@ -140,6 +192,12 @@ class Diagnostic:
             origin, which leave the robot's shape and frames as they are; ``"axis"`` for a
             joint's axis, which urdfdom does not read for a fixed or floating joint; not
             compared.
+        end_line: The line just past the range the finding is about (its element's start
+            tag, or the value at fault in it), or None when only its start is known.
+        end_column: The column just past that range (1-based, in characters).
+        calls: For an element a xacro macro call made, the calls that made it: ``(macro
+            name, where it was called)``, innermost first; not compared.
+        fixes: The changes that mend it, as text edits (see `Fix`); not compared.
     """
 
     rule: str
@@ -154,6 +212,10 @@ class Diagnostic:
     definition: Rule | None = field(default=None, compare=False, repr=False)
     follows: tuple[str, ...] = field(default=(), compare=False, repr=False)
     element: str | None = field(default=None, compare=False, repr=False)
+    end_line: int | None = field(default=None, compare=False, repr=False)
+    end_column: int | None = field(default=None, compare=False, repr=False)
+    calls: tuple[tuple[str, Location], ...] = field(default=(), compare=False, repr=False)
+    fixes: tuple[Fix, ...] = field(default=(), compare=False, repr=False)
 
     @property
     def is_error(self) -> bool:
@@ -194,6 +256,10 @@ class Diagnostic:
             d.definition,
             d.follows,
             d.element,
+            d.end_line,
+            d.end_column,
+            d.calls,
+            d.fixes,
         )
 
     def format(self) -> str:
@@ -251,25 +317,49 @@ _FIELDS = (
     "definition",
     "follows",
     "element",
+    "end_line",
+    "end_column",
+    "calls",
+    "fixes",
 )
 
 
 def _unpickled(*values: Any) -> Diagnostic:
     *fixed, data = values
-    rule, severity, message, path, line, column, hint, subject, definition, follows, element = fixed
-    return diagnostic(
+    (
         rule,
         severity,
         message,
-        path=path,
-        line=line,
-        column=column,
-        hint=hint,
-        subject=subject,
-        data=data,
-        definition=definition,
-        follows=follows,
-        element=element,
+        path,
+        line,
+        column,
+        hint,
+        subject,
+        definition,
+        follows,
+        element,
+        end_line,
+        end_column,
+        calls,
+        fixes,
+    ) = fixed
+    return Diagnostic(
+        rule,
+        severity,
+        message,
+        path,
+        line,
+        column,
+        hint,
+        subject,
+        data if isinstance(data, Facts) else (MappingProxyType(data) if data else _NO_DATA),
+        definition,
+        follows,
+        element,
+        end_line,
+        end_column,
+        calls,
+        fixes,
     )
 
 
@@ -296,8 +386,10 @@ def diagnostic(
         facts: Mapping[str, Any] = data
     else:
         facts = _NO_DATA if not data else MappingProxyType(dict(data))
+    calls: tuple[tuple[str, Location], ...] = ()
     if where is not None:
         path, line, column = where.path, where.line, where.column
+        calls = getattr(where, "calls", ())  # a MacroLocation's
     return Diagnostic(
         rule,
         severity,
@@ -311,6 +403,9 @@ def diagnostic(
         definition,
         tuple(follows),
         element,
+        None,
+        None,
+        calls,
     )
 
 

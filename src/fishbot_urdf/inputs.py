@@ -16,6 +16,12 @@ matching suppression comments, analysing, rendering, Graphviz's `dot`) asks
 ``with``, each piece of work gets :data:`DEFAULT_MAX_SECONDS` from when it starts. The
 folders a xacro expansion may read beyond the robot's own (:func:`allowing_reads`) and
 whether it runs expressions as Python (:func:`trusting_expressions`) are the context's too.
+
+So are the two things a workspace (:mod:`fishbot_urdf.workspace`) lays over the disk: the
+unsaved texts of files open in an editor (:func:`reading_through`: :func:`read_input` gives
+a file's text from there when it has one), and a :class:`Cancellation` (:func:`cancellable`)
+that stops the work at its next look at the deadline, with :class:`Cancelled`, when newer
+work makes it moot.
 """
 
 from __future__ import annotations
@@ -28,22 +34,30 @@ from collections.abc import Iterable, Iterator
 from contextlib import AbstractContextManager, contextmanager
 from contextvars import ContextVar
 from pathlib import Path
-from typing import Any
+from typing import Any, Protocol
 
 from .errors import ArgumentError, InputError, LimitError
 
 __all__ = [
     "DEFAULT_MAX_BYTES",
     "DEFAULT_MAX_SECONDS",
+    "Cancellation",
+    "Cancelled",
     "Deadline",
     "InputTooLargeError",
+    "Overlay",
     "TimeLimitError",
     "allowing_reads",
+    "cancellable",
     "deadline",
+    "is_input_file",
+    "looking_for",
     "max_bytes",
     "max_seconds",
     "note_inputs",
+    "note_looked",
     "read_input",
+    "reading_through",
     "reads_allowed",
     "recording_inputs",
     "size_limit",
@@ -66,6 +80,45 @@ _READ: ContextVar[list[str] | None] = ContextVar("fishbot_urdf_inputs_read", def
 _READS: ContextVar[tuple[str, ...]] = ContextVar("fishbot_urdf_allowed_reads", default=())
 
 
+class Overlay(Protocol):
+    """Texts laid over the files on disk (an editor's unsaved buffers)."""
+
+    def buffer(self, path: str) -> bytes | None:
+        """The text held for the file ``path`` (as given: relative to the current folder or
+        absolute), or None to read the disk."""
+
+
+class Cancellation:
+    """A flag another thread raises to stop work it no longer needs (a newer edit came).
+
+    The work stops at its next look at the deadline (:meth:`Deadline.check`) with
+    :class:`Cancelled`."""
+
+    __slots__ = ("_set",)
+
+    def __init__(self) -> None:
+        self._set = False
+
+    def cancel(self) -> None:
+        """Stop the work (callable from any thread)."""
+        self._set = True
+
+    @property
+    def cancelled(self) -> bool:
+        """Whether :meth:`cancel` was called."""
+        return self._set
+
+
+class Cancelled(BaseException):
+    """The work was cancelled (see :class:`Cancellation`), or its caller stopped waiting for
+    it. A BaseException, so that no handler of ordinary errors goes on with the work."""
+
+
+_OVERLAY: ContextVar[Overlay | None] = ContextVar("fishbot_urdf_overlay", default=None)
+_LOOKED: ContextVar[list[str] | None] = ContextVar("fishbot_urdf_looked_for", default=None)
+_CANCEL: ContextVar[Cancellation | None] = ContextVar("fishbot_urdf_cancellation", default=None)
+
+
 class TimeLimitError(LimitError):
     """Work went on past the time limit; ``seconds`` is the limit, ``what`` the work."""
 
@@ -81,14 +134,20 @@ class Deadline:
     A check costs one clock read; loops call it every few hundred steps.
     """
 
-    __slots__ = ("end", "seconds")
+    __slots__ = ("cancellation", "end", "seconds")
 
-    def __init__(self, end: float, seconds: float) -> None:
+    def __init__(
+        self, end: float, seconds: float, cancellation: Cancellation | None = None
+    ) -> None:
         self.end = end
         self.seconds = seconds
+        self.cancellation = cancellation
 
     def passed(self) -> bool:
-        """Whether the deadline has passed."""
+        """Whether the deadline has passed (raises :class:`Cancelled` if the work was
+        cancelled)."""
+        if self.cancellation is not None and self.cancellation.cancelled:
+            raise Cancelled
         return time.monotonic() > self.end
 
     def left(self) -> float:
@@ -96,8 +155,9 @@ class Deadline:
         return max(0.0, self.end - time.monotonic())
 
     def check(self, what: str) -> None:
-        """Raise :class:`TimeLimitError` naming ``what`` if the deadline has passed."""
-        if time.monotonic() > self.end:
+        """Raise :class:`TimeLimitError` naming ``what`` if the deadline has passed, and
+        :class:`Cancelled` if the work was cancelled."""
+        if self.passed():
             raise TimeLimitError(what, self.seconds)
 
 
@@ -106,7 +166,30 @@ def deadline() -> Deadline:
     :func:`max_seconds` from now."""
     seconds = _SECONDS.get()
     end = _END.get()
-    return Deadline(time.monotonic() + seconds if end is None else end, seconds)
+    return Deadline(time.monotonic() + seconds if end is None else end, seconds, _CANCEL.get())
+
+
+def cancellable(cancellation: Cancellation) -> AbstractContextManager[None]:
+    """Inside the ``with`` (this thread or task only, and the threads it runs work in with
+    its context), the work stops with :class:`Cancelled` at its next look at the deadline
+    once ``cancellation`` is cancelled."""
+    return _holding(_CANCEL, cancellation)
+
+
+def reading_through(overlay: Overlay | None) -> AbstractContextManager[None]:
+    """Inside the ``with`` (this thread or task only, and the threads it runs work in with
+    its context), :func:`read_input` gives the text ``overlay`` holds for a file, where it
+    holds one, instead of the disk's."""
+    return _holding(_OVERLAY, overlay)
+
+
+def is_input_file(path: str | Path) -> bool:
+    """Whether ``path`` is a file :func:`read_input` may give: a text the overlay in force
+    holds, or a regular file on disk."""
+    overlay = _OVERLAY.get()
+    if overlay is not None and overlay.buffer(str(path)) is not None:
+        return True
+    return os.path.isfile(path)
 
 
 class InputTooLargeError(InputError):
@@ -215,6 +298,30 @@ def note_inputs(paths: Iterable[str]) -> None:
 
 
 @contextmanager
+def looking_for() -> Iterator[list[str]]:
+    """Note, in the list it gives, every file :func:`note_looked` says was looked for inside
+    the ``with`` (this thread or task only, and the threads it runs work in with its
+    context): files an answer depends on being there or not (a mesh file), unread."""
+    outer = _LOOKED.get()
+    looked: list[str] = []
+    token = _LOOKED.set(looked)
+    try:
+        yield looked
+    finally:
+        _LOOKED.reset(token)
+        if outer is not None:
+            outer.extend(looked)
+
+
+def note_looked(path: str) -> None:
+    """Note that the answer in hand depends on whether ``path`` is there (see
+    :func:`looking_for`)."""
+    looked = _LOOKED.get()
+    if looked is not None:
+        looked.append(path)
+
+
+@contextmanager
 def _holding(variable: ContextVar[Any], value: Any) -> Iterator[None]:
     token = variable.set(value)
     try:
@@ -224,7 +331,8 @@ def _holding(variable: ContextVar[Any], value: Any) -> Iterator[None]:
 
 
 def read_input(path: str | Path) -> bytes:
-    """Read a whole regular file of at most :func:`max_bytes` bytes.
+    """Read a whole regular file of at most :func:`max_bytes` bytes (or the text the overlay
+    in force holds for it: see :func:`reading_through`).
 
     The file is opened without blocking, so a FIFO is refused at once rather than waited on.
 
@@ -235,6 +343,15 @@ def read_input(path: str | Path) -> bytes:
     """
     name = str(path)
     limit = _LIMIT.get()
+    overlay = _OVERLAY.get()
+    held = None if overlay is None else overlay.buffer(name)
+    if held is not None:
+        recording = _READ.get()
+        if recording is not None:
+            recording.append(name)
+        if len(held) > limit:
+            raise InputTooLargeError(name, len(held), limit)
+        return held
     try:
         handle = os.open(name, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | _BINARY)
     except FileNotFoundError as exc:

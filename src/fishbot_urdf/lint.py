@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -30,6 +31,7 @@ from .suppress import apply_suppressions, suppressions
 from .targets import consumers_of, retarget, targets_of, urdfdom_refuses
 from .validation import values
 from .validation._readable import finite, readable
+from .workspace import Workspace
 
 if TYPE_CHECKING:
     from .packages import PackageFinder
@@ -86,6 +88,7 @@ def check_file(
     args: Mapping[str, str] | None = None,
     packages: Mapping[str, str | Path] | PackageFinder | None = None,
     config: Config | None = None,
+    workspace: Workspace | None = None,
 ) -> CheckResult:
     """Read and check one URDF or xacro file, collecting every finding.
 
@@ -98,6 +101,11 @@ def check_file(
     none of them is a warning, see `fishbot_urdf.targets`). ``fishbot: ignore[RULE]``
     comments in the file (and in a xacro file's includes) silence findings.
 
+    With a ``workspace``, the files are read through it (an editor's unsaved texts over the
+    disk), its packages are found (unless ``packages`` are given), and the result is kept
+    there: asked again, it is given again at once while no file it read (or mesh it looked
+    for) has changed.
+
     Raises:
         InputError: The file cannot be read.
         XmlSyntaxError: The file is not well-formed XML.
@@ -106,9 +114,28 @@ def check_file(
         PackageNotFoundError: The xacro file names a package that is not found.
     """
     config = config or Config()
+    if workspace is None:
+        return _checked(source, path, args, packages, config, None)
+    finder = workspace.packages if packages is None else packages
+    given = () if isinstance(finder, PackageFinder) else tuple(sorted(map(str, finder.items())))
+    named = source if isinstance(source, bytes) else os.path.abspath(source)
+    key = ("check", named, path, tuple(sorted((args or {}).items())), given, repr(config))
+    return workspace.memo(key, lambda: _checked(source, path, args, finder, config, workspace))
+
+
+def _checked(
+    source: str | Path | bytes,
+    path: str | None,
+    args: Mapping[str, str] | None,
+    packages: Mapping[str, str | Path] | PackageFinder | None,
+    config: Config,
+    workspace: Workspace | None,
+) -> CheckResult:
     folders = packages.packages if isinstance(packages, PackageFinder) else packages
+    if workspace is not None and isinstance(packages, PackageFinder):
+        folders = packages  # the workspace's finder, its answers kept
     with allowing_reads(config.allow_read):
-        parsed = read(source, path=path, args=args, packages=folders)
+        parsed = read(source, path=path, args=args, packages=folders, workspace=workspace)
     found = list(parsed.diagnostics)
     analysis = None
     if parsed.robot is not None:

@@ -31,6 +31,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..errors import FishbotUrdfError
+from ..inputs import note_looked
 from ..model import Link, Mesh, Robot
 from ..packages import PackageFinder, PackageNotFoundError, package_name
 from ..wording import closest
@@ -337,6 +338,7 @@ class MeshPaths:
     def _exists(self, file: Path) -> tuple[bool, str | None]:
         """Whether ``file`` is there under exactly its name, and else the name of a file
         whose name differs only in case."""
+        note_looked(str(file))  # an answer that found it missing is stale once it is there
         names = self._listing(file.parent)
         if names is None:
             # The folder is missing, or is named in another case itself.

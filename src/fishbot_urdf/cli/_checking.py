@@ -22,6 +22,7 @@ from ..output import Source
 from ..packages import PackageFinder
 from ..rules import Family
 from ..wording import listing
+from ..workspace import Workspace
 from ._common import EXIT_INVALID, emit_findings, stdin_urdf, stop_on
 
 if TYPE_CHECKING:
@@ -43,14 +44,17 @@ __all__ = [
 def check_input(
     name: str,
     args: dict[str, str],
-    packages: dict[str, str] | PackageFinder,
+    packages: dict[str, str] | PackageFinder | Workspace,
     config: Config | None = None,
 ) -> CheckResult:
-    """Read and check FILE (- is standard input, read as URDF: ``args`` are warned of)."""
+    """Read and check FILE (- is standard input, read as URDF: ``args`` are warned of),
+    through ``packages`` when it is a workspace (one that keeps answers gives a robot
+    again at once while none of its files changed), else through one for this read."""
+    workspace = packages if isinstance(packages, Workspace) else Workspace(packages, keep=0)
     if name == "-":
         data = stdin_urdf()
-        return check_file(data, path="<stdin>", args=args, packages=packages, config=config)
-    return check_file(name, args=args, packages=packages, config=config)
+        return check_file(data, path="<stdin>", args=args, config=config, workspace=workspace)
+    return check_file(name, args=args, config=config, workspace=workspace)
 
 
 STDIN = 0

@@ -20,6 +20,7 @@ from ..expansion import declared_args
 from ..expansion import expand as run
 from ..expansion._findings import unknown_args, xacro_warning
 from ..output import write_atomic
+from ..workspace import Workspace
 from ._common import (
     EXIT_INVALID,
     EXIT_OK,
@@ -89,7 +90,11 @@ def expand(
     try:
         found = find_config(file)
         config = Config() if found is None else load_config(found)
-        expansion = run(file, args=values, packages=packages, allow_read=config.allow_read)
+        workspace = Workspace(packages, keep=0)
+        with workspace.reading():
+            expansion = run(
+                file, args=values, packages=workspace.packages, allow_read=config.allow_read
+            )
         findings = [xacro_warning(message, file) for message in expansion.messages]
         if values:
             findings += unknown_args(values, declared_args(expansion), file)

@@ -22,6 +22,7 @@ from ..errors import (
     ToolNotFoundError,
     UnknownNameError,
 )
+from ..workspace import Workspace
 from ._checking import (
     check_input,
     check_joint_names,
@@ -101,9 +102,11 @@ def view(
     config = nearest_config(file)
 
     loaded: list[CheckResult] = []  # the last load: its findings, and the -j names
+    # Each reload asks it again: a robot none of whose files changed is not read again.
+    workspace = Workspace(packages, keep=4)
 
     def load() -> tuple[Any, Sequence[str]]:
-        result = check_input(file, values, packages, posing(config))
+        result = check_input(file, values, workspace, posing(config))
         blocking = posing_errors(result.diagnostics)
         if result.analysis is None or blocking:
             raise RobotError(blocking, path=file)

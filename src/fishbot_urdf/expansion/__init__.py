@@ -30,11 +30,13 @@ from typing import TYPE_CHECKING, Any, TypeVar, cast
 from ..errors import ArgumentError, InputError
 from ..inputs import (
     allowing_reads,
+    is_input_file,
     read_input,
     reads_allowed,
     trusting_expressions,
     trusts_expressions,
 )
+from ..packages import PackageFinder
 from ._result import Expansion, ExpansionLimitError, MacroDefinition, XacroError
 from ._scope import ReadOutsideError, ReadScope, robot_tree
 
@@ -84,7 +86,7 @@ def parse_args(items: list[str] | tuple[str, ...]) -> dict[str, str]:
 def expand(
     path: str | Path,
     args: Mapping[str, str] | None = None,
-    packages: Mapping[str, str | Path] | None = None,
+    packages: Mapping[str, str | Path] | PackageFinder | None = None,
     *,
     trust_expressions: bool | None = None,
     allow_read: str | os.PathLike[str] | Iterable[str | os.PathLike[str]] = (),
@@ -95,7 +97,8 @@ def expand(
         path: The xacro file. Its name appears in the banner as given, as xacro does.
         args: Values for ``<xacro:arg>``, like ``name:=value`` on xacro's command line.
         packages: Package folders for ``$(find NAME)``, searched first (see
-            :mod:`fishbot_urdf.packages` for the rest of the search).
+            :mod:`fishbot_urdf.packages` for the rest of the search), or a finder that
+            keeps its answers (a workspace's).
         trust_expressions: Evaluate expressions with Python's ``eval``, as ROS's xacro
             does, running the file's code (default: as :func:`trusting_expressions` says,
             else no). It also lifts the limit on what may be read.
@@ -140,14 +143,15 @@ def probe_macros(
 def _run(
     path: str | Path,
     args: Mapping[str, str] | None,
-    packages: Mapping[str, str | Path] | None,
+    packages: Mapping[str, str | Path] | PackageFinder | None,
     trust_expressions: bool | None,
     allow_read: str | os.PathLike[str] | Iterable[str | os.PathLike[str]],
     probe: Callable[[MacroTable], Any] | None = None,
 ) -> Run:
     name = str(path)
     try:
-        folder = stat.S_ISDIR(os.stat(name).st_mode)
+        # An editor's unsaved text of the file may be all there is of it.
+        folder = not is_input_file(name) and stat.S_ISDIR(os.stat(name).st_mode)
     except (FileNotFoundError, NotADirectoryError) as exc:
         raise InputError(f"{name} does not exist", path=name) from exc
     except OSError as exc:  # a name too long, a loop of links, ...
@@ -162,7 +166,8 @@ def _run(
     else:
         given = [allow_read] if isinstance(allow_read, str | os.PathLike) else allow_read
         reads = ReadScope.of(name, (*reads_allowed(), *given))
-    return Run(name, dict(args or {}), dict(packages or {}), trust=trust, reads=reads, probe=probe)
+    found = packages if isinstance(packages, PackageFinder) else dict(packages or {})
+    return Run(name, dict(args or {}), found, trust=trust, reads=reads, probe=probe)
 
 
 # How a xacro file declares or reads an argument: <xacro:arg name="..."> (any prefix),

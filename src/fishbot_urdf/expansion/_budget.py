@@ -25,7 +25,7 @@ from __future__ import annotations
 from typing import Any
 
 from ..errors import LimitError
-from ..inputs import Deadline, TimeLimitError, deadline, max_bytes
+from ..inputs import Cancelled, Deadline, TimeLimitError, deadline, max_bytes
 
 __all__ = [
     "CHECK_EVERY",
@@ -47,12 +47,6 @@ is ``n`` times this, and one that would pass the deadline is not begun."""
 ELEMENT_BYTES = 640
 """What one parsed or cloned XML element takes in memory, with its attributes and where it
 was written (measured: about 680 bytes for a URDF element in Python's DOM)."""
-
-
-class Cancelled(BaseException):
-    """The caller of an expansion stopped waiting for it (an interrupt, a signal, an error
-    in its thread): the walk ends here. A BaseException, so that no handler of ordinary
-    errors inside xacro goes on walking."""
 
 
 class Budget:

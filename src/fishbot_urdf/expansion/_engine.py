@@ -19,7 +19,7 @@ from ..errors import FishbotUrdfError, InputError, LimitError
 from ..escaping import escape_controls
 from ..inputs import read_input
 from ..location import Location, MacroLocation, calls_of
-from ..packages import PackageNotFoundError, find_package
+from ..packages import PackageFinder, PackageNotFoundError, find_package
 from ._allowlist import allowed_callables, prepare_symbols
 from ._budget import ELEMENT_BYTES, Budget
 from ._errors import SOURCE_KEY, Explaining, limited, source
@@ -93,7 +93,7 @@ class Run(Explaining):
         self,
         path: str,
         args: dict[str, str],
-        packages: dict[str, str | Path],
+        packages: dict[str, str | Path] | PackageFinder,
         *,
         trust: bool = False,
         reads: ReadScope,
@@ -330,7 +330,10 @@ class Run(Explaining):
     def _find(self, package: str) -> str:
         stack = self.xacro.filestack
         near = stack[-1] if stack and stack[-1] else self.path
-        found = find_package(package, near=near, packages=self.packages)
+        if isinstance(self.packages, PackageFinder):  # a workspace's: each answer kept
+            found = self.packages.find(package, near=near)
+        else:
+            found = find_package(package, near=near, packages=self.packages)
         self.reads = self.reads.including(found)
         return str(found)
 

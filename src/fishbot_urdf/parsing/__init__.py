@@ -6,6 +6,7 @@ RobotError listing every finding).
 
 from __future__ import annotations
 
+import os
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -13,10 +14,13 @@ from pathlib import Path
 
 from ..diagnostics import Diagnostic
 from ..errors import RobotError
-from ..expansion import declared_args, expand
+from ..expansion import Expansion, declared_args, expand
 from ..expansion._findings import unknown_args, unused_args, xacro_warning
 from ..extensions import Reference
+from ..inputs import reads_allowed, trusts_expressions
 from ..model import Location, Robot
+from ..packages import PackageFinder
+from ..workspace import Workspace
 from ..xml.source import STRING_PATH, XmlDocument, read_bytes, read_xml
 from ..xml.stream import Unstreamable
 from ._reader import Reader
@@ -58,7 +62,8 @@ def read(
     *,
     path: str | None = None,
     args: Mapping[str, str] | None = None,
-    packages: Mapping[str, str | Path] | None = None,
+    packages: Mapping[str, str | Path] | PackageFinder | None = None,
+    workspace: Workspace | None = None,
 ) -> Parsed:
     """Read a URDF (or xacro) file leniently, collecting every finding.
 
@@ -72,7 +77,10 @@ def read(
         path: The name to report (default: the file path, or ``<string>`` for bytes).
         args: ``<xacro:arg>`` values, for a xacro file (a URDF file reads none: each is
             a `xacro-unknown-arg` warning).
-        packages: Package folders for ``$(find NAME)``, for a xacro file.
+        packages: Package folders for ``$(find NAME)``, for a xacro file (default: the
+            workspace's).
+        workspace: Where the files are read (an editor's unsaved texts over the disk) and
+            each expansion kept, for as long as the files it read are unchanged.
 
     Raises:
         InputError: The file cannot be read.
@@ -81,6 +89,19 @@ def read(
         XacroError: The xacro file cannot be expanded.
         PackageNotFoundError: The xacro file names a package that is not found.
     """
+    if workspace is None:
+        return _read(source, path, args, packages, None)
+    with workspace.reading():
+        return _read(source, path, args, packages, workspace)
+
+
+def _read(
+    source: str | Path | bytes,
+    path: str | None,
+    args: Mapping[str, str] | None,
+    packages: Mapping[str, str | Path] | PackageFinder | None,
+    workspace: Workspace | None,
+) -> Parsed:
     origins = None
     notes: tuple[Diagnostic, ...] = ()
     files: tuple[str, ...] = ()
@@ -88,7 +109,7 @@ def read(
         data, name = source, path or STRING_PATH
         notes = tuple(unused_args(args or (), name))
     elif is_xacro_path(source):
-        expansion = expand(source, args=args, packages=packages)
+        expansion = _expansion(source, args, packages, workspace)
         # A file name that is no UTF-8 (the banner names the file) is no XML text either.
         data = expansion.text.encode("utf-8", "replace")
         name, origins = path or str(source), expansion.sources
@@ -107,6 +128,27 @@ def read(
         document, reader, robot = _robot(data, name, origins, False)
     found = notes + document.recoveries + tuple(reader.diagnostics)
     return Parsed(name, robot, found, files, data, tuple(reader.references))
+
+
+def _expansion(
+    source: str | Path,
+    args: Mapping[str, str] | None,
+    packages: Mapping[str, str | Path] | PackageFinder | None,
+    workspace: Workspace | None,
+) -> Expansion:
+    if workspace is None:
+        return expand(source, args=args, packages=packages)
+    finder = workspace.packages if packages is None else packages
+    given = () if isinstance(finder, PackageFinder) else tuple(sorted(map(str, finder.items())))
+    key = (
+        "expansion",
+        os.path.abspath(source),
+        tuple(sorted((args or {}).items())),
+        given,
+        trusts_expressions(),
+        reads_allowed(),
+    )
+    return workspace.memo(key, lambda: expand(source, args=args, packages=finder))
 
 
 def _robot(
