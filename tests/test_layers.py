@@ -83,6 +83,8 @@ LAZY_HERE = {
     "src/fishbot_urdf/inertia/__init__.py": {"."},
     "src/fishbot_urdf/cli/__init__.py": {"._common"},
     "src/fishbot_urdf/cli/expand.py": {"..analysis", "..parsing"},
+    "src/fishbot_urdf/cli/check.py": {"._fixing"},
+    "src/fishbot_urdf/fixes.py": {".inertia"},
 }
 
 

@@ -162,6 +162,15 @@ def _findings(result: Result) -> list[tuple[str, str]]:
 
 def _check(tmp_path: Path, rule: Rule, text: str) -> Result:
     """`fishbot check --format json` on ``text``, written as a .urdf or a .urdf.xacro file."""
+    name = write_example(tmp_path, rule, text)
+    # For every program (--target all): each finding at its rule's severity.
+    command = ["check", "--isolated", "--target", "all", "--format", "json", str(name)]
+    return CliRunner().invoke(cli, command)
+
+
+def write_example(tmp_path: Path, rule: Rule, text: str) -> Path:
+    """``text``, an example of ``rule``, written as a .urdf or a .urdf.xacro file in
+    ``tmp_path``, with the files the examples name beside it."""
     (tmp_path / "wheel.urdf.xacro").write_text(WHEEL_XACRO, encoding="utf-8")
     (tmp_path / "meshes").mkdir(exist_ok=True)
     # found, as the mesh rules' examples say: a box in metres, a .step file, a box in
@@ -179,9 +188,7 @@ def _check(tmp_path: Path, rule: Rule, text: str) -> Result:
         )
     name = tmp_path / ("robot.urdf.xacro" if rule.language == "xacro" else "robot.urdf")
     name.write_text(text, encoding="utf-8")
-    # For every program (--target all): each finding at its rule's severity.
-    command = ["check", "--isolated", "--target", "all", "--format", "json", str(name)]
-    return CliRunner().invoke(cli, command)
+    return name
 
 
 def _sentences(text: str) -> list[str]:

@@ -144,17 +144,25 @@ class Fix:
             'base_link'``).
         edits: The edits, none overlapping another.
         safe: Whether ``fishbot check --fix`` applies it: it changes only what the finding
-            is about and keeps the author's intent (a suppression comment is offered to an
-            editor but not applied by ``--fix``, nor is a guess).
+            is about and keeps the author's intent (a guess is applied only with
+            ``--unsafe-fixes``).
+        silences: It silences the finding (a suppression comment) rather than mending it:
+            offered to an editor, never applied by ``--fix``.
     """
 
     title: str
     edits: tuple[Edit, ...]
     safe: bool = True
+    silences: bool = False
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready dict of every field."""
-        return {"title": self.title, "safe": self.safe, "edits": [e.to_dict() for e in self.edits]}
+        return {
+            "title": self.title,
+            "safe": self.safe,
+            "silences": self.silences,
+            "edits": [e.to_dict() for e in self.edits],
+        }
 
 
 FOLLOWS = "follows"
@@ -288,11 +296,14 @@ class Diagnostic:
             "path": self.path,
             "line": self.line,
             "column": self.column,
+            "end_line": self.end_line,
+            "end_column": self.end_column,
             "hint": self.hint,
             "subject": None
             if subject is None
             else {"kind": subject.kind.value, "name": subject.name},
             "data": self._data_dict(),
+            "fixes": [fix.to_dict() for fix in self.fixes],
         }
 
     def _data_dict(self) -> dict[str, Any]:

@@ -21,12 +21,14 @@ from .diagnostics import (
     sort_key,
     without_consequences,
 )
-from .inputs import allowing_reads
+from .fixes import attach
+from .inputs import allowing_reads, read_input
 from .model import Robot
 from .packages import PackageFinder
 from .parsing import is_xacro_path, read
 from .rules import CHECKS, Settings
 from .rules.physics import GROUND_TOLERANCE
+from .sourcetext import Texts, with_ranges
 from .suppress import apply_suppressions, suppressions
 from .targets import consumers_of, retarget, targets_of, urdfdom_refuses
 from .validation import values
@@ -89,6 +91,7 @@ def check_file(
     packages: Mapping[str, str | Path] | PackageFinder | None = None,
     config: Config | None = None,
     workspace: Workspace | None = None,
+    fixes: bool = False,
 ) -> CheckResult:
     """Read and check one URDF or xacro file, collecting every finding.
 
@@ -106,6 +109,9 @@ def check_file(
     there: asked again, it is given again at once while no file it read (or mesh it looked
     for) has changed.
 
+    Each finding's range ends where its text shows (`fishbot_urdf.sourcetext`); with
+    ``fixes``, each also has the fixes that mend it (`fishbot_urdf.fixes`).
+
     Raises:
         InputError: The file cannot be read.
         XmlSyntaxError: The file is not well-formed XML.
@@ -115,12 +121,14 @@ def check_file(
     """
     config = config or Config()
     if workspace is None:
-        return _checked(source, path, args, packages, config, None)
+        return _checked(source, path, args, packages, config, None, fixes)
     finder = workspace.packages if packages is None else packages
     given = () if isinstance(finder, PackageFinder) else tuple(sorted(map(str, finder.items())))
     named = source if isinstance(source, bytes) else os.path.abspath(source)
-    key = ("check", named, path, tuple(sorted((args or {}).items())), given, repr(config))
-    return workspace.memo(key, lambda: _checked(source, path, args, finder, config, workspace))
+    key = ("check", named, path, tuple(sorted((args or {}).items())), given, repr(config), fixes)
+    return workspace.memo(
+        key, lambda: _checked(source, path, args, finder, config, workspace, fixes)
+    )
 
 
 def _checked(
@@ -130,6 +138,7 @@ def _checked(
     packages: Mapping[str, str | Path] | PackageFinder | None,
     config: Config,
     workspace: Workspace | None,
+    fixes: bool,
 ) -> CheckResult:
     folders = packages.packages if isinstance(packages, PackageFinder) else packages
     if workspace is not None and isinstance(packages, PackageFinder):
@@ -149,6 +158,12 @@ def _checked(
     )
     kept = without_consequences(kept)
     kept.sort(key=sort_key)
+    texts = Texts(read_input)  # through the workspace, when there is one: unsaved texts
+    if not (parsed.files and is_xacro_path(parsed.files[0])):
+        texts.add(parsed.path, parsed.data)
+    kept = with_ranges(kept, texts)
+    if fixes:
+        kept = attach(kept, texts, parsed.files[0] if parsed.files else parsed.path, analysis)
     return CheckResult(
         parsed.path,
         parsed.robot,

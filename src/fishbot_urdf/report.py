@@ -149,6 +149,9 @@ def _result(finding: Diagnostic, index: dict[str, int], silenced: bool) -> dict[
         region: dict[str, int] = {"startLine": finding.line}
         if finding.column is not None:
             region["startColumn"] = finding.column
+        if finding.end_line is not None and finding.end_column is not None:
+            region["endLine"] = finding.end_line
+            region["endColumn"] = finding.end_column
         location["region"] = region
     result: dict[str, Any] = {
         "ruleId": finding.rule,

@@ -25,6 +25,7 @@ from ..targets import target_name
 from ._batch import Run, outcomes, tree_chunks
 from ._checking import STDIN
 from ._common import (
+    EXIT_INVALID,
     EXIT_OK,
     EXIT_USAGE,
     Number,
@@ -247,6 +248,23 @@ class _Options:
     help="Check the files in N processes at once (Linux; from 8 files on). "
     "[default: one per usable processor]",
 )
+@click.option(
+    "--fix",
+    is_flag=True,
+    help="Apply the safe fixes (a misspelt name that has a close match, a mesh's scale from "
+    "millimetres) to the files of the robot's own package, then report what is left.",
+)
+@click.option(
+    "--unsafe-fixes",
+    is_flag=True,
+    help="With --fix or --diff, also the fixes that guess (an <inertial> at water's density).",
+)
+@click.option(
+    "--diff",
+    is_flag=True,
+    help="Print the fixes as a unified diff instead of applying them (exit 1 if there are "
+    "any); nothing is written.",
+)
 @package_option()
 @limit_options()
 def check(
@@ -265,6 +283,9 @@ def check(
     skip_includes: bool,
     ground_mm: float | None,
     jobs: int | None,
+    fix: bool,
+    unsafe_fixes: bool,
+    diff: bool,
     package_items: Sequence[str],
 ) -> None:
     """Check URDF or xacro files, like check_urdf, and more strictly.
@@ -312,6 +333,8 @@ def check(
       fishbot check --format github robot.urdf.xacro
       fishbot check -q --skip-includes $(git ls-files '*.urdf' '*.xacro')
       fishbot check --jobs 1 urdf/*.urdf
+      fishbot check --diff robot.urdf.xacro
+      fishbot check --fix robot.urdf.xacro
       xacro robot.urdf.xacro | fishbot check -
     """
     args = xacro_args([f for f in files if ":=" in f])
@@ -343,6 +366,9 @@ def check(
         except FishbotUrdfError as exc:
             stop_on(exc)
 
+    if fix or diff:
+        _fixing(names, configs, args, packages, diff=diff, unsafe=unsafe_fixes)
+
     status = EXIT_OK
     reports: list[FileReport] = []
     # Never written over: the files checked (standard input, when it is a file), what
@@ -373,6 +399,33 @@ def check(
                 _tree(tree_chunks(done.result), sink)
         _finish(fmt, reports, output, sink, inputs)
     sys.exit(status)
+
+
+def _fixing(
+    names: Sequence[str],
+    configs: Sequence[Config],
+    args: dict[str, str],
+    packages: dict[str, str],
+    *,
+    diff: bool,
+    unsafe: bool,
+) -> None:
+    """--diff: print the fixes and stop (1: there are some); --fix: write them and go on."""
+    from ._fixing import fix_files, write_fixed  # difflib and the fixes load only here
+
+    fixed = fix_files(names, configs, args, packages, unsafe=unsafe)
+    if diff:
+        to_stdout(fixed.diff().encode("utf-8", "surrogateescape"))
+        sys.exit(EXIT_INVALID if fixed.changed() else EXIT_OK)
+    try:
+        write_fixed(fixed)
+    except FishbotUrdfError as exc:
+        stop_on(exc)
+    changed = fixed.changed()
+    if changed:
+        files = "1 file" if len(changed) == 1 else f"{len(changed)} files"
+        fixes = "1 fix" if fixed.count == 1 else f"{fixed.count} fixes"
+        click.echo(f"fishbot check: {fixes} made in {files}", err=True)
 
 
 def _tree_file(output: str | None, inputs: list[Source]) -> AtomicFile | None:
