@@ -6,9 +6,9 @@ from __future__ import annotations
 import re
 
 from ..catalog import all_rules
-from ..extensions import Target, plugin_target
+from ..extensions import TAGS, Target, plugin_target
 from ..model import JointType
-from ._names import EXTENSIONS, XACRO_TAGS, Macro
+from ._names import XACRO_TAGS, Macro
 from ._scan import Document, Tag
 from ._schema import ATTRIBUTES, CHILDREN, DESCRIPTIONS
 from ._table import Table
@@ -95,7 +95,7 @@ def _values(
     if tag == "gazebo" and attribute == "reference":
         return _links(table) + _joints(table)
     if (tag == "mimic" and attribute == "joint") or (
-        tag == "joint" and attribute == "name" and context in EXTENSIONS
+        tag == "joint" and attribute == "name" and context in TAGS
     ):
         return _joints(table)
     if tag == "joint" and attribute == "type":

@@ -35,7 +35,6 @@ XACRO_TAGS = frozenset(
         "eval",
     }
 )
-EXTENSIONS = frozenset({"gazebo", "transmission", "ros2_control"})
 
 _SUBSTITUTION = re.compile(r"\$\{([^}]*)\}?|\$\((arg|find)\s+([^)\s]*)\s*\)?")
 _STRING = re.compile(r"'[^']*'?|\"[^\"]*\"?")
@@ -103,13 +102,12 @@ class FileNames:
 
     def macro_of(self, tag: Tag) -> Macro | None:
         """The macro whose body holds ``tag``."""
-        for outer in self.document.ancestors(tag):
-            if outer.name == "xacro:macro":
-                name = outer.get("name")
-                macro = self.macros.get(name.value) if name else None
-                if macro is not None and macro.tag is outer:
-                    return macro
-        return None
+        if tag.macro is None:
+            return None
+        outer = self.document.tags[tag.macro]
+        name = outer.get("name")
+        macro = self.macros.get(name.value) if name else None
+        return macro if macro is not None and macro.tag is outer else None
 
 
 def names_of(document: Document, packages: PackageFinder | None) -> FileNames:
@@ -245,8 +243,7 @@ def _included(filename: str, near: str, packages: PackageFinder | None) -> str |
 def _named(found: FileNames, tag: Tag) -> None:
     """Where ``tag`` writes a link, joint or material name."""
     doc = found.document
-    outer = [a.name for a in doc.ancestors(tag)]
-    extension = next((n for n in outer if n in EXTENSIONS), None)
+    extension = tag.extension
     parent = doc.tags[tag.parent].name if tag.parent is not None else None
 
     def add(kind: str, attribute_name: str, definition: bool) -> None:
@@ -257,7 +254,7 @@ def _named(found: FileNames, tag: Tag) -> None:
             )
 
     if extension is None:
-        if tag.name in ("link", "joint") and parent != tag.name and "gazebo" not in outer:
+        if tag.name in ("link", "joint") and parent != tag.name:
             add(tag.name, "name", True)
         elif tag.name in ("parent", "child") and parent == "joint":
             add("link", "link", False)
@@ -275,7 +272,7 @@ def _named(found: FileNames, tag: Tag) -> None:
 def _plugin_names(found: FileNames, tag: Tag, start: int, end: int) -> None:
     """The joint or link names the text of a Gazebo plugin's element gives."""
     target = plugin_target(tag.name)
-    if target is None or "plugin" not in [a.name for a in found.document.ancestors(tag)]:
+    if target is None or not tag.plugin:
         return
     text = found.document.text
     parts = [(start, end)]

@@ -8,6 +8,7 @@ import bisect
 import re
 from dataclasses import dataclass, field
 
+from ..extensions import TAGS
 from ..xml.locator import MARKUP
 from .answers import Span
 
@@ -50,6 +51,10 @@ class Tag:
     end: int = -1
     end_name_start: int | None = None  # where the name of its end tag is written
     children: list[int] = field(default_factory=list)
+    # What holds it, known from its parent's when it is read (no walk up a deep file):
+    macro: int | None = None  # the innermost <xacro:macro>
+    extension: str | None = None  # the outermost <gazebo>, <transmission>, <ros2_control>
+    plugin: bool = False  # inside a <plugin>
 
     def get(self, name: str) -> Attribute | None:
         for attribute in self.attributes:
@@ -86,6 +91,8 @@ class Document:
     texts: list[Text]
     comments: list[tuple[int, int]]
     _lines: list[int]
+    _starts: list[int] = field(default_factory=list)
+    _runs: dict[int | None, list[Text]] = field(default_factory=dict)
 
     def position(self, offset: int) -> tuple[int, int]:
         """1-based line and column (in characters) of ``offset``."""
@@ -110,8 +117,9 @@ class Document:
     def tag_at(self, line: int, column: int) -> Tag | None:
         """The element whose start tag holds ``line``:``column`` (where a reader located it)."""
         offset = self.offset(line, column)
-        starts = [tag.start for tag in self.tags]
-        found = bisect.bisect_right(starts, offset) - 1
+        if len(self._starts) != len(self.tags):
+            self._starts = [tag.start for tag in self.tags]
+        found = bisect.bisect_right(self._starts, offset) - 1
         if found >= 0 and offset < max(self.tags[found].head_end, self.tags[found].start + 1):
             return self.tags[found]
         return None
@@ -128,7 +136,10 @@ class Document:
         """The one run of text an element holds, when it holds no element."""
         if tag.children:
             return None
-        runs = [text for text in self.texts if text.parent == tag.index]
+        if not self._runs and self.texts:
+            for text in self.texts:
+                self._runs.setdefault(text.parent, []).append(text)
+        runs = self._runs.get(tag.index, ())
         return runs[0] if len(runs) == 1 else None
 
 
@@ -197,7 +208,11 @@ def scan(path: str, text: str) -> Document:
             len(tags),
         )
         if tag.parent is not None:
-            tags[tag.parent].children.append(tag.index)
+            outer = tags[tag.parent]
+            outer.children.append(tag.index)
+            tag.macro = outer.index if outer.name == "xacro:macro" else outer.macro
+            tag.extension = outer.extension or (outer.name if outer.name in TAGS else None)
+            tag.plugin = outer.plugin or outer.name == "plugin"
         tags.append(tag)
         if close is not None and close[1]:
             tag.end = head_end

@@ -33,12 +33,15 @@ class Table:
     by_key: dict[Key, list[Entry]] = field(default_factory=lambda: defaultdict(list))
     by_path: dict[str, list[Entry]] = field(default_factory=lambda: defaultdict(list))
     _starts: dict[str, list[int]] = field(default_factory=dict)
+    _added: set[tuple[Key, str, int]] = field(default_factory=set)
 
     def add(self, entry: Entry) -> None:
-        known = self.by_key[entry.key]
-        if any(e.path == entry.path and e.start == entry.start for e in known):
+        """Note ``entry``, unless its name is already noted at its place."""
+        place = (entry.key, entry.path, entry.start)
+        if place in self._added:
             return
-        known.append(entry)
+        self._added.add(place)
+        self.by_key[entry.key].append(entry)
         self.by_path[entry.path].append(entry)
 
     def finish(self) -> None:
