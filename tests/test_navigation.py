@@ -374,3 +374,44 @@ def test_a_lone_file_defines_what_it_writes(package: Path) -> None:
     found = index.definition(*at(caster, 'radius="${radius}"', len('radius="${')))
     assert found == [span_of(caster, text, "name xyz radius mass", "radius")]
     assert index.definition(*at(caster, '"base_link"', 1)) == []  # defined in another file
+
+
+def test_a_urdf_file_names_its_joints_in_transmissions_and_ros2_control(tmp_path: Path) -> None:
+    source = Path(__file__).parent / "data" / "valid" / "all_elements.urdf"
+    path = str(tmp_path / "all_elements.urdf")
+    shutil.copy(source, path)
+    workspace = Workspace()
+    result = check_file(path, workspace=workspace)
+    index = Index.of(workspace, result)
+    text = Path(path).read_text()
+    joint = '<joint name="shoulder" type='
+    found = index.references(*at(path, joint, len('<joint name="')))
+    assert span_of(path, text, '<joint name="shoulder">', "shoulder", 0) in found
+    assert span_of(path, text, '<joint name="shoulder">', "shoulder", 1) in found
+    assert len(found) == text.count('"shoulder"')
+    edits = index.rename(*at(path, joint, len('<joint name="')), "elbow")
+    lines = text.splitlines(keepends=True)
+    for span, new in sorted(edits[path], key=lambda c: (c[0].line, c[0].column), reverse=True):
+        line = lines[span.line - 1]
+        lines[span.line - 1] = line[: span.column - 1] + new + line[span.end_column - 1 :]
+    workspace.open(path, "".join(lines))
+    again = check_file(path, workspace=workspace)
+    assert [d.rule for d in again.diagnostics] == [d.rule for d in result.diagnostics]
+    assert '"shoulder"' not in workspace.read(path).decode()
+
+
+def test_columns_count_characters(tmp_path: Path) -> None:
+    path = str(tmp_path / "wide.urdf")
+    text = (
+        '<robot name="r"><!-- größe --><link name="bäse"/><link name="arm"/>\n'
+        '<joint name="j" type="fixed"><!-- ü --><parent link="bäse"/><child link="arm"/></joint>\n'
+        "</robot>\n"
+    )
+    Path(path).write_text(text, encoding="utf-8")
+    workspace = Workspace()
+    index = Index.of(workspace, check_file(path, workspace=workspace))
+    first, second = text.splitlines()[:2]
+    use = second.index('"bäse"') + 2  # a string index, plus one
+    assert index.definition(path, 2, use + 1) == [
+        Span(path, 1, first.index('"bäse"') + 2, 1, first.index('"bäse"') + 6)
+    ]
