@@ -12,6 +12,7 @@ import pytest
 from fishbot_urdf.catalog import ids
 from fishbot_urdf.errors import ArgumentError, FishbotUrdfError
 from fishbot_urdf.lint import CheckResult, check_file
+from fishbot_urdf.model import JointType
 from fishbot_urdf.navigation import Index, Span, symbols
 from fishbot_urdf.workspace import Workspace
 
@@ -250,10 +251,17 @@ def test_completion(package: Path) -> None:
     declared = re.search(r'<xacro:macro name="imu_xacro" params="([^"]*)"', imu)
     assert declared is not None
     names = {p.partition(":=")[0] for p in declared[1].split()}
-    assert {c.label for c in params} == names - {"xyz"}
+    call = re.search(r"<xacro:imu_xacro [^>]*>", text)
+    assert call is not None
+    assert {c.label for c in params} == names - set(re.findall(r"(\w+)=", call[0]))
     # URDF's elements by context, and rule ids in a suppression comment
     base = urdf(package, "base.urdf.xacro")
-    edited = Path(base).read_text().replace("<visual>", "<visual><!-- fishbot: ignore[ -->\n<", 1)
+    edited = (
+        Path(base)
+        .read_text()
+        .replace("<visual>", "<visual><!-- fishbot: ignore[ -->\n<", 1)
+        .replace(' length="${length}"/>', "/>", 1)
+    )
     workspace.open(base, edited)
     with pytest.raises(FishbotUrdfError):  # no longer XML: the robot cannot be read
         check_file(top, workspace=workspace)
@@ -262,6 +270,10 @@ def test_completion(package: Path) -> None:
     assert {c.label for c in rules} == set(ids())
     elements = index.completion(base, *place(edited, "ignore[ -->\n<", 13))
     assert {c.label for c in elements} == {"origin", "geometry", "material"}
+    attributes = index.completion(base, *place(edited, "<cylinder radius", len("<cylinder ")))
+    assert {c.label for c in attributes} == {"length"}  # radius is written already
+    kinds = index.completion(base, *place(edited, 'type="fixed"', len('type="')))
+    assert {c.label for c in kinds} == {t.value for t in JointType}
 
 
 def test_hover(package: Path) -> None:
@@ -283,6 +295,9 @@ def test_hover(package: Path) -> None:
         - float(values["ground_sink"])
     )
     assert f"pose in `base_footprint` at zero: xyz 0 0 {z:.6g}" in link
+    material = index.hover(*at(base, '<material name="blue">', 17)) or ""
+    colour = re.search(r'<material name="blue">\s*<color rgba="([^"]*)"', Path(base).read_text())
+    assert colour is not None and f"color `{colour[1]}`" in material
     joint = index.hover(*at(base, '<joint name="base_joint"', 13)) or ""
     assert "(fixed)" in joint and "parent `base_footprint` → child `base_link`" in joint
 

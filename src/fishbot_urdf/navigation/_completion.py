@@ -71,7 +71,8 @@ def _in_tag(table: Table, doc: Document, lt: int, offset: int) -> list[Completio
         if found is not None:
             return found
         return _values(table, doc, name, value[1], outer)
-    given = set(_ATTRIBUTE_NAMES.findall(head))
+    ends = [i for i in (doc.text.find(">", offset), doc.text.find("<", offset)) if i >= 0]
+    given = set(_ATTRIBUTE_NAMES.findall(doc.text, lt, min(ends, default=len(doc.text))))
     if name.startswith("xacro:"):
         macro = table.macros().get(name[len("xacro:") :])
         if macro is None:

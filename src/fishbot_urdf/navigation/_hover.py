@@ -60,8 +60,23 @@ def _about(table: Table, key: Key) -> str | None:
         shown = f", default `{given.value}`" if given is not None else ""
         return f"**arg** `{name}`{shown}\n\n{where}"
     if kind == "material":
-        return f"**material** `{name}`\n\n{where}"
+        return f"**material** `{name}`{_colour(table, key)}\n\n{where}"
     return None
+
+
+def _colour(table: Table, key: Key) -> str:
+    """A material's colour or texture, as its definition writes it."""
+    for entry in table.by_key.get(key, ()):
+        if not entry.definition:
+            continue
+        doc = table.files[entry.path].document
+        tag = doc.tag_at(*doc.position(entry.start))
+        for index in tag.children if tag else ():
+            child = doc.tags[index]
+            value = child.get("rgba") or child.get("filename")
+            if value is not None:
+                return f": {child.name} `{value.value}`"
+    return ""
 
 
 def _defined(table: Table, key: Key) -> str:

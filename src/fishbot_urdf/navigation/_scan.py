@@ -136,9 +136,11 @@ class Document:
         """The one run of text an element holds, when it holds no element."""
         if tag.children:
             return None
-        if not self._runs and self.texts:
+        if not self._runs and self.texts:  # made whole, then set: safe between threads
+            runs_of: dict[int | None, list[Text]] = {}
             for text in self.texts:
-                self._runs.setdefault(text.parent, []).append(text)
+                runs_of.setdefault(text.parent, []).append(text)
+            self._runs = runs_of
         runs = self._runs.get(tag.index, ())
         return runs[0] if len(runs) == 1 else None
 
