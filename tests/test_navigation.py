@@ -109,6 +109,10 @@ def test_a_joint_handed_to_a_macro_is_found_at_the_call_and_in_the_plugin(packag
     assert span_of(plugin, text, "<joint_name>${left_joint}<", "${left_joint}") in found
     given = 'left_joint="left_wheel_joint"'
     assert span_of(top, Path(top).read_text(), given, "left_wheel_joint") in found
+    inside = at(plugin, "<left_joint>${left_joint}<", len("<left_joint>"))
+    assert index.prepare_rename(*inside) is None
+    with pytest.raises(ArgumentError, match="handed to this macro by its call"):
+        index.rename(*inside, "left_drive_joint")
     # the joint is built by ${name}_wheel_joint: no text edit renames it
     with pytest.raises(ArgumentError, match=r"expression '\$\{name\}_wheel_joint'"):
         index.rename(*call, "left_drive_joint")
@@ -430,3 +434,37 @@ def test_columns_count_characters(tmp_path: Path) -> None:
     assert index.definition(path, 2, use + 1) == [
         Span(path, 1, first.index('"bäse"') + 2, 1, first.index('"bäse"') + 6)
     ]
+
+
+def test_a_link_handed_to_a_macro_is_renamed_at_the_call(tmp_path: Path) -> None:
+    path = str(tmp_path / "arm.urdf.xacro")
+    text = (
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:macro name="arm" params="parent">\n'
+        '    <link name="arm_link"/>\n'
+        '    <joint name="arm_joint" type="fixed">\n'
+        '      <parent link="${parent}"/><child link="arm_link"/>\n'
+        "    </joint>\n"
+        "  </xacro:macro>\n"
+        '  <link name="base"/>\n'
+        '  <xacro:arm parent="base"/>\n'
+        "</robot>\n"
+    )
+    Path(path).write_text(text)
+    workspace = Workspace()
+    result = check_file(path, workspace=workspace)
+    index = Index.of(workspace, result)
+    definition = at(path, '<link name="base"/>', len('<link name="'))
+    found = index.references(*definition)
+    assert span_of(path, text, '<xacro:arm parent="base"', "base") in found
+    assert span_of(path, text, '<parent link="${parent}"', "${parent}") in found
+    edits = index.rename(*definition, "torso")
+    assert sorted(written(span) for span, _ in edits[path]) == ["base", "base"]
+    lines = text.splitlines(keepends=True)
+    for span, new in sorted(edits[path], key=lambda c: (c[0].line, c[0].column), reverse=True):
+        line = lines[span.line - 1]
+        lines[span.line - 1] = line[: span.column - 1] + new + line[span.end_column - 1 :]
+    workspace.open(path, "".join(lines))
+    again = check_file(path, workspace=workspace)
+    assert again.robot is not None and again.ok
+    assert {joint.parent for joint in again.robot.joints} == {"torso"}

@@ -36,6 +36,10 @@ def renamable(table: Table, entries: list[Entry]) -> tuple[Key, list[Entry]]:
             f"this expression builds several names ({names}): rename the part it is built from"
         )
     key = keys[0]
+    if all(entry.via for entry in entries):
+        raise ArgumentError(
+            f"{_kind(key)} '{key[1]}' is handed to this macro by its call: rename it there"
+        )
     if key[0] not in RENAMABLE:
         raise ArgumentError(f"a {key[0]} cannot be renamed")
     every = [e for e in table.by_key.get(key, []) if not e.via]
