@@ -468,3 +468,26 @@ def test_a_link_handed_to_a_macro_is_renamed_at_the_call(tmp_path: Path) -> None
     again = check_file(path, workspace=workspace)
     assert again.robot is not None and again.ok
     assert {joint.parent for joint in again.robot.joints} == {"torso"}
+
+
+def test_a_property_made_of_arithmetic_shows_its_value_and_nothing_runs(tmp_path: Path) -> None:
+    path = str(tmp_path / "values.urdf.xacro")
+    text = (
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:property name="a" value="0.5"/>\n'
+        '  <xacro:property name="b" value="${a * 2 + 1}"/>\n'
+        '  <xacro:property name="c" value="${-b / 4} ${b ** 2}"/>\n'
+        '  <xacro:property name="d" value="${__import__(\'os\').getcwd()}"/>\n'
+        '  <xacro:property name="e" value="${e + 1}"/>\n'
+        '  <link name="l"/>\n'
+        "</robot>\n"
+    )
+    Path(path).write_text(text)
+    index = Index.of_file(Workspace(), path)
+    b = index.hover(*at(path, 'name="b"', len('name="'))) or ""
+    assert f"= `{0.5 * 2 + 1}`" in b
+    c = index.hover(*at(path, 'name="c"', len('name="'))) or ""
+    assert f"= `{-(0.5 * 2 + 1) / 4} {(0.5 * 2 + 1) ** 2}`" in c
+    for name in "de":  # a call, a property defined by itself: shown as written only
+        shown = index.hover(*at(path, f'name="{name}"', len('name="'))) or ""
+        assert "${" in shown and "= `" not in shown
