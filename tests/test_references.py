@@ -7,7 +7,7 @@ from pathlib import Path
 
 import fishbot_urdf
 from fishbot_urdf import check_file
-from fishbot_urdf.extensions import Target, from_robot
+from fishbot_urdf.extensions import Target, from_robot, plugin_target
 
 ARM = """\
 <robot name="arm">
@@ -193,3 +193,11 @@ def test_a_material_first_defined_in_a_visual_is_shared_by_later_ones(tmp_path: 
         encoding="utf-8",
     )
     assert check_file(path).diagnostics == ()
+
+
+def test_what_a_plugin_element_names() -> None:
+    assert plugin_target("left_joint") is Target.JOINT
+    assert plugin_target("jointName") is Target.JOINT
+    assert plugin_target("robotBaseFrame") is Target.LINK
+    assert plugin_target("frame_name") is Target.LINK
+    assert plugin_target("update_rate") is None

@@ -26,6 +26,7 @@ __all__ = [
     "collect",
     "controlled",
     "from_robot",
+    "plugin_target",
     "simulated_in_gazebo",
 ]
 
@@ -142,6 +143,16 @@ def collect(
     if control is not None:
         found.append(_with(control, interfaces))
     return found
+
+
+def plugin_target(tag: str) -> Target | None:
+    """What the text of element ``tag`` inside a Gazebo ``<plugin>`` names: a joint (or
+    joints, comma-separated), a link, or nothing of the robot (None)."""
+    if tag in _PLUGIN_JOINTS:
+        return Target.JOINT
+    if tag in _PLUGIN_FRAMES:
+        return Target.LINK
+    return None
 
 
 def from_robot(robot: Robot) -> tuple[Reference, ...]:
