@@ -388,7 +388,11 @@ def diagnostic(
 
 
 def from_error(exc: FishbotUrdfError, path: str = "<input>") -> Diagnostic:
-    """The finding for an error that stopped a file from being read or written."""
+    """The finding for an error that stopped a file from being read or written, of the
+    catalogued rule of the error's id (None for an error of the library's own use, which
+    no command reports)."""
+    # An error names its rule by id: errors are the lowest layer, below the rules; each rule
+    # is known by its id from the moment the catalogue makes it.
     return diagnostic(
         exc.rule,
         Severity.ERROR,
@@ -398,6 +402,7 @@ def from_error(exc: FishbotUrdfError, path: str = "<input>") -> Diagnostic:
         column=exc.column,
         hint=getattr(exc, "hint", None),
         subject=Subject(Kind.FILE, exc.path) if exc.path else None,
+        definition=_MADE.get(exc.rule),
     )
 
 
