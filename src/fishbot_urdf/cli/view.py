@@ -22,10 +22,10 @@ from ..errors import (
     ToolNotFoundError,
     UnknownNameError,
 )
+from ..kinematics.positions import check_variables
 from ..workspace import Workspace
 from ._checking import (
     check_input,
-    check_joint_names,
     nearest_config,
     posing,
     posing_errors,
@@ -134,7 +134,7 @@ def view(
         try:
             first = loaded[0]
             assert first.analysis is not None
-            check_joint_names(first.analysis, positions, viewer.values)
+            check_variables(first.analysis, positions, viewer.values)
             for name, value in positions.items():
                 viewer.set(name, value)
         except (UnknownNameError, ArgumentError) as exc:
