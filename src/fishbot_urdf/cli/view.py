@@ -3,7 +3,6 @@ joint_state_publisher_gui without ROS)."""
 
 from __future__ import annotations
 
-import gc
 import sys
 import time
 from collections.abc import Sequence
@@ -48,8 +47,6 @@ from ._common import (
 
 if TYPE_CHECKING:
     from ..lint import CheckResult
-
-_COLLECT_EVERY = 100_000  # new container objects between two young collections (Python: 700)
 
 
 @click.command()
@@ -144,8 +141,6 @@ def view(
         terminal.drawn()
     else:  # set, within their joints' ranges, once the robot is read
         viewer.values.update(positions)
-    # Off for the commands that end (see main); on, rarely, for the reloads to come.
-    gc.set_threshold(_COLLECT_EVERY, *gc.get_threshold()[1:])
     try:
         _say(f"fishbot view: {viewer.url} (Ctrl-C stops)")
         while True:
