@@ -253,7 +253,7 @@ def test_every_exception_the_library_raises_is_a_fishbot_urdf_error() -> None:
         if module == "fishbot_urdf.expansion._interpreter" and name in python:
             continue
         # A finding's facts are a Mapping, whose protocol is a KeyError for a missing key.
-        if module == "fishbot_urdf.diagnostics" and name == "KeyError":
+        if module == "fishbot_urdf.facts" and name == "KeyError":
             continue
         namespace = vars(importlib.import_module(module))
         cls = namespace.get(name) or getattr(fishbot_urdf.errors, name, None)

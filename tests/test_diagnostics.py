@@ -3,20 +3,27 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
+from click.testing import CliRunner
+from conftest import DATA
+from test_bad_input import CASES
 
 from fishbot_urdf import Config, check_file
 from fishbot_urdf.catalog import get
 from fishbot_urdf.catalog.physics import CollisionFacts
+from fishbot_urdf.cli import cli
 from fishbot_urdf.cli._hints import command_hint
 from fishbot_urdf.diagnostics import (
     Diagnostic,
     Severity,
     diagnostic,
     escape_controls,
+    from_error,
     without_consequences,
 )
+from fishbot_urdf.errors import FishbotUrdfError
 
 
 @pytest.mark.parametrize(
@@ -120,3 +127,39 @@ def test_a_consequence_says_what_it_follows_from_and_goes_with_its_cause() -> No
     assert roots.to_dict()["data"]["follows"] == ["undefined-link"]
     cause = diagnostic("undefined-link", Severity.ERROR, "joint 'j': ...", path="r.urdf")
     assert without_consequences([cause, roots]) == [cause]
+
+
+def _reported(source: Path | bytes, path: str | None = None) -> tuple[Diagnostic, ...]:
+    """What `fishbot check` reports: the findings, or the one finding of the error that
+    stopped the file from being read."""
+    try:
+        return check_file(source, path=path).diagnostics
+    except FishbotUrdfError as exc:
+        return (from_error(exc),)
+
+
+def test_every_finding_and_every_error_that_stops_a_file_carries_its_documented_rule(
+    tmp_path: Path,
+) -> None:
+    files = sorted(p for p in DATA.rglob("*") if p.suffix in (".urdf", ".xacro"))
+    reported = [d for path in files for d in _reported(path)]
+    reported += [d for name, (data, _) in CASES.items() for d in _reported(data, f"{name}.urdf")]
+    # a file that is not there, and one whose xacro names a package that is not found
+    reported += _reported(tmp_path / "gone.urdf")
+    (tmp_path / "r.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="$(find no_such_package)/x.xacro"/></robot>',
+        encoding="utf-8",
+    )
+    reported += _reported(tmp_path / "r.urdf.xacro")
+    seen = {d.rule for d in reported}
+    # errors that stop a file among them, of each kind
+    assert {"io", "xml-syntax", "package-not-found", "xacro-include", "xacro-error"} <= seen
+    for finding in reported:
+        assert finding.definition is not None, finding
+        assert finding.definition.id == finding.rule
+        assert finding.definition is get(finding.rule)
+    for rule in sorted(seen):
+        shown = CliRunner().invoke(cli, ["rules", rule])
+        assert shown.exit_code == 0, shown.output
+        assert shown.stdout.startswith(rule), shown.stdout[:80]

@@ -142,7 +142,7 @@ def test_bad_configurations_are_named() -> None:
         kin.transform({}, "base_lnk", "laser_link")
     with pytest.raises(ArgumentError, match=r"shape \(n,\) or \(B, n\) with n = 2"):
         kin.forward(np.zeros(3))
-    with pytest.raises(ArgumentError, match="not finite"):
+    with pytest.raises(ArgumentError, match="not a finite number"):
         kin.forward({"left_wheel_joint": math.inf})
 
 

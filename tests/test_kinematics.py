@@ -9,7 +9,7 @@ from conftest import FISHBOT
 
 import fishbot_urdf
 from fishbot_urdf.errors import ArgumentError, UnknownNameError
-from fishbot_urdf.kinematics import joint_positions, link_poses
+from fishbot_urdf.kinematics import Kinematics, joint_positions, link_poses
 from fishbot_urdf.model import Joint, JointType, Limit, Link, Mimic, Origin, Robot
 
 LIMIT = Limit(effort=1.0, velocity=1.0, lower=-3.0, upper=3.0)
@@ -100,3 +100,23 @@ def test_a_long_chain_needs_no_recursion() -> None:
 def test_positions_must_be_finite() -> None:
     with pytest.raises(ValueError, match="not a finite number"):
         link_poses(_arm(), {"shoulder": float("nan")})
+
+
+def test_both_evaluators_word_a_refused_position_alike() -> None:
+    arm = _arm()
+    numpy = Kinematics(arm)
+    # the same value refused by the plain-Python evaluator and by the numpy one, in words
+    # the command line's -j gives too
+    for positions in ({"shoulder": math.nan}, {"slide": 3.5}, {"elbow": -3.5}):
+        with pytest.raises(ArgumentError) as plain:
+            link_poses(arm, positions)
+        with pytest.raises(ArgumentError) as batched:
+            numpy.configuration(positions)
+        assert plain.value.message == batched.value.message
+        assert plain.value.name == batched.value.name == next(iter(positions))
+    with pytest.raises(ArgumentError) as outside:
+        link_poses(arm, {"slide": 3.5})
+    assert outside.value.message == "joint 'slide': position 3.5 is outside its limits -3 .. 3"
+    # a mimic joint is no variable of the configuration: it is said to follow its leader
+    with pytest.raises(ArgumentError, match="'copy_joint' mimics 'shoulder' and follows it"):
+        numpy.configuration({"copy_joint": 0.1})

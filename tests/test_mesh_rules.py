@@ -9,8 +9,9 @@ import pytest
 from click.testing import CliRunner
 from conftest import binary_stl, box_stl, fine_stl
 
-from fishbot_urdf import check_file
+from fishbot_urdf import Config, check_file
 from fishbot_urdf.cli import cli
+from fishbot_urdf.inputs import recording_inputs
 
 ROBOT = """\
 <robot name="r">
@@ -439,3 +440,39 @@ def _box(x: float, y: float, z: float) -> list[tuple[float, ...]]:
     faces = [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1)]
     faces += [(2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]
     return [(*c[a], *c[b], *c[d]) for a, b, d in faces]
+
+
+_MESHES = """<robot name="r">
+  <link name="base_link">
+    <visual><geometry><mesh filename="meshes/body.stl"/></geometry></visual>
+    <collision><geometry><mesh filename="meshes/hull.stl"/></geometry></collision>
+  </link>
+  <link name="arm">
+    <visual><geometry><mesh filename="meshes/gone.stl"/></geometry></visual>
+  </link>
+  <joint name="j" type="revolute"><parent link="base_link"/><child link="arm"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>
+"""
+
+
+def test_a_selection_of_mesh_name_rules_reads_no_mesh_file(tmp_path: Path) -> None:
+    (tmp_path / "meshes").mkdir()
+    for name in ("body", "hull"):
+        (tmp_path / "meshes" / f"{name}.stl").write_bytes(box_stl(200, 200, 100))  # in mm
+    robot = tmp_path / "r.urdf"
+    robot.write_text(_MESHES, encoding="utf-8")
+    meshes = {str(tmp_path / "meshes" / f"{name}.stl") for name in ("body", "hull")}
+
+    # (the selection first: a mesh file's facts, once read, are kept for the process)
+    with recording_inputs() as read:
+        chosen = check_file(robot, config=Config(select=("mesh-not-found",))).diagnostics
+    assert meshes.isdisjoint(read)
+    assert read == [str(robot)]
+
+    with recording_inputs() as read:
+        full = check_file(robot).diagnostics
+    assert meshes <= set(read)  # the whole check reads them: mesh-units is found
+    assert {"mesh-not-found", "mesh-units"} <= {d.rule for d in full}
+    assert chosen == tuple(d for d in full if d.rule == "mesh-not-found")
+    assert len(chosen) == 1 and "gone.stl" in chosen[0].message

@@ -156,8 +156,8 @@ def test_a_file_that_cannot_be_read_is_tried_again(tmp_path: Path) -> None:
 def test_an_analysis_and_the_mesh_bytes_it_keeps_are_let_go_with_the_check(
     tmp_path: Path, name: str, mesh: str, data: bytes
 ) -> None:
-    # The command line runs without the cycle collector: nothing may hold the analysis in a
-    # cycle (an error's traceback holds the frames that made it), nor longer than a finder.
+    # Without the cycle collector: nothing may hold the analysis in a cycle (an error's
+    # traceback holds the frames that made it), nor longer than a finder.
     (tmp_path / "part.stl").write_bytes(data)
     visual = f'<visual><geometry><mesh filename="{mesh}"/></geometry></visual>'
     robot = _robot(tmp_path, visual, name)

@@ -3,22 +3,29 @@
 from __future__ import annotations
 
 import os
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, fields
-from enum import Enum
 from types import MappingProxyType
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
+from .edits import Edit, Fix
+from .errors import FishbotUrdfError
 from .escaping import escape_controls, escape_line_controls
+from .facts import Facts
+from .location import Location
+from .vocabulary import Consumer, Family, Kind, Severity, Subject
 
 __all__ = [
     "ELEMENT",
     "FOLLOWS",
+    "Consumer",
     "Diagnostic",
     "Edit",
     "Facts",
+    "Family",
     "Fix",
     "Kind",
+    "Rule",
     "Severity",
     "Subject",
     "diagnostic",
@@ -31,138 +38,7 @@ __all__ = [
     "without_consequences",
 ]
 
-if TYPE_CHECKING:
-    from .catalog import Rule
-    from .errors import FishbotUrdfError
-    from .model import Location
-
-
-class Severity(str, Enum):
-    """How bad a finding is: errors make a robot invalid, warnings do not (unless strict)."""
-
-    ERROR = "error"
-    WARNING = "warning"
-    NOTE = "note"
-
-
-class Kind(str, Enum):
-    """What kind of thing a finding is about."""
-
-    ROBOT = "robot"
-    LINK = "link"
-    JOINT = "joint"
-    MATERIAL = "material"
-    FILE = "file"
-    COMMENT = "comment"
-
-
-@dataclass(frozen=True, slots=True)
-class Subject:
-    """The thing a finding is about: a link, a joint, a material, the robot or a file.
-
-    ``str(subject)`` is how messages name it: ``link 'base_link'``.
-    """
-
-    kind: Kind
-    name: str
-
-    def __str__(self) -> str:
-        return f"{self.kind.value} {self.name!r}"
-
-
-@dataclass(frozen=True, slots=True, kw_only=True)
-class Facts(Mapping[str, Any]):
-    """The facts behind a finding, for programs: each rule that has some reports them as a
-    subclass with typed fields (`catalog.physics.GroundFacts`, ...).
-
-    A finding's facts are also a read-only mapping of the fields that are set (not None),
-    so ``finding.data["mass"]`` and ``json.dumps(dict(finding.data))`` work as they did
-    when the facts were a dict.
-    """
-
-    def __getitem__(self, key: str) -> Any:
-        value = getattr(self, key, None) if key in self._names() else None
-        if value is None:
-            raise KeyError(key)
-        return value
-
-    def __iter__(self) -> Iterator[str]:
-        return (name for name in self._names() if getattr(self, name) is not None)
-
-    def __len__(self) -> int:
-        return sum(1 for _ in self)
-
-    @classmethod
-    def _names(cls) -> tuple[str, ...]:
-        return tuple(f.name for f in fields(cls))
-
-    def to_dict(self) -> dict[str, Any]:
-        """A JSON-ready dict of the fields that are set (tuples as lists)."""
-        return {name: _plain(getattr(self, name)) for name in self}
-
-
-def _plain(value: Any) -> Any:
-    return [_plain(v) for v in value] if isinstance(value, tuple) else value
-
-
 _NO_DATA: Mapping[str, Any] = MappingProxyType({})
-
-
-@dataclass(frozen=True, slots=True)
-class Edit:
-    """Text to put in the place of a range of a file (an insertion: an empty range).
-
-    Lines and columns are 1-based, columns in characters; ``end_line``/``end_column`` are
-    just past the range.
-    """
-
-    path: str
-    line: int
-    column: int
-    end_line: int
-    end_column: int
-    text: str
-
-    def to_dict(self) -> dict[str, Any]:
-        """A JSON-ready dict of every field."""
-        return {
-            "path": self.path,
-            "line": self.line,
-            "column": self.column,
-            "end_line": self.end_line,
-            "end_column": self.end_column,
-            "text": self.text,
-        }
-
-
-@dataclass(frozen=True, slots=True)
-class Fix:
-    """A change that mends a finding, as edits of its files.
-
-    Attributes:
-        title: What it does, for a person choosing it (``replace 'base_lnk' with
-            'base_link'``).
-        edits: The edits, none overlapping another.
-        safe: Whether ``fishbot check --fix`` applies it: it changes only what the finding
-            is about and keeps the author's intent (a guess is applied only with
-            ``--unsafe-fixes``).
-        silences: It silences the finding (a suppression comment) rather than mending it:
-            offered to an editor, never applied by ``--fix``.
-    """
-
-    title: str
-    edits: tuple[Edit, ...]
-    safe: bool = True
-    silences: bool = False
-
-    def to_dict(self) -> dict[str, Any]:
-        """A JSON-ready dict of every field."""
-        return {
-            "title": self.title,
-            "safe": self.safe,
-            "silences": self.silences,
-            "edits": [e.to_dict() for e in self.edits],
-        }
 
 
 FOLLOWS = "follows"
@@ -374,6 +250,100 @@ def _unpickled(*values: Any) -> Diagnostic:
     )
 
 
+# Compared and hashed by identity: each rule is made once, and a dict keyed by rules (the
+# CLI's hints) then hashes no text.
+@dataclass(frozen=True, slots=True, eq=False)
+class Rule:
+    """One kind of finding.
+
+    Attributes:
+        id: Stable id, shown in brackets after each finding (``undefined-link``).
+        severity: Its default severity.
+        family: The group it belongs to.
+        summary: One line: what it finds.
+        explanation: Why it matters and what to do, a few sentences.
+        bad: A small input that has the fault.
+        good: The same input, fixed.
+        consumers: The programs that refuse or misread what it finds.
+        language: What ``bad`` and ``good`` are: ``urdf``, ``xacro`` or ``shell``.
+        fatal: The input cannot be read past it; it cannot be turned off.
+    """
+
+    id: str
+    severity: Severity
+    family: Family
+    summary: str
+    explanation: str = ""
+    bad: str = ""
+    good: str = ""
+    consumers: tuple[Consumer, ...] = (Consumer.URDFDOM,)
+    language: str = "urdf"
+    fatal: bool = False
+
+    def __post_init__(self) -> None:
+        _MADE.setdefault(self.id, self)
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        # A catalogued rule comes back from another process as the same object (findings
+        # made in worker processes keep their rule).
+        if _MADE.get(self.id) is self:
+            return (_made, (self.id,))
+        return (Rule, tuple(getattr(self, f.name) for f in fields(self)))
+
+    def report(
+        self,
+        message: str,
+        where: Location | None,
+        *,
+        path: str,
+        subject: Subject | None = None,
+        hint: str | None = None,
+        severity: Severity | None = None,
+        data: Mapping[str, Any] | None = None,
+        follows: Iterable[str] = (),
+        element: str | None = None,
+    ) -> Diagnostic:
+        """A finding of this rule at ``where`` (or about the whole file ``path``), at its
+        default severity unless ``severity`` says otherwise. ``data`` holds the facts behind
+        it (a `Facts`), ``follows`` the ids of rules whose findings it follows from, ``element``
+        the element of the subject it is about (see `Diagnostic`)."""
+        return diagnostic(
+            self.id,
+            severity or self.severity,
+            message,
+            where,
+            path=path,
+            hint=hint,
+            subject=subject,
+            data=data,
+            definition=self,
+            follows=follows,
+            element=element,
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        """A JSON-ready dict of every field."""
+        return {
+            "id": self.id,
+            "severity": self.severity.value,
+            "family": self.family.value,
+            "summary": self.summary,
+            "explanation": self.explanation,
+            "bad": self.bad,
+            "good": self.good,
+            "consumers": [c.value for c in self.consumers],
+            "language": self.language,
+            "fatal": self.fatal,
+        }
+
+
+_MADE: dict[str, Rule] = {}
+
+
+def _made(rule_id: str) -> Rule:
+    return _MADE[rule_id]
+
+
 def diagnostic(
     rule: str,
     severity: Severity,
@@ -421,7 +391,11 @@ def diagnostic(
 
 
 def from_error(exc: FishbotUrdfError, path: str = "<input>") -> Diagnostic:
-    """The finding for an error that stopped a file from being read or written."""
+    """The finding for an error that stopped a file from being read or written, of the
+    catalogued rule of the error's id (None for an error of the library's own use, which
+    no command reports)."""
+    # An error names its rule by id: errors are the lowest layer, below the rules; each rule
+    # is known by its id from the moment the catalogue makes it.
     return diagnostic(
         exc.rule,
         Severity.ERROR,
@@ -431,6 +405,7 @@ def from_error(exc: FishbotUrdfError, path: str = "<input>") -> Diagnostic:
         column=exc.column,
         hint=getattr(exc, "hint", None),
         subject=Subject(Kind.FILE, exc.path) if exc.path else None,
+        definition=_MADE.get(exc.rule),
     )
 
 

@@ -255,7 +255,10 @@ def _rule_findings(
             unread.setdefault(d.subject, []).append(d)
     mm = config.ground_tolerance
     for_gazebo = Consumer.GAZEBO in consumers_of(targets_of(analysis.robot, config.targets))
-    settings = Settings(packages, GROUND_TOLERANCE if mm is None else mm / 1000.0, for_gazebo)
+    selected = frozenset(r.id for check in CHECKS for r in check.reports if config.applies(r.id))
+    settings = Settings(
+        packages, GROUND_TOLERANCE if mm is None else mm / 1000.0, for_gazebo, selected
+    )
     # A check runs only when one of its rules is selected (--ignore meshes reads no mesh file).
     for check in CHECKS:
         if not _selected(check.reports, config):

@@ -27,6 +27,7 @@ from collections.abc import Callable, Iterator, Mapping
 from pathlib import Path
 from xml.parsers import expat
 
+from .catalog.setup import PACKAGE_NOT_FOUND
 from .errors import FishbotUrdfError, InputError
 from .inputs import deadline, note_inputs, read_input, recording_inputs
 
@@ -51,7 +52,7 @@ class PackageNotFoundError(FishbotUrdfError):
     ``searched`` lists every place looked at, in order (the first is the packages given by
     name, ``given``)."""
 
-    rule = "package-not-found"
+    rule = PACKAGE_NOT_FOUND.id
 
     def __init__(
         self,

@@ -30,6 +30,7 @@ from enum import Enum
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from ..catalog.meshes import MESH_NOT_FOUND
 from ..errors import FishbotUrdfError
 from ..inputs import note_looked
 from ..model import Link, Mesh, Robot
@@ -104,7 +105,7 @@ class MeshPath:
 class MeshNotFoundError(FishbotUrdfError):
     """A mesh name leads to no file (the message says where it was looked for, and why)."""
 
-    rule = "mesh-not-found"
+    rule = MESH_NOT_FOUND.id
 
 
 def robot_meshes(robot: Robot) -> Iterator[tuple[Link, Mesh, bool]]:

@@ -13,6 +13,7 @@ from collections.abc import Mapping
 from functools import cache
 from types import MappingProxyType, ModuleType
 
+from ..diagnostics import Consumer, Family, Rule
 from ..errors import UnknownNameError
 from . import (
     conversion,
@@ -27,7 +28,6 @@ from . import (
     xacro,
     xml,
 )
-from ._rule import Consumer, Family, Rule
 
 __all__ = ["Consumer", "Family", "Rule", "all_rules", "get", "ids", "rules_in"]
 

@@ -7,8 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..diagnostics import Facts, Severity
-from ._rule import Consumer, Family, Rule
+from ..diagnostics import Consumer, Facts, Family, Rule, Severity
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)

@@ -5,8 +5,7 @@ Data only: the checks that report them are in `fishbot_urdf.rules`.
 
 from __future__ import annotations
 
-from ..diagnostics import Severity
-from ._rule import Consumer, Family, Rule
+from ..diagnostics import Consumer, Family, Rule, Severity
 
 E, W = Severity.ERROR, Severity.WARNING
 UNKNOWN_REFERENCE = Rule(

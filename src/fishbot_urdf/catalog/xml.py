@@ -6,8 +6,7 @@ does, and each rule it applied is one warning per file (at the first place).
 
 from __future__ import annotations
 
-from ..diagnostics import Severity
-from ._rule import Consumer, Family, Rule
+from ..diagnostics import Consumer, Family, Rule, Severity
 
 _STRICT = (Consumer.XACRO, Consumer.XML_TOOLS)
 W = Severity.WARNING

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import contextlib
 import errno
-import gc
 import importlib
 import os
 import signal
@@ -120,13 +119,6 @@ def main(argv: Sequence[str] | None = None) -> NoReturn:
     process's own), the process ends once its output is flushed, without taking apart the
     objects the command built; given ``argv``, it raises SystemExit as usual.
     """
-    # A command builds one robot's objects and ends: the cycle collector's passes over them
-    # find nothing, as the model holds no cycles, and cost a big robot's check 4% of its time
-    # even when run a hundred times less often than Python's default. So it is off (a xacro
-    # expansion leaves some 600 objects in cycles to the end); `fishbot view`, which runs
-    # until stopped, turns it on again.
-    thresholds = gc.get_threshold()
-    gc.set_threshold(0, *thresholds[1:])
     try:
         _run(argv)
     except SystemExit as done:
@@ -137,8 +129,6 @@ def main(argv: Sequence[str] | None = None) -> NoReturn:
             # and 1.36x against 1.16x for the 10,000-link tree. Output is flushed first.
             _end_process(done.code)
         raise
-    finally:
-        gc.set_threshold(*thresholds)
 
 
 def _run(argv: Sequence[str] | None) -> NoReturn:

@@ -1,11 +1,11 @@
 """What the commands that read and check a robot share: reading FILE with its nearest
 configuration, what it read (never to be written over), and the narrower check of the
-commands that pose the robot (tf, render, view), with what their -j names may be."""
+commands that pose the robot (tf, render, view)."""
 
 from __future__ import annotations
 
 import sys
-from collections.abc import Collection, Iterable, Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
@@ -15,13 +15,12 @@ from ..catalog import all_rules
 from ..catalog.xacro import XACRO_UNKNOWN_ARG, UnknownArgFacts
 from ..config import Config, find_config, load_config
 from ..diagnostics import Diagnostic
-from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
+from ..errors import FishbotUrdfError
 from ..lint import CheckResult, check_file
 from ..model import JointType
 from ..output import Source
 from ..packages import PackageFinder
 from ..rules import Family
-from ..wording import listing
 from ..workspace import Workspace
 from ._common import EXIT_INVALID, emit_findings, stdin_urdf, stop_on
 
@@ -31,7 +30,6 @@ if TYPE_CHECKING:
 __all__ = [
     "STDIN",
     "check_input",
-    "check_joint_names",
     "nearest_config",
     "posable_input",
     "posing",
@@ -157,55 +155,3 @@ def _joint_hint(analysis: Analysis, joint: str, value: str) -> str:
     if analysis.joints[joint].type is JointType.FIXED:
         return f"{joint!r} is a fixed joint, which takes no position"
     return f"{joint!r} is a joint: did you mean `-j {joint}={value}`?"
-
-
-def check_joint_names(
-    analysis: Analysis, positions: Mapping[str, float], variables: Collection[str]
-) -> None:
-    """Refuse a -j name that is none of ``variables`` (the positions the robot has), saying
-    what it names: a joint that has no position of its own, or no joint at all.
-
-    Raises:
-        ArgumentError: The name is a joint that has no position of its own: fixed, a mimic
-            joint (it follows another), planar or floating (its positions are JOINT.x ...).
-        UnknownNameError: No joint has that name (the error names the closest).
-    """
-    for name in positions:
-        if name not in variables:
-            raise _not_a_position(analysis, name, variables)
-
-
-def _not_a_position(analysis: Analysis, name: str, variables: Collection[str]) -> FishbotUrdfError:
-    joint = analysis.joints.get(name)
-    if joint is None:
-        return UnknownNameError("joint", name, variables)
-    if joint.type is JointType.FIXED:
-        moving = f"moving joints: {listing(variables)}" if variables else "no joint moves"
-        return ArgumentError(f"joint {name!r} is fixed: it takes no position ({moving})", name=name)
-    parts = [v for v in variables if v.startswith(name + ".")]
-    if parts:
-        listed = ", ".join(parts[:-1]) + " and " + parts[-1]
-        return ArgumentError(
-            f"joint {name!r} is {joint.type.value}: its position is {listed}", name=name
-        )
-    follows = analysis.plan.mimics.get(name)
-    if follows is not None and follows.leader is not None:
-        return ArgumentError(
-            f"joint {name!r} mimics {follows.leader!r} and follows it: "
-            f"set {follows.leader!r} instead",
-            name=name,
-        )
-    if follows is not None:
-        return ArgumentError(
-            f"joint {name!r} mimics a joint whose position is not one number: it stays at "
-            f"its offset, {follows.offset:g}",
-            name=name,
-        )
-    owner = analysis.parent_joint.get(joint.child)
-    if owner is not None and owner is not joint:
-        return ArgumentError(
-            f"joint {name!r} places no link: link {joint.child!r} hangs from joint "
-            f"{owner.name!r}, its first parent joint",
-            name=name,
-        )
-    return UnknownNameError("joint", name, variables)

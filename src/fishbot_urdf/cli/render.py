@@ -14,7 +14,7 @@ from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
 from ..kinematics import Kinematics
 from ..output import write_atomic
 from ..wording import did_you_mean
-from ._checking import check_joint_names, nearest_config, posable_input, read_files
+from ._checking import nearest_config, posable_input, read_files
 from ._common import (
     EXIT_INVALID,
     EXIT_OK,
@@ -152,7 +152,6 @@ def render(
     assert result.analysis is not None
     try:
         kinematics = Kinematics(result.analysis)
-        check_joint_names(result.analysis, positions, kinematics.variables)
         q = kinematics.configuration(positions)
         # The analysis finds the meshes (with the packages given), as check does.
         scene = build_scene(result.analysis, q, collision=collision, show=show)

@@ -13,7 +13,7 @@ import click
 from ..errors import ArgumentError, StructureError, UnknownNameError
 from ..kinematics import Kinematics
 from ..spatial import euler_ypr, quaternion
-from ._checking import check_joint_names, posable_input
+from ._checking import posable_input
 from ._common import (
     EXIT_OK,
     format_option,
@@ -75,7 +75,6 @@ def tf(
         kinematics = Kinematics(result.analysis)
         for name in (frame_from, frame_to):
             kinematics.link_index(name)
-        check_joint_names(result.analysis, positions, kinematics.variables)
         pose = kinematics.transform(kinematics.configuration(positions), frame_from, frame_to)
     except UnknownNameError as exc:
         raise click.UsageError(exc.message) from None

@@ -3,7 +3,6 @@ joint_state_publisher_gui without ROS)."""
 
 from __future__ import annotations
 
-import gc
 import sys
 import time
 from collections.abc import Sequence
@@ -22,10 +21,10 @@ from ..errors import (
     ToolNotFoundError,
     UnknownNameError,
 )
+from ..kinematics.positions import check_variables
 from ..workspace import Workspace
 from ._checking import (
     check_input,
-    check_joint_names,
     nearest_config,
     posing,
     posing_errors,
@@ -48,8 +47,6 @@ from ._common import (
 
 if TYPE_CHECKING:
     from ..lint import CheckResult
-
-_COLLECT_EVERY = 100_000  # new container objects between two young collections (Python: 700)
 
 
 @click.command()
@@ -134,7 +131,7 @@ def view(
         try:
             first = loaded[0]
             assert first.analysis is not None
-            check_joint_names(first.analysis, positions, viewer.values)
+            check_variables(first.analysis, positions, viewer.values)
             for name, value in positions.items():
                 viewer.set(name, value)
         except (UnknownNameError, ArgumentError) as exc:
@@ -144,8 +141,6 @@ def view(
         terminal.drawn()
     else:  # set, within their joints' ranges, once the robot is read
         viewer.values.update(positions)
-    # Off for the commands that end (see main); on, rarely, for the reloads to come.
-    gc.set_threshold(_COLLECT_EVERY, *gc.get_threshold()[1:])
     try:
         _say(f"fishbot view: {viewer.url} (Ctrl-C stops)")
         while True:

@@ -32,6 +32,7 @@ from ..diagnostics import Diagnostic
 from ..errors import ArgumentError, FishbotUrdfError, UnknownNameError
 from ..inputs import max_seconds, time_limit
 from ..kinematics import Kinematics
+from ..kinematics.positions import check_value
 from ..model import JointType
 from ..spatial import quaternion
 from ._camera import aim, corners, framing
@@ -338,11 +339,7 @@ class Viewer:
             if name not in self._ranges:
                 raise UnknownNameError("joint", name, self._ranges)
             low, high = self._ranges[name]
-            if _position(value, -math.inf, math.inf) is None:
-                raise ArgumentError(
-                    f"joint {name!r}: position {shown.repr(value)} is not a finite number",
-                    name=name,
-                )
+            value = check_value(None, name, value)  # a number: the slider holds its range
             if name in self._turns:
                 value = math.remainder(value, 2 * math.pi)
             position = _position(value, low, high)

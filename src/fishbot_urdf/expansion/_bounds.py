@@ -16,6 +16,7 @@ import string
 from collections.abc import Callable, Iterable, Mapping
 from typing import Any
 
+from ..catalog.xacro import XACRO_UNSAFE
 from ..errors import FishbotUrdfError
 
 __all__ = [
@@ -62,7 +63,7 @@ class UnsafeExpression(FishbotUrdfError):
         too_long: Work past the step budget, not a construct refused.
     """
 
-    rule = "xacro-unsafe"
+    rule = XACRO_UNSAFE.id
 
     def __init__(
         self, expression: str, what: str, *, too_big: bool = False, too_long: bool = False

@@ -14,6 +14,7 @@ from typing import Any
 from xml.dom import expatbuilder, minidom
 from xml.parsers.expat import ExpatError
 
+from ..catalog.xacro import XACRO_SYNTAX
 from ..diagnostics import shown_path
 from ..errors import FishbotUrdfError, InputError, LimitError
 from ..escaping import escape_controls
@@ -356,7 +357,7 @@ class Run(Explaining):
         if data.startswith((b"\xff\xfe", b"\xfe\xff")) or b"\0" in data[:4]:
             raise XacroError(  # xacro decodes every file as UTF-8, and fails on these
                 "the file is UTF-16 or UTF-32, and xacro reads UTF-8 only",
-                rule="xacro-syntax",
+                rule=XACRO_SYNTAX,
                 hint="save it as UTF-8",
                 where=Location(shown_path(filename), 1, 1),
             )

@@ -11,6 +11,14 @@ from pathlib import Path
 from typing import Any
 from xml.parsers.expat import ExpatError
 
+from ..catalog.xacro import (
+    XACRO_CIRCULAR,
+    XACRO_INCLUDE,
+    XACRO_NAMESPACE,
+    XACRO_SYNTAX,
+    XACRO_UNDEFINED,
+    XACRO_UNSAFE,
+)
 from ..diagnostics import shown_path
 from ..errors import FishbotUrdfError, LimitError
 from ..inputs import TimeLimitError, read_input
@@ -81,13 +89,13 @@ class Explaining:
             if prefix == "xacro":
                 return XacroError(
                     "the xacro: prefix is used but not declared",
-                    rule="xacro-namespace",
+                    rule=XACRO_NAMESPACE,
                     hint=f'add xmlns:xacro="{_XACRO_NS}" to the root element',
                     where=where,
                 )
             return XacroError(
                 f"the {prefix}: prefix is used but not declared",
-                rule="xacro-namespace",
+                rule=XACRO_NAMESPACE,
                 hint=f'declare it on the root element: xmlns:{prefix}="..."',
                 where=where,
             )
@@ -95,7 +103,7 @@ class Explaining:
         left_open = self._left_open(detail, name, exc, where)
         if left_open is not None:
             return left_open
-        return XacroError(f"not well-formed XML: {detail}", rule="xacro-syntax", where=where)
+        return XacroError(f"not well-formed XML: {detail}", rule=XACRO_SYNTAX, where=where)
 
     def _left_open(
         self, detail: str, name: str, exc: ExpatError, where: Location
@@ -116,7 +124,7 @@ class Explaining:
                 hint += f"; {around} {'are' if len(others) > 1 else 'is'} still open too"
             return XacroError(
                 f"not well-formed XML: the file ends with <{tag}> of line {since} still open",
-                rule="xacro-syntax",
+                rule=XACRO_SYNTAX,
                 hint=hint,
                 where=where,
             )
@@ -127,7 +135,7 @@ class Explaining:
         return XacroError(
             f"not well-formed XML: mismatched tag: {end} ends <{tag}> of line {since}, "
             "which is still open",
-            rule="xacro-syntax",
+            rule=XACRO_SYNTAX,
             hint=f"close it with </{tag}> before {end}",
             where=where,
         )
@@ -141,7 +149,7 @@ class Explaining:
         calls = self._calls()
 
         def undefined(message: str, hint: str | None, chain: tuple[Any, ...] = calls) -> XacroError:
-            return XacroError(message, rule="xacro-undefined", hint=hint, where=where, calls=chain)
+            return XacroError(message, rule=XACRO_UNDEFINED, hint=hint, where=where, calls=chain)
 
         own = str(exc.args[0]) if exc.args and exc.args[0] else ""
         if own.startswith("circular variable definition: "):
@@ -149,7 +157,7 @@ class Explaining:
             first = chain.split(" -> ")[0]
             return XacroError(
                 f"property '{first}' is defined in terms of itself: {chain}",
-                rule="xacro-circular",
+                rule=XACRO_CIRCULAR,
                 hint="give one property in the loop a value that does not refer back",
                 where=self.properties.get(first) or where,
             )
@@ -169,7 +177,7 @@ class Explaining:
             if getattr(inner, "filename", None):
                 return XacroError(
                     f"cannot read {inner.filename}: {inner.strerror}",
-                    rule="xacro-include",
+                    rule=XACRO_INCLUDE,
                     where=where,
                     calls=calls,
                 )
@@ -289,7 +297,7 @@ class Explaining:
         if later is not None:
             return XacroError(
                 f"'{name}' is used in ${{{expression.strip(chr(39))}}} before it is defined",
-                rule="xacro-undefined",
+                rule=XACRO_UNDEFINED,
                 hint=f"it is defined later, at {shown_path(later.path)}:{later.line}: "
                 "move the definition above its first use",
                 where=where,
@@ -297,7 +305,7 @@ class Explaining:
             )
         return XacroError(
             f"'{name}' is not defined in ${{{expression.strip(chr(39))}}}",
-            rule="xacro-undefined",
+            rule=XACRO_UNDEFINED,
             hint=_closest(name, _table_names(self.symbols), "properties"),
             where=where,
             calls=calls,
@@ -418,7 +426,7 @@ def unsafe(
             "write it with properties, arguments and the math, python and xacro functions, "
             + TRUST_HINT
         )
-    return XacroError(message, rule="xacro-unsafe", hint=hint, where=where, calls=calls)
+    return XacroError(message, rule=XACRO_UNSAFE, hint=hint, where=where, calls=calls)
 
 
 def limited(
@@ -462,7 +470,7 @@ def _missing_include(
         return XacroError(
             f"cannot read included file {shown_path(str(target))}: "
             f"{error.strerror or 'permission denied'}",
-            rule="xacro-include",
+            rule=XACRO_INCLUDE,
             hint="give the user running the command the right to read it, or include another",
             where=where,
             calls=calls,
@@ -470,7 +478,7 @@ def _missing_include(
     if _is_folder(target):
         return XacroError(
             f"included path {shown_path(str(target))} is a folder, not a file",
-            rule="xacro-include",
+            rule=XACRO_INCLUDE,
             hint="name a file in it",
             where=where,
             calls=calls,
@@ -479,7 +487,7 @@ def _missing_include(
         package = spec.split("package://", 1)[1].split("/", 1)[0]
         return XacroError(
             f"cannot include {spec}: xacro reads include paths as files, not package:// URIs",
-            rule="xacro-include",
+            rule=XACRO_INCLUDE,
             hint=f"write $(find {package})/... instead",
             where=where,
             calls=calls,
@@ -496,7 +504,7 @@ def _missing_include(
     if made is not None:
         what, fix = made
         message, hint = f"{message}: {what}", f"{hint}; {fix}" if hint else fix
-    return XacroError(message, rule="xacro-include", hint=hint, where=where, calls=calls)
+    return XacroError(message, rule=XACRO_INCLUDE, hint=hint, where=where, calls=calls)
 
 
 def _arg_names(text: str) -> list[str]:

@@ -15,6 +15,7 @@ import os
 from collections.abc import Callable, Mapping
 from typing import Any
 
+from ..catalog.xacro import XACRO_ERROR
 from ..errors import FishbotUrdfError, LimitError
 from ._bounds import MAX_ITEMS
 from ._budget import Budget
@@ -28,7 +29,7 @@ MAX_MATCHES = 100_000
 class YamlError(FishbotUrdfError):
     """A YAML file is not YAML, or nests deeper than can be built."""
 
-    rule = "xacro-error"
+    rule = XACRO_ERROR.id
 
 
 class Globbing:

@@ -29,6 +29,7 @@ from typing import Any
 import xacro.cli  # type: ignore[import-untyped]  # shared by every copy, as is xmlutils
 import xacro.xmlutils  # type: ignore[import-untyped]
 
+from ..catalog.xacro import XACRO_UNSAFE
 from ..errors import FishbotUrdfError
 
 __all__ = ["Xacro", "load_xacro"]
@@ -51,7 +52,7 @@ class Xacro:
 class EvaluatorRefused(FishbotUrdfError):
     """xacro's code reached for Python's evaluator in an untrusted expansion."""
 
-    rule = "xacro-unsafe"
+    rule = XACRO_UNSAFE.id
 
 
 def load_xacro(

@@ -4,6 +4,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..catalog.setup import LIMIT
+from ..catalog.xacro import XACRO_ERROR
+from ..diagnostics import Rule
 from ..errors import FishbotUrdfError
 from ..location import Location
 
@@ -26,18 +29,18 @@ class XacroError(FishbotUrdfError):
             (macro name, where it was called).
     """
 
-    rule = "xacro-error"
+    rule = XACRO_ERROR.id
 
     def __init__(
         self,
         message: str,
         *,
-        rule: str | None = None,
+        rule: Rule | None = None,
         hint: str | None = None,
         where: Location | None = None,
         calls: tuple[tuple[str, Location | None], ...] = (),
     ) -> None:
-        self.rule = type(self).rule if rule is None else rule
+        self.rule = type(self).rule if rule is None else rule.id
         self.hint = hint
         self.calls = calls
         for name, site in calls:
@@ -56,7 +59,7 @@ class ExpansionLimitError(XacroError):
     than the time limit (see :mod:`fishbot_urdf.inputs`), or one expression would pass a
     bound of its own. Its rule is ``limit``."""
 
-    rule = "limit"
+    rule = LIMIT.id
 
 
 @dataclass(frozen=True, slots=True)

@@ -24,6 +24,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass, replace
 from pathlib import Path
 
+from ..catalog.xacro import XACRO_READ_OUTSIDE
 from ..location import Location
 from ..packages import upward_folders
 from ._result import XacroError
@@ -49,7 +50,7 @@ class ReadOutsideError(XacroError):
         pattern: The include pattern that reaches the folder ``file``, or None.
     """
 
-    rule = "xacro-read-outside"
+    rule = XACRO_READ_OUTSIDE.id
 
     def __init__(
         self,
@@ -70,9 +71,7 @@ class ReadOutsideError(XacroError):
             message = f"cannot read {shown}: it is outside the robot's tree {tree}"
         else:
             message = f"include pattern {pattern} looks in {shown}, outside the robot's tree {tree}"
-        super().__init__(
-            message, rule="xacro-read-outside", hint=READ_HINT, where=where, calls=calls
-        )
+        super().__init__(message, rule=XACRO_READ_OUTSIDE, hint=READ_HINT, where=where, calls=calls)
 
     def located(
         self, where: Location | None, calls: tuple[tuple[str, Location | None], ...]

@@ -8,16 +8,15 @@ by its analysis):
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 from ..analysis import Analysis, of
 from ..analysis.poses import place
-from ..errors import ArgumentError, UnknownNameError
-from ..model import JointType, Robot
+from ..model import Robot
 from ..spatial import Pose
 from . import _batched  # (numpy loads with the first Kinematics, not with it)
+from .positions import MOVING, check_joint
 
 if TYPE_CHECKING:
     from ._batched import Kinematics, forward_kinematics, jacobian, transform
@@ -30,8 +29,6 @@ __all__ = [
     "link_poses",
     "transform",
 ]
-
-_MOVING = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)
 
 
 def joint_positions(
@@ -54,7 +51,7 @@ def joint_positions(
     plan = analysis.plan
     values: dict[str, float] = {}
     for joint in analysis.robot.joints:
-        if joint.type not in _MOVING:
+        if joint.type not in MOVING:
             continue
         source = None if joint.name in given else plan.mimics.get(joint.name)
         if source is None:
@@ -103,29 +100,7 @@ def link_poses(
 def _checked(analysis: Analysis, positions: Mapping[str, float] | None) -> dict[str, float]:
     """``positions``, each of a revolute, continuous or prismatic joint, finite, and within
     the joint's limits (see `joint_positions` for what is raised)."""
-    given = dict(positions or {})
-    by_name = analysis.joints
-    for name in given:
-        joint = by_name.get(name)
-        if joint is None:
-            raise UnknownNameError("joint", name, by_name)
-        if joint.type not in _MOVING:
-            raise ArgumentError(
-                f"joint {name!r} is {joint.type.value}: it takes no position", name=name
-            )
-        if not math.isfinite(given[name]):
-            raise ArgumentError(
-                f"joint {name!r}: position {given[name]} is not a finite number", name=name
-            )
-        limit = joint.limit
-        bounded = joint.type is not JointType.CONTINUOUS and limit is not None
-        if bounded and limit and not limit.lower - 1e-9 <= given[name] <= limit.upper + 1e-9:
-            raise ArgumentError(
-                f"joint {name!r}: position {given[name]:g} is outside its limits "
-                f"{limit.lower:g} .. {limit.upper:g}",
-                name=name,
-            )
-    return given
+    return {name: check_joint(analysis, name, value) for name, value in (positions or {}).items()}
 
 
 def __getattr__(name: str) -> Any:

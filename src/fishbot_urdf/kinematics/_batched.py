@@ -23,6 +23,7 @@ from ..analysis.plan import PARTS, Step
 from ..errors import ArgumentError, StructureError, UnknownNameError
 from ..graph import root
 from ..model import JointType, Robot
+from .positions import check_value, not_a_variable
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
@@ -75,8 +76,10 @@ class Kinematics:
         """The configuration vector of ``positions`` (by variable name; the rest are 0).
 
         Raises:
-            UnknownNameError: A name is no variable (the error names the closest).
-            ArgumentError: A value is not finite, or outside a joint's limits.
+            UnknownNameError: A name is no joint (the error names the closest variables).
+            ArgumentError: A name is a joint that has no variable of its own (fixed, a
+                mimic, planar or floating: see `positions.not_a_variable`), or a value is not
+                a finite number, or is outside a joint's limits.
         """
         import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
@@ -85,23 +88,8 @@ class Kinematics:
         joints = self.analysis.joints
         for name, value in (positions or {}).items():
             if name not in where:
-                raise UnknownNameError("joint", name, self.variables)
-            value = float(value)
-            joint = joints.get(name)
-            if not math.isfinite(value):
-                raise ArgumentError(f"joint {name!r}: position {value} is not finite", name=name)
-            limit = joint.limit if joint is not None else None
-            if (
-                joint is not None
-                and limit is not None
-                and joint.type in (JointType.REVOLUTE, JointType.PRISMATIC)
-                and not limit.lower - 1e-9 <= value <= limit.upper + 1e-9
-            ):
-                raise ArgumentError(
-                    f"joint {name!r}: position {value:g} is outside its limits "
-                    f"{limit.lower:g} .. {limit.upper:g}",
-                    name=name,
-                )
+                raise not_a_variable(self.analysis, name, self.variables)
+            value = check_value(joints.get(name), name, value)
             q[where[name]] = value
         return q
 

@@ -12,7 +12,7 @@ from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..analysis import Analysis
+from ..analysis import Analysis, of
 from ..catalog import Consumer, Family, Rule, all_rules, get, ids
 from ..diagnostics import Diagnostic
 from ..packages import PackageFinder
@@ -41,11 +41,14 @@ class Settings:
         ground_tolerance: How far (m) the lowest collision point may be from z = 0.
         for_gazebo: Whether the robot is checked for Gazebo: what only Gazebo's set-up
             decides (where it looks for meshes) is judged only then.
+        select: The ids of the rules selected (None: all), for a check that runs its parts
+            only for their rules (Gazebo's).
     """
 
     packages: Mapping[str, str | Path] | PackageFinder | None = None
     ground_tolerance: float = physics.GROUND_TOLERANCE
     for_gazebo: bool = True
+    select: frozenset[str] | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -82,7 +85,18 @@ CHECKS: tuple[Check, ...] = (
     Check("joints", joints.REPORTS, lambda analysis, _: joints.joints(analysis)),
     Check("references", references.REPORTS, lambda analysis, _: references.references(analysis)),
     Check("shapes", shapes.REPORTS, lambda analysis, _: shapes.shapes(analysis), by_line=True),
-    Check("meshes", meshes.REPORTS, lambda analysis, s: meshes.meshes(analysis, s.packages)),
+    # A mesh's name and file first, then what the files hold: read only when a rule about
+    # that is selected (--select mesh-not-found opens no mesh file).
+    Check(
+        "meshes",
+        meshes.NAMES_REPORTS,
+        lambda analysis, s: meshes.mesh_names(of(analysis, s.packages)),
+    ),
+    Check(
+        "mesh contents",
+        meshes.CONTENTS_REPORTS,
+        lambda analysis, s: meshes.mesh_contents(of(analysis, s.packages)),
+    ),
     Check(
         "physics",
         physics.REPORTS,
@@ -91,7 +105,7 @@ CHECKS: tuple[Check, ...] = (
     Check(
         "gazebo",
         gazebo.REPORTS,
-        lambda analysis, s: gazebo.gazebo(analysis, for_gazebo=s.for_gazebo),
+        lambda analysis, s: gazebo.gazebo(analysis, s.select, for_gazebo=s.for_gazebo),
     ),
 )
 """Every check, in the order its findings come."""

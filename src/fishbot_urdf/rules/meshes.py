@@ -33,7 +33,15 @@ from ..packages import PackageFinder
 from ..parsing import is_xacro_path
 from ._contents import flat_mesh, millimetres
 
-__all__ = ["REPORTS", "meshes", "unresolved"]
+__all__ = [
+    "CONTENTS_REPORTS",
+    "NAMES_REPORTS",
+    "REPORTS",
+    "mesh_contents",
+    "mesh_names",
+    "meshes",
+    "unresolved",
+]
 
 
 _LOADED = frozenset({".stl", ".obj", ".dae"})
@@ -56,7 +64,23 @@ def meshes(
     uses = list(robot_meshes(analysis.robot))
     for link, mesh, collides in uses:
         yield from _mesh(analysis, link, mesh, collides)
+        yield from _contents(analysis, link, mesh, collides)
     yield from unresolved(analysis, ((link, mesh) for link, mesh, _ in uses))
+
+
+def mesh_names(analysis: Analysis) -> Iterator[Diagnostic]:
+    """The findings of `meshes` that judge the mesh names and whether they lead to files,
+    without opening a file (``analysis``: of the packages the check is given)."""
+    uses = list(robot_meshes(analysis.robot))
+    for link, mesh, collides in uses:
+        yield from _mesh(analysis, link, mesh, collides)
+    yield from unresolved(analysis, ((link, mesh) for link, mesh, _ in uses))
+
+
+def mesh_contents(analysis: Analysis) -> Iterator[Diagnostic]:
+    """The findings of `meshes` that judge what the mesh files found hold: each is read."""
+    for link, mesh, collides in robot_meshes(analysis.robot):
+        yield from _contents(analysis, link, mesh, collides)
 
 
 def unresolved(
@@ -177,8 +201,30 @@ def _not_found(analysis: Analysis, mesh: Mesh, path: MeshPath) -> tuple[str, Mes
 
 
 def _mesh(analysis: Analysis, link: Link, mesh: Mesh, collides: bool) -> Iterator[Diagnostic]:
-    """The findings about one mesh that need no file, or its file found."""
-    paths = analysis.mesh_paths
+    """The findings about one mesh that need no file."""
+    name = mesh.filename
+    named = f"link {link.name!r}: mesh {name!r}"
+    path = analysis.mesh_paths.get(name)
+    subject = Subject(Kind.LINK, link.name)
+    if path.unnamed:
+        yield _unnamed(analysis, named, mesh, path, subject)
+    if path.state in (State.MALFORMED, State.REMOTE) or _left_unexpanded(analysis, mesh, path):
+        return
+    extension = os.path.splitext(name)[1].lower()
+    if extension not in _LOADED:
+        kind = f"is a {extension} file" if extension else "has no file extension"
+        yield MESH_FORMAT.report(
+            f"{named} {kind}",
+            mesh.source,
+            path=analysis.path,
+            subject=subject,
+            hint="Gazebo loads STL, OBJ and COLLADA; MuJoCo and PyBullet STL and OBJ: export "
+            "it as one of those",
+        )
+
+
+def _contents(analysis: Analysis, link: Link, mesh: Mesh, collides: bool) -> Iterator[Diagnostic]:
+    """The findings about one mesh's file, found: what it holds."""
     name = mesh.filename
     subject = Subject(Kind.LINK, link.name)
     named = f"link {link.name!r}: mesh {name!r}"
@@ -188,22 +234,12 @@ def _mesh(analysis: Analysis, link: Link, mesh: Mesh, collides: bool) -> Iterato
             f"{named} {what}", mesh.source, path=analysis.path, subject=subject, hint=hint
         )
 
-    path = paths.get(name)
-    if path.unnamed:
-        yield _unnamed(analysis, named, mesh, path, subject)
+    path = analysis.mesh_paths.get(name)
     if path.state in (State.MALFORMED, State.REMOTE) or _left_unexpanded(analysis, mesh, path):
         return
-    extension = os.path.splitext(name)[1].lower()
-    if extension not in _LOADED:
-        kind = f"is a {extension} file" if extension else "has no file extension"
-        yield report(
-            MESH_FORMAT,
-            kind,
-            "Gazebo loads STL, OBJ and COLLADA; MuJoCo and PyBullet STL and OBJ: export it "
-            "as one of those",
-        )
     if not path.found or path.file is None:
         return
+    extension = os.path.splitext(name)[1].lower()
     facts = analysis.meshes.facts(path.file)
     if facts is None:
         fault = _fault(analysis.meshes, path.file) if extension in (".stl", ".obj") else None
@@ -294,3 +330,7 @@ def _fault(meshes: MeshContents, file: Path) -> str | None:
 _OTHERS = (catalog.meshes.SHAPE_NOT_DRAWN, catalog.meshes.NOTHING_DRAWN, catalog.meshes.SHAPE_SIZE)
 REPORTS: tuple[Rule, ...] = tuple(r for r in rules_in(catalog.meshes) if r not in _OTHERS)
 """Every rule this module's check may report: the check runs only when one is selected."""
+CONTENTS_REPORTS: tuple[Rule, ...] = (MESH_INVALID, MESH_FACES, MESH_FLAT, MESH_UNITS)
+"""The rules of `mesh_contents`, the part of the check that reads the mesh files."""
+NAMES_REPORTS: tuple[Rule, ...] = tuple(r for r in REPORTS if r not in CONTENTS_REPORTS)
+"""The rules of `mesh_names`, the part of the check that opens no file."""

@@ -7,6 +7,7 @@ from collections.abc import Iterable, Iterator
 from .. import catalog
 from ..analysis import Analysis
 from ..catalog import Rule, rules_in
+from ..catalog.reading import MISSING_ATTRIBUTE, MISSING_ELEMENT
 from ..catalog.structure import (
     CYCLE,
     DUPLICATE_JOINT,
@@ -248,7 +249,7 @@ def _broken_ends(analysis: Analysis) -> list[str]:
     for joint in analysis.robot.joints:
         for name in (joint.parent, joint.child):
             if not name:
-                causes.update(("missing-element", "missing-attribute"))
+                causes.update((MISSING_ELEMENT.id, MISSING_ATTRIBUTE.id))
             elif name not in analysis.links:
                 causes.add(UNDEFINED_LINK.id)
     return sorted(causes)
