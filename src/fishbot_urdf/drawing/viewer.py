@@ -181,8 +181,12 @@ class Viewer:
         return f"http://{authority(name, self.server.get_port())}"
 
     def close(self) -> None:
-        """Stop watching the files and stop the server."""
+        """Stop watching the files and stop the server (once a reload under way is done:
+        it would tell the page a server stopped under it)."""
         self._stop.set()
+        watcher = getattr(self, "_watcher", None)  # (none yet, if the first load failed)
+        if watcher is not None and watcher is not threading.current_thread():
+            watcher.join()
         self.server.stop()
 
     # -- building -------------------------------------------------------------------------
