@@ -1,0 +1,190 @@
+"""One editor session: its workspace (the open files' texts over the disk), the checks it
+runs in a worker thread a moment after the last change, and the findings it has published."""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+from collections.abc import Collection, Iterable
+from concurrent.futures import ThreadPoolExecutor
+
+from lsprotocol import types
+from pygls.lsp.server import LanguageServer
+
+from ..inputs import Cancellation, Cancelled, cancellable
+from ..workspace import Workspace
+from ._checking import Round, check_round, lines_reader, merged
+from ._convert import Lines, Shown, Units, uri_of
+
+__all__ = ["DEBOUNCE", "Session"]
+
+DEBOUNCE = 0.075
+"""Seconds from the last change to the check (a burst of keystrokes is checked once)."""
+
+logger = logging.getLogger(__name__)
+
+
+class Session:
+    """The state of one session, changed on the server's event loop only; the checks run in
+    one worker thread, and a change cancels the check under way (its results, for texts
+    that are no longer the editor's, are never published).
+
+    Args:
+        server: The language server that publishes the findings.
+        debounce: Seconds from the last change to the check.
+    """
+
+    def __init__(self, server: LanguageServer, debounce: float = DEBOUNCE) -> None:
+        self.server = server
+        self.debounce = debounce
+        self.workspace = Workspace()
+        self.versions: dict[str, int | None] = {}  # the open files, by absolute path
+        self.changed: set[str] = set()  # files whose robots want a check
+        self.tops_of: dict[str, tuple[str, ...]] = {}  # an open file's robots, last round
+        self.contributions: dict[str, dict[str, list[Shown]]] = {}  # top -> file -> shown
+        self.shown: dict[str, list[Shown]] = {}  # what each file shows now
+        self.generation = 0  # one more at each change: a round of an older one is stale
+        self.rounds = 0  # rounds published (for tests)
+        self._timer: asyncio.TimerHandle | None = None
+        self._cancellation: Cancellation | None = None
+        self._tasks: set[asyncio.Future[None]] = set()
+        self._worker = ThreadPoolExecutor(1, thread_name_prefix="fishbot-check")
+
+    # -- the editor's changes ------------------------------------------------------------
+    def opened(self, path: str, text: str, version: int | None, *, robot: bool = True) -> None:
+        """The editor holds ``text`` for ``path`` (opened, or changed): a robot file is
+        checked; any other (a YAML file a robot loads) is read as held."""
+        self.workspace.open(path, text)
+        if robot:
+            self.versions[path] = version
+        self.change([path])
+
+    def closed(self, path: str) -> None:
+        """The editor closed ``path``: the disk's text is read again."""
+        self.workspace.close(path)
+        self.versions.pop(path, None)
+        self.tops_of.pop(path, None)
+        self.change([path])
+
+    def disk_changed(self, paths: Iterable[str]) -> None:
+        """Files changed on disk (saved, made, deleted by another program)."""
+        paths = list(paths)
+        self.workspace.forget(paths)
+        self.change([*paths, *self.versions])
+
+    def change(self, paths: Iterable[str]) -> None:
+        """Check the robots of ``paths`` a moment from now, cancelling the check under way."""
+        self.changed.update(paths)
+        self.generation += 1
+        if self._cancellation is not None:
+            self._cancellation.cancel()
+        if self._timer is not None:
+            self._timer.cancel()
+        loop = asyncio.get_running_loop()
+        self._timer = loop.call_later(self.debounce, self._start)
+
+    def stop(self) -> None:
+        """Cancel the work under way and let the worker go."""
+        if self._timer is not None:
+            self._timer.cancel()
+        if self._cancellation is not None:
+            self._cancellation.cancel()
+        self._worker.shutdown(wait=False, cancel_futures=True)
+
+    # -- the rounds ----------------------------------------------------------------------
+    def _start(self) -> None:
+        self._timer = None
+        cancellation = self._cancellation = Cancellation()
+        changed = frozenset(self.changed)
+        task = asyncio.ensure_future(self._run(self.generation, changed, cancellation))
+        self._tasks.add(task)  # (the loop holds tasks weakly)
+        task.add_done_callback(self._tasks.discard)
+
+    async def _run(
+        self, generation: int, changed: frozenset[str], cancellation: Cancellation
+    ) -> None:
+        opened = tuple(self.versions)
+        checked = frozenset(self.contributions)
+        units = self.units()
+        loop = asyncio.get_running_loop()
+        try:
+            found = await loop.run_in_executor(
+                self._worker, self._work, changed, opened, checked, units, cancellation
+            )
+        except RuntimeError:  # the worker has stopped: the session is ending
+            return
+        if found is None or generation != self.generation:
+            return  # cancelled, or a newer change came: a newer round will say
+        self.changed -= changed
+        self._publish(found)
+
+    def _work(
+        self,
+        changed: Collection[str],
+        opened: Collection[str],
+        checked: Collection[str],
+        units: Units,
+        cancellation: Cancellation,
+    ) -> Round | None:
+        with cancellable(cancellation):
+            try:
+                return check_round(self.workspace, changed, opened, checked, units)
+            except Cancelled:
+                return None
+            except Exception:  # a fault of the server's own: said, and the session goes on
+                logger.exception("checking %s", ", ".join(sorted(changed)))
+                return None
+
+    def _publish(self, found: Round) -> None:
+        self.tops_of = dict(found.tops_of)
+        active = {top for tops in found.tops_of.values() for top in tops}
+        # an open file of a robot checked hears of it, even of no findings
+        affected = {path for path, tops in found.tops_of.items() if found.shown.keys() & tops}
+        for top, by_file in found.shown.items():
+            affected.update(self.contributions.get(top, {}), by_file)
+            self.contributions[top] = dict(by_file)
+        for top in [t for t in self.contributions if t not in active]:
+            affected.update(self.contributions.pop(top))
+        for path in sorted(affected):
+            shown = merged(c[path] for c in self.contributions.values() if path in c)
+            if shown:
+                self.shown[path] = shown
+            else:
+                self.shown.pop(path, None)
+            self.server.text_document_publish_diagnostics(
+                types.PublishDiagnosticsParams(
+                    uri=uri_of(path),
+                    diagnostics=[s.diagnostic for s in shown],
+                    version=self.versions.get(path),
+                )
+            )
+        self.rounds += 1
+
+    # -- what the requests ask -----------------------------------------------------------
+    def units(self) -> Units:
+        """How the client counts the characters of a position."""
+        return self.server.workspace.position_codec.client_num_units  # type: ignore[no-any-return]
+
+    def lines(self, path: str) -> Lines:
+        """The lines of ``path`` as the session reads it (the editor's text first)."""
+        return lines_reader(self.workspace, self.units())(path)
+
+    def findings_at(self, path: str, position: types.Position) -> list[Shown]:
+        """The findings shown in ``path`` whose range holds ``position``."""
+        return [s for s in self.shown.get(path, ()) if _holds(s.diagnostic.range, position)]
+
+    def findings_in(self, path: str, where: types.Range) -> list[Shown]:
+        """The findings shown in ``path`` whose range meets ``where``."""
+        return [s for s in self.shown.get(path, ()) if _meets(s.diagnostic.range, where)]
+
+
+def _key(position: types.Position) -> tuple[int, int]:
+    return (position.line, position.character)
+
+
+def _holds(where: types.Range, position: types.Position) -> bool:
+    return _key(where.start) <= _key(position) <= _key(where.end)
+
+
+def _meets(where: types.Range, other: types.Range) -> bool:
+    return _key(where.start) <= _key(other.end) and _key(other.start) <= _key(where.end)
