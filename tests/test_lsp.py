@@ -147,3 +147,30 @@ async def test_hover_on_a_finding_explains_its_rule(package: Path) -> None:
             types.HoverParams(types.TextDocumentIdentifier(uri), types.Position(0, 0))
         )
         assert nothing is None
+
+
+@pytest.mark.xfail(reason="no rule gives its findings fixes yet (Diagnostic.fixes is empty)")
+async def test_a_finding_with_a_fix_offers_it_as_a_quick_fix(package: Path) -> None:
+    base = package / URDF / "base.urdf.xacro"
+    async with running() as client:
+        uri, typo = await _misspell_base_footprint(client, base)
+        (finding,) = _errors(await client.diagnostics_for(uri, 2))
+        actions = await client.text_document_code_action_async(
+            types.CodeActionParams(
+                types.TextDocumentIdentifier(uri),
+                finding.range,
+                types.CodeActionContext(diagnostics=[finding]),
+            )
+        )
+        assert actions
+        preferred = [a for a in actions if isinstance(a, types.CodeAction) and a.is_preferred]
+        assert len(preferred) == 1
+        (fix,) = preferred
+        assert fix.kind == types.CodeActionKind.QuickFix
+        assert fix.edit is not None and fix.edit.changes is not None
+        # the misspelt name, 'base_fooprint', replaced by the link's
+        line = typo.start.line
+        text = base.read_text(encoding="utf-8").split("\n")[line]
+        start = text.index("base_footprint")
+        name = types.Range(types.Position(line, start), types.Position(line, start + 13))
+        assert fix.edit.changes[uri] == [types.TextEdit(name, "base_footprint")]

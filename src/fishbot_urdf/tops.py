@@ -99,8 +99,8 @@ def holds_robot(data: bytes) -> bool:
                     element.clear()  # a fragment's macros are not kept
                 continue
             depth += 1
-            if depth == 2 and etree.QName(element).localname in ("link", "joint"):
-                return not etree.QName(element).namespace
+            if depth == 2 and element.tag in ("link", "joint"):  # (not in a namespace)
+                return True
     except etree.LxmlError:
         return False
     return False

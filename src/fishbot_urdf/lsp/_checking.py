@@ -84,14 +84,17 @@ def lines_reader(workspace: Workspace, units: Units) -> Callable[[str], Lines]:
 
 
 def merged(contributions: Iterable[list[Shown]]) -> list[Shown]:
-    """The findings several robots show in one file, each once."""
+    """The findings several robots show in one file, each once (two robots that include a
+    file show its findings twice; one robot's two alike findings are both kept)."""
     seen: set[tuple[object, ...]] = set()
     kept = []
     for shown in contributions:
-        for item in shown:
-            d = item.diagnostic
-            key = (d.range.start.line, d.range.start.character, d.code, d.message)
-            if key not in seen:
-                seen.add(key)
-                kept.append(item)
+        keys = [_key(item) for item in shown]
+        kept.extend(item for item, key in zip(shown, keys) if key not in seen)
+        seen.update(keys)
     return kept
+
+
+def _key(item: Shown) -> tuple[object, ...]:
+    d = item.diagnostic
+    return (d.range.start.line, d.range.start.character, d.code, d.message)
