@@ -90,7 +90,7 @@ def merged(contributions: Iterable[list[Shown]]) -> list[Shown]:
     kept = []
     for shown in contributions:
         keys = [_key(item) for item in shown]
-        kept.extend(item for item, key in zip(shown, keys) if key not in seen)
+        kept.extend(item for item, key in zip(shown, keys, strict=True) if key not in seen)
         seen.update(keys)
     return kept
 
