@@ -88,7 +88,8 @@ def nearest_config(path: str | Path, workspace: Workspace) -> Config:
 
 def holds_robot(data: bytes) -> bool:
     """Whether the root element of ``data`` holds a ``<link>`` or ``<joint>`` of its own
-    (not inside a macro); False for text that is not well-formed XML."""
+    (not inside a macro), as far as the text can be read as XML (the rest of it may be
+    being typed): read up to the first one only."""
     depth = 0
     try:
         events = etree.iterparse(io.BytesIO(data), events=("start", "end"), **_ITERPARSE)
