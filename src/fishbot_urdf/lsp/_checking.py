@@ -87,7 +87,7 @@ def merged(contributions: Iterable[list[Shown]]) -> list[Shown]:
     """The findings several robots show in one file, each once (two robots that include a
     file show its findings twice; one robot's two alike findings are both kept)."""
     seen: set[tuple[object, ...]] = set()
-    kept = []
+    kept: list[Shown] = []
     for shown in contributions:
         keys = [_key(item) for item in shown]
         kept.extend(item for item, key in zip(shown, keys, strict=True) if key not in seen)

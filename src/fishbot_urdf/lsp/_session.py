@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import asyncio
 import logging
+import os
 from collections.abc import Collection, Iterable
 from concurrent.futures import ThreadPoolExecutor
 
@@ -67,9 +68,12 @@ class Session:
         self.change([path])
 
     def disk_changed(self, paths: Iterable[str]) -> None:
-        """Files changed on disk (saved, made, deleted by another program)."""
+        """Files changed on disk (saved, made, deleted by another program): the answers
+        made from them are told by their fingerprints, but for a package made or taken
+        away (a package.xml), which changes where every ``$(find)`` leads."""
         paths = list(paths)
-        self.workspace.forget(paths)
+        if any(os.path.basename(p) == "package.xml" for p in paths):
+            self.workspace.forget(None)
         self.change([*paths, *self.versions])
 
     def change(self, paths: Iterable[str]) -> None:
@@ -163,7 +167,7 @@ class Session:
     # -- what the requests ask -----------------------------------------------------------
     def units(self) -> Units:
         """How the client counts the characters of a position."""
-        return self.server.workspace.position_codec.client_num_units  # type: ignore[no-any-return]
+        return self.server.workspace.position_codec.client_num_units
 
     def lines(self, path: str) -> Lines:
         """The lines of ``path`` as the session reads it (the editor's text first)."""
