@@ -174,3 +174,29 @@ async def test_a_finding_with_a_fix_offers_it_as_a_quick_fix(package: Path) -> N
         start = text.index("base_footprint")
         name = types.Range(types.Position(line, start), types.Position(line, start + 13))
         assert fix.edit.changes[uri] == [types.TextEdit(name, "base_footprint")]
+
+
+async def test_the_nearest_configuration_applies_saved_or_as_the_editor_holds_it(
+    package: Path,
+) -> None:
+    base = package / URDF / "base.urdf.xacro"
+    async with running() as client:
+        uri, _ = await _misspell_base_footprint(client, base)
+        assert [d.code for d in _errors(await client.diagnostics_for(uri, 2))] == ["undefined-link"]
+        config = package / "fishbot.toml"
+        config.write_text('ignore = ["undefined-link"]\n', encoding="utf-8")
+        client.workspace_did_change_watched_files(
+            types.DidChangeWatchedFilesParams(
+                [types.FileEvent(config.as_uri(), types.FileChangeType.Created)]
+            )
+        )
+        # (its consequence, a second root, is reported in its place)
+        await client.until(lambda: "undefined-link" not in _codes(client, uri), "it ignored")
+        # the configuration as the editor holds it, unsaved
+        client.open(config, "ignore = []\n")
+        await client.until(lambda: "undefined-link" in _codes(client, uri), "the finding back")
+
+
+def _codes(client: Client, uri: str) -> list[object]:
+    published = client.last(uri)
+    return [] if published is None else [d.code for d in published.diagnostics]

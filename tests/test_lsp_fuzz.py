@@ -122,6 +122,8 @@ async def test_random_edits_never_stop_the_server(
                 editor.replace(uri, "".join(chr(rng.randrange(256)) for _ in range(2000)))
             elif kind == "unknown":
                 other = rng.choice(unknown)
+                client.change(other, 7, "<robot/>")  # never opened
+                client.close(other)
                 client.text_document_did_open(
                     types.DidOpenTextDocumentParams(
                         types.TextDocumentItem(other, "xml", 1, "<robot name='x'><link/>")

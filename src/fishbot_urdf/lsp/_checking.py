@@ -1,5 +1,6 @@
-"""One round of checks, in the worker thread: the robots the changed files belong to, each
-checked through the session's workspace, its findings placed in the files they are in."""
+"""One round of checks, in the worker thread: the robots the open files belong to, each
+checked through the session's workspace (a robot none of whose files changed is given again
+at once), its findings placed in the files they are in."""
 
 from __future__ import annotations
 
@@ -13,40 +14,50 @@ from ..tops import find_tops, nearest_config
 from ..workspace import Workspace
 from ._convert import Lines, Shown, Units, shown_findings
 
-__all__ = ["Round", "check_round", "findings_of", "lines_reader", "merged"]
+__all__ = ["Checked", "Round", "check_round", "findings_of", "lines_reader", "merged"]
+
+
+@dataclass(frozen=True, slots=True)
+class Checked:
+    """A robot's findings, and where they are shown: by file, each file's list."""
+
+    findings: tuple[Diagnostic, ...]
+    shown: Mapping[str, list[Shown]]
 
 
 @dataclass(frozen=True, slots=True)
 class Round:
-    """What a round found: the robots each open file belongs to (by their top files), and,
-    for each robot checked, its findings by the file they are shown in."""
+    """What a round found: the robots each open file belongs to (by their top files), and
+    each of those robots checked."""
 
     tops_of: Mapping[str, tuple[str, ...]]
-    shown: Mapping[str, Mapping[str, list[Shown]]]
+    checked: Mapping[str, Checked]
 
 
 def check_round(
     workspace: Workspace,
-    changed: Collection[str],
     open_files: Collection[str],
-    checked: Collection[str],
+    known: Mapping[str, Checked],
     units: Units,
 ) -> Round:
-    """Check the robots of the files ``changed`` that an open file belongs to, and those of
-    the open files not yet ``checked``; every file is read through ``workspace``.
+    """Check the robots the ``open_files`` belong to, every file read through
+    ``workspace``; a robot whose findings are those ``known`` (none of its files changed:
+    the check kept is given again) keeps what was shown of them, the very object.
 
     Raises:
         Cancelled: The round was cancelled (see `fishbot_urdf.inputs.cancellable`).
     """
-    tops_of = {path: find_tops(path, workspace) for path in open_files}
-    active = {top for tops in tops_of.values() for top in tops}
-    wanted = {top for path in changed for top in tops_of.get(path) or find_tops(path, workspace)}
-    wanted |= active - set(checked)
+    tops_of = {path: find_tops(path, workspace) for path in sorted(open_files)}
     lines = _LinesOf(workspace, units)
-    shown = {
-        top: shown_findings(findings_of(top, workspace), top, lines) for top in wanted & active
-    }
-    return Round(tops_of, shown)
+    checked = {}
+    for top in sorted({top for tops in tops_of.values() for top in tops}):
+        findings = findings_of(top, workspace)
+        before = known.get(top)
+        if before is not None and before.findings is findings:
+            checked[top] = before
+        else:
+            checked[top] = Checked(findings, shown_findings(findings, top, lines))
+    return Round(tops_of, checked)
 
 
 def findings_of(top: str, workspace: Workspace) -> tuple[Diagnostic, ...]:

@@ -6,7 +6,7 @@ from __future__ import annotations
 import asyncio
 import logging
 import os
-from collections.abc import Collection, Iterable
+from collections.abc import Collection, Iterable, Mapping
 from concurrent.futures import ThreadPoolExecutor
 
 from lsprotocol import types
@@ -14,7 +14,7 @@ from pygls.lsp.server import LanguageServer
 
 from ..inputs import Cancellation, Cancelled, cancellable
 from ..workspace import Workspace
-from ._checking import Round, check_round, lines_reader, merged
+from ._checking import Checked, Round, check_round, lines_reader, merged
 from ._convert import Lines, Shown, Units, uri_of
 
 __all__ = ["DEBOUNCE", "Session"]
@@ -40,9 +40,9 @@ class Session:
         self.debounce = debounce
         self.workspace = Workspace()
         self.versions: dict[str, int | None] = {}  # the open files, by absolute path
-        self.changed: set[str] = set()  # files whose robots want a check
+        self.unheard: set[str] = set()  # open files changed since their last publication
         self.tops_of: dict[str, tuple[str, ...]] = {}  # an open file's robots, last round
-        self.contributions: dict[str, dict[str, list[Shown]]] = {}  # top -> file -> shown
+        self.checked: dict[str, Checked] = {}  # each robot's findings, by its top file
         self.shown: dict[str, list[Shown]] = {}  # what each file shows now
         self.generation = 0  # one more at each change: a round of an older one is stale
         self.rounds = 0  # rounds published (for tests)
@@ -77,8 +77,9 @@ class Session:
         self.change([*paths, *self.versions])
 
     def change(self, paths: Iterable[str]) -> None:
-        """Check the robots of ``paths`` a moment from now, cancelling the check under way."""
-        self.changed.update(paths)
+        """Check the robots of the open files a moment from now (those of ``paths`` are
+        among them, or are no longer wanted), cancelling the check under way."""
+        self.unheard.update(p for p in paths if p in self.versions)
         self.generation += 1
         if self._cancellation is not None:
             self._cancellation.cancel()
@@ -99,58 +100,55 @@ class Session:
     def _start(self) -> None:
         self._timer = None
         cancellation = self._cancellation = Cancellation()
-        changed = frozenset(self.changed)
-        task = asyncio.ensure_future(self._run(self.generation, changed, cancellation))
+        task = asyncio.ensure_future(self._run(self.generation, cancellation))
         self._tasks.add(task)  # (the loop holds tasks weakly)
         task.add_done_callback(self._tasks.discard)
 
-    async def _run(
-        self, generation: int, changed: frozenset[str], cancellation: Cancellation
-    ) -> None:
+    async def _run(self, generation: int, cancellation: Cancellation) -> None:
         opened = tuple(self.versions)
-        checked = frozenset(self.contributions)
+        known = dict(self.checked)
         units = self.units()
         loop = asyncio.get_running_loop()
         try:
             found = await loop.run_in_executor(
-                self._worker, self._work, changed, opened, checked, units, cancellation
+                self._worker, self._work, opened, known, units, cancellation
             )
         except RuntimeError:  # the worker has stopped: the session is ending
             return
         if found is None or generation != self.generation:
             return  # cancelled, or a newer change came: a newer round will say
-        self.changed -= changed
         self._publish(found)
 
     def _work(
         self,
-        changed: Collection[str],
         opened: Collection[str],
-        checked: Collection[str],
+        known: Mapping[str, Checked],
         units: Units,
         cancellation: Cancellation,
     ) -> Round | None:
         with cancellable(cancellation):
             try:
-                return check_round(self.workspace, changed, opened, checked, units)
+                return check_round(self.workspace, opened, known, units)
             except Cancelled:
                 return None
             except Exception:  # a fault of the server's own: said, and the session goes on
-                logger.exception("checking %s", ", ".join(sorted(changed)))
+                logger.exception("checking %s", ", ".join(sorted(opened)))
                 return None
 
     def _publish(self, found: Round) -> None:
         self.tops_of = dict(found.tops_of)
-        active = {top for tops in found.tops_of.values() for top in tops}
-        # an open file of a robot checked hears of it, even of no findings
-        affected = {path for path, tops in found.tops_of.items() if found.shown.keys() & tops}
-        for top, by_file in found.shown.items():
-            affected.update(self.contributions.get(top, {}), by_file)
-            self.contributions[top] = dict(by_file)
-        for top in [t for t in self.contributions if t not in active]:
-            affected.update(self.contributions.pop(top))
+        # an open file hears of its robots' check, even of no findings, once a change
+        affected = {path for path in self.unheard if path in found.tops_of}
+        self.unheard -= affected
+        for top, checked in found.checked.items():
+            before = self.checked.get(top)
+            if before is not checked:
+                affected.update(before.shown if before is not None else (), checked.shown)
+        for top in [t for t in self.checked if t not in found.checked]:
+            affected.update(self.checked.pop(top).shown)
+        self.checked.update(found.checked)
         for path in sorted(affected):
-            shown = merged(c[path] for c in self.contributions.values() if path in c)
+            shown = merged(c.shown[path] for c in self.checked.values() if path in c.shown)
             if shown:
                 self.shown[path] = shown
             else:
