@@ -45,6 +45,17 @@ def test_a_range_counts_utf16_code_units() -> None:
     assert to_range(lines, 9, 4) == types.Range(_p(8, 0), _p(8, 0))
 
 
+def test_a_lone_cr_ends_a_line_of_the_protocol_not_of_the_reader() -> None:
+    # the reader (libxml2) counts lines at LF only; the protocol at CR LF, CR and LF
+    lines = Lines.of("<a>\r<b/>\r\n <c/>\n<d/>\r<e/>")
+    assert [lines.line(i) for i in range(4)] == ["<a>\r<b/>", " <c/>", "<d/>\r<e/>", ""]
+    assert lines.position(1, 5) == _p(1, 0)  # <b/>, after the lone CR
+    assert to_range(lines, 1, 5) == types.Range(_p(1, 0), _p(1, 4))
+    assert to_range(lines, 2, 2) == types.Range(_p(2, 1), _p(2, 5))
+    assert lines.position(3, 6) == _p(4, 0)  # <e/>
+    assert lines.position(5, 1) == _p(6, 0)  # past the end
+
+
 def test_a_range_in_utf8_or_utf32_when_the_client_chose_them() -> None:
     utf8 = Lines.of(TEXT, lambda s: len(s.encode("utf-8")))
     utf32 = Lines.of(TEXT, len)

@@ -4,6 +4,7 @@ an included macro shown at its call too, fixes as code actions."""
 
 from __future__ import annotations
 
+import itertools
 import os
 import re
 from collections.abc import Callable, Iterable, Sequence
@@ -46,13 +47,22 @@ def utf16_units(text: str) -> int:
     return len(text.encode("utf-16-le")) // 2
 
 
-@dataclass(frozen=True, slots=True)
 class Lines:
-    """A file's lines (split at line feeds, as the reader counts them) and the client's
-    units, to turn 1-based character columns into positions."""
+    """A file's lines as the reader counts them (split at line feeds, columns in characters)
+    and the client's units, to turn 1-based lines and character columns into positions,
+    whose lines the protocol ends at a lone CR too."""
 
-    lines: Sequence[str]
-    units: Units = utf16_units
+    __slots__ = ("_starts", "lines", "units")
+
+    def __init__(self, lines: Sequence[str], units: Units = utf16_units) -> None:
+        self.lines = lines
+        self.units = units
+        # the protocol's line each line starts on, where a lone CR makes them differ
+        self._starts: list[int] | None = None
+        if any("\r" in line for line in lines):
+            crs = (_lone_crs(lines, i) for i in range(len(lines)))
+            before = itertools.accumulate(crs, initial=0)
+            self._starts = [i + count for i, count in enumerate(before)]
 
     @classmethod
     def of(cls, text: str | bytes, units: Units = utf16_units) -> Lines:
@@ -64,14 +74,26 @@ class Lines:
     def line(self, index: int) -> str:
         """Line ``index`` (0-based) without its line end, or "" past the end."""
         if 0 <= index < len(self.lines):
-            return self.lines[index].removesuffix("\r")
+            text = self.lines[index]
+            return text[:-1] if index < len(self.lines) - 1 and text.endswith("\r") else text
         return ""
 
     def position(self, line: int, column: int) -> types.Position:
         """The position of 1-based ``line`` and character ``column`` (clamped to the line)."""
         index = max(line - 1, 0)
-        text = self.line(index)
-        return types.Position(index, self.units(text[: max(column - 1, 0)]))
+        prefix = self.line(index)[: max(column - 1, 0)]
+        if self._starts is None:
+            return types.Position(index, self.units(prefix))
+        start = self._starts[min(index, len(self.lines))] + max(index - len(self.lines), 0)
+        after = prefix.rpartition("\r")[2]
+        return types.Position(start + prefix.count("\r"), self.units(after))
+
+
+def _lone_crs(lines: Sequence[str], index: int) -> int:
+    """The CRs of line ``index`` not followed by its LF."""
+    text = lines[index]
+    crs = text.count("\r")
+    return crs - 1 if index < len(lines) - 1 and text.endswith("\r") else crs
 
 
 def to_range(

@@ -28,7 +28,9 @@ logger = logging.getLogger(__name__)
 class Session:
     """The state of one session, changed on the server's event loop only; the checks run in
     one worker thread, and a change cancels the check under way (its results, for texts
-    that are no longer the editor's, are never published).
+    that are no longer the editor's, are never published). The editor's texts are laid
+    over the disk in the worker, before a round: never while a check reads them, so that
+    what a check keeps is what it read.
 
     Args:
         server: The language server that publishes the findings.
@@ -50,19 +52,21 @@ class Session:
         self._cancellation: Cancellation | None = None
         self._tasks: set[asyncio.Future[None]] = set()
         self._worker = ThreadPoolExecutor(1, thread_name_prefix="fishbot-check")
+        self._texts: dict[str, str | None] = {}  # to hold (None: to let go) before a round
+        self._forget = False  # every answer and package found, before a round
 
     # -- the editor's changes ------------------------------------------------------------
     def opened(self, path: str, text: str, version: int | None, *, robot: bool = True) -> None:
         """The editor holds ``text`` for ``path`` (opened, or changed): a robot file is
         checked; any other (a YAML file a robot loads) is read as held."""
-        self.workspace.open(path, text)
+        self._texts[path] = text
         if robot:
             self.versions[path] = version
         self.change([path])
 
     def closed(self, path: str) -> None:
         """The editor closed ``path``: the disk's text is read again."""
-        self.workspace.close(path)
+        self._texts[path] = None
         self.versions.pop(path, None)
         self.tops_of.pop(path, None)
         self.change([path])
@@ -73,7 +77,7 @@ class Session:
         away (a package.xml), which changes where every ``$(find)`` leads."""
         paths = list(paths)
         if any(os.path.basename(p) == "package.xml" for p in paths):
-            self.workspace.forget(None)
+            self._forget = True
         self.change([*paths, *self.versions])
 
     def change(self, paths: Iterable[str]) -> None:
@@ -105,13 +109,15 @@ class Session:
         task.add_done_callback(self._tasks.discard)
 
     async def _run(self, generation: int, cancellation: Cancellation) -> None:
+        texts, forget = self._texts, self._forget
+        self._texts, self._forget = {}, False
         opened = tuple(self.versions)
         known = dict(self.checked)
         units = self.units()
         loop = asyncio.get_running_loop()
         try:
             found = await loop.run_in_executor(
-                self._worker, self._work, opened, known, units, cancellation
+                self._worker, self._work, texts, forget, opened, known, units, cancellation
             )
         except RuntimeError:  # the worker has stopped: the session is ending
             return
@@ -121,11 +127,20 @@ class Session:
 
     def _work(
         self,
+        texts: Mapping[str, str | None],
+        forget: bool,
         opened: Collection[str],
         known: Mapping[str, Checked],
         units: Units,
         cancellation: Cancellation,
     ) -> Round | None:
+        for path, text in texts.items():
+            if text is None:
+                self.workspace.close(path)
+            else:
+                self.workspace.open(path, text)
+        if forget:
+            self.workspace.forget(None)
         with cancellable(cancellation):
             try:
                 return check_round(self.workspace, opened, known, units)
