@@ -43,11 +43,10 @@ class Session:
         self.workspace = Workspace()
         self.versions: dict[str, int | None] = {}  # the open files, by absolute path
         self.unheard: set[str] = set()  # open files changed since their last publication
-        self.tops_of: dict[str, tuple[str, ...]] = {}  # an open file's robots, last round
+        self.tops_of: dict[str, tuple[str, ...]] = {}  # each open file's robots, last round
         self.checked: dict[str, Checked] = {}  # each robot's findings, by its top file
         self.shown: dict[str, list[Shown]] = {}  # what each file shows now
         self.generation = 0  # one more at each change: a round of an older one is stale
-        self.rounds = 0  # rounds published (for tests)
         self._timer: asyncio.TimerHandle | None = None
         self._cancellation: Cancellation | None = None
         self._tasks: set[asyncio.Future[None]] = set()
@@ -175,7 +174,6 @@ class Session:
                     version=self.versions.get(path),
                 )
             )
-        self.rounds += 1
 
     # -- what the requests ask -----------------------------------------------------------
     def units(self) -> Units:
