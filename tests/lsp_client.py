@@ -38,7 +38,9 @@ class Client(LanguageClient):
         self.published: list[Published] = []
         features = dict(DEFAULT_CLIENT_FEATURES)
         features[types.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS] = _keep
+        features[types.CLIENT_REGISTER_CAPABILITY] = _register
         register_lsp_features(self, features)
+        self.registrations: list[types.Registration] = []
 
     async def until(self, test: Callable[[], object], what: str = "") -> None:
         """Wait until ``test()`` holds (failing after `TIMEOUT` seconds)."""
@@ -100,19 +102,25 @@ class Client(LanguageClient):
         )
 
 
+def _register(client: Client, params: types.RegistrationParams) -> None:
+    client.registrations.extend(params.registrations)
+
+
 def _keep(client: Client, params: types.PublishDiagnosticsParams) -> None:
     client.diagnostics[params.uri] = params.diagnostics
     client.published.append(Published(params.uri, params.version, params.diagnostics))
 
 
 @asynccontextmanager
-async def running(cwd: Path = ROOT, *args: str) -> AsyncIterator[Client]:
+async def running(
+    cwd: Path = ROOT, *args: str, capabilities: types.ClientCapabilities | None = None
+) -> AsyncIterator[Client]:
     """`python -m fishbot_urdf lsp` with this checkout's sources, started in ``cwd`` and
     initialised; shut down and exited at the end (its exit status checked)."""
     env = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
     client = Client()
     await client.start_io(sys.executable, "-m", "fishbot_urdf", "lsp", *args, env=env, cwd=cwd)
-    await client.initialize_session(types.InitializeParams(capabilities=CAPABILITIES))
+    await client.initialize_session(types.InitializeParams(capabilities or CAPABILITIES))
     server = client._server
     assert server is not None
     try:

@@ -200,3 +200,20 @@ async def test_the_nearest_configuration_applies_saved_or_as_the_editor_holds_it
 def _codes(client: Client, uri: str) -> list[object]:
     published = client.last(uri)
     return [] if published is None else [d.code for d in published.diagnostics]
+
+
+async def test_a_client_that_can_watch_files_is_asked_to_watch_the_robots_files() -> None:
+    watching = types.ClientCapabilities(
+        workspace=types.WorkspaceClientCapabilities(
+            did_change_watched_files=types.DidChangeWatchedFilesClientCapabilities(
+                dynamic_registration=True
+            )
+        )
+    )
+    async with running(capabilities=watching) as client:
+        await client.until(lambda: client.registrations, "a registration")
+        (registration,) = client.registrations
+        assert registration.method == types.WORKSPACE_DID_CHANGE_WATCHED_FILES
+        options = registration.register_options
+        globs = [w["globPattern"] for w in options["watchers"]]  # type: ignore[index]
+        assert globs == ["**/*.{urdf,xacro,yaml,yml,toml,xml,stl,STL,dae,obj,OBJ}"]
