@@ -98,13 +98,20 @@ async def test_every_fixture_is_published_as_check_finds_it() -> None:
 
 
 def _robot(size: int, parent: str = "link_0") -> str:
-    """A URDF robot of ``size`` links, each hanging from the last; the first joint's parent
-    is ``parent``."""
-    links = "".join(f'  <link name="link_{i}"/>\n' for i in range(size))
+    """A URDF robot of ``size`` links (each a box with its inertia), each hanging from the
+    last on a revolute joint; the first joint's parent is ``parent``."""
+    box = '<geometry><box size="0.1 0.1 0.1"/></geometry>'
+    inertia = 'ixx="0.00167" ixy="0" ixz="0" iyy="0.00167" iyz="0" izz="0.00167"'  # m/12*(2a^2)
+    links = "".join(
+        f'  <link name="link_{i}"><inertial><mass value="1"/><inertia {inertia}/></inertial>'
+        f"<visual>{box}</visual><collision>{box}</collision></link>\n"
+        for i in range(size)
+    )
     joints = "".join(
-        f'  <joint name="joint_{i}" type="fixed">'
-        f'<parent link="{parent if i == 1 else f"link_{i - 1}"}"/>'
-        f'<child link="link_{i}"/></joint>\n'
+        f'  <joint name="joint_{i}" type="revolute">'
+        f'<parent link="{parent if i == 1 else f"link_{i - 1}"}"/><child link="link_{i}"/>'
+        '<origin xyz="0 0 0.1"/><axis xyz="0 0 1"/>'
+        '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>\n'
         for i in range(1, size)
     )
     return f'<?xml version="1.0"?>\n<robot name="big">\n{links}{joints}</robot>\n'
@@ -113,23 +120,40 @@ def _robot(size: int, parent: str = "link_0") -> str:
 async def test_a_big_robot_changed_while_checked_publishes_the_last_version(
     tmp_path: Path,
 ) -> None:
+    # (a check of it takes about a second: a pause of 0.3 s lets a check start, 75 ms after
+    # the change, so that what comes next comes while it runs)
     path = tmp_path / "big.urdf"
     path.write_text(_robot(10_000), encoding="utf-8")
     async with running(tmp_path) as client:
         uri = client.open(path)
         assert [d.code for d in await client.diagnostics_for(uri, 1)] == []
+        # two changes at once: the second comes before the first is checked
+        after = len(client.published)
         client.change(uri, 2, _robot(10_000, "link_x"))
         client.change(uri, 3, _robot(10_000, "link_y"))
-        # answered while the last version is checked
+        await asyncio.sleep(0.3)
         hover = asyncio.ensure_future(
             client.text_document_hover_async(
                 types.HoverParams(types.TextDocumentIdentifier(uri), types.Position(3, 2))
             )
         )
         last = await client.diagnostics_for(uri, 3)
+        # answered while the check ran: before its findings came
         assert hover.done()
         assert hover.result() is None  # no finding was there when it was asked
         assert [d.code for d in last] == ["undefined-link"]
         assert "'link_y' is not defined" in last[0].message
-        assert [p.version for p in client.published if p.uri == uri][-1] == 3
-        assert all(p.version != 2 for p in client.published)
+        assert [p.version for p in client.published[after:] if p.uri == uri] == [3]
+
+        # a change while the check of the one before runs: it is cancelled, or published
+        # before the next is (each version with its own findings), the last one last
+        after = len(client.published)
+        client.change(uri, 4, _robot(10_000, "link_z"))
+        await asyncio.sleep(0.3)
+        client.change(uri, 5, _robot(10_000, "link_w"))
+        await client.diagnostics_for(uri, 5)
+        versions = [p for p in client.published[after:] if p.uri == uri]
+        assert [p.version for p in versions] in ([5], [4, 5])
+        for published, name in zip(versions[::-1], ("link_w", "link_z"), strict=False):
+            assert [d.code for d in published.diagnostics] == ["undefined-link"]
+            assert f"'{name}' is not defined" in published.diagnostics[0].message
