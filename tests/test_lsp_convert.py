@@ -130,3 +130,26 @@ def test_fixes_are_quick_fixes_the_safe_one_preferred(tmp_path) -> None:
     assert first.edit.changes[uri_of(path)] == [
         types.TextEdit(types.Range(_p(1, 16), _p(1, 21)), "base")
     ]
+
+
+def test_hover_providers_each_say_their_part_in_order(tmp_path) -> None:
+    from fishbot_urdf.catalog import get
+    from fishbot_urdf.catalog.docs import markdown_explanation
+    from fishbot_urdf.lsp._hover import Hovers
+
+    finding = _finding(str(tmp_path), definition=get("undefined-link"))
+    shown = Shown(types.Diagnostic(types.Range(_p(1, 4), _p(1, 9)), "the message"), finding)
+
+    class Findings:  # what the hover asks of a session
+        def findings_at(self, path: str, position: types.Position) -> list[Shown]:
+            return [shown] if position.line == 1 else []
+
+    hovers = Hovers()
+    hovers.add(lambda session, path, position: f"a name at {position.line}:{position.character}")
+    hovers.add(lambda session, path, position: None)  # says nothing
+    said = hovers.hover(Findings(), "robot.urdf", _p(1, 5))  # type: ignore[arg-type]
+    assert said is not None and isinstance(said.contents, types.MarkupContent)
+    rule = markdown_explanation(get("undefined-link")).strip()
+    assert said.contents.value == f"**the message**\n\n{rule}\n\n---\n\na name at 1:5"
+    elsewhere = hovers.hover(Findings(), "robot.urdf", _p(4, 0))  # type: ignore[arg-type]
+    assert elsewhere is not None and elsewhere.contents.value == "a name at 4:0"  # type: ignore[union-attr]
