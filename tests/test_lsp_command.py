@@ -47,3 +47,15 @@ def test_the_help_gives_examples() -> None:
     assert run.exit_code == 0
     examples = "  Examples:\n    fishbot lsp\n    python -m fishbot_urdf lsp --debounce 150\n"
     assert examples in run.output
+
+
+def test_an_end_of_input_without_exit_is_status_1() -> None:
+    run = subprocess.run(
+        [sys.executable, "-m", "fishbot_urdf", "lsp"],
+        input=b"",
+        capture_output=True,
+        env={**os.environ, "PYTHONPATH": str(ROOT / "src")},
+        timeout=60,
+        check=False,
+    )
+    assert (run.returncode, run.stdout) == (1, b"")
