@@ -56,6 +56,19 @@ def test_a_lone_cr_ends_a_line_of_the_protocol_not_of_the_reader() -> None:
     assert lines.position(5, 1) == _p(6, 0)  # past the end
 
 
+def test_a_clients_position_back_to_a_line_and_character_column() -> None:
+    lines = Lines.of(TEXT)
+    assert lines.place(_p(1, 14)) == (2, 15)  # the emoji
+    assert lines.place(_p(1, 15)) == (2, 15)  # inside it: its start
+    assert lines.place(_p(1, 16)) == (2, 16)  # x
+    assert lines.place(_p(1, 99)) == (2, 20)  # past the end: the line's end
+    assert lines.place(_p(9, 3)) == (10, 1)
+    crs = Lines.of("<a>\r<b/>\r\n <c/>\n<d/>\r<e/>")
+    for line, column in [(1, 1), (1, 5), (1, 7), (2, 2), (3, 1), (3, 6), (3, 8)]:
+        assert crs.place(crs.position(line, column)) == (line, column)
+    assert crs.place(_p(6, 0)) == (5, 1)  # past the end
+
+
 def test_a_range_in_utf8_or_utf32_when_the_client_chose_them() -> None:
     utf8 = Lines.of(TEXT, lambda s: len(s.encode("utf-8")))
     utf32 = Lines.of(TEXT, len)

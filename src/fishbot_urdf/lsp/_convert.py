@@ -4,6 +4,7 @@ an included macro shown at its call too, fixes as code actions."""
 
 from __future__ import annotations
 
+import bisect
 import itertools
 import os
 import re
@@ -12,7 +13,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from lsprotocol import types
-from pygls.uris import from_fs_path
+from pygls.uris import from_fs_path, to_fs_path
 
 from ..diagnostics import Diagnostic, Edit, Fix, Severity
 from ..location import Location
@@ -22,6 +23,7 @@ __all__ = [
     "Shown",
     "absolute",
     "code_actions",
+    "path_of",
     "shown_findings",
     "to_range",
     "uri_of",
@@ -88,6 +90,32 @@ class Lines:
         after = prefix.rpartition("\r")[2]
         return types.Position(start + prefix.count("\r"), self.units(after))
 
+    def place(self, position: types.Position) -> tuple[int, int]:
+        """The 1-based line and character column of a client's ``position`` (a position
+        inside a character, or past its line's end, is taken to the character's start, or
+        the line's end)."""
+        index, offset = position.line, 0
+        if self._starts is not None:
+            index = max(bisect.bisect_right(self._starts, position.line) - 1, 0)
+            if index < len(self.lines):
+                pieces = self.line(index).split("\r")
+                before = min(position.line - self._starts[index], len(pieces) - 1)
+                offset = sum(len(piece) + 1 for piece in pieces[:before])
+                return index + 1, offset + _characters(pieces[before], position, self.units) + 1
+            index = len(self.lines) + position.line - self._starts[-1]
+        return index + 1, _characters(self.line(index), position, self.units) + 1
+
+
+def _characters(text: str, position: types.Position, units: Units) -> int:
+    """How many characters of ``text`` come before ``position.character`` units."""
+    count = taken = 0
+    for character in text:
+        taken += units(character)
+        if taken > position.character:
+            break
+        count += 1
+    return count
+
 
 def _lone_crs(lines: Sequence[str], index: int) -> int:
     """The CRs of line ``index`` not followed by its LF."""
@@ -133,6 +161,14 @@ def _extent(text: str, at: int) -> int:
 def absolute(path: str) -> str:
     """A finding's path as an absolute one (a relative path is the server's folder's)."""
     return os.path.normpath(os.path.abspath(path))
+
+
+def path_of(uri: str) -> str | None:
+    """The absolute path of a file URI, or None for any other (an unsaved buffer's)."""
+    if not uri.startswith("file:"):
+        return None
+    path = to_fs_path(uri)
+    return None if path is None else absolute(path)
 
 
 def uri_of(path: str) -> str:

@@ -7,11 +7,10 @@ from typing import BinaryIO
 from lsprotocol import types
 from pygls.exceptions import JsonRpcException
 from pygls.lsp.server import LanguageServer
-from pygls.uris import to_fs_path
 
 from .. import __version__
 from . import features
-from ._convert import absolute, code_actions
+from ._convert import code_actions, path_of
 from ._hover import Hovers
 from ._session import Session
 
@@ -54,14 +53,6 @@ def make_server(debounce: float) -> Server:
 def is_robot_file(path: str) -> bool:
     """Whether ``path`` is checked as you type."""
     return path.lower().endswith(ROBOT_FILES)
-
-
-def path_of(uri: str) -> str | None:
-    """The absolute path of a file URI, or None for any other (an unsaved buffer's)."""
-    if not uri.startswith("file:"):
-        return None
-    path = to_fs_path(uri)
-    return None if path is None else absolute(path)
 
 
 def _register(it: Server) -> None:

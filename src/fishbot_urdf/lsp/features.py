@@ -16,8 +16,9 @@ def register(server: LanguageServer, session: Session, hovers: Hovers) -> None:
     """Register the navigation features with ``server``.
 
     Each feature is a handler of ``server`` (``@server.feature(types.TEXT_DOCUMENT_...)``)
-    that turns the request's URI into an absolute path and its position into a 1-based line
-    and character column (``session.lines(path)`` turns them back), asks the library with
+    that turns the request's URI into an absolute path (`_convert.path_of`) and its
+    position into a 1-based line and character column (``session.lines(path).place``;
+    ``.position`` and `_convert.to_range` turn them back), asks the library with
     ``session.workspace`` (the editor's unsaved texts over the disk, and its caches), and
     converts the answer (`fishbot_urdf.lsp._convert` has the positions, ranges and edits).
     A hover over a name is a provider added to ``hovers``, shown after the findings'.
