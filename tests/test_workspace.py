@@ -136,3 +136,23 @@ def test_cancelled_work_stops_at_its_next_look_at_the_deadline(package: Path) ->
         deadline().check("work")
     with cancellable(cancellation), pytest.raises(Cancelled):
         check_file(package / TOP, workspace=Workspace())
+
+
+def test_an_answer_made_from_a_kept_answer_depends_on_its_files(tmp_path: Path) -> None:
+    inner_file, outer_file = tmp_path / "inner.txt", tmp_path / "outer.txt"
+    inner_file.write_text("1")
+    outer_file.write_text("2")
+    workspace = Workspace()
+
+    def inner() -> bytes:
+        return workspace.memo("inner", lambda: read_input(inner_file))
+
+    assert inner() == b"1"  # kept: the outer answer below is made from it unread
+
+    def outer() -> bytes:
+        return inner() + read_input(outer_file)
+
+    assert workspace.memo("outer", outer) == b"12"
+    assert set(workspace.readers([inner_file])) == {"inner", "outer"}
+    workspace.open(inner_file, "3")
+    assert workspace.memo("outer", outer) == b"32"

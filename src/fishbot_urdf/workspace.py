@@ -32,7 +32,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TypeVar
 
-from .inputs import looking_for, read_input, reading_through, recording_inputs
+from .inputs import looking_for, note_looked, read_input, reading_through, recording_inputs
 from .packages import PackageFinder
 
 __all__ = ["Workspace"]
@@ -145,6 +145,9 @@ class Workspace:
             if known is not None:
                 self._answers.move_to_end(key)
         if known is not None and all(self.fingerprint(p) == f for p, f in known.inputs):
+            # An answer made from this one (a memo inside a memo) depends on its files too.
+            for path, _ in known.inputs:
+                note_looked(path)
             return known.value  # type: ignore[no-any-return]
         with self.reading(), recording_inputs() as read, looking_for() as looked:
             value = make()

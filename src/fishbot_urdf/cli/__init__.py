@@ -36,6 +36,9 @@ COMMANDS = {
     "`ros2 run tf2_ros tf2_echo FROM TO` prints it with robot_state_publisher running.",
     "render": "A shaded PNG of FILE (URDF or xacro) at a joint configuration: no display, GPU "
     "or ROS needed.",
+    "lsp": "The language server for URDF and xacro files, over standard input and output: the "
+    "findings of `fishbot check` as you type, in the file each is in (and at the macro call "
+    "that made it), quick fixes, and each rule explained on hover.",
     "sdf": "The SDF of FILE (URDF or xacro) as Gazebo's converter makes it: what `ign sdf -p` "
     "prints.",
     "view": "Show FILE (URDF or xacro) in a web browser: visuals in their colours, link frames as "
@@ -97,6 +100,7 @@ def cli() -> None:
       fishbot render robot.urdf.xacro -o robot.png --view side
       fishbot view robot.urdf.xacro
       fishbot sdf robot.urdf.xacro -o robot.sdf
+      fishbot lsp
     """
 
 
