@@ -149,7 +149,6 @@ async def test_hover_on_a_finding_explains_its_rule(package: Path) -> None:
         assert nothing is None
 
 
-@pytest.mark.xfail(reason="no rule gives its findings fixes yet (Diagnostic.fixes is empty)")
 async def test_a_finding_with_a_fix_offers_it_as_a_quick_fix(package: Path) -> None:
     base = package / URDF / "base.urdf.xacro"
     async with running() as client:
@@ -173,7 +172,7 @@ async def test_a_finding_with_a_fix_offers_it_as_a_quick_fix(package: Path) -> N
         text = base.read_text(encoding="utf-8").split("\n")[line]
         start = text.index("base_footprint")
         name = types.Range(types.Position(line, start), types.Position(line, start + 13))
-        assert fix.edit.changes[uri] == [types.TextEdit(name, "base_footprint")]
+        assert list(fix.edit.changes[uri]) == [types.TextEdit(name, "base_footprint")]
 
 
 async def test_the_nearest_configuration_applies_saved_or_as_the_editor_holds_it(

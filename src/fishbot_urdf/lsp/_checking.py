@@ -7,9 +7,11 @@ from __future__ import annotations
 from collections.abc import Callable, Collection, Iterable, Mapping
 from dataclasses import dataclass
 
-from ..diagnostics import Diagnostic, from_error
+from ..diagnostics import Diagnostic
 from ..errors import FishbotUrdfError
+from ..fixes import error_finding
 from ..lint import check_file
+from ..sourcetext import Texts
 from ..tops import find_tops, nearest_config
 from ..workspace import Workspace
 from ._convert import Lines, Shown, Units, shown_findings
@@ -62,12 +64,13 @@ def check_round(
 
 def findings_of(top: str, workspace: Workspace) -> tuple[Diagnostic, ...]:
     """The findings of ``top``'s check, with its nearest configuration, as `fishbot check`
-    gives them; an error that stops the reading (or a wrong configuration) is one."""
+    gives them, each with its fixes; an error that stops the reading (or a wrong
+    configuration) is one, with its fix where it has one (a property misspelt)."""
     try:
         config = nearest_config(top, workspace)
-        return check_file(top, config=config, workspace=workspace).diagnostics
+        return check_file(top, config=config, workspace=workspace, fixes=True).diagnostics
     except FishbotUrdfError as exc:
-        return (from_error(exc, top),)
+        return (error_finding(exc, Texts(workspace.read), top, top),)
 
 
 class _LinesOf:
