@@ -277,15 +277,8 @@ def recording_inputs() -> Iterator[list[str]]:
     An output written with these names as its ``inputs`` (see :mod:`fishbot_urdf.output`)
     is never written over a file the work read: the robot, its includes and YAML files,
     the ``package.xml`` files read to find packages, the configuration, the meshes."""
-    outer = _READ.get()
-    read: list[str] = []
-    token = _READ.set(read)
-    try:
+    with _noting(_READ) as read:
         yield read
-    finally:
-        _READ.reset(token)
-        if outer is not None:
-            outer.extend(read)
 
 
 def note_inputs(paths: Iterable[str]) -> None:
@@ -302,15 +295,23 @@ def looking_for() -> Iterator[list[str]]:
     """Note, in the list it gives, every file :func:`note_looked` says was looked for inside
     the ``with`` (this thread or task only, and the threads it runs work in with its
     context): files an answer depends on being there or not (a mesh file), unread."""
-    outer = _LOOKED.get()
-    looked: list[str] = []
-    token = _LOOKED.set(looked)
-    try:
+    with _noting(_LOOKED) as looked:
         yield looked
+
+
+@contextmanager
+def _noting(variable: ContextVar[list[str] | None]) -> Iterator[list[str]]:
+    """A list of names ``variable`` holds inside the ``with``; an enclosing one's gets them
+    too, once it ends."""
+    outer = variable.get()
+    noted: list[str] = []
+    token = variable.set(noted)
+    try:
+        yield noted
     finally:
-        _LOOKED.reset(token)
+        variable.reset(token)
         if outer is not None:
-            outer.extend(looked)
+            outer.extend(noted)
 
 
 def note_looked(path: str) -> None:
