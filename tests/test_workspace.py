@@ -156,3 +156,20 @@ def test_an_answer_made_from_a_kept_answer_depends_on_its_files(tmp_path: Path) 
     assert set(workspace.readers([inner_file])) == {"inner", "outer"}
     workspace.open(inner_file, "3")
     assert workspace.memo("outer", outer) == b"32"
+
+
+def test_a_file_changed_while_the_answer_is_made_makes_it_stale(tmp_path: Path) -> None:
+    """The fingerprint kept is the file's before it was read: one saved by another program
+    while the answer was made is not taken as what the answer read."""
+    file = tmp_path / "robot.urdf"
+    file.write_text("<robot name='a'/>")
+    workspace = Workspace()
+
+    def make() -> bytes:
+        data = read_input(file)
+        file.write_text("<robot name='bb'/>")  # saved meanwhile, after the read
+        os.utime(file, ns=(2, 2))
+        return data
+
+    assert workspace.memo("robot", make) == b"<robot name='a'/>"
+    assert workspace.memo("robot", lambda: read_input(file)) == b"<robot name='bb'/>"

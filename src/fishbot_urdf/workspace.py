@@ -28,6 +28,7 @@ import threading
 from collections import OrderedDict
 from collections.abc import Callable, Hashable, Iterable, Iterator, Mapping
 from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TypeVar
@@ -42,6 +43,10 @@ T = TypeVar("T")
 Fingerprint = tuple[Any, ...] | None
 """What a file was when an answer read it: ``("text", hash, length)`` for a held text,
 ``(mtime_ns, size, inode)`` for a file on disk, None for a file that was not there."""
+
+# The fingerprints of the files read from disk by the answer being made, each taken just
+# before the file was read (see Workspace.buffer).
+_SEEN: ContextVar[dict[str, Fingerprint] | None] = ContextVar("fishbot_urdf_seen", default=None)
 
 MAX_ANSWERS = 256
 """How many answers a workspace keeps; the one used longest ago goes first."""
@@ -99,8 +104,15 @@ class Workspace:
         return self._texts.get(_key(path))
 
     def buffer(self, path: str) -> bytes | None:
-        """The text held for ``path`` (the overlay `fishbot_urdf.inputs.read_input` asks)."""
-        return self._texts.get(_key(path)) if self._texts else None
+        """The text held for ``path`` (the overlay `fishbot_urdf.inputs.read_input` asks);
+        for a file read from disk inside `memo`, its fingerprint is taken now, before it is
+        read, so that a change while the answer is made makes the answer stale."""
+        held = self._texts.get(_key(path)) if self._texts else None
+        if held is None:
+            seen = _SEEN.get()
+            if seen is not None and path not in seen:
+                seen[path] = self.fingerprint(path)
+        return held
 
     def held(self) -> tuple[str, ...]:
         """The files whose texts are held, as absolute paths."""
@@ -149,13 +161,24 @@ class Workspace:
             for path, _ in known.inputs:
                 note_looked(path)
             return known.value  # type: ignore[no-any-return]
-        with self.reading(), recording_inputs() as read, looking_for() as looked:
-            value = make()
+        outer = _SEEN.get()
+        seen: dict[str, Fingerprint] = {}
+        token = _SEEN.set(seen)
+        try:
+            with self.reading(), recording_inputs() as read, looking_for() as looked:
+                value = make()
+        finally:
+            _SEEN.reset(token)
+            if outer is not None:
+                outer.update((p, f) for p, f in seen.items() if p not in outer)
         with self._lock:
             self.made += 1
         if not self.keep:
             return value
-        inputs = tuple((p, self.fingerprint(p)) for p in dict.fromkeys((*read, *looked)))
+        inputs = tuple(
+            (p, seen[p] if p in seen else self.fingerprint(p))
+            for p in dict.fromkeys((*read, *looked))
+        )
         with self._lock:
             self._answers[key] = _Answer(value, inputs)
             self._answers.move_to_end(key)
