@@ -161,7 +161,64 @@ def test_a_file_outside_the_robots_package_is_never_edited(tmp_path: Path) -> No
     assert all(not d.fixes for d in found.diagnostics if d.rule == "undefined-link")
 
 
-FIXED_BY_EXAMPLE = [r for r in ROBOT_RULES if r.id in ("undefined-mimic", "control-interface")]
+MIMIC = """\
+<robot name="r">
+  <link name="base_link"/><link name="left_wheel_link"/><link name="right_wheel_link"/>
+  <joint name="left_wheel_joint" type="continuous">
+    <parent link="base_link"/><child link="left_wheel_link"/><axis xyz="0 1 0"/>
+  </joint>
+  <joint name="right_wheel_joint" type="continuous">
+    <parent link="base_link"/><child link="right_wheel_link"/><axis xyz="0 1 0"/>
+    <mimic joint="left_whel_joint"/>
+  </joint>
+</robot>
+"""
+"""A mimicked joint misspelt."""
+
+FIXED_BY_EXAMPLE = [r for r in ROBOT_RULES if r.id == "control-interface"]
+
+
+def test_a_misspelt_mimicked_joint(tmp_path: Path) -> None:
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(MIMIC)
+    assert "undefined-mimic" in _rules(robot)
+    _fix(robot)
+    assert robot.read_text() == MIMIC.replace("left_whel_joint", "left_wheel_joint")
+    assert _rules(robot) == []
+
+
+NUMBERED = """\
+<robot name="arm">
+  <link name="link1"/><link name="link2"/><link name="link3"/>
+  <joint name="joint1" type="fixed"><parent link="link1"/><child link="link2"/></joint>
+  <joint name="joint2" type="fixed"><parent link="link2"/><child link="link4"/></joint>
+</robot>
+"""
+"""A numbered link that does not exist: which number was meant is a guess."""
+
+
+def test_a_guess_among_numbered_names_is_not_made(tmp_path: Path) -> None:
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(NUMBERED)
+    _fix(robot)
+    assert robot.read_text() == NUMBERED
+    found = check_file(robot, workspace=Workspace(), fixes=True)
+    offered = [f for d in found.diagnostics for f in d.fixes if not f.silences]
+    assert offered and not any(f.safe for f in offered)
+
+
+def test_a_typo_in_a_macro_called_twice_is_one_place_and_fixed(tmp_path: Path) -> None:
+    """The left and right wheels of the fishbot are one macro: its misspelt parent link is
+    two findings, one place to fix."""
+    package = tmp_path / "fishbot_description"
+    shutil.copytree(FISHBOT, package)
+    wheel = package / "urdf/fishbot/actuator/wheel.urdf.xacro"
+    good = wheel.read_text()
+    wheel.write_text(good.replace('<parent link="base_link"/>', '<parent link="base_lnk"/>'))
+    status, output = _fix(package / "urdf/fishbot/fishbot.urdf.xacro")
+    assert status == 0, output
+    assert wheel.read_text() == good
+    assert "1 fix made in 1 file" in output
 
 
 @pytest.mark.parametrize("rule", FIXED_BY_EXAMPLE, ids=[r.id for r in FIXED_BY_EXAMPLE])
@@ -211,3 +268,86 @@ def test_a_finding_is_silenced_by_the_comment_it_offers(tmp_path: Path, rule: Ru
     assert "unused-suppression" not in [d.rule for d in after.diagnostics]
     assert sum(d.rule == rule.id for d in after.diagnostics) < len(mine)
     assert rule.id in [d.rule for d in after.suppressed]
+
+
+SHARED_MACRO = """\
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="arm">
+    <link name="arm_link"/>
+    <joint name="arm_joint" type="fixed"><parent link="base_link"/><child link="arm_link"/></joint>
+  </xacro:macro>
+</robot>
+"""
+
+
+def _robot_with_arm(base: str) -> str:
+    return (
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="arm.xacro"/>\n'
+        f'  <link name="{base}"/>\n'
+        "  <xacro:arm/>\n"
+        "</robot>\n"
+    )
+
+
+def test_a_file_two_robots_read_is_not_fixed_for_one_against_the_other(tmp_path: Path) -> None:
+    (tmp_path / "arm.xacro").write_text(SHARED_MACRO)
+    (tmp_path / "a.urdf.xacro").write_text(_robot_with_arm("base_link"))
+    (tmp_path / "b.urdf.xacro").write_text(_robot_with_arm("base_lnk"))
+    result = CliRunner().invoke(
+        cli,
+        [
+            "check",
+            "--isolated",
+            "--fix",
+            "-q",
+            str(tmp_path / "a.urdf.xacro"),
+            str(tmp_path / "b.urdf.xacro"),
+        ],
+    )
+    assert (tmp_path / "arm.xacro").read_text() == SHARED_MACRO
+    assert "a fix left out: another robot that reads the file had more findings" in result.output
+    assert _rules(tmp_path / "a.urdf.xacro") == []
+
+
+def test_a_file_that_cannot_be_written_leaves_the_others_fixed(tmp_path: Path) -> None:
+    typo = ROBOT.replace('"bleu"', '"blue"').replace('"wheel_lnk"', '"wheel_link"')
+    first, locked, last = (tmp_path / f"{n}.urdf" for n in ("a", "b", "c"))
+    for file in (first, locked, last):
+        file.write_text(typo)
+    locked.chmod(0o444)  # read-only: refused, as a user would want, even for root
+    result = CliRunner().invoke(
+        cli, ["check", "--isolated", "--fix", "-q", str(first), str(locked), str(last)]
+    )
+    assert result.exit_code == 2
+    assert "[io]" in result.output
+    assert "undefined-link" in result.output  # the findings are still reported
+    assert "base_lnk" not in first.read_text() and "base_lnk" not in last.read_text()
+    assert "base_lnk" in locked.read_text()
+
+
+def test_the_diff_of_a_file_without_a_last_line_break_applies(tmp_path: Path) -> None:
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(ROBOT.rstrip("\n"))
+    result = CliRunner().invoke(cli, ["check", "--isolated", "--diff", str(robot)])
+    assert result.exit_code == 1
+    assert "\\ No newline at end of file\n" in result.output
+
+
+def test_fix_and_diff_need_files(tmp_path: Path) -> None:
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(ROBOT)
+    stdin = CliRunner().invoke(cli, ["check", "--fix", "-"], input=ROBOT)
+    assert stdin.exit_code == 2 and "not - (stdin)" in stdin.output
+    sarif = CliRunner().invoke(cli, ["check", "--diff", "--format", "sarif", str(robot)])
+    assert sarif.exit_code == 2 and "no --format or -o" in sarif.output
+
+
+def test_an_inertial_added_to_a_crlf_file_keeps_its_line_breaks(tmp_path: Path) -> None:
+    rule = next(r for r in ROBOT_RULES if r.id == "missing-inertial")
+    robot = write_example(tmp_path, rule, rule.bad)
+    robot.write_bytes(rule.bad.replace("\n", "\r\n").encode())
+    _fix(robot, "--unsafe-fixes")
+    data = robot.read_bytes()
+    assert b"<inertial>" in data
+    assert data.count(b"\n") == data.count(b"\r\n")

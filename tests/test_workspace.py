@@ -10,7 +10,15 @@ from pathlib import Path
 import pytest
 
 from fishbot_urdf.errors import InputError
-from fishbot_urdf.inputs import Cancellation, Cancelled, cancellable, deadline, read_input
+from fishbot_urdf.inputs import (
+    Cancellation,
+    Cancelled,
+    allowing_reads,
+    cancellable,
+    deadline,
+    read_input,
+    trusting_expressions,
+)
 from fishbot_urdf.lint import check_file
 from fishbot_urdf.workspace import Workspace
 
@@ -173,3 +181,16 @@ def test_a_file_changed_while_the_answer_is_made_makes_it_stale(tmp_path: Path) 
 
     assert workspace.memo("robot", make) == b"<robot name='a'/>"
     assert workspace.memo("robot", lambda: read_input(file)) == b"<robot name='bb'/>"
+
+
+def test_an_answer_is_kept_for_the_trust_and_the_folders_it_was_made_with(
+    package: Path, tmp_path: Path
+) -> None:
+    workspace = Workspace()
+    top = package / TOP
+    check_file(top, workspace=workspace)
+    with trusting_expressions():
+        check_file(top, workspace=workspace)
+    with allowing_reads(tmp_path):
+        check_file(top, workspace=workspace)
+    assert workspace.made == 6  # three checks, three expansions: none given for another

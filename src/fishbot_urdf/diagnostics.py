@@ -163,7 +163,7 @@ class Diagnostic:
         return escape_controls(f"{text} [{self.rule}]")
 
     def to_dict(self) -> dict[str, Any]:
-        """A JSON-ready dict of every field."""
+        """A JSON-ready dict of every field (``fixes`` only when the check made them)."""
         subject = self.subject
         return {
             "rule": self.rule,
@@ -179,8 +179,7 @@ class Diagnostic:
             if subject is None
             else {"kind": subject.kind.value, "name": subject.name},
             "data": self._data_dict(),
-            "fixes": [fix.to_dict() for fix in self.fixes],
-        }
+        } | ({"fixes": [fix.to_dict() for fix in self.fixes]} if self.fixes else {})
 
     def _data_dict(self) -> dict[str, Any]:
         data = self.data

@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import os
 import re
-from collections import Counter
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import replace
 
@@ -67,24 +66,37 @@ def attach(
 ) -> list[Diagnostic]:
     """``findings``, each with the fixes that apply to it in ``texts`` (files of the package of
     ``robot_file`` only; ``analysis`` for the fixes that compute)."""
-    inside = os.path.join(package_folder(robot_file), "")
+    inside = os.path.join(os.path.realpath(package_folder(robot_file)), "")
     findings = list(findings)
     sources = [_source(finding, texts, inside) for finding in findings]
-    # A name several findings miss is more likely misspelt where it is defined: replacing
-    # each use is offered, not applied.
-    missed = Counter(
-        (finding.rule, fix.title)
-        for finding, source in zip(findings, sources, strict=True)
-        if source is not None and (fix := _did_you_mean(finding, source)) is not None
-    )
+    # A name missed in several places is more likely misspelt where it is defined: replacing
+    # each use is offered, not applied. (Two calls of one macro miss it in one place.)
+    places: dict[str, set[Edit]] = {}
+    for finding, source in zip(findings, sources, strict=True):
+        fix = None if source is None else _did_you_mean(finding, source)
+        if fix is not None:
+            places.setdefault(fix.title, set()).update(fix.edits)
+    names = _names(analysis)
     found = []
     for finding, source in zip(findings, sources, strict=True):
         if source is not None:
-            fixes = tuple(_fixes(finding, source, analysis, missed))
+            fixes = tuple(_fixes(finding, source, analysis, places, names))
             if fixes:
                 finding = replace(finding, fixes=finding.fixes + fixes)
         found.append(finding)
     return found
+
+
+def _names(analysis: Analysis | None) -> frozenset[str]:
+    """Every name of the robot's links, joints and materials (what a name mistyped may be
+    close to besides the one meant)."""
+    if analysis is None:
+        return frozenset()
+    robot = analysis.robot
+    return frozenset(
+        [*(link.name for link in robot.links), *(joint.name for joint in robot.joints)]
+        + [material.name for material in robot.materials]
+    )
 
 
 def error_finding(
@@ -98,8 +110,8 @@ def error_finding(
 
 def _source(finding: Diagnostic, texts: Texts, inside: str) -> SourceText | None:
     """The text of the file that wrote the finding's element, if it may be edited."""
-    if not (finding.path.startswith("<") or os.path.abspath(finding.path).startswith(inside)):
-        return None
+    if not (finding.path.startswith("<") or os.path.realpath(finding.path).startswith(inside)):
+        return None  # (links resolved: another package's file reached through a link)
     return texts.get(finding.path)
 
 
@@ -107,7 +119,8 @@ def _fixes(
     finding: Diagnostic,
     source: SourceText,
     analysis: Analysis | None,
-    missed: Counter[tuple[str, str]],
+    places: Mapping[str, set[Edit]],
+    names: frozenset[str],
 ) -> Iterable[Fix]:
     placed = finding.line is not None and finding.column is not None
     for make in _MAKERS.get(finding.rule, ()) if placed else ():
@@ -116,8 +129,10 @@ def _fixes(
             yield fix
     meant = _did_you_mean(finding, source)
     if meant is not None:
-        if missed[finding.rule, meant.title] > 1:
+        if len(places.get(meant.title, ())) > 1:
             meant = replace(meant, title=f"{meant.title} (or rename what defines it)", safe=False)
+        elif not _sure(meant, names):
+            meant = replace(meant, safe=False)
         yield meant
     if finding.definition is not None and not finding.definition.fatal:
         silencing = _silencing(finding, source)
@@ -133,10 +148,8 @@ def _did_you_mean(finding: Diagnostic, source: SourceText) -> Fix | None:
     if meant is None or finding.line is None or finding.column is None:
         return None
     better = meant.group(2)
-    if not _typo(finding, better):
-        return None
     quoted = [a or b for a, b in _QUOTED.findall(finding.message)]
-    wrong = [name for name in quoted if name != better]
+    wrong = [name for name in quoted if name != better and _typo(name, better)]
     attributes = source.attributes(finding.line, finding.column)
     for name in wrong:
         for attribute in attributes:
@@ -154,14 +167,29 @@ def _did_you_mean(finding: Diagnostic, source: SourceText) -> Fix | None:
     return None
 
 
-def _typo(finding: Diagnostic, better: str) -> bool:
-    """Whether some name the message quotes is ``better`` mistyped: at most one edit in four
-    characters (a letter left out, added, changed, or two swapped), and at least one."""
-    for a, b in _QUOTED.findall(finding.message):
-        wrong = a or b
-        if wrong != better and _distance(wrong, better) <= max(1, len(better) // 4):
-            return True
-    return False
+def _sure(fix: Fix, names: frozenset[str]) -> bool:
+    """Whether a replacement is the only name meant: the names differ in more than a number
+    (``link4`` for ``link1`` is a guess among numbered names), and no other name of the
+    robot is as close to the one written."""
+    found = _REPLACING.match(fix.title)
+    if found is None:
+        return False
+    wrong, better = found.group(1), found.group(2)
+    if re.sub(r"\d+", "#", wrong) == re.sub(r"\d+", "#", better):
+        return False
+    distance = _distance(wrong, better)
+    return not any(
+        _distance(wrong, name) <= distance for name in names if name not in (wrong, better)
+    )
+
+
+_REPLACING = re.compile(r"replace '(.*)' with '(.*)'$")
+
+
+def _typo(wrong: str, better: str) -> bool:
+    """Whether ``wrong`` is ``better`` mistyped: at most one edit in four characters (a
+    letter left out, added, changed, or two swapped), and at least one."""
+    return _distance(wrong, better) <= max(1, len(better) // 4)
 
 
 def _distance(a: str, b: str) -> int:
@@ -259,7 +287,12 @@ def _inertial(finding: Diagnostic, source: SourceText, analysis: Analysis | None
         return None
     line_text = source.line_text(suggestion.line)
     indent = line_text[: len(line_text) - len(line_text.lstrip())]
-    body = "".join(f"{indent}{row}\n" for row in suggestion.text.splitlines())
+    unit = "\t" if "\t" in indent else "  "  # the inertial's own rows are indented by two
+    rows = []
+    for row in suggestion.text.splitlines():
+        inner = row.lstrip(" ")
+        rows.append(indent + unit * ((len(row) - len(inner)) // 2) + inner + source.newline)
+    body = "".join(rows)
     at = source.offset(suggestion.line, 1)
     if at is None:
         return None
@@ -286,7 +319,7 @@ def _silencing(finding: Diagnostic, source: SourceText) -> Fix | None:
     line, column = source.position(tag[0])
     before = source.line_text(line)[: column - 1]
     comment = f"<!-- fishbot: ignore[{finding.rule}] -->"
-    text = f"{comment}\n{before}" if not before.strip() else f"{comment} "
+    text = f"{comment}{source.newline}{before}" if not before.strip() else f"{comment} "
     return Fix(
         f"silence {finding.rule} here{where}",
         (_edit(source, tag[0], tag[0], text),),

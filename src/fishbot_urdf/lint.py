@@ -22,7 +22,7 @@ from .diagnostics import (
     without_consequences,
 )
 from .fixes import attach
-from .inputs import allowing_reads, read_input
+from .inputs import allowing_reads, read_input, reads_allowed, trusts_expressions
 from .model import Robot
 from .packages import PackageFinder
 from .parsing import is_xacro_path, read
@@ -33,7 +33,7 @@ from .suppress import apply_suppressions, suppressions
 from .targets import consumers_of, retarget, targets_of, urdfdom_refuses
 from .validation import values
 from .validation._readable import finite, readable
-from .workspace import Workspace
+from .workspace import Workspace, package_key
 
 if TYPE_CHECKING:
     from .packages import PackageFinder
@@ -123,9 +123,20 @@ def check_file(
     if workspace is None:
         return _checked(source, path, args, packages, config, None, fixes)
     finder = workspace.packages if packages is None else packages
-    given = () if isinstance(finder, PackageFinder) else tuple(sorted(map(str, finder.items())))
     named = source if isinstance(source, bytes) else os.path.abspath(source)
-    key = ("check", named, path, tuple(sorted((args or {}).items())), given, repr(config), fixes)
+    # Everything the answer depends on besides the files it reads: the context's trust and
+    # the folders it allows too.
+    key = (
+        "check",
+        named,
+        path,
+        tuple(sorted((args or {}).items())),
+        package_key(finder),
+        repr(config),
+        fixes,
+        trusts_expressions(),
+        reads_allowed(),
+    )
     return workspace.memo(
         key, lambda: _checked(source, path, args, finder, config, workspace, fixes)
     )

@@ -54,6 +54,12 @@ class SourceText:
         counts columns), a leading byte-order mark kept as one character."""
         return cls(path, data.decode("utf-8", "replace"))
 
+    @property
+    def newline(self) -> str:
+        """The file's line break: CRLF if its first line ends so, else LF."""
+        first = self.text.find("\n")
+        return "\r\n" if first > 0 and self.text[first - 1] == "\r" else "\n"
+
     def offset(self, line: int, column: int) -> int | None:
         """The offset of a position, or None when the text has no such place."""
         if not 1 <= line <= len(self._starts) or column < 1:

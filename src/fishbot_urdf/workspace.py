@@ -36,13 +36,13 @@ from typing import Any, TypeVar
 from .inputs import looking_for, note_looked, read_input, reading_through, recording_inputs
 from .packages import PackageFinder
 
-__all__ = ["Workspace"]
+__all__ = ["Workspace", "package_key"]
 
 T = TypeVar("T")
 
 Fingerprint = tuple[Any, ...] | None
 """What a file was when an answer read it: ``("text", hash, length)`` for a held text,
-``(mtime_ns, size, inode)`` for a file on disk, None for a file that was not there."""
+``(mtime_ns, ctime_ns, size, inode)`` for a file on disk, None for a file that was not there."""
 
 # The fingerprints of the files read from disk by the answer being made, each taken just
 # before the file was read (see Workspace.buffer).
@@ -105,13 +105,12 @@ class Workspace:
 
     def buffer(self, path: str) -> bytes | None:
         """The text held for ``path`` (the overlay `fishbot_urdf.inputs.read_input` asks);
-        for a file read from disk inside `memo`, its fingerprint is taken now, before it is
-        read, so that a change while the answer is made makes the answer stale."""
+        inside `memo`, the fingerprint of what is given is taken now (a file on disk before
+        it is read), so that a change while the answer is made makes the answer stale."""
         held = self._texts.get(_key(path)) if self._texts else None
-        if held is None:
-            seen = _SEEN.get()
-            if seen is not None and path not in seen:
-                seen[path] = self.fingerprint(path)
+        seen = _SEEN.get()
+        if seen is not None and path not in seen:
+            seen[path] = self.fingerprint(path) if held is None else _text_print(held)
         return held
 
     def held(self) -> tuple[str, ...]:
@@ -140,12 +139,12 @@ class Workspace:
         """What ``path`` is now (see `Fingerprint`)."""
         held = self._texts.get(_key(path))
         if held is not None:
-            return ("text", hash(held), len(held))
+            return _text_print(held)
         try:
             status = os.stat(path)
         except (OSError, ValueError):
             return None
-        return (status.st_mtime_ns, status.st_size, status.st_ino)
+        return (status.st_mtime_ns, status.st_ctime_ns, status.st_size, status.st_ino)
 
     # -- the answers ---------------------------------------------------------------------
     def memo(self, key: Hashable, make: Callable[[], T]) -> T:
@@ -206,5 +205,17 @@ class Workspace:
                 self._answers.pop(key, None)
 
 
+def _text_print(text: bytes) -> Fingerprint:
+    return ("text", hash(text), len(text))
+
+
 def _key(path: str | Path) -> str:
     return os.path.normpath(os.path.abspath(path))
+
+
+def package_key(packages: Mapping[str, str | Path] | PackageFinder) -> Hashable:
+    """How an answer's key names the packages it was made with: a finder by itself (its
+    answers are its own), folders by their names and paths."""
+    if isinstance(packages, PackageFinder):
+        return ("finder", id(packages), tuple(sorted(map(str, packages.packages.items()))))
+    return tuple(sorted(map(str, packages.items())))

@@ -346,6 +346,10 @@ def check(
         raise click.UsageError("no FILE to check (name:=value arguments go with a .xacro file)")
     if isolated and config_file is not None:
         raise click.UsageError("--config and --isolated cannot be used together")
+    if (fix or diff) and "-" in names:
+        raise click.UsageError("--fix and --diff mend files: give the file, not - (stdin)")
+    if diff and (fmt != "text" or output is not None):
+        raise click.UsageError("--diff prints a diff on stdout: no --format or -o with it")
     options = _Options(
         select=tuple(r for group in select for r in group) if select else None,
         extend_select=tuple(r for group in extend_select for r in group),
@@ -366,10 +370,10 @@ def check(
         except FishbotUrdfError as exc:
             stop_on(exc)
 
-    if fix or diff:
-        _fixing(names, configs, args, packages, diff=diff, unsafe=unsafe_fixes)
-
     status = EXIT_OK
+    if fix or diff:
+        status = _fixing(names, configs, args, packages, diff=diff, unsafe=unsafe_fixes)
+
     reports: list[FileReport] = []
     # Never written over: the files checked (standard input, when it is a file), what
     # they read, the configuration files read (pyproject.toml files without a table too).
@@ -409,23 +413,37 @@ def _fixing(
     *,
     diff: bool,
     unsafe: bool,
-) -> None:
-    """--diff: print the fixes and stop (1: there are some); --fix: write them and go on."""
+) -> int:
+    """--diff: print the fixes and stop (1: there are some); --fix: write them and go on
+    (the status so far: 2 if a file could not be written, which the others still are)."""
     from ._fixing import fix_files, write_fixed  # difflib and the fixes load only here
 
     fixed = fix_files(names, configs, args, packages, unsafe=unsafe)
     if diff:
         to_stdout(fixed.diff().encode("utf-8", "surrogateescape"))
+        _say_hidden(fixed.hidden)
         sys.exit(EXIT_INVALID if fixed.changed() else EXIT_OK)
-    try:
-        write_fixed(fixed)
-    except FishbotUrdfError as exc:
-        stop_on(exc)
+    failed = write_fixed(fixed)
+    emit_findings(fail(exc) for exc in failed)
     changed = fixed.changed()
     if changed:
         files = "1 file" if len(changed) == 1 else f"{len(changed)} files"
         fixes = "1 fix" if fixed.count == 1 else f"{fixed.count} fixes"
         click.echo(f"fishbot check: {fixes} made in {files}", err=True)
+    for path in dict.fromkeys(fixed.refused):
+        click.echo(
+            f"fishbot check: {shown_path(path)}: a fix left out: another robot that reads "
+            "the file had more findings with it",
+            err=True,
+        )
+    _say_hidden(fixed.hidden)
+    return EXIT_USAGE if failed else EXIT_OK  # a file not written: an I/O fault
+
+
+def _say_hidden(count: int) -> None:
+    if count:
+        fixes = "1 more fix" if count == 1 else f"{count} more fixes"
+        click.echo(f"fishbot check: {fixes} with --unsafe-fixes", err=True)
 
 
 def _tree_file(output: str | None, inputs: list[Source]) -> AtomicFile | None:

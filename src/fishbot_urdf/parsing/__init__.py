@@ -20,7 +20,7 @@ from ..extensions import Reference
 from ..inputs import reads_allowed, trusts_expressions
 from ..model import Location, Robot
 from ..packages import PackageFinder
-from ..workspace import Workspace
+from ..workspace import Workspace, package_key
 from ..xml.source import STRING_PATH, XmlDocument, read_bytes, read_xml
 from ..xml.stream import Unstreamable
 from ._reader import Reader
@@ -139,12 +139,11 @@ def _expansion(
     if workspace is None:
         return expand(source, args=args, packages=packages)
     finder = workspace.packages if packages is None else packages
-    given = () if isinstance(finder, PackageFinder) else tuple(sorted(map(str, finder.items())))
     key = (
         "expansion",
         os.path.abspath(source),
         tuple(sorted((args or {}).items())),
-        given,
+        package_key(finder),
         trusts_expressions(),
         reads_allowed(),
     )
