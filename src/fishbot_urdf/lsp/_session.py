@@ -6,8 +6,9 @@ from __future__ import annotations
 import asyncio
 import logging
 import os
-from collections.abc import Collection, Iterable, Mapping
+from collections.abc import Callable, Collection, Iterable, Mapping
 from concurrent.futures import ThreadPoolExecutor
+from typing import TypeVar
 
 from lsprotocol import types
 from pygls.lsp.server import LanguageServer
@@ -23,6 +24,8 @@ DEBOUNCE = 0.075
 """Seconds from the last change to the check (a burst of keystrokes is checked once)."""
 
 logger = logging.getLogger(__name__)
+
+T = TypeVar("T")
 
 
 class Session:
@@ -133,13 +136,7 @@ class Session:
         units: Units,
         cancellation: Cancellation,
     ) -> Round | None:
-        for path, text in texts.items():
-            if text is None:
-                self.workspace.close(path)
-            else:
-                self.workspace.open(path, text)
-        if forget:
-            self.workspace.forget(None)
+        self._lay(texts, forget)
         with cancellable(cancellation):
             try:
                 return check_round(self.workspace, opened, known, units)
@@ -148,6 +145,22 @@ class Session:
             except Exception:  # a fault of the server's own: said, and the session goes on
                 logger.exception("checking %s", ", ".join(sorted(opened)))
                 return None
+
+    def _lay(self, texts: Mapping[str, str | None], forget: bool) -> None:
+        """Lay the editor's texts over the disk (None: let go of one), in the worker."""
+        for path, text in texts.items():
+            if text is None:
+                self.workspace.close(path)
+            else:
+                self.workspace.open(path, text)
+        if forget:
+            self.workspace.forget(None)
+
+    def _answer(
+        self, texts: Mapping[str, str | None], forget: bool, question: Callable[[], T]
+    ) -> T:
+        self._lay(texts, forget)
+        return question()
 
     def _publish(self, found: Round) -> None:
         self.tops_of = dict(found.tops_of)
@@ -176,6 +189,18 @@ class Session:
             )
 
     # -- what the requests ask -----------------------------------------------------------
+    async def ask(self, question: Callable[[], T]) -> T | None:
+        """The answer of ``question`` (which reads through the workspace), asked in the
+        worker after the check under way, once the editor's latest texts are laid over the
+        disk (the round to come finds them there); None when the session has ended."""
+        texts, forget = self._texts, self._forget
+        self._texts, self._forget = {}, False
+        loop = asyncio.get_running_loop()
+        try:
+            return await loop.run_in_executor(self._worker, self._answer, texts, forget, question)
+        except RuntimeError:  # the worker has stopped: the session is ending
+            return None
+
     def units(self) -> Units:
         """How the client counts the characters of a position."""
         return self.server.workspace.position_codec.client_num_units
