@@ -12,7 +12,7 @@ from lsprotocol import types
 from pygls.exceptions import JsonRpcException
 from pygls.lsp.server import LanguageServer
 
-from ..errors import ArgumentError
+from ..errors import ArgumentError, FishbotUrdfError
 from ..navigation import Index, symbols
 from ._answers import (
     LinesOf,
@@ -71,7 +71,9 @@ def register(server: LanguageServer, session: Session, hovers: Hovers) -> None:
             answer = await session.ask(asked)
         except ArgumentError as exc:  # a rename refused: the client shows why
             raise JsonRpcException(str(exc), code=types.LSPErrorCodes.RequestFailed) from exc
-        except Exception:  # a file gone, or a fault of the server's own: nothing said
+        except FishbotUrdfError:  # the file is gone, or cannot be read: nothing to say
+            return empty
+        except Exception:  # a fault of the server's own: said, and nothing answered
             logger.exception("answering at %s:%s", path, position)
             return empty
         return empty if answer is None else answer
@@ -129,7 +131,9 @@ def register(server: LanguageServer, session: Session, hovers: Hovers) -> None:
 
         try:
             return await session.ask(outline) or []
-        except Exception:  # a file gone, or a fault of the server's own: nothing said
+        except FishbotUrdfError:  # the file is gone, or cannot be read
+            return []
+        except Exception:  # a fault of the server's own: said, and nothing answered
             logger.exception("the symbols of %s", path)
             return []
 
