@@ -4,6 +4,7 @@ across the fishbot's files, found through `$(find fishbot_description)`."""
 
 from __future__ import annotations
 
+import asyncio
 import re
 import shutil
 import subprocess
@@ -350,3 +351,34 @@ async def test_an_unsaved_link_is_found(package: Path, tmp_path: Path) -> None:
         assert await _definition(client, top, used) == [
             _location(top, '<link name="tray_link"/>', "tray_link", edited)
         ]
+
+
+def _chain(size: int) -> str:
+    """A URDF robot of ``size`` links, each hanging from the last."""
+    links = "".join(f'  <link name="link_{i}"/>\n' for i in range(size))
+    joints = "".join(
+        f'  <joint name="joint_{i}" type="fixed">'
+        f'<parent link="link_{i - 1}"/><child link="link_{i}"/></joint>\n'
+        for i in range(1, size)
+    )
+    return f'<?xml version="1.0"?>\n<robot name="chain">\n{links}{joints}</robot>\n'
+
+
+async def test_a_change_cancels_a_question_under_way(tmp_path: Path) -> None:
+    # (a check of it takes the better part of a second: the question, which waits for it,
+    # is still under way when the next change comes)
+    path = tmp_path / "chain.urdf"
+    text = _chain(10_000)
+    path.write_text(text, encoding="utf-8")
+    used = _position(text, '<parent link="link_0"/>', len('<parent link="'))
+    async with running(tmp_path) as client:
+        uri = client.open(path)
+        await client.diagnostics_for(uri, 1)
+        client.change(uri, 2, text + "\n")
+        asked = asyncio.ensure_future(_definition(client, path, used))
+        await asyncio.sleep(0.05)
+        client.change(uri, 3, text + "\n\n")
+        assert await asked == []  # cancelled: answered at once, with nothing
+        await client.diagnostics_for(uri, 3)
+        found = await _definition(client, path, used)
+        assert found == [_location(path, '<link name="link_0"/>', "link_0")]
