@@ -382,3 +382,32 @@ async def test_a_change_cancels_a_question_under_way(tmp_path: Path) -> None:
         await client.diagnostics_for(uri, 3)
         found = await _definition(client, path, used)
         assert found == [_location(path, '<link name="link_0"/>', "link_0")]
+
+
+async def test_renaming_a_property_and_a_macro(package: Path, tmp_path: Path) -> None:
+    top = package / URDF / "fishbot.urdf.xacro"
+    caster = package / URDF / "actuator" / "caster.urdf.xacro"
+    text = top.read_text(encoding="utf-8")
+    async with running(tmp_path) as client:
+        client.open(top)
+        where = _at(top, "${caster_radius}", 3)
+        edit = await client.text_document_rename_async(
+            types.RenameParams(_doc(top), where, "ball_radius")
+        )
+        assert edit is not None and edit.changes is not None
+        assert list(edit.changes) == [top.as_uri()]
+        renamed = _applied(text, edit.changes[top.as_uri()])
+        assert "caster_radius" not in renamed
+        assert renamed.count("ball_radius") == 1 + text.count("${caster_radius}")
+        with pytest.raises(JsonRpcException, match="already defined"):
+            await client.text_document_rename_async(
+                types.RenameParams(_doc(top), where, "caster_mass")
+            )
+        call = _at(top, "<xacro:caster_xacro", len("<xacro:") + 1)
+        edit = await client.text_document_rename_async(
+            types.RenameParams(_doc(top), call, "ball_xacro")
+        )
+        assert edit is not None and edit.changes is not None
+        assert set(edit.changes) == {top.as_uri(), caster.as_uri()}
+        renamed = _applied(text, edit.changes[top.as_uri()])
+        assert renamed.count("<xacro:ball_xacro ") == text.count("<xacro:caster_xacro ")
