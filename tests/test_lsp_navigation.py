@@ -225,10 +225,15 @@ async def test_a_name_built_by_an_expression_is_not_renamed_and_the_client_is_to
     async with running(tmp_path) as client:
         client.open(caster)
         where = _at(caster, '<link name="${name}_caster_link">', len('<link name="${name}_c'))
-        refused = await client.text_document_prepare_rename_async(
-            types.PrepareRenameParams(_doc(caster), where)
+        with pytest.raises(JsonRpcException, match="builds several names") as refused:
+            await client.text_document_prepare_rename_async(
+                types.PrepareRenameParams(_doc(caster), where)
+            )
+        assert refused.value.code == types.LSPErrorCodes.RequestFailed
+        nothing = await client.text_document_prepare_rename_async(
+            types.PrepareRenameParams(_doc(caster), types.Position(0, 0))
         )
-        assert refused is None
+        assert nothing is None  # no name there
         with pytest.raises(JsonRpcException, match="builds several names") as raised:
             await client.text_document_rename_async(
                 types.RenameParams(_doc(caster), where, "ball_link")

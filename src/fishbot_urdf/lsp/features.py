@@ -98,7 +98,12 @@ def register(server: LanguageServer, session: Session, hovers: Hovers) -> None:
     async def prepare_rename(params: types.PrepareRenameParams) -> types.Range | None:
         def name(index: Index, where: Place, lines_of: LinesOf) -> types.Range | None:
             span = index.prepare_rename(*where)
-            return None if span is None else span_range(span, lines_of)
+            if span is not None:
+                return span_range(span, lines_of)
+            refusal = index.rename_refusal(*where)
+            if refusal is not None:  # a name is there: the client shows why not
+                raise ArgumentError(refusal)
+            return None
 
         return await at(path_of(params.text_document.uri), params.position, name, None)
 
