@@ -416,3 +416,26 @@ async def test_renaming_a_property_and_a_macro(package: Path, tmp_path: Path) ->
         assert set(edit.changes) == {top.as_uri(), caster.as_uri()}
         renamed = _applied(text, edit.changes[top.as_uri()])
         assert renamed.count("<xacro:ball_xacro ") == text.count("<xacro:caster_xacro ")
+
+
+async def test_positions_count_utf16_units(tmp_path: Path) -> None:
+    # an emoji is one character and two UTF-16 units
+    path = tmp_path / "wide.urdf"
+    text = (
+        '<robot name="r"><!-- 🤖 --><link name="bäse"/><link name="arm"/>\n'
+        '<joint name="j" type="fixed"><!-- 🤖🤖 --><parent link="bäse"/>'
+        '<child link="arm"/></joint>\n'
+        "</robot>\n"
+    )
+    path.write_text(text, encoding="utf-8")
+    first, second = text.split("\n")[:2]
+
+    def units(line: str, needle: str) -> int:
+        return len(line[: line.index(needle)].encode("utf-16-le")) // 2
+
+    async with running(tmp_path) as client:
+        client.open(path)
+        used = types.Position(1, units(second, '"bäse"') + 2)
+        start = units(first, '"bäse"') + 1
+        where = types.Range(types.Position(0, start), types.Position(0, start + 4))
+        assert await _definition(client, path, used) == [types.Location(path.as_uri(), where)]
