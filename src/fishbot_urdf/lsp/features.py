@@ -53,8 +53,8 @@ def register(server: LanguageServer, session: Session, hovers: Hovers) -> None:
     and its caches) in the session's worker (`Session.ask`: after the check under way,
     with the editor's latest texts), and converts the answer (`_answers`). A hover over a
     name is a provider added to ``hovers``, shown after the findings'. Anything that goes
-    wrong answers nothing (an empty answer, logged), but a rename the library refuses,
-    whose reason is the request's error.
+    wrong answers nothing (a file that cannot be read quietly, a fault of the server's own
+    logged), but a rename the library refuses, whose reason is the request's error.
     """
 
     async def at(path: str | None, position: types.Position, question: Question[T], empty: T) -> T:
