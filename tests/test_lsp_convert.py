@@ -3,6 +3,7 @@ finding of a macro at its call, quick fixes."""
 
 from __future__ import annotations
 
+import asyncio
 import os
 
 import pytest
@@ -160,9 +161,9 @@ def test_hover_providers_each_say_their_part_in_order(tmp_path) -> None:
     hovers = Hovers()
     hovers.add(lambda session, path, position: f"a name at {position.line}:{position.character}")
     hovers.add(lambda session, path, position: None)  # says nothing
-    said = hovers.hover(Findings(), "robot.urdf", _p(1, 5))  # type: ignore[arg-type]
+    said = asyncio.run(hovers.hover(Findings(), "robot.urdf", _p(1, 5)))  # type: ignore[arg-type]
     assert said is not None and isinstance(said.contents, types.MarkupContent)
     rule = markdown_explanation(get("undefined-link")).strip()
     assert said.contents.value == f"**the message**\n\n{rule}\n\n---\n\na name at 1:5"
-    elsewhere = hovers.hover(Findings(), "robot.urdf", _p(4, 0))  # type: ignore[arg-type]
+    elsewhere = asyncio.run(hovers.hover(Findings(), "robot.urdf", _p(4, 0)))  # type: ignore[arg-type]
     assert elsewhere is not None and elsewhere.contents.value == "a name at 4:0"  # type: ignore[union-attr]

@@ -211,8 +211,11 @@ def test_a_name_built_by_an_expression_cannot_be_renamed(package: Path) -> None:
     where = at(caster, '<link name="${name}_caster_link">', len('<link name="${name}_c'))
     assert {written(s) for s in index.definition(*where)} == {"${name}_caster_link"}
     assert index.prepare_rename(*where) is None
-    with pytest.raises(ArgumentError, match="builds several names"):
+    with pytest.raises(ArgumentError, match="builds several names") as raised:
         index.rename(*where, "x")
+    assert index.rename_refusal(*where) == str(raised.value)
+    assert index.rename_refusal(*at(caster, '"base_link"', 1)) is None  # it can be
+    assert index.rename_refusal(caster, 1, 1) is None  # nothing is named there
     with pytest.raises(ArgumentError, match="cannot name a link"):
         index.rename(*at(caster, '"base_link"', 1), "two words")
 

@@ -38,7 +38,8 @@ COMMANDS = {
     "or ROS needed.",
     "lsp": "The language server for URDF and xacro files, over standard input and output: the "
     "findings of `fishbot check` as you type, in the file each is in (and at the macro call "
-    "that made it), quick fixes, and each rule explained on hover.",
+    "that made it), quick fixes, and each rule explained on hover; go to definition, "
+    "references, rename, completion and the outline of the robot's names across its files.",
     "sdf": "The SDF of FILE (URDF or xacro) as Gazebo's converter makes it: what `ign sdf -p` "
     "prints.",
     "view": "Show FILE (URDF or xacro) in a web browser: visuals in their colours, link frames as "

@@ -34,10 +34,11 @@ _COLLECT_EVERY = 100_000  # new container objects between two young collections 
 def lsp(stdio: bool, debounce: int) -> None:
     """The language server for URDF and xacro files, over standard input and output: the
     findings of `fishbot check` as you type, in the file each is in (and at the macro call
-    that made it), quick fixes, and each rule explained on hover. An included file is
-    checked through the robots of its package that include it. Needs `pip install
-    'fishbot-urdf[lsp]'`; docs/editors.md says how to set up VS Code, Neovim, Helix and
-    Emacs.
+    that made it), quick fixes, and each rule explained on hover; go to definition,
+    references, rename, completion and the outline of the robot's names across its
+    files. An included file is checked through the robots of its package that include
+    it. Needs `pip install 'fishbot-urdf[lsp]'`; docs/editors.md says how to set up VS
+    Code, Neovim, Helix and Emacs.
 
     \b
     Examples:

@@ -1,6 +1,7 @@
 """The language server of `fishbot lsp`: the findings of `fishbot check` as an editor's
 diagnostics as you type, their fixes as quick fixes, and each rule explained on hover, for
-URDF and xacro files; a front end over the library, like the command line."""
+URDF and xacro files, and the navigation of a robot's names; a front end over the library,
+like the command line."""
 
 from __future__ import annotations
 

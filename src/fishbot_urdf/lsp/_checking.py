@@ -11,12 +11,21 @@ from ..diagnostics import Diagnostic
 from ..errors import FishbotUrdfError
 from ..fixes import error_finding
 from ..lint import check_file
+from ..navigation import Index
 from ..sourcetext import Texts
 from ..tops import find_tops, nearest_config
 from ..workspace import Workspace
 from ._convert import Lines, Shown, Units, shown_findings
 
-__all__ = ["Checked", "Round", "check_round", "findings_of", "lines_reader", "merged"]
+__all__ = [
+    "Checked",
+    "Round",
+    "check_round",
+    "findings_of",
+    "index_of",
+    "lines_reader",
+    "merged",
+]
 
 
 @dataclass(frozen=True, slots=True)
@@ -71,6 +80,26 @@ def findings_of(top: str, workspace: Workspace) -> tuple[Diagnostic, ...]:
         return check_file(top, config=config, workspace=workspace, fixes=True).diagnostics
     except FishbotUrdfError as exc:
         return (error_finding(exc, Texts(workspace.read), top, top),)
+
+
+def index_of(path: str, workspace: Workspace) -> Index:
+    """The navigation index of the first robot ``path`` belongs to whose check reads it
+    (the check kept by the last round, while none of its files changed), else of ``path``
+    alone (a robot that cannot be read in the middle of an edit, a file no robot reads).
+
+    Raises:
+        FishbotUrdfError: ``path`` cannot be read.
+    """
+    for top in find_tops(path, workspace):
+        try:
+            config = nearest_config(top, workspace)
+            result = check_file(top, config=config, workspace=workspace, fixes=True)
+        except FishbotUrdfError:
+            continue
+        index = Index.of(workspace, result)
+        if path in index.files:
+            return index
+    return Index.of_file(workspace, path)
 
 
 class _LinesOf:

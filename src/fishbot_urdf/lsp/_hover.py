@@ -3,7 +3,8 @@ a finding there is about."""
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import inspect
+from collections.abc import Awaitable, Callable
 
 from lsprotocol import types
 
@@ -15,8 +16,9 @@ from ._session import Session
 
 __all__ = ["HoverProvider", "Hovers", "finding_hover"]
 
-HoverProvider = Callable[[Session, str, types.Position], "str | None"]
-"""Markdown about a place (the session, a file's absolute path, a position in it), or None."""
+HoverProvider = Callable[[Session, str, types.Position], "str | Awaitable[str | None] | None"]
+"""Markdown about a place (the session, a file's absolute path, a position in it), or None;
+a provider that asks the session's worker is a coroutine function."""
 
 
 class Hovers:
@@ -29,9 +31,17 @@ class Hovers:
         """Ask ``provider`` too, after those added before it."""
         self.providers.append(provider)
 
-    def hover(self, session: Session, path: str, position: types.Position) -> types.Hover | None:
+    async def hover(
+        self, session: Session, path: str, position: types.Position
+    ) -> types.Hover | None:
         """What the providers say about ``position`` in ``path``, or None."""
-        parts = [text for ask in self.providers if (text := ask(session, path, position))]
+        parts = []
+        for ask in self.providers:
+            text = ask(session, path, position)
+            if inspect.isawaitable(text):
+                text = await text
+            if text:
+                parts.append(text)
         if not parts:
             return None
         markdown = types.MarkupContent(

@@ -110,9 +110,9 @@ def _register(it: Server) -> None:
             return
 
     @server.feature(types.TEXT_DOCUMENT_HOVER)
-    def hover(params: types.HoverParams) -> types.Hover | None:
+    async def hover(params: types.HoverParams) -> types.Hover | None:
         path = path_of(params.text_document.uri)
-        return None if path is None else it.hovers.hover(session, path, params.position)
+        return None if path is None else await it.hovers.hover(session, path, params.position)
 
     @server.feature(
         types.TEXT_DOCUMENT_CODE_ACTION,

@@ -6,8 +6,9 @@ from __future__ import annotations
 import asyncio
 import logging
 import os
-from collections.abc import Collection, Iterable, Mapping
+from collections.abc import Callable, Collection, Iterable, Mapping
 from concurrent.futures import ThreadPoolExecutor
+from typing import TypeVar
 
 from lsprotocol import types
 from pygls.lsp.server import LanguageServer
@@ -23,6 +24,8 @@ DEBOUNCE = 0.075
 """Seconds from the last change to the check (a burst of keystrokes is checked once)."""
 
 logger = logging.getLogger(__name__)
+
+T = TypeVar("T")
 
 
 class Session:
@@ -53,6 +56,7 @@ class Session:
         self._worker = ThreadPoolExecutor(1, thread_name_prefix="fishbot-check")
         self._texts: dict[str, str | None] = {}  # to hold (None: to let go) before a round
         self._forget = False  # every answer and package found, before a round
+        self._asked: set[Cancellation] = set()  # the questions under way, cancelled by a change
 
     # -- the editor's changes ------------------------------------------------------------
     def opened(self, path: str, text: str, version: int | None, *, robot: bool = True) -> None:
@@ -84,6 +88,7 @@ class Session:
         among them, or are no longer wanted), cancelling the check under way."""
         self.unheard.update(p for p in paths if p in self.versions)
         self.generation += 1
+        self._cancel_questions()
         if self._cancellation is not None:
             self._cancellation.cancel()
         if self._timer is not None:
@@ -97,7 +102,13 @@ class Session:
             self._timer.cancel()
         if self._cancellation is not None:
             self._cancellation.cancel()
+        self._cancel_questions()
         self._worker.shutdown(wait=False, cancel_futures=True)
+
+    def _cancel_questions(self) -> None:
+        for cancellation in self._asked:
+            cancellation.cancel()
+        self._asked.clear()
 
     # -- the rounds ----------------------------------------------------------------------
     def _start(self) -> None:
@@ -133,13 +144,7 @@ class Session:
         units: Units,
         cancellation: Cancellation,
     ) -> Round | None:
-        for path, text in texts.items():
-            if text is None:
-                self.workspace.close(path)
-            else:
-                self.workspace.open(path, text)
-        if forget:
-            self.workspace.forget(None)
+        self._lay(texts, forget)
         with cancellable(cancellation):
             try:
                 return check_round(self.workspace, opened, known, units)
@@ -147,6 +152,30 @@ class Session:
                 return None
             except Exception:  # a fault of the server's own: said, and the session goes on
                 logger.exception("checking %s", ", ".join(sorted(opened)))
+                return None
+
+    def _lay(self, texts: Mapping[str, str | None], forget: bool) -> None:
+        """Lay the editor's texts over the disk (None: let go of one), in the worker."""
+        for path, text in texts.items():
+            if text is None:
+                self.workspace.close(path)
+            else:
+                self.workspace.open(path, text)
+        if forget:
+            self.workspace.forget(None)
+
+    def _answer(
+        self,
+        texts: Mapping[str, str | None],
+        forget: bool,
+        question: Callable[[], T],
+        cancellation: Cancellation,
+    ) -> T | None:
+        self._lay(texts, forget)
+        with cancellable(cancellation):
+            try:
+                return question()
+            except Cancelled:
                 return None
 
     def _publish(self, found: Round) -> None:
@@ -176,6 +205,25 @@ class Session:
             )
 
     # -- what the requests ask -----------------------------------------------------------
+    async def ask(self, question: Callable[[], T]) -> T | None:
+        """The answer of ``question`` (which reads through the workspace), asked in the
+        worker after the check under way, once the editor's latest texts are laid over the
+        disk (the round to come finds them there); None when a change came first (the
+        question is cancelled, as a check is) or the session has ended."""
+        texts, forget = self._texts, self._forget
+        self._texts, self._forget = {}, False
+        cancellation = Cancellation()
+        self._asked.add(cancellation)
+        loop = asyncio.get_running_loop()
+        try:
+            return await loop.run_in_executor(
+                self._worker, self._answer, texts, forget, question, cancellation
+            )
+        except RuntimeError:  # the worker has stopped: the session is ending
+            return None
+        finally:
+            self._asked.discard(cancellation)
+
     def units(self) -> Units:
         """How the client counts the characters of a position."""
         return self.server.workspace.position_codec.client_num_units

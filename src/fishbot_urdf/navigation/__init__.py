@@ -15,7 +15,8 @@ properties.
   checked, kept in the workspace until a file it read changes; ``Index.of_file(workspace,
   path)`` for a file no robot checked (what it defines and uses itself). Then, at
   ``(path, line, column)``: ``definition`` -> spans, ``references(..., declaration=True)``
-  -> spans, ``prepare_rename`` -> the span of the name or None, ``rename(..., new_name)``
+  -> spans, ``prepare_rename`` -> the span of the name or None, ``rename_refusal`` -> why the
+  name there cannot be renamed or None, ``rename(..., new_name)``
   -> ``{path: [(span, new text), ...]}`` (raises `~fishbot_urdf.errors.ArgumentError`
   saying why not: a name built by an expression, an invalid or taken new name),
   ``completion`` -> completions, ``hover`` -> Markdown or None;

@@ -85,6 +85,18 @@ class Index:
             return None
         return self._table.span(entries[0])
 
+    def rename_refusal(self, path: str, line: int, column: int) -> str | None:
+        """Why the name at the place cannot be renamed (a name built by an expression, one
+        handed to a macro by its call), or None when it can be or none is written there."""
+        entries = self._table.at(path, line, column)
+        if not entries:
+            return None
+        try:
+            renamable(self._table, entries)
+        except ArgumentError as exc:
+            return str(exc)
+        return None
+
     def rename(
         self, path: str, line: int, column: int, new_name: str
     ) -> dict[str, list[tuple[Span, str]]]:
