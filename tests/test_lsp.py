@@ -216,3 +216,25 @@ async def test_a_client_that_can_watch_files_is_asked_to_watch_the_robots_files(
         options = registration.register_options
         globs = [w["globPattern"] for w in options["watchers"]]  # type: ignore[index]
         assert globs == ["**/*.{urdf,xacro,yaml,yml,toml,xml,stl,STL,dae,obj,OBJ}"]
+
+
+async def test_no_quick_fix_is_offered_for_a_text_changed_since_its_findings(
+    package: Path,
+) -> None:
+    """An edit made before the next check: the fixes' places are the old text's, and
+    applying one would write into the wrong columns."""
+    base = package / URDF / "base.urdf.xacro"
+    async with running(ROOT, "--debounce", "2000") as client:
+        uri, typo = await _misspell_base_footprint(client, base)
+        (finding,) = _errors(await client.diagnostics_for(uri, 2))
+        start = types.Position(typo.start.line, 0)
+        client.change(uri, 3, "<!--a-->", types.Range(start, start))  # columns move
+        actions = await client.text_document_code_action_async(
+            types.CodeActionParams(
+                types.TextDocumentIdentifier(uri),
+                finding.range,
+                types.CodeActionContext(diagnostics=[finding]),
+            )
+        )
+        assert not actions
+        assert _errors(await client.diagnostics_for(uri, 3))  # the new text's, once checked

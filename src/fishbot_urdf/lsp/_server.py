@@ -120,12 +120,15 @@ def _register(it: Server) -> None:
     )
     def code_action(params: types.CodeActionParams) -> list[types.CodeAction] | None:
         path = path_of(params.text_document.uri)
-        if path is None:
+        if path is None or path in session.unheard:
+            # (changed since its findings were shown: their edits' places are the old text's)
             return None
-        actions = []
+        actions: dict[tuple[str, str], types.CodeAction] = {}
         for shown in session.findings_in(path, params.range):
-            actions.extend(code_actions(shown, session.lines))
-        return actions
+            for action in code_actions(shown, session.lines):
+                # two calls of one macro: two findings, one fix
+                actions.setdefault((action.title, repr(action.edit)), action)
+        return list(actions.values())
 
     @server.feature(types.SHUTDOWN)
     def shutdown(params: None) -> None:
