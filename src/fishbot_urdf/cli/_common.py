@@ -14,7 +14,14 @@ from typing import IO, TYPE_CHECKING, Any, NoReturn, TypeVar
 import click
 
 from ..diagnostics import Diagnostic, Severity, escape_controls, from_error
-from ..errors import ConfigError, FishbotUrdfError, InputError, LimitError, ToolError
+from ..errors import (
+    ConfigError,
+    FishbotUrdfError,
+    InputError,
+    LimitError,
+    ToolError,
+    ToolNotFoundError,
+)
 from ..expansion import ExpansionLimitError, parse_args
 from ..inputs import (
     InputTooLargeError,
@@ -91,6 +98,19 @@ def fail(exc: FishbotUrdfError) -> Diagnostic:
         return finding
     message, hint = phrasing
     return replace(finding, message=message, hint=hint)
+
+
+def not_installed(exc: ToolNotFoundError, command: str, needs: str) -> Diagnostic:
+    """The line for an optional package not installed (viser, pygls): about ``command`` and
+    the setup, not the input; ``needs`` names what needs the package."""
+    return replace(
+        fail(exc),
+        path=command,
+        subject=None,
+        message=f"setup: the {exc.tool} package, an optional part of fishbot-urdf that "
+        f"{needs} needs, is not installed",
+        hint=f"install it: {exc.hint}",
+    )
 
 
 def status_of(exc: FishbotUrdfError) -> int:

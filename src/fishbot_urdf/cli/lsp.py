@@ -4,14 +4,12 @@ from __future__ import annotations
 
 import gc
 import sys
-from dataclasses import replace
 
 import click
 
-from ..diagnostics import Diagnostic
 from ..errors import ToolNotFoundError
 from ..lsp import serve
-from ._common import emit_findings, fail, status_of
+from ._common import emit_findings, not_installed, status_of
 
 _COLLECT_EVERY = 100_000  # new container objects between two young collections (Python: 700)
 
@@ -51,18 +49,6 @@ def lsp(stdio: bool, debounce: int) -> None:
     try:
         clean = serve(debounce=debounce / 1000)
     except ToolNotFoundError as exc:  # pygls: the setup's fault
-        emit_findings([_not_installed(exc)])
+        emit_findings([not_installed(exc, "fishbot lsp", "the language server")])
         sys.exit(status_of(exc))  # 2, as view without viser
     sys.exit(0 if clean else 1)  # 1: an exit the client sent without a shutdown first
-
-
-def _not_installed(exc: ToolNotFoundError) -> Diagnostic:
-    """The line for pygls not installed: about the command and the setup."""
-    return replace(
-        fail(exc),
-        path="fishbot lsp",
-        subject=None,
-        message=f"setup: the {exc.tool} package, an optional part of fishbot-urdf that the "
-        "language server needs, is not installed",
-        hint=f"install it: {exc.hint}",
-    )

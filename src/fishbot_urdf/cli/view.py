@@ -6,7 +6,6 @@ from __future__ import annotations
 import sys
 import time
 from collections.abc import Sequence
-from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 import click
@@ -37,6 +36,7 @@ from ._common import (
     joint_option,
     joint_positions,
     limit_options,
+    not_installed,
     package_option,
     packages_option,
     status_of,
@@ -122,7 +122,7 @@ def view(
             report=terminal.report,
         )
     except ToolNotFoundError as exc:  # viser: the setup's fault, not the robot's
-        emit_findings([_not_installed(exc)])
+        emit_findings([not_installed(exc, "fishbot view", "the viewer")])
         sys.exit(status_of(exc))  # 2, as render and graph without Graphviz's dot
     except FishbotUrdfError as exc:  # cannot serve there, a limit reached
         stop_on(exc)
@@ -182,18 +182,6 @@ class _Terminal:
         if found != self.said:
             emit_findings(found)
             self.said = found
-
-
-def _not_installed(exc: ToolNotFoundError) -> Diagnostic:
-    """The line for viser not installed: about the command and the setup, not the input."""
-    return replace(
-        fail(exc),
-        path="fishbot view",
-        subject=None,
-        message=f"setup: the {exc.tool} package, an optional part of fishbot-urdf that the "
-        "viewer needs, is not installed",
-        hint=f"install it: {exc.hint}",
-    )
 
 
 def _say(line: str) -> None:
