@@ -194,6 +194,11 @@ async def test_the_nearest_configuration_applies_saved_or_as_the_editor_holds_it
         # the configuration as the editor holds it, unsaved
         client.open(config, "ignore = []\n")
         await client.until(lambda: "undefined-link" in _codes(client, uri), "the finding back")
+        # a configuration that does not read: said in it, and atop the robot it is for
+        client.change(config.as_uri(), 2, "ignore = [")
+        top = (package / URDF / "fishbot.urdf.xacro").as_uri()
+        await client.until(lambda: "config" in _codes(client, top), "the robot told")
+        assert "config" in _codes(client, config.as_uri())
 
 
 def _codes(client: Client, uri: str) -> list[object]:

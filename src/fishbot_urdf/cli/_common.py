@@ -28,12 +28,14 @@ from ..inputs import (
     allowing_reads,
     max_bytes,
     max_seconds,
+    read_input,
     recording_inputs,
     size_limit,
     time_limit,
     trusting_expressions,
 )
 from ..packages import PackageNotFoundError
+from ..sourcetext import Texts, with_ranges
 from ._hints import command_hint, error_hint
 
 if TYPE_CHECKING:
@@ -91,8 +93,9 @@ def _echo_raw(line: str, stream: IO[str]) -> None:
 
 
 def fail(exc: FishbotUrdfError) -> Diagnostic:
-    """One finding for an exception that stopped a file from being read."""
-    finding = from_error(exc)
+    """One finding for an exception that stopped a file from being read, with its range
+    where the file shows one."""
+    (finding,) = with_ranges([from_error(exc)], Texts(read_input))
     phrasing = error_hint(exc)
     if phrasing is None:
         return finding

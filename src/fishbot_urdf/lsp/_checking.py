@@ -5,7 +5,7 @@ at once), its findings placed in the files they are in."""
 from __future__ import annotations
 
 from collections.abc import Callable, Collection, Iterable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from ..diagnostics import Diagnostic
 from ..errors import FishbotUrdfError
@@ -77,6 +77,11 @@ def findings_of(top: str, workspace: Workspace) -> tuple[Diagnostic, ...]:
     configuration) is one, with its fix where it has one (a property misspelt)."""
     try:
         config = nearest_config(top, workspace)
+    except FishbotUrdfError as exc:  # shown in the configuration, and atop the robot too
+        found = error_finding(exc, Texts(workspace.read), top, top)
+        atop = replace(found, path=top, line=1, column=1, end_line=None, end_column=None)
+        return (found, atop) if found.path != top else (found,)
+    try:
         return check_file(top, config=config, workspace=workspace, fixes=True).diagnostics
     except FishbotUrdfError as exc:
         return (error_finding(exc, Texts(workspace.read), top, top),)
