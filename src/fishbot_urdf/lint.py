@@ -151,9 +151,9 @@ def _checked(
     workspace: Workspace | None,
     fixes: bool,
 ) -> CheckResult:
-    folders = packages.packages if isinstance(packages, PackageFinder) else packages
-    if workspace is not None and isinstance(packages, PackageFinder):
-        folders = packages  # the workspace's finder, its answers kept
+    folders: Mapping[str, str | Path] | PackageFinder | None = packages
+    if workspace is None and isinstance(packages, PackageFinder):
+        folders = packages.packages  # (a workspace's finder keeps its answers: given whole)
     with allowing_reads(config.allow_read):
         parsed = read(source, path=path, args=args, packages=folders, workspace=workspace)
     found = list(parsed.diagnostics)
