@@ -115,6 +115,19 @@ def test_a_finding_in_a_macro_is_shown_at_its_outermost_call_in_another_file(tmp
     assert to_finding.location == types.Location(uri_of(part), here.diagnostic.range)
 
 
+def test_a_call_written_over_two_lines_is_shown_over_both(tmp_path) -> None:
+    part, top = str(tmp_path / "part.xacro"), str(tmp_path / "top.xacro")
+    finding = _finding(str(tmp_path), calls=(("wheel", Location(top, 2, 3)),))
+    texts = {
+        part: "\n    <parent link='bse'/>\n",
+        top: 'a\n  <xacro:wheel name="left"\n    side="1"/>\n',
+    }
+    shown = shown_findings([finding], top, lambda p: Lines.of(texts.get(p, "")))
+    (there,) = shown[top]
+    # from "<xacro:wheel" to just past "/>" on the next line
+    assert there.diagnostic.range == types.Range(_p(1, 2), _p(2, 14))
+
+
 def test_fixes_are_quick_fixes_the_safe_one_preferred(tmp_path) -> None:
     path = str(tmp_path / "part.xacro")
     text = "\n  <parent link='😀bse'/>\n"

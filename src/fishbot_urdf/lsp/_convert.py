@@ -17,6 +17,7 @@ from pygls.uris import from_fs_path, to_fs_path
 
 from ..diagnostics import Diagnostic, Edit, Fix, Severity
 from ..location import Location
+from ..sourcetext import SourceText
 
 __all__ = [
     "Lines",
@@ -193,6 +194,7 @@ def shown_findings(
     for one made inside a macro another file calls, also at that call (the outermost call
     in a file other than the finding's), each pointing at the other."""
     shown: dict[str, list[Shown]] = {}
+    texts: dict[str, SourceText] = {}  # the files calls are in, each joined once
     for finding in findings:
         path = top if finding.path.startswith("<") else absolute(finding.path)
         lines = lines_of(path)
@@ -203,7 +205,12 @@ def shown_findings(
         if call is not None:
             name, site = call
             site_path = absolute(site.path)
-            site_range = to_range(lines_of(site_path), site.line, site.column)
+            site_lines = lines_of(site_path)
+            if site_path not in texts:
+                texts[site_path] = SourceText(site_path, "\n".join(site_lines.lines))
+            # the call's start tag, over as many lines as it takes
+            end = texts[site_path].end_of(site.line, site.column)
+            site_range = to_range(site_lines, site.line, site.column, *(end or (None, None)))
             here = types.Location(uri_of(path), where)
             there = types.Location(uri_of(site_path), site_range)
             related = [types.DiagnosticRelatedInformation(there, f"macro {name} called here")]
