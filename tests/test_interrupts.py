@@ -131,6 +131,13 @@ def test_a_callers_alarm_at_any_point_never_runs_the_escape(tmp_path: Path) -> N
                     signal.setitimer(signal.ITIMER_REAL, 0)
             except _Alarm:
                 stopped += 1
+            except RuntimeError as exc:
+                # An alarm that lands inside threading's own Condition.wait (as the walk's
+                # thread starts) can leave its lock released twice: Python's doing, and the
+                # walk is stopped all the same.
+                if str(exc) != "release unlocked lock":
+                    raise
+                stopped += 1
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0)
         signal.signal(signal.SIGALRM, previous)
