@@ -1,0 +1,220 @@
+"""URDF -> MJCF, the model file MuJoCo reads: one body per link, every inertial as written.
+
+Each link is a body placed by its joint's origin, so that every link's pose is a body's
+pose in MuJoCo; a fixed joint is a body without a joint. Masses and inertias are the
+robot's own: MuJoCo is told to compute none from the shapes (``inertiafromgeom="false"``),
+so a moving link without mass stays without it, and MuJoCo refuses it rather than make one
+up (the `massless-link` and `missing-inertial` rules say so before it does).
+"""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from typing import Literal
+
+from ..analysis import Analysis, of
+from ..analysis.plan import Step
+from ..errors import ArgumentError, StructureError
+from ..model import Joint, JointType, Link, Robot
+from ..spatial import rotate_tensor, rpy_matrix
+from ._geoms import Assets, geom, number, numbers, place
+
+__all__ = ["BASES", "to_mjcf"]
+
+Base = Literal["auto", "fixed", "floating"]
+BASES: tuple[Base, ...] = ("auto", "fixed", "floating")
+"""How the robot's base may be held: as the robot says, fixed to the world, or free."""
+
+WORLD = "world"
+
+
+def to_mjcf(robot: Robot | Analysis, *, base: Base = "auto", meshdir: str | None = None) -> str:
+    """The MJCF of ``robot``: what ``mujoco.MjModel.from_xml_string`` loads.
+
+    Lengths in metres, angles in radians (``<compiler angle="radian">``), masses in kg,
+    inertias in kg*m^2, all as written in the URDF, each number written so that it reads
+    back to the same double.
+
+    - Links: one body each, named as the link, placed by its joint's ``<origin>``; its
+      ``<inertial>`` as an ``<inertial>`` at its origin (``fullinertia`` turned into the
+      body's axes); no ``<inertial>``, or a mass of 0, none (MuJoCo computes none).
+    - Joints: revolute -> hinge with ``range``, continuous -> hinge, prismatic -> slide with
+      ``range``, fixed -> no joint, planar -> slides ``NAME.x`` and ``NAME.y`` then a hinge
+      ``NAME.yaw`` about its axis, floating -> a free joint at the top level, else slides
+      ``NAME.x``, ``NAME.y``, ``NAME.z`` and hinges ``NAME.yaw``, ``NAME.pitch``,
+      ``NAME.roll`` (URDF's rpy: the same pose as `fishbot_urdf.link_poses` for the same
+      numbers); ``<dynamics>`` damping and friction -> ``damping`` and ``frictionloss``; a
+      mimic joint -> an ``<equality><joint>`` holding it at ``multiplier * leader + offset``.
+    - Shapes: visuals as geoms of group 2 that collide with nothing, collisions as geoms of
+      group 3 (cylinders along the local z, as URDF's); a mesh only when its file is found
+      and is STL or OBJ (named by its absolute path, or relative to ``meshdir``, which the
+      model then names), else the shape is left out (the `mesh-not-found`, `mesh-format`
+      and `mujoco-mesh` rules say which).
+
+    Args:
+        robot: The robot, or its analysis.
+        base: ``auto``: fixed when the root link is ``world`` (its children hang from the
+            world by their joints), else free; ``fixed``: the root (or each child of
+            ``world``) fixed to the world; ``floating``: free.
+        meshdir: The folder mesh files are named relative to, or None for absolute names.
+
+    Raises:
+        StructureError: A link or joint name is used twice, or the links form a loop.
+        ArgumentError: ``base`` is none of `BASES`.
+    """
+    if base not in BASES:
+        raise ArgumentError(f"base {base!r} is none of {', '.join(BASES)}", name="base")
+    analysis = of(robot)
+    _refuse(analysis)
+    writer = _Writer(analysis, base, meshdir)
+    return writer.write()
+
+
+def _refuse(analysis: Analysis) -> None:
+    """Stop on a robot MuJoCo cannot name or build as a tree."""
+    robot = analysis.robot
+    why = None
+    if len(analysis.links) != len(robot.links) or len(analysis.joints) != len(robot.joints):
+        why = "a link or joint name used twice, which MJCF refuses"
+    elif analysis.loops:
+        why = "a joint loop, which no tree of bodies holds"
+    if why is not None:
+        raise StructureError(f"robot {robot.name!r} has {why}")
+
+
+class _Writer:
+    def __init__(self, analysis: Analysis, base: Base, meshdir: str | None) -> None:
+        self.analysis = analysis
+        self.base = base
+        self.meshdir = meshdir
+        self.assets = Assets(analysis, meshdir)
+        self.equality = ET.Element("equality")
+        plan = analysis.plan
+        self.steps = {plan.links[step.link]: step for step in plan.steps}
+
+    def write(self) -> str:
+        analysis = self.analysis
+        plan = analysis.plan
+        model = ET.Element("mujoco", model=analysis.robot.name)
+        compiler = ET.SubElement(
+            model, "compiler", angle="radian", autolimits="true", inertiafromgeom="false"
+        )
+        if self.meshdir is not None:
+            compiler.set("meshdir", self.meshdir)
+        ET.SubElement(model, "option", integrator="implicitfast")
+        model.append(self.assets.element)
+        world = ET.SubElement(model, "worldbody")
+        bodies: dict[str, ET.Element] = {}
+        for root in plan.roots:
+            if root == WORLD:
+                bodies[root] = world
+                self._shapes(world, analysis.links[root])
+            else:
+                body = bodies[root] = self._body(world, analysis.links[root])
+                if self.base != "fixed":
+                    ET.SubElement(body, "freejoint")
+        for step in plan.steps:
+            parent = plan.links[step.parent]
+            body = self._body(bodies[parent], analysis.links[plan.links[step.link]])
+            place(body, step.joint.origin)
+            body[:0] = self._joints(step, top=parent == WORLD)
+            bodies[plan.links[step.link]] = body
+        for joint in analysis.robot.joints:
+            self._mimic(joint)
+        if len(self.equality):
+            model.append(self.equality)
+        if not len(self.assets.element):
+            model.remove(self.assets.element)
+        ET.indent(model)
+        return ET.tostring(model, encoding="unicode") + "\n"
+
+    def _body(self, parent: ET.Element, link: Link) -> ET.Element:
+        body = ET.SubElement(parent, "body", name=link.name)
+        inertial = link.inertial
+        if inertial is not None and inertial.mass != 0.0:
+            element = ET.SubElement(body, "inertial", mass=number(inertial.mass))
+            if any(inertial.origin.xyz):
+                element.set("pos", numbers(inertial.origin.xyz))
+            else:
+                element.set("pos", "0 0 0")
+            i = inertial.inertia
+            tensor = rotate_tensor(
+                rpy_matrix(inertial.origin.rpy),
+                ((i.ixx, i.ixy, i.ixz), (i.ixy, i.iyy, i.iyz), (i.ixz, i.iyz, i.izz)),
+            )
+            (xx, xy, xz), (_, yy, yz), (_, _, zz) = tensor
+            if xy == 0.0 and xz == 0.0 and yz == 0.0:
+                element.set("diaginertia", numbers((xx, yy, zz)))
+            else:  # MuJoCo finds the principal axes itself
+                element.set("fullinertia", numbers((xx, yy, zz, xy, xz, yz)))
+        self._shapes(body, link)
+        return body
+
+    def _shapes(self, body: ET.Element, link: Link) -> None:
+        for visual in link.visuals:
+            found = geom(self.assets, visual.geometry, visual.origin, visual=True)
+            if found is not None:
+                body.append(found)
+        for collision in link.collisions:
+            found = geom(self.assets, collision.geometry, collision.origin, visual=False)
+            if found is not None:
+                body.append(found)
+
+    def _joints(self, step: Step, *, top: bool) -> list[ET.Element]:
+        joint, kind = step.joint, step.kind
+        if kind is JointType.FIXED:
+            return [ET.Element("freejoint")] if top and self.base == "floating" else []
+        if kind is JointType.FLOATING:
+            if top:
+                return [] if self.base == "fixed" else [ET.Element("freejoint", name=joint.name)]
+            parts = [("x", "slide", (1.0, 0.0, 0.0)), ("y", "slide", (0.0, 1.0, 0.0))]
+            parts += [("z", "slide", (0.0, 0.0, 1.0)), ("yaw", "hinge", (0.0, 0.0, 1.0))]
+            parts += [("pitch", "hinge", (0.0, 1.0, 0.0)), ("roll", "hinge", (1.0, 0.0, 0.0))]
+            return [self._joint(joint, f"{joint.name}.{p}", t, a, False) for p, t, a in parts]
+        if kind is JointType.PLANAR:
+            along, across = step.plane or ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0))
+            return [
+                self._joint(joint, f"{joint.name}.x", "slide", along, False),
+                self._joint(joint, f"{joint.name}.y", "slide", across, False),
+                self._joint(joint, f"{joint.name}.yaw", "hinge", step.axis, False),
+            ]
+        kind_name = "slide" if kind is JointType.PRISMATIC else "hinge"
+        limited = kind is not JointType.CONTINUOUS
+        return [self._joint(joint, joint.name, kind_name, step.axis, limited)]
+
+    def _joint(
+        self,
+        joint: Joint,
+        name: str,
+        kind: str,
+        axis: tuple[float, float, float],
+        limited: bool,
+    ) -> ET.Element:
+        element = ET.Element("joint", name=name, type=kind, axis=numbers(axis))
+        if limited and joint.limit is not None:
+            element.set("range", numbers((joint.limit.lower, joint.limit.upper)))
+        if joint.dynamics is not None:
+            if joint.dynamics.damping:
+                element.set("damping", number(joint.dynamics.damping))
+            if joint.dynamics.friction:
+                element.set("frictionloss", number(joint.dynamics.friction))
+        return element
+
+    def _mimic(self, joint: Joint) -> None:
+        """An equality constraint for a mimic joint that moves the link it places."""
+        plan = self.analysis.plan
+        follows = plan.mimics.get(joint.name)
+        if follows is None:
+            return
+        step = self.steps.get(joint.child)
+        if step is None or step.joint is not joint or step.kind not in _ONE_NUMBER:
+            return
+        element = ET.SubElement(self.equality, "joint", joint1=joint.name)
+        if follows.leader is None or follows.leader not in plan.columns:
+            element.set("polycoef", numbers((follows.offset, 0.0, 0.0, 0.0, 0.0)))
+            return
+        element.set("joint2", follows.leader)
+        element.set("polycoef", numbers((follows.offset, follows.multiplier, 0.0, 0.0, 0.0)))
+
+
+_ONE_NUMBER = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)
