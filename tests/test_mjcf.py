@@ -18,7 +18,7 @@ from fishbot_urdf import Kinematics
 from fishbot_urdf.analysis import Analysis, of
 from fishbot_urdf.config import Config
 from fishbot_urdf.errors import ArgumentError, StructureError
-from fishbot_urdf.export.mjcf import to_mjcf
+from fishbot_urdf.export.mjcf import export_mjcf, to_mjcf
 from fishbot_urdf.kinematics import joint_positions, link_poses
 from fishbot_urdf.model import JointType
 from fishbot_urdf.spatial import Pose
@@ -275,6 +275,7 @@ def test_a_massless_moving_link_stays_massless() -> None:
 
 def test_meshes_mujoco_cannot_read_are_left_out(tmp_path: Path) -> None:
     (tmp_path / "part.stl").write_bytes(b"")
+    (tmp_path / "part.dae").write_bytes(b"")
     robot = tmp_path / "robot.urdf"
     robot.write_text(
         '<robot name="r"><link name="a">'
@@ -283,8 +284,14 @@ def test_meshes_mujoco_cannot_read_are_left_out(tmp_path: Path) -> None:
         '<visual><geometry><mesh filename="part.stl" scale="0.001 0.001 0.001"/></geometry>'
         "</visual></link></robot>"
     )
-    text = to_mjcf(_analysis(robot))
+    text, left_out = export_mjcf(_analysis(robot))
     assert text.count("<geom") == 1
+    assert [d.format() for d in left_out] == [
+        f"{robot}:1:50: warning: link 'a': visual mesh 'part.dae' is a .dae file, which MuJoCo "
+        "cannot read: left out of the MJCF (export it as STL or OBJ) [mjcf-left-out]",
+        f"{robot}:1:115: warning: link 'a': visual mesh 'gone.stl' is not found: left out of "
+        "the MJCF (name the file that is there) [mjcf-left-out]",
+    ]
     assert f'<mesh name="part" file="{tmp_path.resolve() / "part.stl"}"' in text
     assert 'scale="0.001 0.001 0.001"' in text
 

@@ -113,6 +113,13 @@ WORKSPACE["frames.urdf"] = WORKSPACE["fishbot.urdf"].replace(
     '    <visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>\n', ""
 )
 
+# mjcf-left-out's example: a robot whose visual mesh is a COLLADA file, found.
+WORKSPACE["mixed.urdf"] = WORKSPACE["fishbot.urdf"].replace(
+    '<visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>',
+    '<visual><geometry><mesh filename="meshes/base_link.dae"/></geometry></visual>',
+)
+WORKSPACE["meshes/base_link.dae"] = ""
+
 # The conversion's example: an arm whose <gazebo> block has a number, and the same with a
 # xacro expression left where the converter reads a number.
 _ARM = """\
@@ -136,8 +143,9 @@ WORKSPACE["gazebo.urdf"] = _ARM.format(
     gazebo='\n  <gazebo reference="upper_arm"><mu1>${mu}</mu1></gazebo>'
 )
 
-# Rules of what render and view cannot draw: the picture is drawn without it, exit status 0.
-DRAWING_RULES = {"shape-not-drawn"}
+# Rules of what render and view cannot draw, and of what mjcf leaves out: the picture or the
+# model is made without it, exit status 0.
+DRAWING_RULES = {"shape-not-drawn", "mjcf-left-out"}
 
 
 def _modules() -> Iterator[object]:

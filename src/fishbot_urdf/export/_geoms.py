@@ -11,7 +11,16 @@ from ..analysis import Analysis
 from ..model import Box, Cylinder, Geometry, Mesh, Origin, Sphere
 from ..spatial import quaternion, rpy_matrix
 
-__all__ = ["COLLISION_GROUP", "LOADABLE", "VISUAL_GROUP", "Assets", "geom", "number", "numbers", "place"]
+__all__ = [
+    "COLLISION_GROUP",
+    "LOADABLE",
+    "VISUAL_GROUP",
+    "Assets",
+    "geom",
+    "number",
+    "numbers",
+    "place",
+]
 
 LOADABLE = (".stl", ".obj")
 """The mesh files MuJoCo reads (by suffix, in any case); others are left out."""

@@ -9,17 +9,20 @@ up (the `massless-link` and `missing-inertial` rules say so before it does).
 
 from __future__ import annotations
 
+import os
 import xml.etree.ElementTree as ET
-from typing import Literal
+from typing import Literal, NamedTuple
 
 from ..analysis import Analysis, of
 from ..analysis.plan import Step
+from ..catalog.meshes import MJCF_LEFT_OUT
+from ..diagnostics import Diagnostic, Kind, Subject
 from ..errors import ArgumentError, StructureError
-from ..model import Joint, JointType, Link, Robot
+from ..model import Collision, Joint, JointType, Link, Mesh, Robot, Visual
 from ..spatial import rotate_tensor, rpy_matrix
 from ._geoms import Assets, geom, number, numbers, place
 
-__all__ = ["BASES", "to_mjcf"]
+__all__ = ["BASES", "Mjcf", "export_mjcf", "to_mjcf"]
 
 Base = Literal["auto", "fixed", "floating"]
 BASES: tuple[Base, ...] = ("auto", "fixed", "floating")
@@ -28,7 +31,23 @@ BASES: tuple[Base, ...] = ("auto", "fixed", "floating")
 WORLD = "world"
 
 
+class Mjcf(NamedTuple):
+    """An MJCF document, and what the conversion left out of it."""
+
+    text: str
+    """The document."""
+    left_out: tuple[Diagnostic, ...]
+    """One `mjcf-left-out` finding per shape left out, in the robot's order."""
+
+
 def to_mjcf(robot: Robot | Analysis, *, base: Base = "auto", meshdir: str | None = None) -> str:
+    """The MJCF of ``robot`` (see `export_mjcf`, which says what it left out)."""
+    return export_mjcf(robot, base=base, meshdir=meshdir).text
+
+
+def export_mjcf(
+    robot: Robot | Analysis, *, base: Base = "auto", meshdir: str | None = None
+) -> Mjcf:
     """The MJCF of ``robot``: what ``mujoco.MjModel.from_xml_string`` loads.
 
     Lengths in metres, angles in radians (``<compiler angle="radian">``), masses in kg,
@@ -48,8 +67,7 @@ def to_mjcf(robot: Robot | Analysis, *, base: Base = "auto", meshdir: str | None
     - Shapes: visuals as geoms of group 2 that collide with nothing, collisions as geoms of
       group 3 (cylinders along the local z, as URDF's); a mesh only when its file is found
       and is STL or OBJ (named by its absolute path, or relative to ``meshdir``, which the
-      model then names), else the shape is left out (the `mesh-not-found`, `mesh-format`
-      and `mujoco-mesh` rules say which).
+      model then names), else the shape is left out, with an `mjcf-left-out` finding.
 
     Args:
         robot: The robot, or its analysis.
@@ -67,7 +85,7 @@ def to_mjcf(robot: Robot | Analysis, *, base: Base = "auto", meshdir: str | None
     analysis = of(robot)
     _refuse(analysis)
     writer = _Writer(analysis, base, meshdir)
-    return writer.write()
+    return Mjcf(writer.write(), tuple(writer.left_out))
 
 
 def _refuse(analysis: Analysis) -> None:
@@ -89,6 +107,7 @@ class _Writer:
         self.meshdir = meshdir
         self.assets = Assets(analysis, meshdir)
         self.equality = ET.Element("equality")
+        self.left_out: list[Diagnostic] = []
         plan = analysis.plan
         self.steps = {plan.links[step.link]: step for step in plan.steps}
 
@@ -151,14 +170,32 @@ class _Writer:
         return body
 
     def _shapes(self, body: ET.Element, link: Link) -> None:
-        for visual in link.visuals:
-            found = geom(self.assets, visual.geometry, visual.origin, visual=True)
+        shapes: list[Visual | Collision] = [*link.visuals, *link.collisions]
+        for shape in shapes:
+            visual = isinstance(shape, Visual)
+            found = geom(self.assets, shape.geometry, shape.origin, visual=visual)
             if found is not None:
                 body.append(found)
-        for collision in link.collisions:
-            found = geom(self.assets, collision.geometry, collision.origin, visual=False)
-            if found is not None:
-                body.append(found)
+            elif isinstance(shape.geometry, Mesh):
+                self._left_out(link, shape.geometry, "visual" if visual else "collision")
+
+    def _left_out(self, link: Link, mesh: Mesh, kind: str) -> None:
+        path = self.analysis.mesh_paths.get(mesh.filename)
+        if path.found:
+            suffix = os.path.splitext(mesh.filename)[1].lower()
+            why = f"is a {suffix} file, which MuJoCo cannot read" if suffix else "has no suffix"
+            hint = "export it as STL or OBJ"
+        else:
+            why, hint = "is not found", "name the file that is there"
+        self.left_out.append(
+            MJCF_LEFT_OUT.report(
+                f"link {link.name!r}: {kind} mesh {mesh.filename!r} {why}: left out of the MJCF",
+                mesh.source,
+                path=self.analysis.path,
+                subject=Subject(Kind.LINK, link.name),
+                hint=hint,
+            )
+        )
 
     def _joints(self, step: Step, *, top: bool) -> list[ET.Element]:
         joint, kind = step.joint, step.kind
