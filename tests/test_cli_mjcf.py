@@ -8,6 +8,7 @@ import mujoco
 from click.testing import CliRunner
 from conftest import FISHBOT
 
+import fishbot_urdf
 from fishbot_urdf.cli import cli
 from fishbot_urdf.export.mjcf import to_mjcf
 
@@ -32,8 +33,6 @@ def _mjcf(*args: str) -> tuple[int, str, str]:
 def test_standard_output_is_the_library_s_mjcf() -> None:
     code, out, err = _mjcf(str(XACRO))
     assert (code, err) == (0, "")
-    import fishbot_urdf
-
     assert out == to_mjcf(fishbot_urdf.load(XACRO))
     code, fixed, _ = _mjcf(str(XACRO), "--fixed-base")
     assert code == 0 and "freejoint" not in fixed

@@ -10,6 +10,7 @@ from pathlib import Path
 
 import mujoco
 import numpy as np
+import pinocchio as pin
 import pytest
 from conftest import FISHBOT, golden_inputs
 
@@ -78,9 +79,10 @@ def _analysis(path: Path, packages: dict[str, Path] | None = None) -> Analysis:
     return of(fishbot_urdf.load(path, packages=packages), packages=packages)
 
 
-def _held_to_ours(analysis: Analysis, text: str, seed: int) -> None:
+def _held_to_ours(analysis: Analysis, text: str, seed: int, urdf: Path | None = None) -> None:
     """The model of ``text`` compiles, and body by body has our masses, centres of mass,
-    inertias and link poses (at the zero configuration and at random ones)."""
+    inertias and link poses (at the zero configuration and at random ones); and, for the
+    ``urdf`` file pinocchio reads, pinocchio's link poses, mass and centre of mass."""
     model = mujoco.MjModel.from_xml_string(text)
     data = mujoco.MjData(model)
     data.qpos[:] = _qpos(model, joint_positions(analysis))  # a mimic's offset moves it
@@ -110,11 +112,16 @@ def _held_to_ours(analysis: Analysis, text: str, seed: int) -> None:
         theirs = principal @ np.diag(model.body_inertia[b]) @ principal.T
         np.testing.assert_allclose(data.xipos[b], frame.translation, rtol=0, atol=TOLERANCE)
         np.testing.assert_allclose(theirs, ours, rtol=0, atol=TOLERANCE)
-    _configurations_held(analysis, model, data, names, seed)
+    _configurations_held(analysis, model, data, names, seed, urdf)
 
 
 def _configurations_held(
-    analysis: Analysis, model: mujoco.MjModel, data: mujoco.MjData, names: list[str], seed: int
+    analysis: Analysis,
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    names: list[str],
+    seed: int,
+    urdf: Path | None,
 ) -> None:
     kin = Kinematics(analysis)
     rng = np.random.default_rng(seed)
@@ -125,6 +132,7 @@ def _configurations_held(
         moved = {**values, **joint_positions(analysis, given)}  # mimic joints follow
         data.qpos[:] = _qpos(model, moved)
         mujoco.mj_kinematics(model, data)
+        mujoco.mj_comPos(model, data)
         placed = kin.forward(q)
         for b, name in enumerate(names, start=1):
             ours = placed[kin.link_index(name)]
@@ -132,6 +140,44 @@ def _configurations_held(
             np.testing.assert_allclose(
                 data.xmat[b].reshape(3, 3), ours[:3, :3], rtol=0, atol=TOLERANCE
             )
+        if urdf is not None:
+            _pinocchio_held(urdf, model, data, moved)
+
+
+def _pinocchio_held(
+    urdf: Path, model: mujoco.MjModel, data: mujoco.MjData, moved: dict[str, float]
+) -> None:
+    """Pinocchio, given the same joint positions, places every link where MuJoCo does and
+    finds the same mass and centre of mass (its robot's base fixed where MuJoCo's is)."""
+    pin_model = pin.buildModelFromUrdf(str(urdf))
+    pin_data = pin_model.createData()
+    q = np.zeros(pin_model.nq)
+    for j in range(1, pin_model.njoints):
+        joint, value = pin_model.joints[j], moved[pin_model.names[j]]
+        if joint.nq == 2:  # continuous: cos, sin
+            q[joint.idx_q : joint.idx_q + 2] = (math.cos(value), math.sin(value))
+        else:
+            q[joint.idx_q] = value
+    pin.framesForwardKinematics(pin_model, pin_data, q)
+    for f, frame in enumerate(pin_model.frames):
+        if frame.type == pin.FrameType.BODY and frame.name != "world":
+            b = model.body(frame.name).id
+            placed = pin_data.oMf[f]
+            np.testing.assert_allclose(data.xpos[b], placed.translation, rtol=0, atol=TOLERANCE)
+            np.testing.assert_allclose(
+                data.xmat[b].reshape(3, 3), placed.rotation, rtol=0, atol=TOLERANCE
+            )
+    # pinocchio's bodies, the root link's among them (on its universe joint, which its
+    # totals leave out)
+    masses = [pin_model.inertias[j].mass for j in range(pin_model.njoints)]
+    total = sum(masses)
+    assert model.body_subtreemass[0] == pytest.approx(total, rel=1e-12, abs=TOLERANCE)
+    if total > 0:
+        levers = [
+            pin_data.oMi[j].act(pin_model.inertias[j].lever) for j in range(pin_model.njoints)
+        ]
+        com = sum(m * lever for m, lever in zip(masses, levers, strict=True)) / total
+        np.testing.assert_allclose(data.subtree_com[0], com, rtol=0, atol=TOLERANCE)
 
 
 def _qpos(model: mujoco.MjModel, positions: dict[str, float]) -> np.ndarray:
@@ -166,17 +212,19 @@ def test_mujoco_compiles_every_corpus_robot_to_our_numbers(item: object) -> None
             mujoco.MjModel.from_xml_string(to_mjcf(_analysis(path, packages)))
         return
     analysis = _analysis(path, packages)
-    _held_to_ours(analysis, to_mjcf(analysis), len(name))
+    _held_to_ours(analysis, to_mjcf(analysis), len(name), urdf=path)
 
 
-def test_the_fishbot_floats_or_is_fixed_as_asked() -> None:
+def test_the_fishbot_floats_or_is_fixed_as_asked(tmp_path: Path) -> None:
     analysis = _analysis(XACRO)
+    urdf = tmp_path / "fishbot.urdf"  # expanded, for pinocchio
+    urdf.write_text(fishbot_urdf.to_urdf(analysis.robot))
     floating = to_mjcf(analysis)
     assert "<freejoint />" in floating
-    _held_to_ours(analysis, floating, 1)
+    _held_to_ours(analysis, floating, 1, urdf)
     fixed = to_mjcf(analysis, base="fixed")
     assert "freejoint" not in fixed
-    _held_to_ours(analysis, fixed, 2)
+    _held_to_ours(analysis, fixed, 2, urdf)
     model = mujoco.MjModel.from_xml_string(fixed)
     assert model.nq == 2  # the two wheels
     assert model.jnt_range.tolist() == [[0.0, 0.0], [0.0, 0.0]]  # continuous: no limit
