@@ -119,6 +119,12 @@ WORKSPACE["mixed.urdf"] = WORKSPACE["fishbot.urdf"].replace(
     '<visual><geometry><mesh filename="meshes/base_link.dae"/></geometry></visual>',
 )
 WORKSPACE["meshes/base_link.dae"] = ""
+# mjcf-joined-inertial's: a link fixed to the base whose inertia no solid has.
+WORKSPACE["antenna.urdf"] = WORKSPACE["fishbot.urdf"].replace(
+    '  <link name="left_wheel_link">\n',
+    '  <link name="left_wheel_link">\n    <inertial><mass value="0.01"/>'
+    '<inertia ixx="1e-6" ixy="0" ixz="0" iyy="1e-6" iyz="0" izz="1e-5"/></inertial>\n',
+)
 
 # The conversion's example: an arm whose <gazebo> block has a number, and the same with a
 # xacro expression left where the converter reads a number.
@@ -145,7 +151,7 @@ WORKSPACE["gazebo.urdf"] = _ARM.format(
 
 # Rules of what render and view cannot draw, and of what mjcf leaves out: the picture or the
 # model is made without it, exit status 0.
-DRAWING_RULES = {"shape-not-drawn", "mjcf-left-out"}
+DRAWING_RULES = {"shape-not-drawn", "mjcf-left-out", "mjcf-joined-inertial"}
 
 
 def _modules() -> Iterator[object]:

@@ -441,3 +441,27 @@ ABOVE_GROUND = Rule(
 """,
     consumers=(Consumer.GAZEBO, Consumer.PYBULLET),
 )
+MJCF_JOINED_INERTIAL = Rule(
+    "mjcf-joined-inertial",
+    W,
+    Family.PHYSICS,
+    summary="`fishbot mjcf` adds a fixed link's inertial to the body it is fixed to, as MuJoCo "
+    "refuses its inertia on a body of its own.",
+    explanation="`fishbot mjcf` makes each link a body of MuJoCo's, and MuJoCo refuses a body "
+    "whose inertia is not positive semi-definite or whose principal moments break the "
+    "triangle inequality, even when the body cannot move. A link on a fixed joint with such an "
+    "inertia (a sensor frame with made-up numbers) is fine in the simulators that merge fixed "
+    "links, and `inertia-not-positive` and `inertia-triangle` judge it so; `fishbot mjcf` adds "
+    "its mass, centre of mass and inertia to the body it is fixed to, exactly, says so with "
+    "this warning, and the link keeps its own body and pose. Give the link the inertia of its "
+    "shape.",
+    bad="""\
+# antenna.urdf: a fixed link whose izz is more than ixx + iyy
+fishbot mjcf antenna.urdf -o antenna.xml
+""",
+    good="""\
+fishbot mjcf fishbot.urdf -o fishbot.xml
+""",
+    consumers=(Consumer.MUJOCO,),
+    language="shell",
+)

@@ -68,7 +68,8 @@ def mjcf(
     """The MJCF of FILE (URDF or xacro): the model file MuJoCo loads, with no mass made up.
 
     One body per link, placed by its joint's origin, so that each link's pose is its body's;
-    every <inertial> as written (MuJoCo computes none from the shapes); revolute and
+    every <inertial> as written (MuJoCo computes none from the shapes; one MuJoCo refuses
+    on a link fixed to its parent joins the parent's body, mjcf-joined-inertial); revolute and
     continuous joints as hinges, prismatic as slides, with their limits, damping and
     friction; planar and floating joints as slides and hinges; mimic joints held to their
     leader by equality constraints. Visuals are geoms of group 2 that collide with nothing,

@@ -16,11 +16,13 @@ from typing import Literal, NamedTuple
 from ..analysis import Analysis, of
 from ..analysis.plan import Step
 from ..catalog.meshes import MJCF_LEFT_OUT
+from ..catalog.physics import MJCF_JOINED_INERTIAL
 from ..diagnostics import Diagnostic, Kind, Subject
 from ..errors import ArgumentError, StructureError
 from ..model import Collision, Joint, JointType, Link, Mesh, Robot, Visual
-from ..spatial import rotate_tensor, rpy_matrix
+from ..spatial import quaternion
 from ._geoms import Assets, geom, number, numbers, place
+from ._masses import masses, own, principal, refused
 
 __all__ = ["BASES", "Mjcf", "export_mjcf", "to_mjcf"]
 
@@ -108,6 +110,9 @@ class _Writer:
         self.assets = Assets(analysis, meshdir)
         self.equality = ET.Element("equality")
         self.left_out: list[Diagnostic] = []
+        self.masses, joined = masses(analysis)
+        for link, holder in joined.items():
+            self._joined(analysis.links[link], holder)
         plan = analysis.plan
         self.steps = {plan.links[step.link]: step for step in plan.steps}
 
@@ -149,23 +154,20 @@ class _Writer:
 
     def _body(self, parent: ET.Element, link: Link) -> ET.Element:
         body = ET.SubElement(parent, "body", name=link.name)
-        inertial = link.inertial
-        if inertial is not None and inertial.mass != 0.0:
-            element = ET.SubElement(body, "inertial", mass=number(inertial.mass))
-            if any(inertial.origin.xyz):
-                element.set("pos", numbers(inertial.origin.xyz))
-            else:
-                element.set("pos", "0 0 0")
-            i = inertial.inertia
-            tensor = rotate_tensor(
-                rpy_matrix(inertial.origin.rpy),
-                ((i.ixx, i.ixy, i.ixz), (i.ixy, i.iyy, i.iyz), (i.ixz, i.iyz, i.izz)),
-            )
-            (xx, xy, xz), (_, yy, yz), (_, _, zz) = tensor
+        mass = self.masses.get(link.name)
+        if mass is not None:
+            element = ET.SubElement(body, "inertial", mass=number(mass.mass))
+            element.set("pos", numbers(mass.centre) if any(mass.centre) else "0 0 0")
+            (xx, xy, xz), (_, yy, yz), (_, _, zz) = mass.tensor
             if xy == 0.0 and xz == 0.0 and yz == 0.0:
                 element.set("diaginertia", numbers((xx, yy, zz)))
-            else:  # MuJoCo finds the principal axes itself
-                element.set("fullinertia", numbers((xx, yy, zz, xy, xz, yz)))
+            else:
+                # the principal axes, found here: MuJoCo's `fullinertia` refuses an inertia
+                # with a moment of 0 (a point mass), which a body may have
+                moments, axes = principal(mass.tensor)
+                x, y, z, w = quaternion(axes)
+                element.set("quat", numbers((w, x, y, z)))
+                element.set("diaginertia", numbers(moments))
         self._shapes(body, link)
         return body
 
@@ -178,6 +180,22 @@ class _Writer:
                 body.append(found)
             elif isinstance(shape.geometry, Mesh):
                 self._left_out(link, shape.geometry, "visual" if visual else "collision")
+
+    def _joined(self, link: Link, holder: str) -> None:
+        inertial = link.inertial
+        assert inertial is not None
+        why = refused(own(inertial))
+        self.left_out.append(
+            MJCF_JOINED_INERTIAL.report(
+                f"link {link.name!r}: {why}, which MuJoCo refuses on a body of its own: its "
+                f"inertial joins that of {holder!r}, to which it is fixed",
+                inertial.source,
+                path=self.analysis.path,
+                subject=Subject(Kind.LINK, link.name),
+                hint="give it the inertia of its shape",
+                element="inertial",
+            )
+        )
 
     def _left_out(self, link: Link, mesh: Mesh, kind: str) -> None:
         path = self.analysis.mesh_paths.get(mesh.filename)
