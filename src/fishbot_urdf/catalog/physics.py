@@ -450,11 +450,12 @@ MJCF_JOINED_INERTIAL = Rule(
     explanation="`fishbot mjcf` makes each link a body of MuJoCo's, and MuJoCo refuses a body "
     "whose inertia is not positive semi-definite or whose principal moments break the "
     "triangle inequality, even when the body cannot move. A link on a fixed joint with such an "
-    "inertia (a sensor frame with made-up numbers) is fine in the simulators that merge fixed "
-    "links, and `inertia-not-positive` and `inertia-triangle` judge it so; `fishbot mjcf` adds "
-    "its mass, centre of mass and inertia to the body it is fixed to, exactly, says so with "
-    "this warning, and the link keeps its own body and pose. Give the link the inertia of its "
-    "shape.",
+    "inertia (a sensor frame with made-up numbers, a base with a placeholder) is fine in the "
+    "simulators that merge fixed links, and `inertia-not-positive` and `inertia-triangle` "
+    "judge it so; `fishbot mjcf` adds its mass, centre of mass and inertia, exactly, to the "
+    "body of its parent, or of the first link fixed below it (for a root or a moving link), "
+    "says so with this warning, and the link keeps its own body and pose. Give the link the "
+    "inertia of its shape.",
     bad="""\
 # antenna.urdf: a fixed link whose izz is more than ixx + iyy
 fishbot mjcf antenna.urdf -o antenna.xml

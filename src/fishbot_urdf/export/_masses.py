@@ -37,6 +37,10 @@ class Mass(NamedTuple):
     joined: tuple[str, ...] = ()
 
 
+_NONE = Mass(0.0, (0.0, 0.0, 0.0), _ZERO)
+"""No mass at all."""
+
+
 def own(inertial: Inertial) -> Mass:
     """A link's inertial in its own frame."""
     i = inertial.inertia
@@ -89,27 +93,33 @@ def masses(analysis: Analysis) -> tuple[Mapping[str, Mass], Mapping[str, str]]:
     """Each body's inertial (by link; a body without one has none), and each link whose
     inertial joined another body's, with that body.
 
-    Children first: a link on a fixed joint (below a link, not the world) whose inertial,
-    with those that joined it, MuJoCo refuses joins its parent's, and so on up."""
+    Children first: a link whose inertial, with those that joined it, MuJoCo refuses joins
+    its parent's when a fixed joint holds it to a link (and so on up), else the first of its
+    children on a fixed joint whose sum with it MuJoCo takes (a root's placeholder inertia
+    joins its base's); both move together, so the sum is the same body's."""
     plan = analysis.plan
     steps = {plan.links[s.link]: s for s in plan.steps}
     below: dict[str, list[tuple[Mass, Pose, str]]] = {}  # what joins each link
     found: dict[str, Mass] = {}
-    moved: dict[str, str] = {}  # link -> the parent its inertial joined
+    moved: dict[str, str] = {}  # link -> the link its inertial joined
     for link in reversed(plan.links):
         inertial = analysis.links[link].inertial
         mass = own(inertial) if inertial is not None and inertial.mass != 0.0 else None
         for part, at, name in below.pop(link, ()):
-            start = mass or Mass(0.0, (0.0, 0.0, 0.0), _ZERO)
-            mass = _sum(start, part, at, name)
+            mass = _sum(mass or _NONE, part, at, name)
         if mass is None:
             continue
-        step = steps.get(link)
-        if step is not None and step.kind is JointType.FIXED and refused(mass) is not None:
-            parent = plan.links[step.parent]
-            if parent != "world":
+        if refused(mass) is not None:
+            step = steps.get(link)
+            parent = None if step is None else plan.links[step.parent]
+            if step is not None and step.kind is JointType.FIXED and parent != "world":
+                assert parent is not None
                 below.setdefault(parent, []).append((mass, step.origin, link))
                 moved[link] = parent
+                continue
+            child = _down(analysis, link, mass, found, moved)
+            if child is not None:
+                moved[link] = child
                 continue
         found[link] = mass
     joined = {}
@@ -119,3 +129,26 @@ def masses(analysis: Analysis) -> tuple[Mapping[str, Mass], Mapping[str, str]]:
             body = moved[body]
         joined[link] = body
     return found, joined
+
+
+def _down(
+    analysis: Analysis,
+    link: str,
+    mass: Mass,
+    found: dict[str, Mass],
+    moved: Mapping[str, str],
+) -> str | None:
+    """The first child of ``link`` on a fixed joint whose inertial, with ``mass`` added, is
+    one MuJoCo takes (``found`` then holds the sum), or None."""
+    plan = analysis.plan
+    for joint in analysis.topology.children[link]:
+        child = joint.child
+        if joint.type is not JointType.FIXED or child in moved or child not in plan.index:
+            continue
+        if analysis.parent_joint.get(child) is not joint:
+            continue
+        summed = _sum(found.get(child, _NONE), mass, Pose.of(joint.origin).inverse(), link)
+        if refused(summed) is None:
+            found[child] = summed
+            return child
+    return None
