@@ -52,13 +52,17 @@ def test_what_mujoco_refuses_and_what_is_left_out_are_findings(tmp_path: Path) -
     wheel = tmp_path / "wheel.urdf"
     wheel.write_text(WHEEL)
     code, out, err = _mjcf(str(wheel), "-o", str(tmp_path / "wheel.xml"))
-    assert (code, out) == (0, "")
+    assert (code, out) == (1, "")  # written, and MuJoCo refuses it
+    assert (tmp_path / "wheel.xml").exists()
     assert err == (
         f"{wheel}:4:3: error: link 'wheel' has collision geometry and moves (joint 'axle' is "
         "continuous) but no <inertial> (Gazebo drops it with everything below it, as it drops "
         "one of mass 0; give it one computed from its collision shapes; `fishbot inertia ROBOT "
         "--fill --mass LINK=KG` says what to write and where, and with -o OUT writes a filled "
         "copy) [missing-inertial]\n"
+        f"{wheel}:4:3: error: link 'wheel': it moves, and neither it nor a link fixed to it has "
+        "mass: MuJoCo refuses the model (give it the mass and inertia of its shape) "
+        "[mjcf-refused]\n"
     )
     robot = tmp_path / "robot.urdf"
     (tmp_path / "part.dae").write_bytes(b"")
@@ -67,7 +71,7 @@ def test_what_mujoco_refuses_and_what_is_left_out_are_findings(tmp_path: Path) -
         '    <visual><geometry><mesh filename="part.dae"/></geometry></visual>\n'
         "  </link>\n</robot>\n"
     )
-    code, out, err = _mjcf(str(robot))
+    code, out, err = _mjcf(str(robot), "--fixed-base")
     assert code == 0 and "<geom" not in out
     assert err == (
         f"{robot}:3:23: warning: link 'a': visual mesh 'part.dae' is a .dae file, which MuJoCo "

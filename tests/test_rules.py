@@ -119,6 +119,18 @@ WORKSPACE["mixed.urdf"] = WORKSPACE["fishbot.urdf"].replace(
     '<visual><geometry><mesh filename="meshes/base_link.dae"/></geometry></visual>',
 )
 WORKSPACE["meshes/base_link.dae"] = ""
+# mjcf-refused's: a massless link between the two joints of a hip.
+WORKSPACE["hip.urdf"] = WORKSPACE["fishbot.urdf"].replace(
+    "</robot>",
+    """  <link name="hip_virtual"/>
+  <link name="thigh"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <joint name="hip_roll" type="continuous"><axis xyz="1 0 0"/>
+    <parent link="base_link"/><child link="hip_virtual"/></joint>
+  <joint name="hip_pitch" type="continuous"><axis xyz="0 1 0"/>
+    <parent link="hip_virtual"/><child link="thigh"/></joint>
+</robot>""",
+)
 # mjcf-joined-inertial's: a link fixed to the base whose inertia no solid has.
 WORKSPACE["antenna.urdf"] = WORKSPACE["fishbot.urdf"].replace(
     '  <link name="left_wheel_link">\n',

@@ -466,3 +466,25 @@ fishbot mjcf fishbot.urdf -o fishbot.xml
     consumers=(Consumer.MUJOCO,),
     language="shell",
 )
+MJCF_REFUSED = Rule(
+    "mjcf-refused",
+    E,
+    Family.PHYSICS,
+    summary="The MJCF `fishbot mjcf` writes has a body MuJoCo refuses: a moving one without "
+    "mass, or an inertia no solid has that no fixed link can take.",
+    explanation="MuJoCo refuses a model with a moving body whose mass, with the bodies fixed "
+    "to it, is 0 (`mass and inertia of moving bodies must be larger than mjMINVAL`), such as "
+    "a massless link between the two joints of a hip, and a body whose inertia is not "
+    "positive semi-definite or breaks the triangle inequality. `fishbot mjcf` makes no mass "
+    "up: it writes the model, names each such link with this error, and exits with status 1. "
+    "Give the link the mass and inertia of its part.",
+    bad="""\
+# hip.urdf: a massless link between two revolute joints
+fishbot mjcf hip.urdf -o hip.xml
+""",
+    good="""\
+fishbot mjcf fishbot.urdf -o fishbot.xml
+""",
+    consumers=(Consumer.MUJOCO,),
+    language="shell",
+)

@@ -13,6 +13,7 @@ from ..catalog.physics import (
     INERTIA_TRIANGLE,
     MASSLESS_LINK,
     MISSING_INERTIAL,
+    MJCF_REFUSED,
 )
 from ..catalog.reading import NEGATIVE_MASS
 from ..errors import FishbotUrdfError
@@ -21,6 +22,7 @@ from ..lint import check_again
 from ..output import write_atomic
 from ._checking import nearest_config, posable_input, read_files
 from ._common import (
+    EXIT_INVALID,
     EXIT_OK,
     emit_findings,
     inputs_read,
@@ -80,9 +82,10 @@ def mjcf(
     name:=value values for a xacro file's <xacro:arg>. Findings about the robot are printed
     as check prints them, and so are the inertials MuJoCo refuses (massless-link,
     missing-inertial, negative-mass, inertia-not-positive, inertia-triangle, judged for
-    MuJoCo); the MJCF is written all the same. Exit status: 0 written, 1 the robot has
-    errors that leave its tree in doubt (nothing is written), 2 a file could not be read or
-    written, or the command line is wrong.
+    MuJoCo); the MJCF is written all the same. Exit status: 0 written, 1 written but MuJoCo
+    will refuse it (mjcf-refused: a moving body without mass, an inertia no solid has), or
+    the robot has errors that leave its tree in doubt (nothing is written), 2 a file could
+    not be read or written, or the command line is wrong.
 
     \b
     Examples:
@@ -112,8 +115,9 @@ def mjcf(
     if refusals:
         targets = (*result.targets, "mujoco")
         emit_findings(check_again(result, config.updated(select=refusals, targets=targets)))
-    emit_findings(d for d in made.left_out if config.applies(d.rule))
-    sys.exit(EXIT_OK)
+    changes = [d for d in made.left_out if config.applies(d.rule)]
+    emit_findings(changes)
+    sys.exit(EXIT_INVALID if any(d.rule == MJCF_REFUSED.id for d in changes) else EXIT_OK)
 
 
 _AUTO: dict[str | None, Literal["auto", "floating"]] = {None: "auto", "floating": "floating"}

@@ -16,7 +16,7 @@ from typing import Literal, NamedTuple
 from ..analysis import Analysis, of
 from ..analysis.plan import Step
 from ..catalog.meshes import MJCF_LEFT_OUT
-from ..catalog.physics import MJCF_JOINED_INERTIAL
+from ..catalog.physics import MJCF_JOINED_INERTIAL, MJCF_REFUSED
 from ..diagnostics import Diagnostic, Kind, Subject
 from ..errors import ArgumentError, StructureError
 from ..model import Collision, Joint, JointType, Link, Mesh, Robot, Visual
@@ -39,7 +39,8 @@ class Mjcf(NamedTuple):
     text: str
     """The document."""
     left_out: tuple[Diagnostic, ...]
-    """One `mjcf-left-out` finding per shape left out, in the robot's order."""
+    """What the conversion changed or left out (`mjcf-left-out`, `mjcf-joined-inertial`),
+    and the bodies MuJoCo will refuse (`mjcf-refused`)."""
 
 
 def to_mjcf(robot: Robot | Analysis, *, base: Base = "auto", meshdir: str | None = None) -> str:
@@ -111,6 +112,8 @@ class _Writer:
         self.equality = ET.Element("equality")
         self.left_out: list[Diagnostic] = []
         self.masses, joined = masses(analysis)
+        self.moving: list[str] = []  # the links whose bodies have joints
+        self.welded: dict[str, list[str]] = {}  # the links whose bodies are fixed to each
         for link, holder in joined.items():
             self._joined(analysis.links[link], holder)
         plan = analysis.plan
@@ -137,12 +140,19 @@ class _Writer:
                 body = bodies[root] = self._body(world, analysis.links[root])
                 if self.base != "fixed":
                     ET.SubElement(body, "freejoint")
+                    self.moving.append(root)
         for step in plan.steps:
-            parent = plan.links[step.parent]
-            body = self._body(bodies[parent], analysis.links[plan.links[step.link]])
+            parent, link = plan.links[step.parent], plan.links[step.link]
+            body = self._body(bodies[parent], analysis.links[link])
             place(body, step.joint.origin)
-            body[:0] = self._joints(step, top=parent == WORLD)
-            bodies[plan.links[step.link]] = body
+            joints = self._joints(step, top=parent == WORLD)
+            body[:0] = joints
+            bodies[link] = body
+            if joints:
+                self.moving.append(link)
+            elif parent != WORLD:
+                self.welded.setdefault(parent, []).append(link)
+        self._refusals()
         for joint in analysis.robot.joints:
             self._mimic(joint)
         if len(self.equality):
@@ -180,6 +190,36 @@ class _Writer:
                 body.append(found)
             elif isinstance(shape.geometry, Mesh):
                 self._left_out(link, shape.geometry, "visual" if visual else "collision")
+
+    def _refusals(self) -> None:
+        """A finding for each body MuJoCo will refuse: an inertia no solid has, or a moving
+        body that, with the bodies fixed to it, has no mass."""
+        for name, mass in self.masses.items():
+            why = refused(mass)
+            if why is not None:
+                self._refused(name, f"{why}, and nothing fixed to it can take it")
+        for name in self.moving:
+            group, total = [name], 0.0
+            while group:
+                link = group.pop()
+                held = self.masses.get(link)
+                total += 0.0 if held is None else held.mass
+                group.extend(self.welded.get(link, ()))
+            if total < _LEAST_MASS:
+                self._refused(name, "it moves, and neither it nor a link fixed to it has mass")
+
+    def _refused(self, name: str, why: str) -> None:
+        link = self.analysis.links[name]
+        where = link.inertial.source if link.inertial is not None else link.source
+        self.left_out.append(
+            MJCF_REFUSED.report(
+                f"link {name!r}: {why}: MuJoCo refuses the model",
+                where,
+                path=self.analysis.path,
+                subject=Subject(Kind.LINK, name),
+                hint="give it the mass and inertia of its shape",
+            )
+        )
 
     def _joined(self, link: Link, holder: str) -> None:
         inertial = link.inertial
@@ -272,4 +312,5 @@ class _Writer:
         element.set("polycoef", numbers((follows.offset, follows.multiplier, 0.0, 0.0, 0.0)))
 
 
+_LEAST_MASS = 1e-15  # MuJoCo's mjMINVAL: a moving body's mass must be above it
 _ONE_NUMBER = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)
