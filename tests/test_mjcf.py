@@ -383,7 +383,7 @@ def test_a_massless_moving_link_stays_massless() -> None:
     assert 'inertiafromgeom="false"' in text
     with pytest.raises(ValueError, match="mass and inertia of moving bodies"):
         mujoco.MjModel.from_xml_string(text)
-    (refused,) = [d for d in export_mjcf(_arm(upper=shape)).left_out]
+    (refused,) = [d for d in export_mjcf(_arm(upper=shape)).findings]
     assert refused.rule == "mjcf-refused" and refused.subject.name == "upper"  # type: ignore[union-attr]
     found = fishbot_urdf.check(_arm(upper=shape), config=Config(targets=("mujoco",)))
     errors = {(d.rule, d.subject and d.subject.name) for d in found if d.is_error}
@@ -401,9 +401,9 @@ def test_meshes_mujoco_cannot_read_are_left_out(tmp_path: Path) -> None:
         '<visual><geometry><mesh filename="part.stl" scale="0.001 0.001 0.001"/></geometry>'
         "</visual></link></robot>"
     )
-    text, left_out = export_mjcf(_analysis(robot), base="fixed")  # (no mass: held still)
+    text, findings = export_mjcf(_analysis(robot), base="fixed")  # (no mass: held still)
     assert text.count("<geom") == 1
-    assert [d.format() for d in left_out] == [
+    assert [d.format() for d in findings] == [
         f"{robot}:1:50: warning: link 'a': visual mesh 'part.dae' is a .dae file, which MuJoCo "
         "cannot read: left out of the MJCF (export it as STL or OBJ) [mjcf-left-out]",
         f"{robot}:1:115: warning: link 'a': visual mesh 'gone.stl' is not found: left out of "

@@ -115,7 +115,7 @@ def mjcf(
     if refusals:
         targets = (*result.targets, "mujoco")
         emit_findings(check_again(result, config.updated(select=refusals, targets=targets)))
-    changes = [d for d in made.left_out if config.applies(d.rule)]
+    changes = [d for d in made.findings if config.applies(d.rule)]
     emit_findings(changes)
     sys.exit(EXIT_INVALID if any(d.rule == MJCF_REFUSED.id for d in changes) else EXIT_OK)
 

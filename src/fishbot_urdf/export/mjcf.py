@@ -4,25 +4,23 @@ Each link is a body placed by its joint's origin, so that every link's pose is a
 pose in MuJoCo; a fixed joint is a body without a joint. Masses and inertias are the
 robot's own: MuJoCo is told to compute none from the shapes (``inertiafromgeom="false"``),
 so a moving link without mass stays without it, and MuJoCo refuses it rather than make one
-up (the `massless-link` and `missing-inertial` rules say so before it does).
+up (an `mjcf-refused` finding says so before it does).
 """
 
 from __future__ import annotations
 
-import os
 import xml.etree.ElementTree as ET
 from typing import Literal, NamedTuple
 
 from ..analysis import Analysis, of
 from ..analysis.plan import Step
-from ..catalog.meshes import MJCF_LEFT_OUT
-from ..catalog.physics import MJCF_JOINED_INERTIAL, MJCF_REFUSED
-from ..diagnostics import Diagnostic, Kind, Subject
+from ..diagnostics import Diagnostic
 from ..errors import ArgumentError, StructureError
 from ..model import Collision, Joint, JointType, Link, Mesh, Robot, Visual
 from ..spatial import quaternion
 from ._geoms import Assets, geom, number, numbers, place
-from ._masses import masses, own, principal, refused
+from ._masses import masses, principal, refused
+from ._mjcf_findings import joining, leaving_out, refusal
 
 __all__ = ["BASES", "Mjcf", "export_mjcf", "to_mjcf"]
 
@@ -34,12 +32,12 @@ WORLD = "world"
 
 
 class Mjcf(NamedTuple):
-    """An MJCF document, and what the conversion left out of it."""
+    """An MJCF document, and the findings of its conversion."""
 
     text: str
     """The document."""
-    left_out: tuple[Diagnostic, ...]
-    """What the conversion changed or left out (`mjcf-left-out`, `mjcf-joined-inertial`),
+    findings: tuple[Diagnostic, ...]
+    """What the conversion changed or left out (`mjcf-joined-inertial`, `mjcf-left-out`),
     and the bodies MuJoCo will refuse (`mjcf-refused`)."""
 
 
@@ -58,8 +56,12 @@ def export_mjcf(
     back to the same double.
 
     - Links: one body each, named as the link, placed by its joint's ``<origin>``; its
-      ``<inertial>`` as an ``<inertial>`` at its origin (``fullinertia`` turned into the
-      body's axes); no ``<inertial>``, or a mass of 0, none (MuJoCo computes none).
+      ``<inertial>`` as an ``<inertial>`` at its origin (its principal moments and axes in
+      the body's frame); no ``<inertial>``, or a mass of 0, none (MuJoCo computes none). An
+      inertia MuJoCo refuses on a body (not positive semi-definite, or breaking A + B >= C)
+      joins, summed exactly, the body of the link it is fixed to (its parent, else the first
+      child on a fixed joint that takes it), with an `mjcf-joined-inertial` finding; a body
+      MuJoCo will refuse all the same, or a moving one without mass, an `mjcf-refused` one.
     - Joints: revolute -> hinge with ``range``, continuous -> hinge, prismatic -> slide with
       ``range``, fixed -> no joint, planar -> slides ``NAME.x`` and ``NAME.y`` then a hinge
       ``NAME.yaw`` about its axis, floating -> a free joint at the top level, else slides
@@ -88,7 +90,7 @@ def export_mjcf(
     analysis = of(robot)
     _refuse(analysis)
     writer = _Writer(analysis, base, meshdir)
-    return Mjcf(writer.write(), tuple(writer.left_out))
+    return Mjcf(writer.write(), tuple(writer.findings))
 
 
 def _refuse(analysis: Analysis) -> None:
@@ -110,12 +112,12 @@ class _Writer:
         self.meshdir = meshdir
         self.assets = Assets(analysis, meshdir)
         self.equality = ET.Element("equality")
-        self.left_out: list[Diagnostic] = []
         self.masses, joined = masses(analysis)
         self.moving: list[str] = []  # the links whose bodies have joints
         self.welded: dict[str, list[str]] = {}  # the links whose bodies are fixed to each
-        for link, holder in joined.items():
-            self._joined(analysis.links[link], holder)
+        self.findings = [
+            joining(analysis, analysis.links[link], holder) for link, holder in joined.items()
+        ]
         plan = analysis.plan
         self.steps = {plan.links[step.link]: step for step in plan.steps}
 
@@ -189,7 +191,8 @@ class _Writer:
             if found is not None:
                 body.append(found)
             elif isinstance(shape.geometry, Mesh):
-                self._left_out(link, shape.geometry, "visual" if visual else "collision")
+                kind = "visual" if visual else "collision"
+                self.findings.append(leaving_out(self.analysis, link, shape.geometry, kind))
 
     def _refusals(self) -> None:
         """A finding for each body MuJoCo will refuse: an inertia no solid has, or a moving
@@ -197,7 +200,8 @@ class _Writer:
         for name, mass in self.masses.items():
             why = refused(mass)
             if why is not None:
-                self._refused(name, f"{why}, and nothing fixed to it can take it")
+                why = f"{why}, and nothing fixed to it can take it"
+                self.findings.append(refusal(self.analysis, name, why))
         for name in self.moving:
             group, total = [name], 0.0
             while group:
@@ -206,54 +210,8 @@ class _Writer:
                 total += 0.0 if held is None else held.mass
                 group.extend(self.welded.get(link, ()))
             if total < _LEAST_MASS:
-                self._refused(name, "it moves, and neither it nor a link fixed to it has mass")
-
-    def _refused(self, name: str, why: str) -> None:
-        link = self.analysis.links[name]
-        where = link.inertial.source if link.inertial is not None else link.source
-        self.left_out.append(
-            MJCF_REFUSED.report(
-                f"link {name!r}: {why}: MuJoCo refuses the model",
-                where,
-                path=self.analysis.path,
-                subject=Subject(Kind.LINK, name),
-                hint="give it the mass and inertia of its shape",
-            )
-        )
-
-    def _joined(self, link: Link, holder: str) -> None:
-        inertial = link.inertial
-        assert inertial is not None
-        why = refused(own(inertial))
-        self.left_out.append(
-            MJCF_JOINED_INERTIAL.report(
-                f"link {link.name!r}: {why}, which MuJoCo refuses on a body of its own: its "
-                f"inertial joins that of {holder!r}, to which it is fixed",
-                inertial.source,
-                path=self.analysis.path,
-                subject=Subject(Kind.LINK, link.name),
-                hint="give it the inertia of its shape",
-                element="inertial",
-            )
-        )
-
-    def _left_out(self, link: Link, mesh: Mesh, kind: str) -> None:
-        path = self.analysis.mesh_paths.get(mesh.filename)
-        if path.found:
-            suffix = os.path.splitext(mesh.filename)[1].lower()
-            why = f"is a {suffix} file, which MuJoCo cannot read" if suffix else "has no suffix"
-            hint = "export it as STL or OBJ"
-        else:
-            why, hint = "is not found", "name the file that is there"
-        self.left_out.append(
-            MJCF_LEFT_OUT.report(
-                f"link {link.name!r}: {kind} mesh {mesh.filename!r} {why}: left out of the MJCF",
-                mesh.source,
-                path=self.analysis.path,
-                subject=Subject(Kind.LINK, link.name),
-                hint=hint,
-            )
-        )
+                why = "it moves, and neither it nor a link fixed to it has mass"
+                self.findings.append(refusal(self.analysis, name, why))
 
     def _joints(self, step: Step, *, top: bool) -> list[ET.Element]:
         joint, kind = step.joint, step.kind
