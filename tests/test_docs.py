@@ -460,6 +460,7 @@ def test_each_command_has_its_page(site: Path) -> None:
         "graph",
         "inertia",
         "lsp",
+        "mjcf",
         "render",
         "rules",
         "sdf",

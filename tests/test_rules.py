@@ -113,6 +113,31 @@ WORKSPACE["frames.urdf"] = WORKSPACE["fishbot.urdf"].replace(
     '    <visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>\n', ""
 )
 
+# mjcf-left-out's example: a robot whose visual mesh is a COLLADA file, found.
+WORKSPACE["mixed.urdf"] = WORKSPACE["fishbot.urdf"].replace(
+    '<visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>',
+    '<visual><geometry><mesh filename="meshes/base_link.dae"/></geometry></visual>',
+)
+WORKSPACE["meshes/base_link.dae"] = ""
+# mjcf-refused's: a massless link between the two joints of a hip.
+WORKSPACE["hip.urdf"] = WORKSPACE["fishbot.urdf"].replace(
+    "</robot>",
+    """  <link name="hip_virtual"/>
+  <link name="thigh"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <joint name="hip_roll" type="continuous"><axis xyz="1 0 0"/>
+    <parent link="base_link"/><child link="hip_virtual"/></joint>
+  <joint name="hip_pitch" type="continuous"><axis xyz="0 1 0"/>
+    <parent link="hip_virtual"/><child link="thigh"/></joint>
+</robot>""",
+)
+# mjcf-joined-inertial's: a link fixed to the base whose inertia no solid has.
+WORKSPACE["antenna.urdf"] = WORKSPACE["fishbot.urdf"].replace(
+    '  <link name="left_wheel_link">\n',
+    '  <link name="left_wheel_link">\n    <inertial><mass value="0.01"/>'
+    '<inertia ixx="1e-6" ixy="0" ixz="0" iyy="1e-6" iyz="0" izz="1e-5"/></inertial>\n',
+)
+
 # The conversion's example: an arm whose <gazebo> block has a number, and the same with a
 # xacro expression left where the converter reads a number.
 _ARM = """\
@@ -136,8 +161,9 @@ WORKSPACE["gazebo.urdf"] = _ARM.format(
     gazebo='\n  <gazebo reference="upper_arm"><mu1>${mu}</mu1></gazebo>'
 )
 
-# Rules of what render and view cannot draw: the picture is drawn without it, exit status 0.
-DRAWING_RULES = {"shape-not-drawn"}
+# Rules of what render and view cannot draw, and of what mjcf leaves out: the picture or the
+# model is made without it, exit status 0.
+DRAWING_RULES = {"shape-not-drawn", "mjcf-left-out", "mjcf-joined-inertial"}
 
 
 def _modules() -> Iterator[object]:

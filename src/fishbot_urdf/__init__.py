@@ -39,6 +39,7 @@ if TYPE_CHECKING:
         XmlSyntaxError,
     )
     from .expansion import Expansion, XacroError, expand
+    from .export.mjcf import export_mjcf, to_mjcf
     from .export.sdf import to_sdf
     from .graph import chain, leaves, root, subtree, to_networkx, tree_text
     from .inertia import (
@@ -176,6 +177,7 @@ __all__ = [
     "cylinder_inertia",
     "draw",
     "expand",
+    "export_mjcf",
     "fill_inertials",
     "find_config",
     "find_package",
@@ -210,6 +212,7 @@ __all__ = [
     "suggest_inertials",
     "to_dot",
     "to_mermaid",
+    "to_mjcf",
     "to_networkx",
     "to_sdf",
     "to_urdf",
@@ -291,6 +294,7 @@ _WHERE = {
     "cylinder_inertia": "inertia",
     "draw": "drawing.dot",
     "expand": "expansion",
+    "export_mjcf": "export.mjcf",
     "fill_inertials": "inertia",
     "find_config": "config",
     "find_package": "packages",
@@ -325,6 +329,7 @@ _WHERE = {
     "suggest_inertials": "inertia",
     "to_dot": "drawing.dot",
     "to_mermaid": "drawing.mermaid",
+    "to_mjcf": "export.mjcf",
     "to_networkx": "graph",
     "to_sdf": "export.sdf",
     "to_urdf": "write",

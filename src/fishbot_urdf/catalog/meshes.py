@@ -246,6 +246,29 @@ fishbot render fishbot.urdf -o fishbot.png
     language="shell",
 )
 
+MJCF_LEFT_OUT = Rule(
+    "mjcf-left-out",
+    W,
+    Family.MESHES,
+    summary="A mesh `fishbot mjcf` leaves out of the MJCF: MuJoCo cannot read its file (not "
+    "STL or OBJ, such as COLLADA), or its file is not found.",
+    explanation="MuJoCo reads mesh files in STL and OBJ, and refuses a model that names a file "
+    "it cannot decode (`no decoder found for mesh file`), such as a COLLADA `.dae`, or a file "
+    "that is not there. `fishbot mjcf` writes a model MuJoCo loads: it leaves such a shape out "
+    "of its body, with this warning, and the command succeeds; the body keeps its inertial, so "
+    "only what is drawn or collides is lost. Export the mesh as STL or OBJ (a visual can keep "
+    "its COLLADA file for RViz if the collision shape is STL), or name the file that is there.",
+    bad="""\
+# mixed.urdf: a visual mesh in COLLADA, meshes/base_link.dae
+fishbot mjcf mixed.urdf -o mixed.xml
+""",
+    good="""\
+fishbot mjcf fishbot.urdf -o fishbot.xml
+""",
+    consumers=(Consumer.MUJOCO,),
+    language="shell",
+)
+
 
 @dataclass(frozen=True, slots=True, kw_only=True)
 class NothingDrawnFacts(Facts):

@@ -441,3 +441,50 @@ ABOVE_GROUND = Rule(
 """,
     consumers=(Consumer.GAZEBO, Consumer.PYBULLET),
 )
+MJCF_JOINED_INERTIAL = Rule(
+    "mjcf-joined-inertial",
+    W,
+    Family.PHYSICS,
+    summary="`fishbot mjcf` adds a fixed link's inertial to the body it is fixed to, as MuJoCo "
+    "refuses its inertia on a body of its own.",
+    explanation="`fishbot mjcf` makes each link a body of MuJoCo's, and MuJoCo refuses a body "
+    "whose inertia is not positive semi-definite or whose principal moments break the "
+    "triangle inequality, even when the body cannot move. A link on a fixed joint with such an "
+    "inertia (a sensor frame with made-up numbers, a base with a placeholder) is fine in the "
+    "simulators that merge fixed links, and `inertia-not-positive` and `inertia-triangle` "
+    "judge it so; `fishbot mjcf` adds its mass, centre of mass and inertia, exactly, to the "
+    "body of its parent, or of the first link fixed below it (for a root or a moving link), "
+    "says so with this warning, and the link keeps its own body and pose. Give the link the "
+    "inertia of its shape.",
+    bad="""\
+# antenna.urdf: a fixed link whose izz is more than ixx + iyy
+fishbot mjcf antenna.urdf -o antenna.xml
+""",
+    good="""\
+fishbot mjcf fishbot.urdf -o fishbot.xml
+""",
+    consumers=(Consumer.MUJOCO,),
+    language="shell",
+)
+MJCF_REFUSED = Rule(
+    "mjcf-refused",
+    E,
+    Family.PHYSICS,
+    summary="The MJCF `fishbot mjcf` writes has a body MuJoCo refuses: a moving one without "
+    "mass, or an inertia no solid has that no fixed link can take.",
+    explanation="MuJoCo refuses a model with a moving body whose mass, with the bodies fixed "
+    "to it, is 0 (`mass and inertia of moving bodies must be larger than mjMINVAL`), such as "
+    "a massless link between the two joints of a hip, and a body whose inertia is not "
+    "positive semi-definite or breaks the triangle inequality. `fishbot mjcf` makes no mass "
+    "up: it writes the model, names each such link with this error, and exits with status 1. "
+    "Give the link the mass and inertia of its part.",
+    bad="""\
+# hip.urdf: a massless link between two revolute joints
+fishbot mjcf hip.urdf -o hip.xml
+""",
+    good="""\
+fishbot mjcf fishbot.urdf -o fishbot.xml
+""",
+    consumers=(Consumer.MUJOCO,),
+    language="shell",
+)

@@ -40,6 +40,7 @@ COMMANDS = {
     "findings of `fishbot check` as you type, in the file each is in (and at the macro call "
     "that made it), quick fixes, and each rule explained on hover; go to definition, "
     "references, rename, completion and the outline of the robot's names across its files.",
+    "mjcf": "The MJCF of FILE (URDF or xacro): the model file MuJoCo loads, with no mass made up.",
     "sdf": "The SDF of FILE (URDF or xacro) as Gazebo's converter makes it: what `ign sdf -p` "
     "prints.",
     "view": "Show FILE (URDF or xacro) in a web browser: visuals in their colours, link frames as "
@@ -101,6 +102,7 @@ def cli() -> None:
       fishbot render robot.urdf.xacro -o robot.png --view side
       fishbot view robot.urdf.xacro
       fishbot sdf robot.urdf.xacro -o robot.sdf
+      fishbot mjcf robot.urdf.xacro -o robot.xml
       fishbot lsp
     """
 

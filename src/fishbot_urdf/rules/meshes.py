@@ -326,8 +326,14 @@ def _fault(meshes: MeshContents, file: Path) -> str | None:
 
 
 # (shape-not-drawn and nothing-drawn are render's and view's findings: the check never draws;
-# shape-size is the shapes' check's, which opens no file)
-_OTHERS = (catalog.meshes.SHAPE_NOT_DRAWN, catalog.meshes.NOTHING_DRAWN, catalog.meshes.SHAPE_SIZE)
+# mjcf-left-out is what `fishbot mjcf` leaves out; shape-size is the shapes' check's, which
+# opens no file)
+_OTHERS = (
+    catalog.meshes.SHAPE_NOT_DRAWN,
+    catalog.meshes.NOTHING_DRAWN,
+    catalog.meshes.MJCF_LEFT_OUT,
+    catalog.meshes.SHAPE_SIZE,
+)
 REPORTS: tuple[Rule, ...] = tuple(r for r in rules_in(catalog.meshes) if r not in _OTHERS)
 """Every rule this module's check may report: the check runs only when one is selected."""
 CONTENTS_REPORTS: tuple[Rule, ...] = (MESH_INVALID, MESH_FACES, MESH_FLAT, MESH_UNITS)
