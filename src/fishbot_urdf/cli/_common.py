@@ -274,6 +274,19 @@ def package_option() -> Callable[[Wrapped], Wrapped]:
     )
 
 
+def output_option(what: str) -> Callable[[Wrapped], Wrapped]:
+    """``-o/--output FILE`` for a command that writes ``what`` (the SDF, the URDF, ...):
+    standard output by default."""
+    return click.option(
+        "-o",
+        "--output",
+        default="-",
+        show_default=True,
+        metavar="FILE",
+        help=f"Where to write {what}; - is standard output. Folders are made as needed.",
+    )
+
+
 def joint_option() -> Callable[[Wrapped], Wrapped]:
     """``-j/--joint NAME=VALUE`` (repeatable), stored as ``joint_items``: a joint position,
     written with ``=`` so that it is never taken for a xacro ``name:=value``."""

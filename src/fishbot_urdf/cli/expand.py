@@ -27,6 +27,7 @@ from ._common import (
     emit_findings,
     inputs_read,
     limit_options,
+    output_option,
     package_option,
     packages_option,
     stop_on,
@@ -38,13 +39,7 @@ from ._common import (
 @click.command()
 @click.argument("file", type=click.Path())
 @click.argument("args", nargs=-1)
-@click.option(
-    "-o",
-    "--output",
-    default="-",
-    show_default=True,
-    help="Where to write the URDF; - is standard output. Folders are made as needed.",
-)
+@output_option("the URDF")
 @click.option("--deps", is_flag=True, help="Print the files the expansion reads instead.")
 @click.option(
     "--strict",

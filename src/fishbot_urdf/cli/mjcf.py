@@ -27,6 +27,7 @@ from ._common import (
     emit_findings,
     inputs_read,
     limit_options,
+    output_option,
     package_option,
     packages_option,
     stop_on,
@@ -38,14 +39,7 @@ from ._common import (
 @click.command()
 @click.argument("file", type=click.Path(allow_dash=True))
 @click.argument("args", nargs=-1, metavar="[name:=value]...")
-@click.option(
-    "-o",
-    "--output",
-    default="-",
-    show_default=True,
-    metavar="FILE",
-    help="Where to write the MJCF; - is standard output. Folders are made as needed.",
-)
+@output_option("the MJCF")
 @click.option(
     "--fixed-base",
     "base",

@@ -19,6 +19,7 @@ from ._common import (
     emit_findings,
     inputs_read,
     limit_options,
+    output_option,
     package_option,
     packages_option,
     stop_on,
@@ -30,14 +31,7 @@ from ._common import (
 @click.command()
 @click.argument("file", type=click.Path(allow_dash=True))
 @click.argument("args", nargs=-1, metavar="[name:=value]...")
-@click.option(
-    "-o",
-    "--output",
-    default="-",
-    show_default=True,
-    metavar="FILE",
-    help="Where to write the SDF; - is standard output. Folders are made as needed.",
-)
+@output_option("the SDF")
 @package_option()
 @limit_options()
 def sdf(file: str, args: Sequence[str], output: str, package_items: Sequence[str]) -> None:
