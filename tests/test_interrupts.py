@@ -69,12 +69,17 @@ def _wait_for_walks() -> None:
 
 def _join(thread: threading.Thread) -> None:
     """Join a thread that may be listed before it has said it started (join refuses one
-    until then: seen once in a full run, under load)."""
+    until then: seen once in a full run, under load). One whose start an alarm broke off
+    inside threading's own wait may never say so: after 30 s, it is taken as never run
+    (it is not alive then)."""
+    give_up = time.monotonic() + 30
     while True:
         try:
             thread.join(timeout=30)
             return
         except RuntimeError:
+            if time.monotonic() > give_up:
+                return
             time.sleep(0.001)
 
 
