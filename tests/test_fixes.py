@@ -351,3 +351,9 @@ def test_an_inertial_added_to_a_crlf_file_keeps_its_line_breaks(tmp_path: Path) 
     data = robot.read_bytes()
     assert b"<inertial>" in data
     assert data.count(b"\n") == data.count(b"\r\n")
+
+
+def test_a_robot_that_cannot_be_read_is_said_and_fails_the_diff(tmp_path: Path) -> None:
+    result = CliRunner().invoke(cli, ["check", "--diff", str(tmp_path / "none.urdf")])
+    assert result.exit_code == 2
+    assert "no such file [io]" in result.output

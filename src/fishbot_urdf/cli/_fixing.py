@@ -41,6 +41,7 @@ class Fixed:
     count: int = 0
     hidden: int = 0  # fixes left for --unsafe-fixes
     refused: list[str] = field(default_factory=list)  # files a fix was undone in
+    errors: dict[str, FishbotUrdfError] = field(default_factory=dict)  # robots not read
 
     def diff(self) -> str:
         """The changes as a unified diff, file by file (as git and patch read it)."""
@@ -82,7 +83,11 @@ def fix_files(
     done: list[tuple[str, Config, int]] = []  # the robots fixed so far, and their findings
     for name, config in zip(names, configs, strict=True):
         for _ in range(ROUNDS):
-            findings = _findings(workspace, name, args, config)
+            try:
+                findings = _findings(workspace, name, args, config)
+            except FishbotUrdfError as exc:  # nothing to fix: the check says why
+                fixed.errors[name] = exc
+                break
             chosen, hidden = _chosen(findings, unsafe)
             undo = _apply(fixed, workspace, chosen)
             if not undo:
@@ -98,7 +103,8 @@ def fix_files(
                 fixed.refused.extend(undo)
                 break
             fixed.count += len(chosen)
-        done.append((name, config, len(_findings(workspace, name, args, config))))
+        if name not in fixed.errors:
+            done.append((name, config, len(_findings(workspace, name, args, config))))
     for path in fixed.before:
         fixed.after.setdefault(path, fixed.before[path])
     return fixed
@@ -112,7 +118,10 @@ def _findings(
             name, args=args, config=config, workspace=workspace, fixes=True
         ).diagnostics
     except FishbotUrdfError as exc:  # a misspelt property stops the expansion
-        return (error_finding(exc, Texts(workspace.read), name, name),)
+        found = error_finding(exc, Texts(workspace.read), name, name)
+        if not found.fixes:
+            raise
+        return (found,)
 
 
 def _chosen(findings: Sequence[Diagnostic], unsafe: bool) -> tuple[list[Fix], int]:

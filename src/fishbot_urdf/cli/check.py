@@ -34,6 +34,7 @@ from ._common import (
     limit_options,
     package_option,
     packages_option,
+    status_of,
     stop_on,
     to_stdout,
     write_chunks,
@@ -422,7 +423,9 @@ def _fixing(
     if diff:
         to_stdout(fixed.diff().encode("utf-8", "surrogateescape"))
         _say_hidden(fixed.hidden)
-        sys.exit(EXIT_INVALID if fixed.changed() else EXIT_OK)
+        emit_findings(fail(exc) for exc in fixed.errors.values())
+        statuses = [status_of(exc) for exc in fixed.errors.values()]
+        sys.exit(max([EXIT_INVALID if fixed.changed() else EXIT_OK, *statuses]))
     failed = write_fixed(fixed)
     emit_findings(fail(exc) for exc in failed)
     changed = fixed.changed()
