@@ -20,6 +20,7 @@ from ..inputs import deadline
 from ..model import Joint, JointType, Link, Robot
 from ..packages import PackageFinder
 from ..spatial import Pose
+from .drive import Drive, drives, wheels
 from .gazebo import Block, Lumping, blocks, lumping
 from .meshcontents import MeshContents
 from .meshpaths import MeshPaths
@@ -124,6 +125,17 @@ class Analysis:
         """The sensors of its ``<gazebo>`` blocks, in file order: the link each is on, its
         pose there, and its rays' or cameras' settings as written."""
         return sensors(self.gazebo_blocks)
+
+    @cached_property
+    def drives(self) -> tuple[Drive, ...]:
+        """The wheel pairs its differential drive plugins turn, in file order; with no such
+        plugin, the two continuous wheel joints it has, if they are plain to see (see
+        `fishbot_urdf.analysis.drive.wheels`)."""
+        found = drives(self.gazebo_blocks)
+        if found:
+            return found
+        pair = wheels(self.joints, self.links, self.zero_poses)
+        return () if pair is None else (pair,)
 
     @cached_property
     def mesh_paths(self) -> MeshPaths:

@@ -4,67 +4,35 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator
-from dataclasses import dataclass
 
 from lxml import etree
 
 from ...analysis import Analysis
+from ...analysis.drive import ALONG, GZ, Dialect, dialect, unit, wheel_radius
 from ...analysis.gazebo import Block, place, plugins, text, texts
 from ...catalog.gazebo import DIFF_DRIVE_SIZE, DIFF_DRIVE_WHEELS
 from ...diagnostics import Diagnostic, Kind, Subject
 from ...location import call_chain, calls_of
-from ...model import Cylinder, Joint, JointType, Location
-from ...spatial import Pose, dot, mat_vec, rpy_matrix, scale
+from ...model import Joint, JointType, Location
+from ...spatial import Pose, dot, mat_vec
 
 __all__ = ["drives"]
 
 _TOLERANCE = 0.01  # relative: a value 1% off the robot's is wrong
-_ALONG = 0.99  # the cosine above which two directions are taken as one
 _TURNING = (JointType.CONTINUOUS, JointType.REVOLUTE)
 _EPS = 1e-9
-
-
-@dataclass(frozen=True, slots=True)
-class _Names:
-    """What one family of the plugin calls its parameters, and its defaults (m)."""
-
-    left: str
-    right: str
-    separation: str
-    size: str  # the diameter's or radius's tag
-    radius: bool  # whether ``size`` is a radius
-    default_separation: float
-    default_size: float
-
-
-# gazebo_ros_diff_drive.cpp (ROS 2 and ROS 1 branches of gazebo_ros_pkgs) and gz-sim's
-# DiffDrive system, with the defaults each uses for a tag left out.
-_CLASSIC = _Names(
-    "left_joint", "right_joint", "wheel_separation", "wheel_diameter", False, 0.34, 0.15
-)
-_ROS1 = _Names("leftJoint", "rightJoint", "wheelSeparation", "wheelDiameter", False, 0.34, 0.15)
-_GZ = _Names("left_joint", "right_joint", "wheel_separation", "wheel_radius", True, 1.0, 0.2)
 
 
 def drives(analysis: Analysis, block: Block) -> Iterator[Diagnostic]:
     """Findings about each differential drive plugin of ``block``."""
     for plugin in plugins(block):
-        names = _names(plugin)
+        names = dialect(plugin)
         if names is not None:
             yield from _drive(analysis, block, plugin, names)
 
 
-def _names(plugin: etree._Element) -> _Names | None:
-    filename = plugin.get("filename") or ""
-    if "gazebo_ros_diff_drive" in filename:
-        return _ROS1 if plugin.find("leftJoint") is not None else _CLASSIC
-    if "diff-drive-system" in filename or "DiffDrive" in (plugin.get("name") or ""):
-        return _GZ
-    return None
-
-
 def _drive(
-    analysis: Analysis, block: Block, plugin: etree._Element, names: _Names
+    analysis: Analysis, block: Block, plugin: etree._Element, names: Dialect
 ) -> Iterator[Diagnostic]:
     where = place(analysis.references, block, plugin)
     label = f"plugin {plugin.get('name') or ''!r} ({plugin.get('filename')})"
@@ -89,7 +57,7 @@ def _drive(
         if pair is None:
             continue
         apart, radius, wheel = pair
-        one = names is _GZ  # the new Gazebo's system has one separation and radius for all
+        one = names is GZ  # the new Gazebo's system has one separation and radius for all
         at = 0 if one else index
         given = separations[at] if at < len(separations) else names.default_separation
         written = at < len(separations)
@@ -214,8 +182,8 @@ def _pair(
     if length < _EPS:
         return None
     for joint, pose in ((left_joint, left_pose), (right_joint, right_pose)):
-        axis = _unit(mat_vec(pose.rotation, joint.axis))
-        if axis is None or abs(dot(axis, between)) / length < _ALONG:
+        axis = unit(mat_vec(pose.rotation, joint.axis))
+        if axis is None or abs(dot(axis, between)) / length < ALONG:
             faults.append(
                 (
                     f"wheel joint {joint.name!r} turns about {_vector(axis)} in the base frame, "
@@ -243,26 +211,8 @@ def _pair(
 
 
 def _radius(analysis: Analysis, joint: Joint) -> tuple[float | None, str]:
-    """The radius of the largest collision cylinder of ``joint``'s child that turns about the
-    joint's axis, if any."""
-    link = analysis.links.get(joint.child)
-    axis = _unit(joint.axis)
-    if link is None or axis is None:
-        return None, joint.child
-    found: float | None = None
-    for collision in link.collisions:
-        shape = collision.geometry
-        if not isinstance(shape, Cylinder) or shape.radius <= 0:
-            continue
-        along = mat_vec(rpy_matrix(collision.origin.rpy), (0.0, 0.0, 1.0))
-        if abs(dot(along, axis)) >= _ALONG and (found is None or shape.radius > found):
-            found = shape.radius
-    return found, link.name
-
-
-def _unit(vector: tuple[float, float, float]) -> tuple[float, float, float] | None:
-    length = math.sqrt(dot(vector, vector))
-    return scale(vector, 1 / length) if length > _EPS else None
+    """The radius of the wheel ``joint``'s child rolls on, if any, and the child's name."""
+    return wheel_radius(analysis.links.get(joint.child), joint.axis), joint.child
 
 
 def _vector(vector: tuple[float, float, float] | None) -> str:
