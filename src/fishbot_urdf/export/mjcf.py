@@ -13,16 +13,18 @@ import xml.etree.ElementTree as ET
 from typing import Literal, NamedTuple
 
 from ..analysis import Analysis, of
+from ..analysis.gazebo import number as setting
 from ..analysis.plan import Step
 from ..diagnostics import Diagnostic
 from ..errors import ArgumentError, StructureError
 from ..model import Collision, Joint, JointType, Link, Mesh, Robot, Visual
 from ..spatial import quaternion
+from ._actuators import Motor, actuator, motors
 from ._geoms import Assets, geom, number, numbers, place
 from ._masses import masses, principal, refused
 from ._mjcf_findings import joining, leaving_out, refusal
 
-__all__ = ["BASES", "Mjcf", "export_mjcf", "to_mjcf"]
+__all__ = ["BASES", "Mjcf", "Motor", "export_mjcf", "motors", "to_mjcf"]
 
 Base = Literal["auto", "fixed", "floating"]
 BASES: tuple[Base, ...] = ("auto", "fixed", "floating")
@@ -47,7 +49,11 @@ def to_mjcf(robot: Robot | Analysis, *, base: Base = "auto", meshdir: str | None
 
 
 def export_mjcf(
-    robot: Robot | Analysis, *, base: Base = "auto", meshdir: str | None = None
+    robot: Robot | Analysis,
+    *,
+    base: Base = "auto",
+    meshdir: str | None = None,
+    driven: tuple[Motor, ...] | None = None,
 ) -> Mjcf:
     """The MJCF of ``robot``: what ``mujoco.MjModel.from_xml_string`` loads.
 
@@ -80,6 +86,7 @@ def export_mjcf(
             world by their joints), else free; ``fixed``: the root (or each child of
             ``world``) fixed to the world; ``floating``: free.
         meshdir: The folder mesh files are named relative to, or None for absolute names.
+        driven: The joints to put actuators on (None: the robot's own, `motors`).
 
     Raises:
         StructureError: A link or joint name is used twice, or the links form a loop.
@@ -89,7 +96,7 @@ def export_mjcf(
         raise ArgumentError(f"base {base!r} is none of {', '.join(BASES)}", name="base")
     analysis = of(robot)
     _refuse(analysis)
-    writer = _Writer(analysis, base, meshdir)
+    writer = _Writer(analysis, base, meshdir, motors(analysis) if driven is None else driven)
     return Mjcf(writer.write(), tuple(writer.findings))
 
 
@@ -106,8 +113,13 @@ def _refuse(analysis: Analysis) -> None:
 
 
 class _Writer:
-    def __init__(self, analysis: Analysis, base: Base, meshdir: str | None) -> None:
+    def __init__(
+        self, analysis: Analysis, base: Base, meshdir: str | None, driven: tuple[Motor, ...]
+    ) -> None:
         self.analysis = analysis
+        self.driven = driven
+        self.made: set[str] = set()  # the names of the joints written
+        self.friction = _friction(analysis)
         self.base = base
         self.meshdir = meshdir
         self.assets = Assets(analysis, meshdir)
@@ -130,7 +142,7 @@ class _Writer:
         )
         if self.meshdir is not None:
             compiler.set("meshdir", self.meshdir)
-        ET.SubElement(model, "option", integrator="implicitfast")
+        ET.SubElement(model, "option", integrator="implicitfast", cone="elliptic")
         model.append(self.assets.element)
         world = ET.SubElement(model, "worldbody")
         bodies: dict[str, ET.Element] = {}
@@ -159,6 +171,12 @@ class _Writer:
             self._mimic(joint)
         if len(self.equality):
             model.append(self.equality)
+        actuators = ET.Element("actuator")
+        for motor in self.driven:
+            if motor.joint in self.made:
+                actuators.append(actuator(motor, analysis.joints[motor.joint]))
+        if len(actuators):
+            model.append(actuators)
         if not len(self.assets.element):
             model.remove(self.assets.element)
         ET.indent(model)
@@ -189,6 +207,9 @@ class _Writer:
             visual = isinstance(shape, Visual)
             found = geom(self.assets, shape.geometry, shape.origin, visual=visual)
             if found is not None:
+                friction = None if visual else self.friction.get(link.name)
+                if friction is not None:
+                    found.set("friction", f"{number(friction)} 0.005 0.0001")
                 body.append(found)
             elif isinstance(shape.geometry, Mesh):
                 kind = "visual" if visual else "collision"
@@ -244,6 +265,7 @@ class _Writer:
         limited: bool,
     ) -> ET.Element:
         element = ET.Element("joint", name=name, type=kind, axis=numbers(axis))
+        self.made.add(name)
         if limited and joint.limit is not None:
             element.set("range", numbers((joint.limit.lower, joint.limit.upper)))
         if joint.dynamics is not None:
@@ -268,6 +290,17 @@ class _Writer:
             return
         element.set("joint2", follows.leader)
         element.set("polycoef", numbers((follows.offset, follows.multiplier, 0.0, 0.0, 0.0)))
+
+
+def _friction(analysis: Analysis) -> dict[str, float]:
+    """Each link's friction as its ``<gazebo reference>`` blocks give it (``<mu1>``, the last
+    one written), as Gazebo gives it to the link's collisions."""
+    found: dict[str, float] = {}
+    for block in analysis.gazebo_blocks:
+        mu = setting(block.element, "mu1") if block.reference is not None else None
+        if block.reference is not None and mu is not None and mu >= 0:
+            found[block.reference] = mu
+    return found
 
 
 _LEAST_MASS = 1e-15  # MuJoCo's mjMINVAL: a moving body's mass must be above it
