@@ -53,6 +53,7 @@ class Family(str, Enum):
     MESHES = "meshes"
     PHYSICS = "physics"
     GAZEBO = "gazebo"
+    SIMULATION = "simulation"
     XACRO = "xacro"
     SETUP = "setup"
     LINT = "lint"

@@ -43,6 +43,8 @@ COMMANDS = {
     "mjcf": "The MJCF of FILE (URDF or xacro): the model file MuJoCo loads, with no mass made up.",
     "sdf": "The SDF of FILE (URDF or xacro) as Gazebo's converter makes it: what `ign sdf -p` "
     "prints.",
+    "sim": "Drop FILE (URDF or xacro) on a floor in MuJoCo and drive it, or hold it, and say "
+    "what went wrong, as a learner would check it in Gazebo: no ROS, no Gazebo, no display.",
     "view": "Show FILE (URDF or xacro) in a web browser: visuals in their colours, link frames as "
     "axes, and a slider per moving joint within its limits, from the root outwards (mimic "
     "joints follow).",
@@ -103,6 +105,7 @@ def cli() -> None:
       fishbot view robot.urdf.xacro
       fishbot sdf robot.urdf.xacro -o robot.sdf
       fishbot mjcf robot.urdf.xacro -o robot.xml
+      fishbot sim robot.urdf.xacro --drive 0.2,0.5
       fishbot lsp
     """
 

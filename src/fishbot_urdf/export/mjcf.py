@@ -20,11 +20,21 @@ from ..errors import ArgumentError, StructureError
 from ..model import Collision, Joint, JointType, Link, Mesh, Robot, Visual
 from ..spatial import quaternion
 from ._actuators import Motor, actuator, motors
-from ._geoms import Assets, geom, number, numbers, place
+from ._geoms import COLLISION_GROUP, VISUAL_GROUP, Assets, geom, number, numbers, place
 from ._masses import masses, principal, refused
 from ._mjcf_findings import joining, leaving_out, refusal
 
-__all__ = ["BASES", "Mjcf", "Motor", "export_mjcf", "motors", "to_mjcf"]
+__all__ = [
+    "BASES",
+    "COLLISION_GROUP",
+    "VISUAL_GROUP",
+    "Base",
+    "Mjcf",
+    "Motor",
+    "export_mjcf",
+    "motors",
+    "to_mjcf",
+]
 
 Base = Literal["auto", "fixed", "floating"]
 BASES: tuple[Base, ...] = ("auto", "fixed", "floating")
@@ -210,6 +220,9 @@ class _Writer:
                 friction = None if visual else self.friction.get(link.name)
                 if friction is not None:
                     found.set("friction", f"{number(friction)} 0.005 0.0001")
+                    # as Gazebo, whatever the floor's: MuJoCo takes the greater of two
+                    # geoms' frictions, or the one of the greater priority
+                    found.set("priority", "1")
                 body.append(found)
             elif isinstance(shape.geometry, Mesh):
                 kind = "visual" if visual else "collision"

@@ -1,0 +1,141 @@
+"""The robot in MuJoCo, as a learner would try it in Gazebo: dropped on a floor and driven, or
+held at a configuration, and what went wrong said as findings in the robot's files.
+
+`simulate` picks the trial from the robot's description:
+
+- **drive**: a robot with a differential drive (its plugin's wheels, or two continuous
+  wheel joints) floats on the floor, settles, drives straight, stops and turns on the spot;
+- **hold**: any other robot is held by its root, as an arm stands on its table, its joints
+  held by servos at a configuration within their limits (see
+  `fishbot_urdf.simulation._holding`);
+- **drop**: with ``base="floating"``, a robot without wheels is dropped on the floor with
+  its joints so held.
+
+Every trial watches for a state that blows up, a base that tips over, shapes deep in the
+floor, and links whose collision shapes overlap at the start. MuJoCo is the ``sim``
+extra (``pip install 'fishbot-urdf[sim]'``).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Literal
+
+from ..analysis import Analysis, of
+from ..diagnostics import Diagnostic
+from ..errors import ArgumentError
+from ..export.mjcf import export_mjcf, motors
+from ..model import Robot
+from . import _findings as say
+from ._driving import SETTLE, drive
+from ._holding import held_joints, hold, servos, start, tune
+from ._outcome import Measure, Outcome, Trial
+from ._watch import Watch
+from ._world import INSTALL, World, load_mujoco
+
+__all__ = ["INSTALL", "Measure", "Outcome", "Trial", "load_mujoco", "simulate"]
+
+TIPPED = math.radians(30.0)
+"""How far the base may lean from upright."""
+DEEP = 0.01
+"""How deep a shape may sink into the floor (m)."""
+DROP = 0.005
+"""How high above the floor a floating robot's lowest point starts (m)."""
+
+
+def simulate(
+    robot: Robot | Analysis,
+    *,
+    seconds: float = 2.0,
+    speed: float = 0.5,
+    turn: float = 1.0,
+    base: Literal["auto", "fixed", "floating"] = "auto",
+) -> Outcome:
+    """Simulate ``robot`` in MuJoCo and say what went wrong.
+
+    Args:
+        robot: The robot, or its analysis.
+        seconds: How long each drive (straight, then turning), or the hold, lasts after the
+            commands are reached (s of simulated time).
+        speed: The straight run's speed (m/s), as ``linear.x`` of a Twist.
+        turn: The turn's rate (rad/s, positive to the left), as ``angular.z``.
+        base: ``auto``: a wheeled robot floats on the floor, any other is held by its root;
+            ``fixed``: held by its root; ``floating``: on the floor.
+
+    Raises:
+        ToolNotFoundError: mujoco is not installed.
+        ArgumentError: ``seconds`` is not positive, or a number is not finite.
+        StructureError: The robot cannot be built as a tree of bodies.
+    """
+    if not (seconds > 0 and math.isfinite(seconds)):
+        raise ArgumentError(f"seconds must be above 0, not {seconds}", name="seconds")
+    if not (math.isfinite(speed) and math.isfinite(turn)):
+        raise ArgumentError("the speed and turn rate must be finite numbers", name="drive")
+    load_mujoco()
+    analysis = of(robot)
+    pairs = analysis.drives
+    pair = pairs[0] if pairs and base != "fixed" else None
+    trial: Trial = "drive" if pair is not None else "drop" if base == "floating" else "hold"
+    wheel_motors = motors(analysis, drives=(pair,)) if pair is not None else ()
+    held = held_joints(analysis, {m.joint for m in wheel_motors})
+    driven = (*wheel_motors, *servos(analysis, held))
+    made = export_mjcf(analysis, base="fixed" if trial == "hold" else "floating", driven=driven)
+    refused = [d for d in made.findings if d.is_error]
+    if refused:
+        return Outcome(analysis.robot.name, trial, 0.0, 0, (), made.findings)
+    world = World(analysis, made.text)
+    root = _root(analysis)
+    watch = Watch(world, world.body(root))
+    found: list[Diagnostic] = list(made.findings)
+    target = start(analysis, world, held)
+    for one, other, depth in world.overlaps():
+        found.append(say.self_contact(analysis, one, other, depth, _at(trial)))
+    measures: list[Measure] = []
+    if trial != "hold":
+        world.lift(DROP - world.lowest())
+    tune(world, target)
+    if pair is not None:
+        more, faults = drive(analysis, world, watch, pair, speed=speed, turn=turn, seconds=seconds)
+    elif trial == "drop":
+        more, faults = _settle(analysis, world, watch, seconds)
+    else:
+        more, faults = hold(analysis, world, watch, held, seconds=seconds)
+    measures += more
+    found += faults
+    if watch.exploded is not None:
+        found.append(say.exploded(analysis, watch.exploded))
+    else:
+        if trial != "hold":
+            tilt, most = math.degrees(watch.tilt), math.degrees(TIPPED)
+            measures.append(Measure("largest tilt", tilt, None, "degrees", tilt <= most, most=most))
+            if watch.tilt > TIPPED:
+                found.append(say.tipped(analysis, root, tilt))
+        depth, link = watch.depth
+        measures.append(
+            Measure("deepest in the floor", depth, None, "m", depth <= DEEP, link, most=DEEP)
+        )
+        if depth > DEEP:
+            found.append(say.penetration(analysis, link, depth))
+    steps = round(world.time / world.model.opt.timestep)
+    return Outcome(analysis.robot.name, trial, world.time, steps, tuple(measures), tuple(found))
+
+
+def _settle(
+    analysis: Analysis, world: World, watch: Watch, seconds: float
+) -> tuple[list[Measure], list[Diagnostic]]:
+    """Leave a robot without wheels on the floor ``seconds``."""
+    watch.run(SETTLE + seconds, ramp=False)
+    return [], []
+
+
+def _root(analysis: Analysis) -> str:
+    """The link whose body is the robot's base in MuJoCo."""
+    plan = analysis.plan
+    root = plan.roots[0]
+    if root == "world" and plan.steps:
+        return plan.links[plan.steps[0].link]
+    return root
+
+
+def _at(trial: Trial) -> str:
+    return "at the configuration the robot is held at" if trial == "hold" else "as it stands"

@@ -1,0 +1,270 @@
+"""The trial of a wheeled robot: dropped on the floor, left to settle, driven straight, then
+turned on the spot, as a learner drives it in Gazebo with teleop_twist_keyboard.
+
+Each wheel is turned as its drive plugin turns it: at (v -+ omega * separation / 2) / radius
+for the left and right wheel, with the separation and radius the plugin is told (measured
+from the joints and cylinders for wheels no plugin drives). What the robot then does is
+held to what its description says: each wheel's centre rests at its radius, the robot
+moves at its wheels' turning times their radius and at the commanded speed, it turns at
+the commanded rate and the rate its wheels' speeds and separation give.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..analysis import Analysis
+from ..analysis.drive import Drive, wheel_radius
+from ..diagnostics import Diagnostic
+from ..model import Collision, Cylinder, Joint, Link, Sphere
+from . import _findings as say
+from ._outcome import Measure
+from ._watch import RAMP, Watch
+from ._world import World
+
+__all__ = ["SETTLE", "Wheel", "drive", "wheels_of"]
+
+SETTLE = 1.0
+"""How long the robot is left on the floor before it is driven (s)."""
+STOP = 0.5
+"""How long it is stopped between the straight run and the turn (s)."""
+SPEED_TOLERANCE = 0.1
+"""How far off (relative) the speed may be."""
+TURN_TOLERANCE = 0.15
+"""How far off (relative) the turn rate may be: a wheel's contact is a patch, which scrubs
+as the robot turns on the spot."""
+TOUCHING = 0.5
+"""The share of the looks a driven wheel must touch the floor at."""
+DRAG = 0.05
+"""The share of the robot's weight a caster may hold it back with."""
+
+
+@dataclass(frozen=True, slots=True)
+class Wheel:
+    """A driven wheel, as its description has it.
+
+    Attributes:
+        joint: Its joint.
+        link: Its link.
+        radius: The radius of the cylinder it rolls on (its largest collision cylinder;
+            0 when it has none).
+        along: Whether that cylinder turns about the joint's axis.
+        collision: That cylinder's collision.
+    """
+
+    joint: Joint
+    link: Link
+    radius: float
+    along: bool
+    collision: Collision | None
+
+
+def wheels_of(analysis: Analysis, drive: Drive) -> tuple[Wheel, Wheel] | None:
+    """The left and right wheel of ``drive``; None when a joint or link is not there."""
+    found = []
+    for name in (drive.left, drive.right):
+        joint = analysis.joints.get(name)
+        link = analysis.links.get(joint.child) if joint is not None else None
+        if joint is None or link is None:
+            return None
+        cylinders = [c for c in link.collisions if isinstance(c.geometry, Cylinder)]
+        largest = max(cylinders, key=lambda c: c.geometry.radius, default=None)  # type: ignore[union-attr]
+        rolling = wheel_radius(link, joint.axis)
+        radius = (
+            rolling
+            if rolling is not None
+            else (
+                largest.geometry.radius if largest is not None else 0.0  # type: ignore[union-attr]
+            )
+        )
+        found.append(Wheel(joint, link, radius, rolling is not None, largest))
+    return found[0], found[1]
+
+
+def drive(
+    analysis: Analysis,
+    world: World,
+    watch: Watch,
+    pair: Drive,
+    *,
+    speed: float,
+    turn: float,
+    seconds: float,
+) -> tuple[list[Measure], list[Diagnostic]]:
+    """Settle, drive straight at ``speed`` (m/s) and turn at ``turn`` (rad/s), ``seconds``
+    each after the ramp; what was measured, and what went wrong."""
+    measures: list[Measure] = []
+    found: list[Diagnostic] = []
+    wheels = wheels_of(analysis, pair)
+    if wheels is None:
+        return measures, found
+    left, right = wheels
+    actuators = (world.actuator(left.joint.name), world.actuator(right.joint.name))
+    radius = pair.radius if pair.radius else left.radius
+    separation = pair.separation if pair.separation else _apart(world, left, right)
+    if not watch.run(SETTLE):
+        return measures, found
+    for wheel in wheels:
+        _rest(analysis, world, wheel, measures, found)
+    run = _Run(world, watch, wheels, actuators, radius, separation)
+    straight = run.go(speed, 0.0, seconds)
+    if straight is None:
+        return measures, found
+    forward, rolled, _ = straight
+    drags = dict(watch.forces)
+    touched_straight, looks_straight = dict(watch.touches), watch.looks
+    if not watch.run(STOP, dict.fromkeys(actuators, 0.0)):
+        return measures, found
+    turned = run.go(0.0, turn, seconds)
+    if turned is None:
+        return measures, found
+    _, _, rate = turned
+    touches = {
+        k: touched_straight.get(k, 0) + watch.touches.get(k, 0)
+        for k in {*touched_straight, *watch.touches}
+    }
+    looks = looks_straight + watch.looks
+    measures.append(_near("straight speed", forward, speed, "m/s", SPEED_TOLERANCE))
+    measures.append(_near("speed from the wheels", forward, rolled, "m/s", SPEED_TOLERANCE))
+    measures.append(_near("turn rate", rate, turn, "rad/s", TURN_TOLERANCE))
+    off = [w for w in wheels if touches.get(w.link.name, 0) < TOUCHING * looks]
+    for wheel in off:
+        share = touches.get(wheel.link.name, 0) / max(looks, 1)
+        measures.append(
+            Measure("on the floor", share, 1.0, "share of the time", False, wheel.link.name)
+        )
+        found.append(say.wheel_off(analysis, world, wheel, share, wheels))
+    names = {left.link.name, right.link.name}
+    weight = float(world.model.body_subtreemass[0] * -world.model.opt.gravity[2])
+    for link, count in sorted(touches.items()):
+        if link in names or count < 0.2 * looks:
+            continue
+        if _caster(analysis.links.get(link)):
+            tangential = drags.get(link, (0.0, 0.0))[1]
+            pull = tangential / max(looks_straight, 1)
+            if weight > 0 and pull > DRAG * weight:
+                measures.append(Measure("caster drag", pull, 0.0, "N", False, link))
+                found.append(say.caster_drag(analysis, link, pull, weight))
+        else:
+            measures.append(
+                Measure("on the floor", count / looks, 0.0, "share of the time", False, link)
+            )
+            found.append(say.body_on_floor(analysis, link, count / looks, wheels))
+    if not _ok(measures, "straight speed"):
+        found.append(say.speed(analysis, pair, wheels, forward, speed, rolled, radius, bool(off)))
+    elif not _ok(measures, "speed from the wheels"):
+        found.append(say.slip(analysis, pair, wheels, forward, rolled))
+    if not _ok(measures, "turn rate"):
+        found.append(
+            say.turn(analysis, pair, wheels, rate, turn, separation, _apart(world, left, right))
+        )
+    return measures, found
+
+
+class _Run:
+    """Driving at one command, measured once it is reached."""
+
+    def __init__(
+        self,
+        world: World,
+        watch: Watch,
+        wheels: tuple[Wheel, Wheel],
+        actuators: tuple[int, int],
+        radius: float,
+        separation: float,
+    ) -> None:
+        self.world, self.watch, self.wheels = world, watch, wheels
+        self.actuators, self.radius, self.separation = actuators, radius, separation
+
+    def go(self, speed: float, turn: float, seconds: float) -> tuple[float, float, float] | None:
+        """Ramp to the command, then hold it ``seconds``: the forward speed (m/s), the
+        speed the wheels' turning gives (m/s) and the turn rate (rad/s) over that time;
+        None when the state blew up."""
+        half = turn * self.separation / 2.0
+        controls = {}
+        if self.radius > 0:
+            controls = {
+                self.actuators[0]: (speed - half) / self.radius,
+                self.actuators[1]: (speed + half) / self.radius,
+            }
+        controls = {a: v for a, v in controls.items() if a >= 0}
+        watch = self.watch
+        if not watch.run(RAMP, controls):
+            return None
+        watch.count()
+        start, yaw = watch.heading()
+        turned, rolled = [0.0], [0.0, 0]
+
+        def look() -> None:
+            _, now = watch.heading()
+            step = (now - yaw_at[0] + math.pi) % (2 * math.pi) - math.pi
+            turned[0] += step
+            yaw_at[0] = now
+            rolled[0] += self._rolling(now)
+            rolled[1] += 1
+
+        yaw_at = [yaw]
+        if not watch.run(seconds, controls, ramp=False, each=look):
+            return None
+        end, _ = watch.heading()
+        middle = yaw + turned[0] / 2.0
+        forward = float(np.dot(end - start, (math.cos(middle), math.sin(middle)))) / seconds
+        return forward, rolled[0] / max(rolled[1], 1), turned[0] / seconds
+
+    def _rolling(self, yaw: float) -> float:
+        """How fast the wheels' turning, relative to the body, would carry the robot
+        forward now (m/s): their mean over both wheels."""
+        world = self.world
+        base = world.data.cvel[self.watch.root][:3]
+        heading = np.array((math.cos(yaw), math.sin(yaw), 0.0))
+        total = 0.0
+        for wheel in self.wheels:
+            body = world.body(wheel.link.name)
+            spin = world.data.cvel[body][:3] - base
+            total += float(np.dot(np.cross(spin, (0.0, 0.0, wheel.radius)), heading))
+        return total / 2.0
+
+
+def _rest(
+    analysis: Analysis, world: World, wheel: Wheel, measures: list[Measure], found: list[Diagnostic]
+) -> None:
+    """How high the wheel's centre rests, against its radius."""
+    if wheel.radius <= 0:
+        return
+    body = world.body(wheel.link.name)
+    height = float(world.data.xpos[body][2])
+    low = wheel.radius - height
+    tolerance = max(0.003, 0.1 * wheel.radius)
+    measures.append(
+        Measure("wheel centre height", height, wheel.radius, "m", low <= tolerance, wheel.link.name)
+    )
+    if low > tolerance:
+        found.append(say.sank(analysis, wheel, low))
+
+
+def _apart(world: World, left: Wheel, right: Wheel) -> float:
+    """How far apart the two wheels are now (m)."""
+    data = world.data
+    one, other = data.xpos[world.body(left.link.name)], data.xpos[world.body(right.link.name)]
+    return float(np.linalg.norm(one - other))
+
+
+def _caster(link: Link | None) -> bool:
+    """Whether ``link`` is a caster: named so, or rolling on a ball."""
+    if link is None:
+        return False
+    return "caster" in link.name.lower() or any(
+        isinstance(c.geometry, Sphere) for c in link.collisions
+    )
+
+
+def _near(name: str, value: float, expected: float, unit: str, tolerance: float) -> Measure:
+    ok = abs(value - expected) <= tolerance * abs(expected) if expected else abs(value) <= 0.05
+    return Measure(name, value, expected, unit, ok)
+
+
+def _ok(measures: list[Measure], name: str) -> bool:
+    return all(m.ok for m in measures if m.name == name)
