@@ -41,14 +41,15 @@ SIM_SANK = Rule(
     "sim-sank",
     E,
     Family.SIMULATION,
-    summary="A wheel, or the robot, rests lower on the floor than its description says it stands.",
+    summary="A wheel's centre came lower than its radius above the floor: the wheel does not "
+    "roll on the circle its description says.",
     explanation="A wheel's collision cylinder is what the simulator rolls on, and URDF's "
     "cylinders lie along their link's z axis: a wheel turning about y needs "
-    '`rpy="1.5708 0 0"` on its collision\'s origin. Left out, the wheel stands on the flat '
-    "of its cylinder, as a coin does, and the robot sits lower than its wheels' radius says, "
-    "drags and cannot roll. `fishbot sim` drops the robot on a floor and measures how high "
-    "each wheel's centre rests against its radius; a robot with no wheels, how high it rests "
-    "against its lowest collision shape. Turn the collision cylinders about the axle.",
+    '`rpy="1.5708 0 0"` on its collision\'s origin. Left out, the wheel turns a coin end over '
+    "end: it rolls on its rims and flat sides, the robot bumps up and down and drives at the "
+    "wrong speed. A wheel sunk into the floor under its load comes low too. `fishbot sim` "
+    "drops the robot on a floor, drives it, and measures how low each wheel's centre comes "
+    "against its radius. Turn the collision cylinders about the axle.",
     bad=_example("coins.urdf", "the wheels' collision cylinders lie along z"),
     good=_GOOD,
     consumers=_SIMULATORS,

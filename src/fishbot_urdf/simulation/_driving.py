@@ -40,6 +40,8 @@ TOUCHING = 0.5
 """The share of the looks a driven wheel must touch the floor at."""
 DRAG = 0.05
 """The share of the robot's weight a caster may hold it back with."""
+_CAUSES = ("sim-sank", "sim-wheel-off-floor", "sim-body-on-floor", "sim-caster-drag")
+"""The findings that explain a wrong speed or turn rate, the likeliest first."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -107,8 +109,7 @@ def drive(
     separation = pair.separation if pair.separation else _apart(world, left, right)
     if not watch.run(SETTLE):
         return measures, found
-    for wheel in wheels:
-        _rest(analysis, world, wheel, measures, found)
+    watch.track([world.body(w.link.name) for w in wheels])
     run = _Run(world, watch, wheels, actuators, radius, separation)
     straight = run.go(speed, 0.0, seconds)
     if straight is None:
@@ -127,6 +128,8 @@ def drive(
         for k in {*touched_straight, *watch.touches}
     }
     looks = looks_straight + watch.looks
+    for wheel in wheels:
+        _rest(analysis, world, watch, wheel, measures, found)
     measures.append(_near("straight speed", forward, speed, "m/s", SPEED_TOLERANCE))
     measures.append(_near("speed from the wheels", forward, rolled, "m/s", SPEED_TOLERANCE))
     measures.append(_near("turn rate", rate, turn, "rad/s", TURN_TOLERANCE))
@@ -153,14 +156,14 @@ def drive(
                 Measure("on the floor", count / looks, 0.0, "share of the time", False, link)
             )
             found.append(say.body_on_floor(analysis, link, count / looks, wheels))
+    seen = next((d.rule for d in found if d.rule in _CAUSES), "")
     if not _ok(measures, "straight speed"):
-        found.append(say.speed(analysis, pair, wheels, forward, speed, rolled, radius, bool(off)))
+        found.append(say.speed(analysis, pair, wheels, forward, speed, rolled, radius, seen))
     elif not _ok(measures, "speed from the wheels"):
         found.append(say.slip(analysis, pair, wheels, forward, rolled))
     if not _ok(measures, "turn rate"):
-        found.append(
-            say.turn(analysis, pair, wheels, rate, turn, separation, _apart(world, left, right))
-        )
+        apart = _apart(world, left, right)
+        found.append(say.turn(analysis, pair, wheels, rate, turn, separation, apart, seen))
     return measures, found
 
 
@@ -229,17 +232,23 @@ class _Run:
 
 
 def _rest(
-    analysis: Analysis, world: World, wheel: Wheel, measures: list[Measure], found: list[Diagnostic]
+    analysis: Analysis,
+    world: World,
+    watch: Watch,
+    wheel: Wheel,
+    measures: list[Measure],
+    found: list[Diagnostic],
 ) -> None:
-    """How high the wheel's centre rests, against its radius."""
+    """How low the wheel's centre came as it rolled, against its radius."""
     if wheel.radius <= 0:
         return
-    body = world.body(wheel.link.name)
-    height = float(world.data.xpos[body][2])
+    height = watch.heights.get(world.body(wheel.link.name), math.inf)
+    if not math.isfinite(height):
+        return
     low = wheel.radius - height
     tolerance = max(0.003, 0.1 * wheel.radius)
     measures.append(
-        Measure("wheel centre height", height, wheel.radius, "m", low <= tolerance, wheel.link.name)
+        Measure("lowest wheel centre", height, wheel.radius, "m", low <= tolerance, wheel.link.name)
     )
     if low > tolerance:
         found.append(say.sank(analysis, wheel, low))

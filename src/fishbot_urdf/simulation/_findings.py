@@ -59,13 +59,14 @@ def sank(analysis: Analysis, wheel: Wheel, low: float) -> Diagnostic:
         lies = " ".join(f"{round(v, 3):g}" for v in along)
         cause = (
             f": its collision cylinder lies along {lies} of the link, not along joint "
-            f"{wheel.joint.name!r}'s axis ({axis}), so it stands on its flat side"
+            f"{wheel.joint.name!r}'s axis ({axis}), so it rolls on its rims and flat sides"
         )
         hint = 'turn the cylinder onto the axle: rpy="1.5708 0 0" on its origin for an axle along y'
     where = wheel.collision.source if wheel.collision is not None else wheel.link.source
     return rules.SIM_SANK.report(
-        f"{wheel.link.name} sank {_cm(low)}: its centre rests {_cm(wheel.radius - low)} above "
-        f"the floor, for a wheel of radius {_cm(wheel.radius)}{cause}",
+        f"{wheel.link.name} sank {_cm(low)}: its centre came down to "
+        f"{_cm(wheel.radius - low)} above the floor as it rolled, for a wheel of radius "
+        f"{_cm(wheel.radius)}{cause}",
         where,
         path=analysis.path,
         subject=_link(analysis, wheel.link.name),
@@ -174,9 +175,10 @@ def speed(
     asked: float,
     rolled: float,
     told: float,
-    off: bool,
+    seen: str,
 ) -> Diagnostic:
-    """Driven straight at ``asked`` m/s, the robot moved at ``moved``."""
+    """Driven straight at ``asked`` m/s, the robot moved at ``moved``; ``seen`` names the
+    finding that explains it, if one does."""
     rolls = wheels[0].radius
     cause, hint = "", "look at how the wheels touch the floor (fishbot view, Collision)"
     where = _plugin_place(pair, pair.dialect.size if pair.dialect else "") or wheels[0].joint.source
@@ -188,8 +190,9 @@ def speed(
         )
         value = rolls if pair.dialect is not None and pair.dialect.radius else 2 * rolls
         hint = f"write <{size}>{value:.4g}</{size}>"
-    elif off:
-        cause = ": its wheels hardly touch the floor (see sim-wheel-off-floor)"
+    elif seen:
+        cause = f": see {seen}"
+        hint = f"fix what {seen} says"
     elif abs(rolled - asked) > 0.1 * abs(asked):
         cause = (
             f": its wheels turned for {rolled:.3g} m/s, held back by a part on the floor or "
@@ -226,8 +229,10 @@ def turn(
     asked: float,
     told: float,
     apart: float,
+    seen: str,
 ) -> Diagnostic:
-    """Turned on the spot at ``asked`` rad/s, the robot turned at ``rate``."""
+    """Turned on the spot at ``asked`` rad/s, the robot turned at ``rate``; ``seen`` names
+    the finding that explains it, if one does."""
     left, right = wheels
     hint = "look at the wheels and casters as they touch the floor"
     where = _plugin_place(pair, pair.dialect.separation if pair.dialect else "")
@@ -251,6 +256,8 @@ def turn(
             f"{apart:.4g} m"
         )
         hint = f"write <{tag}>{apart:.4g}</{tag}>"
+    elif seen:
+        cause, hint = f": see {seen}", f"fix what {seen} says"
     return rules.SIM_TURN.report(
         f"turned on the spot at {asked:.3g} rad/s, the robot turned at {rate:.3g} rad/s{cause}",
         where or left.joint.source,

@@ -32,6 +32,7 @@ class Watch:
         looks: How many looks since `count` began.
         forces: Each link's floor forces (normal, tangential, N) summed over the looks since
             `count` began.
+        heights: The lowest height each body of `track` was seen at (m).
     """
 
     world: World
@@ -42,6 +43,11 @@ class Watch:
     touches: dict[str, int] = field(default_factory=dict)
     looks: int = 0
     forces: dict[str, tuple[float, float]] = field(default_factory=dict)
+    heights: dict[int, float] = field(default_factory=dict)
+
+    def track(self, bodies: list[int]) -> None:
+        """Watch how low ``bodies`` go, from now on."""
+        self.heights = {body: math.inf for body in bodies}
 
     def count(self) -> None:
         """Begin counting touches and forces afresh."""
@@ -80,6 +86,8 @@ class Watch:
         upright = float(world.data.xmat[self.root][8])  # the root's z axis, up component
         self.tilt = max(self.tilt, math.acos(max(-1.0, min(1.0, upright))))
         self.looks += 1
+        for body, low in self.heights.items():
+            self.heights[body] = min(low, float(world.data.xpos[body][2]))
         for one, other, depth in world.contacts():
             if world.floor not in (one, other):
                 continue
