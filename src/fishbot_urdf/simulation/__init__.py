@@ -83,13 +83,14 @@ def simulate(
     refused = [d for d in made.findings if d.is_error]
     if refused:
         return Outcome(analysis.robot.name, trial, 0.0, 0, (), made.findings)
-    world = World(analysis, made.text)
+    world = World(analysis, made.text, floor=trial != "hold")
     root = _root(analysis)
     watch = Watch(world, world.body(root))
     found: list[Diagnostic] = list(made.findings)
     target = start(analysis, world, held)
     for one, other, depth in world.overlaps():
         found.append(say.self_contact(analysis, one, other, depth, _at(trial)))
+    world.apart()
     measures: list[Measure] = []
     if trial != "hold":
         world.lift(DROP - world.lowest())
@@ -110,12 +111,12 @@ def simulate(
             measures.append(Measure("largest tilt", tilt, None, "degrees", tilt <= most, most=most))
             if watch.tilt > TIPPED:
                 found.append(say.tipped(analysis, root, tilt))
-        depth, link = watch.depth
-        measures.append(
-            Measure("deepest in the floor", depth, None, "m", depth <= DEEP, link, most=DEEP)
-        )
-        if depth > DEEP:
-            found.append(say.penetration(analysis, link, depth))
+            depth, link = watch.depth
+            measures.append(
+                Measure("deepest in the floor", depth, None, "m", depth <= DEEP, link, most=DEEP)
+            )
+            if depth > DEEP:
+                found.append(say.penetration(analysis, link, depth))
     steps = round(world.time / world.model.opt.timestep)
     return Outcome(analysis.robot.name, trial, world.time, steps, tuple(measures), tuple(found))
 

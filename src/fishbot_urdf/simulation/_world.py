@@ -26,6 +26,9 @@ FLOOR = "floor"
 """The floor's geom: an endless plane at z = 0. Its friction is 0, so that each of the
 robot's shapes slides or grips with its own (MuJoCo takes the greater of two), as Gazebo's
 ground plane leaves it to the robot's."""
+_ROBOT, _GROUND = 1, 2
+"""The contact bits: the robot's shapes collide with the floor, not with each other, as
+Gazebo leaves a URDF robot's links (``<self_collide>`` is off unless a link turns it on)."""
 SAMPLE = 0.01
 """How often the trials look at the simulation (s of simulated time)."""
 
@@ -57,14 +60,16 @@ class World:
         collisions: The geom ids of the robot's collision shapes.
     """
 
-    def __init__(self, analysis: Analysis, mjcf: str) -> None:
+    def __init__(self, analysis: Analysis, mjcf: str, *, floor: bool = True) -> None:
         mujoco = load_mujoco()
         root = ET.fromstring(mjcf)
         world = root.find("worldbody")
         assert world is not None
-        floor = ET.Element("geom", name=FLOOR, type="plane", size="0 0 1")
-        floor.set("friction", "0 0.005 0.0001")
-        world.insert(0, floor)
+        ground = ET.Element("geom", name=FLOOR, type="plane", size="0 0 1")
+        ground.set("friction", "0 0.005 0.0001")
+        ground.set("contype", str(_GROUND) if floor else "0")
+        ground.set("conaffinity", str(_ROBOT) if floor else "0")
+        world.insert(0, ground)
         try:
             self.model: Any = mujoco.MjModel.from_xml_string(ET.tostring(root, encoding="unicode"))
         except ValueError as exc:  # a body MuJoCo refuses: mjcf-refused said which, if it could
@@ -82,6 +87,14 @@ class World:
             if g != self.floor and model.geom_group[g] == COLLISION_GROUP
         ]
         mujoco.mj_forward(model, self.data)
+
+    def apart(self) -> None:
+        """From now on, the robot's shapes collide with the floor only (until now they also
+        collided with each other, for `overlaps`)."""
+        for geom in self.collisions:
+            self.model.geom_contype[geom] = _ROBOT
+            self.model.geom_conaffinity[geom] = _GROUND
+        self.mujoco.mj_forward(self.model, self.data)
 
     # -- names ---------------------------------------------------------------------------
 
@@ -180,14 +193,15 @@ class World:
         return found
 
     def overlaps(self) -> list[tuple[str, str, float]]:
-        """The pairs of the robot's links whose collision shapes touch now, with the depth."""
+        """The pairs of the robot's links whose collision shapes overlap now by more than a
+        millimetre, with the depth (before `apart`)."""
         found: dict[tuple[str, str], float] = {}
         for one, other, depth in self.contacts():
             if self.floor in (one, other):
                 continue
             pair = tuple(sorted((self.link_of(one), self.link_of(other))))
             found[pair] = max(found.get(pair, 0.0), depth)  # type: ignore[index]
-        return [(a, b, depth) for (a, b), depth in sorted(found.items())]
+        return [(a, b, depth) for (a, b), depth in sorted(found.items()) if depth > 0.001]
 
     def positions(self, joints: Sequence[int]) -> list[float]:
         """The positions of one-number joints."""
