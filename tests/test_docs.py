@@ -461,6 +461,7 @@ def test_each_command_has_its_page(site: Path) -> None:
         "inertia",
         "lsp",
         "mjcf",
+        "sim",
         "render",
         "rules",
         "sdf",

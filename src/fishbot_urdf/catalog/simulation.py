@@ -32,7 +32,7 @@ SIM_EXPLODED = Rule(
     "the last, until the numbers overflow. In Gazebo the robot jitters, then flies off or "
     "vanishes. `fishbot sim` stops at the first such step and says when it came. Give each "
     "link the mass and inertia of its part (`fishbot inertia --fill`).",
-    bad=_example("spinner.urdf", "a wheel of 1 g whose inertia is that of a 100 kg one"),
+    bad=_example("spinner.urdf", "wheels of 200 g whose inertia is 1e-11 kg*m^2"),
     good=_GOOD,
     consumers=_SIMULATORS,
     language="shell",
@@ -61,10 +61,10 @@ SIM_PENETRATION = Rule(
     Family.SIMULATION,
     summary="A collision shape sank into the floor by more than a centimetre.",
     explanation="A simulator lets shapes in contact overlap a little; a deep overlap means "
-    "the contact cannot hold the weight on it (a heavy robot on a small shape, a contact made "
-    "too soft), and in Gazebo the robot sinks into the ground plane and jitters. Spread the "
-    "weight on larger collision shapes, or give the robot the mass it has.",
-    bad=_example("needle.urdf", "a 100 kg body standing on a point of 1 mm"),
+    "the contact cannot hold the weight on it: a body far heavier than the wheels it stands "
+    "on presses them into the floor, and in Gazebo the robot sinks into the ground plane and "
+    "jitters. Give the links the masses they have.",
+    bad=_example("anvil.urdf", "a body of 100 t on wheels of 200 g"),
     good=_GOOD,
     consumers=_SIMULATORS,
     language="shell",
@@ -108,7 +108,7 @@ SIM_BODY_ON_FLOOR = Rule(
     "it is told, or not at all, and turns about the point it scrapes. Wheels too small for "
     "the body, placed too high, or a body too heavy for its wheels' contacts let it down. "
     "Give the robot wheels that hold the body above the floor.",
-    bad=_example("sledge.urdf", "a body of 100 kg on wheels of 5 mm"),
+    bad=_example("sledge.urdf", "the body's box reaches 2 cm below the wheels"),
     good=_GOOD,
     consumers=_SIMULATORS,
     language="shell",
@@ -184,12 +184,13 @@ SIM_SELF_CONTACT = Rule(
     Family.SIMULATION,
     summary="Two links' collision shapes overlap at the configuration the robot is held or "
     "driven at.",
-    explanation="Gazebo and MuJoCo collide a robot's links with each other (except those "
-    "joined directly): collision shapes that overlap at rest push the links apart, and the "
-    "robot shakes or jumps as soon as the simulation starts. Shrink the collision shapes to "
-    "the parts they stand for, or, in Gazebo, turn `<self_collide>` off for the links that "
-    "touch by design.",
-    bad=_example("crowded.urdf", "two links' collision boxes overlap"),
+    explanation="MuJoCo collides a robot's links with each other, except a link with its "
+    "parent, and so does Gazebo for links whose `<self_collide>` is on: collision shapes that "
+    "overlap at rest then push the links apart, and the robot shakes or jumps as soon as the "
+    "simulation starts. `fishbot sim` says which overlap where the robot starts, then lets "
+    "them pass through each other, as Gazebo does by default. Shrink the collision shapes to "
+    "the parts they stand for.",
+    bad=_example("crowded.urdf", "the two wheels, 2 cm apart, overlap"),
     good=_GOOD,
     consumers=_SIMULATORS,
     language="shell",

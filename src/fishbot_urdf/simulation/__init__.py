@@ -104,7 +104,7 @@ def simulate(
     measures += more
     found += faults
     if watch.exploded is not None:
-        found.append(say.exploded(analysis, watch.exploded))
+        found.append(say.exploded(analysis, watch.exploded, watch.fastest))
     else:
         if trial != "hold":
             tilt, most = math.degrees(watch.tilt), math.degrees(TIPPED)

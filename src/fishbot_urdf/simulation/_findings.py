@@ -9,7 +9,7 @@ from ..analysis import Analysis
 from ..analysis.drive import Drive
 from ..catalog import simulation as rules
 from ..diagnostics import Diagnostic, Kind, Subject
-from ..model import Location, Sphere
+from ..model import JointType, Location, Sphere
 from ..spatial import mat_vec, rpy_matrix
 
 if TYPE_CHECKING:
@@ -51,8 +51,12 @@ def _cm(metres: float) -> str:
 
 
 def sank(analysis: Analysis, wheel: Wheel, low: float) -> Diagnostic:
-    """A wheel whose centre rests ``low`` below its radius."""
-    cause, hint = "", "give the wheel a collision cylinder of its radius, turning about the axle"
+    """A wheel whose centre came ``low`` below its radius."""
+    inertial = wheel.link.inertial
+    mass = sum(link.inertial.mass for link in analysis.robot.links if link.inertial is not None)
+    own = inertial.mass if inertial is not None else 0.0
+    cause = f": it sinks into the floor under the robot's {mass:.3g} kg"
+    hint = f"give the links their real masses (the wheel has {own:.3g} kg of them)"
     if not wheel.along and wheel.collision is not None:
         axis = " ".join(f"{v:g}" for v in wheel.joint.axis)
         along = mat_vec(rpy_matrix(wheel.collision.origin.rpy), (0.0, 0.0, 1.0))
@@ -179,17 +183,10 @@ def speed(
 ) -> Diagnostic:
     """Driven straight at ``asked`` m/s, the robot moved at ``moved``; ``seen`` names the
     finding that explains it, if one does."""
-    rolls = wheels[0].radius
     cause, hint = "", "look at how the wheels touch the floor (fishbot view, Collision)"
     where = _plugin_place(pair, pair.dialect.size if pair.dialect else "") or wheels[0].joint.source
-    if rolls > 0 and told > 0 and abs(told - rolls) > 0.01 * rolls:
-        size = pair.dialect.size if pair.dialect is not None else "wheel radius"
-        cause = (
-            f": the drive turns the wheels for a radius of {_cm(told)} (its <{size}>), and "
-            f"they roll on {_cm(rolls)}"
-        )
-        value = rolls if pair.dialect is not None and pair.dialect.radius else 2 * rolls
-        hint = f"write <{size}>{value:.4g}</{size}>"
+    if radius_cause := _radius_cause(pair, wheels[0].radius):
+        cause, hint = radius_cause
     elif seen:
         cause = f": see {seen}"
         hint = f"fix what {seen} says"
@@ -205,6 +202,21 @@ def speed(
         subject=Subject(Kind.ROBOT, analysis.robot.name),
         hint=hint,
     )
+
+
+def _radius_cause(pair: Drive, rolls: float) -> tuple[str, str] | None:
+    """The cause and the fix when ``pair``'s plugin is told a wheel radius other than the
+    ``rolls`` its wheels roll on."""
+    told = pair.radius
+    if pair.dialect is None or told is None or rolls <= 0 or abs(told - rolls) <= 0.01 * rolls:
+        return None
+    size = pair.dialect.size
+    value = rolls if pair.dialect.radius else 2 * rolls
+    cause = (
+        f": the drive turns the wheels for a radius of {_cm(told)} (its <{size}>), and they "
+        f"roll on {_cm(rolls)}"
+    )
+    return cause, f"write <{size}>{value:.4g}</{size}>"
 
 
 def slip(
@@ -237,7 +249,7 @@ def turn(
     hint = "look at the wheels and casters as they touch the floor"
     where = _plugin_place(pair, pair.dialect.separation if pair.dialect else "")
     cause = ""
-    if asked * rate < 0:
+    if asked * rate < 0 and abs(rate) > 0.1 * abs(asked):
         side = "right" if left.joint.origin.xyz[1] < right.joint.origin.xyz[1] else "left"
         cause = (
             f": it turns the other way, as the drive's left wheel {left.joint.name!r} is on "
@@ -249,6 +261,8 @@ def turn(
         else:
             hint = "turn the wheel joints' axes the same way, along +y"
         where = _plugin_place(pair, pair.dialect.left if pair.dialect else "") or where
+    elif radius_cause := _radius_cause(pair, wheels[0].radius):
+        cause, hint = radius_cause
     elif told > 0 and abs(told - apart) > 0.02 * apart:
         tag = pair.dialect.separation if pair.dialect is not None else "wheel separation"
         cause = (
@@ -276,12 +290,17 @@ def _plugin_place(pair: Drive, tag: str) -> Location | None:
     return at or pair.block.place_of(pair.plugin) or pair.block.where
 
 
-def exploded(analysis: Analysis, time: float) -> Diagnostic:
-    """The state blew up at ``time`` seconds."""
+def exploded(analysis: Analysis, time: float, fastest: str) -> Diagnostic:
+    """The state blew up at ``time`` seconds; ``fastest`` spun fastest just before."""
+    link = analysis.links.get(fastest)
+    where = None
+    if link is not None:
+        where = link.inertial.source if link.inertial is not None else link.source
+    spun = f", {fastest} spinning fastest just before" if link is not None else ""
     return rules.SIM_EXPLODED.report(
-        f"the simulation blew up {time:.3f} s after the robot was dropped: a position or "
-        "speed became infinite",
-        None,
+        f"the simulation blew up {time:.3f} s after it started: a position or speed became "
+        f"infinite{spun}",
+        where,
         path=analysis.path,
         subject=Subject(Kind.ROBOT, analysis.robot.name),
         hint="give each link the mass and inertia of its part (fishbot inertia --fill)",
@@ -316,13 +335,17 @@ def sag(
 ) -> Diagnostic:
     """A held joint that moved ``moved`` from where it was held."""
     known = analysis.joints.get(joint)
-    limit = f"its effort limit is {effort:.3g}" if effort is not None else "it has no effort limit"
+    sliding = known is not None and known.type is JointType.PRISMATIC
+    length, force = ("m", "N") if sliding else ("rad", "N*m")
+    limit = "it has no effort limit"
+    if effort is not None:
+        limit = f"its effort limit is {effort:.3g} {force}"
     where = None
     if known is not None:
         where = known.limit.source if known.limit is not None else known.source
     return rules.SIM_SAG.report(
-        f"joint {joint!r} sagged {moved:.3g} from where it was held: gravity puts "
-        f"{abs(gravity):.3g} on it there, and {limit}",
+        f"joint {joint!r} sagged {moved:.3g} {length} from where it was held: gravity puts "
+        f"{abs(gravity):.3g} {force} on it there, and {limit}",
         where,
         path=analysis.path,
         subject=Subject(Kind.JOINT, joint),

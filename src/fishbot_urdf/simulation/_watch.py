@@ -33,6 +33,7 @@ class Watch:
         forces: Each link's floor forces (normal, tangential, N) summed over the looks since
             `count` began.
         heights: The lowest height each body of `track` was seen at (m).
+        fastest: The link that turned fastest at the last look.
     """
 
     world: World
@@ -44,6 +45,7 @@ class Watch:
     looks: int = 0
     forces: dict[str, tuple[float, float]] = field(default_factory=dict)
     heights: dict[int, float] = field(default_factory=dict)
+    fastest: str = ""
 
     def track(self, bodies: list[int]) -> None:
         """Watch how low ``bodies`` go, from now on."""
@@ -83,6 +85,8 @@ class Watch:
         if world.broken():
             self.exploded = world.time
             return False
+        spins = np.linalg.norm(world.data.cvel[:, :3], axis=1)
+        self.fastest = world.links[int(np.argmax(spins))]
         upright = float(world.data.xmat[self.root][8])  # the root's z axis, up component
         self.tilt = max(self.tilt, math.acos(max(-1.0, min(1.0, upright))))
         self.looks += 1
