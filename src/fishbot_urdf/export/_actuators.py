@@ -6,9 +6,9 @@ wheel torque; the model holds it so with a velocity servo whose force is limited
 torque, as stiff as the time step allows: its gain is the inertia the wheel moves (its own
 about the axle, and its share of the robot's mass at its radius) over half a time step
 (`WHEEL_RESPONSE`). A stiffer one makes light wheels kick the robot off the floor. A
-ros2_control joint commanded by velocity gets a velocity servo (limited to its ``<limit
-effort>``), one commanded by position a critically damped position servo, one commanded by
-effort a motor. Each actuator is named after its joint.
+ros2_control joint commanded by velocity gets a velocity servo, one commanded by position a
+critically damped position servo (both as stiff as `SERVO_RESPONSE` says, and limited to
+its ``<limit effort>``), one commanded by effort a motor. Each actuator is named after its joint.
 """
 
 from __future__ import annotations
@@ -20,22 +20,21 @@ from typing import NamedTuple
 
 from ..analysis import Analysis
 from ..analysis.drive import Drive, unit, wheel_radius
-from ..model import Joint, JointType, Link
-from ..spatial import dot, mat_vec, rpy_matrix, transpose
+from ..model import Joint, JointType
+from ..spatial import Pose, cross, dot, mat_vec, rotate_tensor
 from ._geoms import number, numbers
 
-__all__ = ["VELOCITY_STIFFNESS", "WHEEL_RESPONSE", "Motor", "actuator", "motors"]
+__all__ = ["SERVO_RESPONSE", "WHEEL_RESPONSE", "Motor", "actuator", "motors", "moved_inertia"]
 
 WHEEL_RESPONSE = 0.001
 """How soon a wheel's servo answers (s): half of MuJoCo's default time step."""
-VELOCITY_STIFFNESS = 10.0
-"""A velocity servo's gain is its force limit times this (per rad/s, or m/s): it gives its
-whole torque at a tenth of a unit off, as stiff as Gazebo's joint motors feel."""
-POSITION_STIFFNESS = 20.0
-"""A position servo's gain is its force limit times this (per rad, or m): its whole effort
-at 0.05 rad off."""
-UNLIMITED_GAIN = 100.0
-"""The gain of a servo whose joint gives no effort limit (N*m per rad, or per rad/s)."""
+SERVO_RESPONSE = 0.01
+"""How soon a ros2_control joint's servo answers (s): a velocity servo's gain is the inertia
+its joint moves over this, a position servo's that inertia times (2 pi / (10 x this))^2, so
+that it swings at 10 Hz, critically damped. Stiffer, a servo whose force is limited rings
+from one step to the next."""
+UNLIMITED_GAIN = 1.0
+"""The gain of a servo whose joint moves no inertia the robot gives."""
 
 _ONE_NUMBER = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)
 
@@ -75,7 +74,13 @@ def motors(analysis: Analysis, drives: tuple[Drive, ...] | None = None) -> tuple
         command = next((c for c in commands if c in _COMMANDS), None)
         if joint is None or joint.type not in _ONE_NUMBER or command is None:
             continue
-        found[joint.name] = Motor(joint.name, command, _effort(joint), "<ros2_control>")
+        moved = moved_inertia(analysis, joint)
+        gain = None
+        if moved > 0 and command == "velocity":
+            gain = moved / SERVO_RESPONSE
+        elif moved > 0 and command == "position":
+            gain = moved * (2.0 * math.pi / (10.0 * SERVO_RESPONSE)) ** 2
+        found[joint.name] = Motor(joint.name, command, _effort(joint), "<ros2_control>", gain)
     return tuple(found.values())
 
 
@@ -97,23 +102,39 @@ def _wheels(analysis: Analysis, drives: tuple[Drive, ...]) -> Iterator[Motor]:
                 force = drive.torque if drive.torque is not None else _effort(joint)
                 link = analysis.links.get(joint.child)
                 radius = wheel_radius(link, joint.axis) or drive.radius or 0.0
-                moved = max(mass, 0.0) / len(wheels) * radius**2 + _axial(link, joint.axis)
+                moved = max(mass, 0.0) / len(wheels) * radius**2 + moved_inertia(analysis, joint)
                 gain = moved / WHEEL_RESPONSE if moved > 0 else None
                 yield Motor(name, "velocity", force, by, gain)
 
 
-def _axial(link: Link | None, axis: tuple[float, float, float]) -> float:
-    """``link``'s moment of inertia about ``axis`` through its centre of mass (0 without an
-    inertial)."""
-    if link is None or link.inertial is None:
+def moved_inertia(analysis: Analysis, joint: Joint) -> float:
+    """The moment of inertia ``joint`` turns (kg*m^2; for a prismatic joint, the mass it
+    moves, kg): every link below it, each inertial about the joint's axis, every joint at
+    zero."""
+    poses = analysis.zero_poses
+    if joint.child not in poses or joint.parent not in poses:
         return 0.0
-    along = unit(axis)
-    if along is None:
+    frame = poses[joint.parent].then(Pose.of(joint.origin))
+    axis = unit(mat_vec(frame.rotation, joint.axis))
+    if axis is None:
         return 0.0
-    inertial = link.inertial
-    rotation = rpy_matrix(inertial.origin.rpy)
-    local = mat_vec(transpose(rotation), along)  # the axis in the inertia's frame
-    return max(dot(local, mat_vec(inertial.inertia.matrix(), local)), 0.0)
+    total, below = 0.0, [joint.child]
+    while below:
+        name = below.pop()
+        below.extend(j.child for j in analysis.topology.children.get(name, ()))
+        link = analysis.links.get(name)
+        if link is None or link.inertial is None or name not in poses:
+            continue
+        inertial = link.inertial
+        if joint.type is JointType.PRISMATIC:
+            total += inertial.mass
+            continue
+        place = poses[name].then(Pose.of(inertial.origin))
+        tensor = rotate_tensor(place.rotation, inertial.inertia.matrix())
+        arm = tuple(c - o for c, o in zip(place.translation, frame.translation, strict=True))
+        across = cross(arm, axis)
+        total += dot(axis, mat_vec(tensor, axis)) + inertial.mass * dot(across, across)
+    return max(total, 0.0)
 
 
 def actuator(motor: Motor, joint: Joint) -> ET.Element:
@@ -125,13 +146,13 @@ def actuator(motor: Motor, joint: Joint) -> ET.Element:
             element.set("ctrlrange", numbers((-force, force)))
         return element
     if motor.command == "velocity":
-        gain = motor.gain or (UNLIMITED_GAIN if force is None else VELOCITY_STIFFNESS * force)
+        gain = motor.gain or UNLIMITED_GAIN
         element = ET.Element("velocity", name=motor.joint, joint=motor.joint, kv=number(gain))
         speed = joint.limit.velocity if joint.limit is not None else 0.0
         if speed > 0 and math.isfinite(speed):
             element.set("ctrlrange", numbers((-speed, speed)))
     else:
-        gain = motor.gain or (UNLIMITED_GAIN if force is None else POSITION_STIFFNESS * force)
+        gain = motor.gain or UNLIMITED_GAIN
         element = ET.Element("position", name=motor.joint, joint=motor.joint, kp=number(gain))
         element.set("dampratio", "1")
         limit = joint.limit
