@@ -31,7 +31,7 @@ from ._driving import SETTLE, drive
 from ._holding import held_joints, hold, servos, start, tune
 from ._outcome import Measure, Outcome, Trial
 from ._watch import Watch
-from ._world import INSTALL, World, load_mujoco
+from ._world import INSTALL, Refused, World, load_mujoco
 
 __all__ = ["INSTALL", "Measure", "Outcome", "Trial", "load_mujoco", "simulate"]
 
@@ -83,7 +83,11 @@ def simulate(
     refused = [d for d in made.findings if d.is_error]
     if refused:
         return Outcome(analysis.robot.name, trial, 0.0, 0, (), made.findings)
-    world = World(analysis, made.text, floor=trial != "hold")
+    try:
+        world = World(analysis, made.text, floor=trial != "hold")
+    except Refused as exc:
+        found = (*made.findings, say.refused(analysis, exc.why))
+        return Outcome(analysis.robot.name, trial, 0.0, 0, (), found)
     root = _root(analysis)
     watch = Watch(world, world.body(root))
     found: list[Diagnostic] = list(made.findings)

@@ -3,11 +3,13 @@ cause where the description shows one."""
 
 from __future__ import annotations
 
+import re
 from typing import TYPE_CHECKING
 
 from ..analysis import Analysis
 from ..analysis.drive import Drive
 from ..catalog import simulation as rules
+from ..catalog.physics import MJCF_REFUSED
 from ..diagnostics import Diagnostic, Kind, Subject
 from ..model import JointType, Location, Sphere
 from ..spatial import mat_vec, rpy_matrix
@@ -21,6 +23,7 @@ __all__ = [
     "caster_drag",
     "exploded",
     "penetration",
+    "refused",
     "sag",
     "sank",
     "self_contact",
@@ -288,6 +291,23 @@ def _plugin_place(pair: Drive, tag: str) -> Location | None:
     found = pair.plugin.find(tag) if tag else None
     at = pair.block.place_of(found) if found is not None else None
     return at or pair.block.place_of(pair.plugin) or pair.block.where
+
+
+def refused(analysis: Analysis, why: str) -> Diagnostic:
+    """MuJoCo refuses the model for ``why`` (its message), which the conversion did not
+    foresee: at the link the message names, if it names one."""
+    first, _, rest = why.strip().removeprefix("Error: ").partition("\n")
+    named = re.search(r"Element name '([^']*)'", rest)
+    link = named.group(1) if named else ""
+    where = _where_link(analysis, link) if link in analysis.links else None
+    subject = Subject(Kind.LINK, link) if where else Subject(Kind.ROBOT, analysis.robot.name)
+    return MJCF_REFUSED.report(
+        f"MuJoCo refuses the model: {first}" + (f" (link {link!r})" if where else ""),
+        where,
+        path=analysis.path,
+        subject=subject,
+        hint="fishbot mjcf -o robot.xml writes the model, to load in MuJoCo and see",
+    )
 
 
 def exploded(analysis: Analysis, time: float, fastest: str) -> Diagnostic:

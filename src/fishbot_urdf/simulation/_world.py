@@ -18,7 +18,7 @@ from ..analysis import Analysis
 from ..errors import ConversionError, ToolNotFoundError
 from ..export.mjcf import COLLISION_GROUP
 
-__all__ = ["FLOOR", "INSTALL", "World", "load_mujoco"]
+__all__ = ["FLOOR", "INSTALL", "Refused", "World", "load_mujoco"]
 
 INSTALL = "pip install 'fishbot-urdf[sim]'"
 """How to install what `fishbot sim` needs."""
@@ -31,6 +31,14 @@ _ROBOT, _GROUND = 1, 2
 Gazebo leaves a URDF robot's links (``<self_collide>`` is off unless a link turns it on)."""
 SAMPLE = 0.01
 """How often the trials look at the simulation (s of simulated time)."""
+
+
+class Refused(ConversionError):
+    """MuJoCo refuses the model; ``why`` is what it says."""
+
+    def __init__(self, why: str) -> None:
+        super().__init__(f"MuJoCo refuses the model: {why}", target="mjcf")
+        self.why = why
 
 
 def load_mujoco() -> ModuleType:
@@ -72,8 +80,8 @@ class World:
         world.insert(0, ground)
         try:
             self.model: Any = mujoco.MjModel.from_xml_string(ET.tostring(root, encoding="unicode"))
-        except ValueError as exc:  # a body MuJoCo refuses: mjcf-refused said which, if it could
-            raise ConversionError(f"MuJoCo refuses the model: {exc}") from None
+        except ValueError as exc:  # what the conversion's findings did not foresee
+            raise Refused(str(exc)) from None
         self.mujoco = mujoco
         self.data: Any = mujoco.MjData(self.model)
         model = self.model
