@@ -17,9 +17,9 @@ from typing import NamedTuple
 
 from ..extensions import Reference, from_robot
 from ..inputs import deadline
-from ..model import Joint, JointType, Link, Robot
+from ..model import Joint, JointType, Link, Mesh, Robot
 from ..packages import PackageFinder
-from ..spatial import Pose
+from ..spatial import Pose, Vector3
 from .drive import Drive, drives, wheels
 from .gazebo import Block, Lumping, blocks, lumping
 from .meshcontents import MeshContents
@@ -134,8 +134,16 @@ class Analysis:
         found = drives(self.gazebo_blocks)
         if found:
             return found
-        pair = wheels(self.joints, self.links, self.zero_poses)
+        pair = wheels(self.joints, self.links, self.zero_poses, self.mesh_bounds)
         return () if pair is None else (pair,)
+
+    def mesh_bounds(self, mesh: Mesh) -> tuple[Vector3, Vector3] | None:
+        """The box around ``mesh``'s file's vertices, in its own frame and unscaled; None
+        when the file is not found or holds no finite box."""
+        path = self.mesh_paths.get(mesh.filename)
+        if not path.found or path.file is None:
+            return None
+        return self.meshes.bounds(path.file)
 
     @cached_property
     def mesh_paths(self) -> MeshPaths:

@@ -9,13 +9,13 @@ wheels (`wheels`), as a learner's robot before its Gazebo step is.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 
 from lxml import etree
 
-from ..model import Cylinder, Joint, JointType, Link
-from ..spatial import Pose, dot, mat_vec, rpy_matrix, scale
+from ..model import Cylinder, Joint, JointType, Link, Mesh, Sphere
+from ..spatial import Pose, Vector3, dot, mat_vec, rpy_matrix, scale, transpose
 from .gazebo import Block, number, plugins, text, texts
 
 __all__ = [
@@ -27,6 +27,7 @@ __all__ = [
     "Drive",
     "dialect",
     "drives",
+    "rolling_radius",
     "unit",
     "wheel_radius",
     "wheels",
@@ -162,19 +163,63 @@ def wheel_radius(link: Link | None, axis: tuple[float, float, float]) -> float |
     return found
 
 
+def rolling_radius(
+    link: Link | None,
+    axis: tuple[float, float, float],
+    bounds: Callable[[Mesh], tuple[Vector3, Vector3] | None] | None = None,
+) -> float | None:
+    """The radius ``link`` rolls on about ``axis`` (in its frame): its largest collision
+    cylinder turning about the axis (`wheel_radius`); else its largest ball; else its
+    largest collision mesh whose box, given by ``bounds`` (in the mesh's frame, unscaled),
+    is as wide as it is high across the axis (within 5%), turning about its middle."""
+    found = wheel_radius(link, axis)
+    if found is not None or link is None:
+        return found
+    along = unit(axis)
+    if along is None:
+        return None
+    balls = [c.geometry.radius for c in link.collisions if isinstance(c.geometry, Sphere)]
+    if balls:
+        return max(balls)
+    for collision in link.collisions:
+        shape = collision.geometry
+        box = bounds(shape) if bounds is not None and isinstance(shape, Mesh) else None
+        if box is None or not isinstance(shape, Mesh):
+            continue
+        scaled = shape.scale or (1.0, 1.0, 1.0)
+        low, high = box
+        size = [abs(h - lo) * s for lo, h, s in zip(low, high, scaled, strict=True)]
+        middle = [(lo + h) / 2 * s for lo, h, s in zip(low, high, scaled, strict=True)]
+        local = mat_vec(transpose(rpy_matrix(collision.origin.rpy)), along)
+        turning = max(range(3), key=lambda k: abs(local[k]))
+        if abs(local[turning]) < ALONG:
+            continue
+        across = [k for k in range(3) if k != turning]
+        wide, high_ = size[across[0]], size[across[1]]
+        centred = all(abs(middle[k] + collision.origin.xyz[k]) < 0.05 * wide for k in across)
+        if wide > 0 and abs(wide - high_) <= 0.05 * max(wide, high_) and centred:
+            radius = max(wide, high_) / 2.0
+            found = radius if found is None else max(found, radius)
+    return found
+
+
 def wheels(
-    joints: Mapping[str, Joint], links: Mapping[str, Link], poses: Mapping[str, Pose]
+    joints: Mapping[str, Joint],
+    links: Mapping[str, Link],
+    poses: Mapping[str, Pose],
+    bounds: Callable[[Mesh], tuple[Vector3, Vector3] | None] | None = None,
 ) -> Drive | None:
     """The wheel pair of a robot with no drive plugin: two continuous joints whose links roll
-    on cylinders of one radius about their axes, on either side of the root (left: +y), with
-    axes along the line between them; None when no pair is that plain.
+    (`rolling_radius`) on one radius about their axes, on either side of the root (left:
+    +y), with axes along the line between them; None when no pair is that plain.
 
-    ``poses`` are the links' poses in the root's frame (every joint at zero)."""
+    ``poses`` are the links' poses in the root's frame (every joint at zero); ``bounds``
+    gives a collision mesh's box, for wheels that roll on meshes."""
     rolling: list[tuple[Joint, float]] = []
     for joint in joints.values():
         if joint.type is not JointType.CONTINUOUS or joint.child not in poses:
             continue
-        radius = wheel_radius(links.get(joint.child), joint.axis)
+        radius = rolling_radius(links.get(joint.child), joint.axis, bounds)
         if radius is not None:
             rolling.append((joint, radius))
     pairs = []

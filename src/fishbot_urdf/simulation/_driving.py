@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..analysis import Analysis
-from ..analysis.drive import Drive, wheel_radius
+from ..analysis.drive import Drive, rolling_radius
 from ..diagnostics import Diagnostic
 from ..model import Collision, Cylinder, Joint, Link, Sphere
 from . import _findings as say
@@ -51,9 +51,9 @@ class Wheel:
     Attributes:
         joint: Its joint.
         link: Its link.
-        radius: The radius of the cylinder it rolls on (its largest collision cylinder;
-            0 when it has none).
-        along: Whether that cylinder turns about the joint's axis.
+        radius: The radius it rolls on (`fishbot_urdf.analysis.drive.rolling_radius`), else
+            that of its largest collision cylinder; 0 when it has neither.
+        along: Whether it rolls on that radius about the joint's axis.
         collision: That cylinder's collision.
     """
 
@@ -74,7 +74,7 @@ def wheels_of(analysis: Analysis, drive: Drive) -> tuple[Wheel, Wheel] | None:
             return None
         cylinders = [c for c in link.collisions if isinstance(c.geometry, Cylinder)]
         largest = max(cylinders, key=lambda c: c.geometry.radius, default=None)  # type: ignore[union-attr]
-        rolling = wheel_radius(link, joint.axis)
+        rolling = rolling_radius(link, joint.axis, analysis.mesh_bounds)
         radius = (
             rolling
             if rolling is not None
