@@ -17,10 +17,11 @@ from typing import NamedTuple
 
 from ..extensions import Reference, from_robot
 from ..inputs import deadline
-from ..model import Joint, JointType, Link, Robot
+from ..model import Joint, JointType, Link, Material, Robot, Visual
 from ..packages import PackageFinder
 from ..spatial import Pose
 from .gazebo import Block, Lumping, blocks, lumping
+from .materials import visual_materials
 from .meshcontents import MeshContents
 from .meshpaths import MeshPaths
 from .plan import Plan, build
@@ -124,6 +125,15 @@ class Analysis:
         """The sensors of its ``<gazebo>`` blocks, in file order: the link each is on, its
         pose there, and its rays' or cameras' settings as written."""
         return sensors(self.gazebo_blocks)
+
+    @cached_property
+    def _materials(self) -> Mapping[int, Material | None]:
+        return visual_materials(self.robot)
+
+    def material(self, visual: Visual) -> Material | None:
+        """The material of one of the robot's visuals as urdfdom resolves its name (see
+        `fishbot_urdf.analysis.materials`): its own when it names none."""
+        return self._materials.get(id(visual), visual.material)
 
     @cached_property
     def mesh_paths(self) -> MeshPaths:
