@@ -44,6 +44,7 @@ __all__ = [
     "EmptyMeshError",
     "MeshFacts",
     "Reader",
+    "binary_stl_count",
     "mesh_bounds",
     "mesh_closed",
     "mesh_facts",
@@ -307,6 +308,16 @@ def _positions_bounds(data: bytes) -> tuple[Vector3, Vector3] | None:
         return None
     low, high = [min(points[k::3]) for k in range(3)], [max(points[k::3]) for k in range(3)]
     return (low[0], low[1], low[2]), (high[0], high[1], high[2])
+
+
+def binary_stl_count(path: str | Path, read: Reader | None = None) -> int | None:
+    """The triangles of a binary STL file, as its header counts them, when its length is
+    what that count makes it; None for any other file (an ASCII STL, one cut short).
+
+    Raises:
+        InputError: The file cannot be read (or is bigger than the size limit).
+    """
+    return _binary_count((read or read_input)(path))
 
 
 def _binary_count(data: bytes) -> int | None:
