@@ -9,7 +9,10 @@ up (an `mjcf-refused` finding says so before it does).
 
 from __future__ import annotations
 
+import os
 import xml.etree.ElementTree as ET
+from collections.abc import Iterable
+from pathlib import Path
 from typing import Literal, NamedTuple
 
 from ..analysis import Analysis, of
@@ -17,12 +20,14 @@ from ..analysis.plan import Step
 from ..diagnostics import Diagnostic
 from ..errors import ArgumentError, StructureError
 from ..model import Collision, Joint, JointType, Link, Mesh, Robot, Visual
+from ..output import Source, write_atomic
 from ..spatial import quaternion
 from ._geoms import Assets, geom, number, numbers, place
 from ._masses import masses, principal, refused
-from ._mjcf_findings import joining, leaving_out, refusal
+from ._mjcf_findings import converting, joining, leaving_out, refusal
+from .meshfolder import MeshFolder
 
-__all__ = ["BASES", "Mjcf", "export_mjcf", "to_mjcf"]
+__all__ = ["BASES", "Mjcf", "export_mjcf", "mesh_folder", "to_mjcf", "write_mjcf"]
 
 Base = Literal["auto", "fixed", "floating"]
 BASES: tuple[Base, ...] = ("auto", "fixed", "floating")
@@ -37,8 +42,9 @@ class Mjcf(NamedTuple):
     text: str
     """The document."""
     findings: tuple[Diagnostic, ...]
-    """What the conversion changed or left out (`mjcf-joined-inertial`, `mjcf-left-out`),
-    and the bodies MuJoCo will refuse (`mjcf-refused`)."""
+    """What the conversion changed, converted or left out (`mjcf-joined-inertial`,
+    `mjcf-mesh-converted`, `mjcf-left-out`), and the bodies MuJoCo will refuse
+    (`mjcf-refused`)."""
 
 
 def to_mjcf(robot: Robot | Analysis, *, base: Base = "auto", meshdir: str | None = None) -> str:
@@ -69,10 +75,13 @@ def export_mjcf(
       ``NAME.roll`` (URDF's rpy: the same pose as `fishbot_urdf.link_poses` for the same
       numbers); ``<dynamics>`` damping and friction -> ``damping`` and ``frictionloss``; a
       mimic joint -> an ``<equality><joint>`` holding it at ``multiplier * leader + offset``.
-    - Shapes: visuals as geoms of group 2 that collide with nothing, collisions as geoms of
-      group 3 (cylinders along the local z, as URDF's); a mesh only when its file is found
-      and is STL or OBJ (named by its absolute path, or relative to ``meshdir``, which the
-      model then names), else the shape is left out, with an `mjcf-left-out` finding.
+    - Shapes: visuals as geoms of group 2 that collide with nothing, in their material's
+      colour (``rgba``, the material resolved by name as urdfdom does), collisions as geoms
+      of group 3 in MuJoCo's default colour (cylinders along the local z, as URDF's); a mesh
+      only when its file is found and MuJoCo reads it as it is (a binary STL of 1 to 200,000
+      triangles, or an OBJ), named by its absolute path, or relative to ``meshdir``, which
+      the model then names; else the shape is left out, with an `mjcf-left-out` finding
+      (`write_mjcf` converts such meshes).
 
     Args:
         robot: The robot, or its analysis.
@@ -93,6 +102,66 @@ def export_mjcf(
     return Mjcf(writer.write(), tuple(writer.findings))
 
 
+def mesh_folder(path: str | Path) -> Path:
+    """The folder `write_mjcf` converts meshes into for a model written to ``path``:
+    ``robot_meshes`` beside ``robot.xml``."""
+    path = Path(path)
+    return path.parent / f"{path.stem}_meshes"
+
+
+def write_mjcf(
+    robot: Robot | Analysis,
+    path: str | Path,
+    *,
+    base: Base = "auto",
+    meshes: str | Path | None = None,
+    inputs: Iterable[Source] = (),
+) -> Mjcf:
+    """Write the MJCF of ``robot`` to ``path``, with the meshes MuJoCo cannot read as they
+    are converted into the folder ``meshes``; what `mujoco.MjModel.from_xml_path` loads.
+
+    The model is `export_mjcf`'s, but for its meshes: a mesh MuJoCo reads as it is (a
+    binary STL of 1 to 200,000 triangles, an OBJ) is named by its absolute path; any other
+    found (COLLADA, PLY, glTF, OFF, an ASCII STL, an STL of no or too many triangles) has
+    its triangles, placed as RViz draws them (a COLLADA file's node transforms and ``<unit
+    meter>`` applied, its ``<up_axis>`` not), written as a binary STL (an OBJ past 200,000
+    triangles) named after it in ``meshes``, which the model's ``<compiler meshdir>`` names
+    (relative to the model's folder), with an `mjcf-mesh-converted` finding; its
+    ``<mesh scale>`` stays the asset's scale. A mesh that cannot be converted (holding no
+    triangles, not read, COLLADA without pycollada, any format without trimesh: the
+    ``mesh`` extra) is left out, with an `mjcf-left-out` finding. Each file is written
+    whole or not at all; a converted file that holds the same bytes already is left as it
+    is, so writing twice gives the same files; files already in the folder are kept.
+
+    Args:
+        robot: The robot, or its analysis.
+        path: The model file to write.
+        base: As for `export_mjcf`.
+        meshes: The folder converted meshes go to; None for `mesh_folder` of ``path``
+            (``robot_meshes`` beside ``robot.xml``). Made only when a mesh is converted.
+        inputs: The files the robot was read from, which nothing is written over; the
+            robot's mesh files are added to them.
+
+    Raises:
+        InputError: ``path`` or a converted file would replace an input, the folder holds
+            an input, or a file cannot be written.
+        StructureError: As for `export_mjcf`.
+        ArgumentError: As for `export_mjcf`.
+    """
+    if base not in BASES:
+        raise ArgumentError(f"base {base!r} is none of {', '.join(BASES)}", name="base")
+    analysis = of(robot)
+    _refuse(analysis)
+    path = Path(path)
+    folder = Path(meshes) if meshes is not None else mesh_folder(path)
+    sources = (*inputs, *analysis.mesh_paths.found(analysis.robot))
+    converter = MeshFolder(folder, inputs=sources)
+    writer = _Writer(analysis, base, None, converter)
+    text = writer.write(os.path.relpath(folder, path.parent))
+    write_atomic(path, text, inputs=sources)
+    return Mjcf(text, tuple(writer.findings))
+
+
 def _refuse(analysis: Analysis) -> None:
     """Stop on a robot MuJoCo cannot name or build as a tree."""
     robot = analysis.robot
@@ -106,11 +175,17 @@ def _refuse(analysis: Analysis) -> None:
 
 
 class _Writer:
-    def __init__(self, analysis: Analysis, base: Base, meshdir: str | None) -> None:
+    def __init__(
+        self,
+        analysis: Analysis,
+        base: Base,
+        meshdir: str | None,
+        folder: MeshFolder | None = None,
+    ) -> None:
         self.analysis = analysis
         self.base = base
         self.meshdir = meshdir
-        self.assets = Assets(analysis, meshdir)
+        self.assets = Assets(analysis, meshdir, folder)
         self.equality = ET.Element("equality")
         self.masses, joined = masses(analysis)
         self.moving: list[str] = []  # the links whose bodies have joints
@@ -121,7 +196,9 @@ class _Writer:
         plan = analysis.plan
         self.steps = {plan.links[step.link]: step for step in plan.steps}
 
-    def write(self) -> str:
+    def write(self, folder: str | None = None) -> str:
+        """The model's text; ``folder`` is the mesh folder's name relative to the model's,
+        which ``<compiler meshdir>`` gives when a mesh was converted into it."""
         analysis = self.analysis
         plan = analysis.plan
         model = ET.Element("mujoco", model=analysis.robot.name)
@@ -161,6 +238,8 @@ class _Writer:
             model.append(self.equality)
         if not len(self.assets.element):
             model.remove(self.assets.element)
+        if folder is not None and self.assets.converted:
+            compiler.set("meshdir", folder)
         ET.indent(model)
         return ET.tostring(model, encoding="unicode") + "\n"
 
@@ -187,12 +266,25 @@ class _Writer:
         shapes: list[Visual | Collision] = [*link.visuals, *link.collisions]
         for shape in shapes:
             visual = isinstance(shape, Visual)
-            found = geom(self.assets, shape.geometry, shape.origin, visual=visual)
-            if found is not None:
-                body.append(found)
-            elif isinstance(shape.geometry, Mesh):
-                kind = "visual" if visual else "collision"
-                self.findings.append(leaving_out(self.analysis, link, shape.geometry, kind))
+            kind = "visual" if visual else "collision"
+            name = None
+            if isinstance(shape.geometry, Mesh):
+                asset = self.assets.mesh(shape.geometry)
+                if asset.name is None:
+                    self.findings.append(
+                        leaving_out(self.analysis, link, shape.geometry, kind, asset)
+                    )
+                    continue
+                if asset.converted is not None:
+                    self.findings.append(
+                        converting(self.analysis, link, shape.geometry, kind, asset)
+                    )
+                name = asset.name
+            rgba = None
+            if isinstance(shape, Visual):
+                material = self.analysis.material(shape)
+                rgba = None if material is None else material.color
+            body.append(geom(shape.geometry, shape.origin, visual=visual, mesh=name, rgba=rgba))
 
     def _refusals(self) -> None:
         """A finding for each body MuJoCo will refuse: an inertia no solid has, or a moving
