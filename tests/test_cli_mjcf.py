@@ -75,7 +75,8 @@ def test_what_mujoco_refuses_and_what_is_left_out_are_findings(tmp_path: Path) -
     assert code == 0 and "<geom" not in out
     assert err == (
         f"{robot}:3:23: warning: link 'a': visual mesh 'part.dae' is a .dae file, which MuJoCo "
-        "cannot read: left out of the MJCF (export it as STL or OBJ) [mjcf-left-out]\n"
+        "cannot read: left out of the MJCF (export it as binary STL or OBJ; or write the MJCF "
+        "to a file (-o FILE), which converts it into a folder beside it) [mjcf-left-out]\n"
     )
 
 

@@ -144,10 +144,10 @@ class Assets:
         if count is None:
             facts = self.analysis.meshes.facts(file)
             if facts is None or not facts.faces:
-                return "is an STL of no triangles MuJoCo reads, which MuJoCo refuses"
+                return "holds no triangles MuJoCo reads"
             return "is an ASCII STL, which MuJoCo cannot read"
         if count == 0:
-            return "is an STL of no triangles, which MuJoCo refuses"
+            return "holds no triangles MuJoCo reads"
         if count > MOST_STL_TRIANGLES:
             return f"is an STL of {count:,} triangles, more than MuJoCo reads"
         return None
