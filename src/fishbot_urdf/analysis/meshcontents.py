@@ -173,6 +173,7 @@ def _foreign_triangles(file: Path, read: Reader) -> NDArray[Any]:
     kind = file.suffix.lower()
     trimesh = _trimesh(f"reading a {kind or 'file without extension'} mesh")
     data = read(file)
+    triangles: NDArray[Any]
     try:
         if kind == ".dae":
             triangles = _collada_triangles(np, trimesh, data)
@@ -181,8 +182,10 @@ def _foreign_triangles(file: Path, read: Reader) -> NDArray[Any]:
             if not hasattr(loaded, "triangles") or not len(loaded.faces):
                 raise ShapeError("no triangles")
             triangles = np.asarray(loaded.triangles, dtype=float)
-    except ImportError as exc:  # COLLADA is read by the pycollada package
-        raise _no_pycollada(file) from exc
+    except ImportError as exc:  # COLLADA is read by the pycollada package, which is optional
+        if kind == ".dae":
+            raise _no_pycollada(file) from exc
+        raise ShapeError(str(exc) or type(exc).__name__) from exc
     except ShapeError:
         raise
     except Exception as exc:  # whatever a foreign reader makes of a file it cannot read

@@ -117,10 +117,10 @@ def write_mjcf(
     meshes: str | Path | None = None,
     inputs: Iterable[Source] = (),
 ) -> Mjcf:
-    """Write the MJCF of ``robot`` to ``path``, with the meshes MuJoCo cannot read as they
-    are converted into the folder ``meshes``; what `mujoco.MjModel.from_xml_path` loads.
+    """Write the MJCF of ``robot`` to ``path``, converting the meshes MuJoCo cannot read.
 
-    The model is `export_mjcf`'s, but for its meshes: a mesh MuJoCo reads as it is (a
+    What `mujoco.MjModel.from_xml_path` loads, with the meshes MuJoCo cannot read as they
+    are converted into the folder ``meshes``. The model is `export_mjcf`'s, but for its meshes: a mesh MuJoCo reads as it is (a
     binary STL of 1 to 200,000 triangles, an OBJ) is named by its absolute path; any other
     found (COLLADA, PLY, glTF, OFF, an ASCII STL, an STL of no or too many triangles) has
     its triangles, placed as RViz draws them (a COLLADA file's node transforms and ``<unit
