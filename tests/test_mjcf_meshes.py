@@ -204,7 +204,9 @@ def test_no_mesh_is_written_into_a_folder_of_inputs(tmp_path: Path) -> None:
         "</geometry></visual></link></robot>"
     )
     before = _listing(tmp_path)
-    with pytest.raises(InputError, match="refusing to write converted meshes into"):
+    with pytest.raises(
+        InputError, match="refusing to write converted meshes into the folder of the input"
+    ):
         write_mjcf(of(fishbot_urdf.load(robot)), tmp_path / "out" / "r.xml", meshes=tmp_path)
     assert _listing(tmp_path) == before
 
@@ -287,4 +289,36 @@ def test_without_trimesh_a_collada_mesh_is_left_out_saying_how_to_install_it(
         f"({INSTALL}) [mjcf-left-out]"
     ]
     assert "<geom" not in text and "meshdir" not in text
+    assert not mesh_folder(out).exists()
+
+
+def test_a_mesh_of_fewer_than_4_vertices_is_left_out(tmp_path: Path) -> None:
+    # MuJoCo 4.0 refuses it: "at least 4 vertices required"
+    triangle = _box_triangles(1.0, 1.0, 1.0)[:1]
+    (tmp_path / "one.stl").write_text(_ascii_stl(triangle))
+    record = np.zeros(1, dtype=[("n", "<f4", 3), ("c", "<f4", (3, 3)), ("a", "<u2")])
+    record["c"] = triangle
+    (tmp_path / "one_binary.stl").write_bytes(
+        bytes(80) + (1).to_bytes(4, "little") + record.tobytes()
+    )
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="a">\n'
+        '<visual><geometry><mesh filename="one.stl"/></geometry></visual>\n'
+        '<visual><geometry><mesh filename="one_binary.stl"/></geometry></visual>\n'
+        '<visual><geometry><box size="1 1 1"/></geometry></visual>\n'
+        "</link></robot>\n"
+    )
+    out = tmp_path / "out" / "robot.xml"
+    _, findings = write_mjcf(of(fishbot_urdf.load(robot)), out, base="fixed")
+    hint = "give it its thickness, or draw it as a thin box"
+    assert [d.format() for d in findings] == [
+        f"{robot}:2:19: warning: link 'a': visual mesh 'one.stl' is an ASCII STL, which MuJoCo "
+        "cannot read, and has 3 distinct vertices, fewer than the 4 MuJoCo needs: left out of "
+        f"the MJCF ({hint}) [mjcf-left-out]",
+        f"{robot}:3:19: warning: link 'a': visual mesh 'one_binary.stl' has 3 distinct "
+        f"vertices, fewer than the 4 MuJoCo needs: left out of the MJCF ({hint}) "
+        "[mjcf-left-out]",
+    ]
+    assert mujoco.MjModel.from_xml_path(str(out)).ngeom == 1
     assert not mesh_folder(out).exists()

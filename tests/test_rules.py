@@ -126,11 +126,32 @@ WORKSPACE["ascii.urdf"] = WORKSPACE["fishbot.urdf"].replace(
 )
 WORKSPACE["meshes/base_link_ascii.stl"] = """\
 solid base_link
-facet normal 0 0 1
+facet normal 0 0 0
 outer loop
 vertex 0 0 0
 vertex 0.2 0 0
 vertex 0 0.2 0
+endloop
+endfacet
+facet normal 0 0 0
+outer loop
+vertex 0 0 0
+vertex 0 0.2 0
+vertex 0 0 0.1
+endloop
+endfacet
+facet normal 0 0 0
+outer loop
+vertex 0 0 0
+vertex 0 0 0.1
+vertex 0.2 0 0
+endloop
+endfacet
+facet normal 0 0 0
+outer loop
+vertex 0.2 0 0
+vertex 0 0.2 0
+vertex 0 0 0.1
 endloop
 endfacet
 endsolid base_link

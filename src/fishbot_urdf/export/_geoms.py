@@ -6,13 +6,16 @@ from __future__ import annotations
 import os
 import xml.etree.ElementTree as ET
 from pathlib import Path
-from typing import NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 from ..analysis import Analysis
 from ..errors import InputError, ShapeError, ToolNotFoundError
 from ..model import Box, Cylinder, Geometry, Mesh, Origin, Sphere
 from ..spatial import quaternion, rpy_matrix
 from .meshfolder import MOST_STL_TRIANGLES, MeshFolder
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
 
 __all__ = [
     "COLLISION_GROUP",
@@ -103,7 +106,12 @@ class Assets:
             return known
         why = self._unreadable(file)
         converted = None
-        if why is not None:
+        if why is None:
+            facts = self.analysis.meshes.facts(file)
+            few = _few(facts.vertices if facts is not None else None)
+            if few is not None:
+                return Asset(None, why=few, hint=_FEW_HINT)
+        else:
             if self.folder is None:
                 return Asset(None, why=why, hint="export it as binary STL or OBJ", convertible=True)
             try:
@@ -112,6 +120,9 @@ class Assets:
                 return Asset(None, why=f"{why}, and {exc.message}", hint=exc.hint)
             except (ShapeError, InputError) as exc:
                 return Asset(None, why=f"{why}, and cannot be converted: {exc.message}")
+            few = _few(_distinct(triangles))
+            if few is not None:
+                return Asset(None, why=f"{why}, and {few}", hint=_FEW_HINT)
             converted = self.folder.add(file, triangles)  # (an error writing it stops all)
             self.converted = True
         name, count = file.stem, 1
@@ -156,6 +167,28 @@ class Assets:
         if self.meshdir is None:
             return str(file.resolve())
         return os.path.relpath(file.resolve(), Path(self.meshdir).resolve())
+
+
+_FEW_HINT = "give it its thickness, or draw it as a thin box"
+_LEAST_VERTICES = 4  # MuJoCo refuses a mesh of fewer ("at least 4 vertices required")
+
+
+def _few(vertices: int | None) -> str | None:
+    """Why MuJoCo refuses a mesh of ``vertices`` distinct vertices; None when it does not
+    (or they were not counted: a mesh of more than a few triangles)."""
+    if vertices is None or vertices >= _LEAST_VERTICES:
+        return None
+    return f"has {vertices} distinct vertices, fewer than the {_LEAST_VERTICES} MuJoCo needs"
+
+
+def _distinct(triangles: NDArray[Any]) -> int | None:
+    """The distinct corners of at most 4 triangles, as `MeshFacts.vertices` counts those of
+    an STL or OBJ file of at most 12 corners; None for more (not counted)."""
+    if len(triangles) > 4:
+        return None
+    import numpy as np  # numpy: ~190 ms to load, only where a mesh is converted
+
+    return len(np.unique(np.asarray(triangles).reshape(-1, 3), axis=0))
 
 
 def geom(

@@ -43,6 +43,7 @@ class MeshFolder:
         """The files written (or found holding what they would be written with), in order."""
         self._names: dict[Path, str] = {}
         self._taken: set[str] = set()
+        self._folders: dict[str, Path] | None = None
 
     def add(self, source: Path, triangles: NDArray[Any]) -> str:
         """Write ``triangles`` (T, 3, 3), those of the file ``source``, into the folder, once
@@ -72,16 +73,20 @@ class MeshFolder:
         return name
 
     def _refuse_input_folder(self, source: Path) -> None:
+        if self._folders is None:  # the inputs' folders, found once
+            self._folders = {}
+            for given in self.inputs:
+                if not isinstance(given, int):
+                    self._folders.setdefault(os.path.realpath(Path(given).parent), Path(given))
         folder = os.path.realpath(self.path)
-        for given in (*self.inputs, source):
-            if isinstance(given, int):
-                continue
-            if os.path.realpath(Path(given).parent) == folder:
-                raise InputError(
-                    f"refusing to write converted meshes into {self.path}, which holds the "
-                    f"input {given}",
-                    path=str(self.path),
-                )
+        given = self._folders.get(folder)
+        if given is None and os.path.realpath(source.parent) == folder:
+            given = source
+        if given is not None:
+            raise InputError(
+                f"refusing to write converted meshes into the folder of the input {given}",
+                path=str(self.path),
+            )
 
 
 def _holds(target: Path, data: bytes) -> bool:

@@ -79,7 +79,7 @@ def export_mjcf(
       colour (``rgba``, the material resolved by name as urdfdom does), collisions as geoms
       of group 3 in MuJoCo's default colour (cylinders along the local z, as URDF's); a mesh
       only when its file is found and MuJoCo reads it as it is (a binary STL of 1 to 200,000
-      triangles, or an OBJ), named by its absolute path, or relative to ``meshdir``, which
+      triangles, or an OBJ, of at least 4 distinct vertices), named by its absolute path, or relative to ``meshdir``, which
       the model then names; else the shape is left out, with an `mjcf-left-out` finding
       (`write_mjcf` converts such meshes).
 
@@ -119,19 +119,19 @@ def write_mjcf(
 ) -> Mjcf:
     """Write the MJCF of ``robot`` to ``path``, converting the meshes MuJoCo cannot read.
 
-    What `mujoco.MjModel.from_xml_path` loads, with the meshes MuJoCo cannot read as they
-    are converted into the folder ``meshes``. The model is `export_mjcf`'s, but for its meshes: a mesh MuJoCo reads as it is (a
-    binary STL of 1 to 200,000 triangles, an OBJ) is named by its absolute path; any other
-    found (COLLADA, PLY, glTF, OFF, an ASCII STL, an STL of no or too many triangles) has
-    its triangles, placed as RViz draws them (a COLLADA file's node transforms and ``<unit
-    meter>`` applied, its ``<up_axis>`` not), written as a binary STL (an OBJ past 200,000
-    triangles) named after it in ``meshes``, which the model's ``<compiler meshdir>`` names
-    (relative to the model's folder), with an `mjcf-mesh-converted` finding; its
-    ``<mesh scale>`` stays the asset's scale. A mesh that cannot be converted (holding no
-    triangles, not read, COLLADA without pycollada, any format without trimesh: the
-    ``mesh`` extra) is left out, with an `mjcf-left-out` finding. Each file is written
-    whole or not at all; a converted file that holds the same bytes already is left as it
-    is, so writing twice gives the same files; files already in the folder are kept.
+    What `mujoco.MjModel.from_xml_path` loads: `export_mjcf`'s model, but for its meshes.
+    A mesh MuJoCo reads as it is (a binary STL of 1 to 200,000 triangles, an OBJ) is named
+    by its absolute path. Any other found (COLLADA, PLY, glTF, OFF, an ASCII STL, an STL of
+    too many triangles) has its triangles, placed as RViz draws them (a COLLADA file's node
+    transforms and ``<unit meter>`` applied, its ``<up_axis>`` not), written as a binary
+    STL (an OBJ past 200,000 triangles) named after it in the folder ``meshes``, which the
+    model's ``<compiler meshdir>`` names (relative to the model's folder), with an
+    `mjcf-mesh-converted` finding; its ``<mesh scale>`` stays the asset's scale. A mesh
+    that cannot be converted (holding no triangles, or fewer than 4 distinct vertices, which
+    MuJoCo refuses; not read; COLLADA without pycollada, any format but STL without
+    trimesh: the ``mesh`` extra) is left out, with an `mjcf-left-out` finding. Each file is
+    written whole or not at all; a converted file that holds the same bytes already is left
+    as it is, so writing twice gives the same files; other files in the folder are kept.
 
     Args:
         robot: The robot, or its analysis.
