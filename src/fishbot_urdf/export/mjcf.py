@@ -79,9 +79,9 @@ def export_mjcf(
       colour (``rgba``, the material resolved by name as urdfdom does), collisions as geoms
       of group 3 in MuJoCo's default colour (cylinders along the local z, as URDF's); a mesh
       only when its file is found and MuJoCo reads it as it is (a binary STL of 1 to 200,000
-      triangles, or an OBJ, of at least 4 distinct vertices), named by its absolute path, or relative to ``meshdir``, which
-      the model then names; else the shape is left out, with an `mjcf-left-out` finding
-      (`write_mjcf` converts such meshes).
+      triangles, or an OBJ, of at least 4 distinct vertices), named by its absolute path,
+      or relative to ``meshdir``, which the model then names; else the shape is left out,
+      with an `mjcf-left-out` finding (`write_mjcf` converts such meshes).
 
     Args:
         robot: The robot, or its analysis.
