@@ -322,3 +322,16 @@ def test_a_mesh_of_fewer_than_4_vertices_is_left_out(tmp_path: Path) -> None:
     ]
     assert mujoco.MjModel.from_xml_path(str(out)).ngeom == 1
     assert not mesh_folder(out).exists()
+
+
+def test_a_device_has_no_folder_beside_it(tmp_path: Path) -> None:
+    (tmp_path / "part.stl").write_text(_ascii_stl(_box_triangles(1.0, 1.0, 1.0)))
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="a"><visual><geometry><mesh filename="part.stl"/>'
+        "</geometry></visual></link></robot>"
+    )
+    text, findings = write_mjcf(of(fishbot_urdf.load(robot)), os.devnull, base="fixed")
+    assert [(d.rule, d.data["convertible"]) for d in findings] == [("mjcf-left-out", True)]
+    assert "meshdir" not in text and "<geom" not in text
+    assert not Path(os.devnull + "_meshes").exists()

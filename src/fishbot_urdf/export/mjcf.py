@@ -138,7 +138,8 @@ def write_mjcf(
         path: The model file to write.
         base: As for `export_mjcf`.
         meshes: The folder converted meshes go to; None for `mesh_folder` of ``path``
-            (``robot_meshes`` beside ``robot.xml``). Made only when a mesh is converted.
+            (``robot_meshes`` beside ``robot.xml``; none for a device or a pipe, such as
+            ``/dev/null``: nothing is converted). Made only when a mesh is converted.
         inputs: The files the robot was read from, which nothing is written over; the
             robot's mesh files are added to them.
 
@@ -155,9 +156,11 @@ def write_mjcf(
     path = Path(path)
     folder = Path(meshes) if meshes is not None else mesh_folder(path)
     sources = (*inputs, *analysis.mesh_paths.found(analysis.robot))
-    converter = MeshFolder(folder, inputs=sources)
+    # a device or a pipe (/dev/null) has no folder beside it to convert into
+    device = meshes is None and path.exists() and not path.is_file()
+    converter = None if device else MeshFolder(folder, inputs=sources)
     writer = _Writer(analysis, base, None, converter)
-    text = writer.write(os.path.relpath(folder, path.parent))
+    text = writer.write(None if device else os.path.relpath(folder, path.parent))
     write_atomic(path, text, inputs=sources)
     return Mjcf(text, tuple(writer.findings))
 
