@@ -11,13 +11,15 @@ from pathlib import Path
 import mujoco
 import numpy as np
 import pytest
-from conftest import FISHBOT, box_stl, corpus
+from conftest import FISHBOT, box_stl, corpus, fine_stl
 from lxml import etree
 
 import fishbot_urdf
 from fishbot_urdf.analysis import Analysis, of
 from fishbot_urdf.errors import InputError, ToolNotFoundError
+from fishbot_urdf.export.meshfolder import MOST_STL_TRIANGLES
 from fishbot_urdf.export.mjcf import export_mjcf, mesh_folder, write_mjcf
+from fishbot_urdf.meshfile import mesh_facts
 from fishbot_urdf.model import Visual
 
 PANDA = next(path for path in corpus() if path.name == "panda.urdf")
@@ -335,3 +337,25 @@ def test_a_device_has_no_folder_beside_it(tmp_path: Path) -> None:
     assert [(d.rule, d.data["convertible"]) for d in findings] == [("mjcf-left-out", True)]
     assert "meshdir" not in text and "<geom" not in text
     assert not Path(os.devnull + "_meshes").exists()
+
+
+def test_an_stl_of_more_triangles_than_mujoco_reads_becomes_an_obj(tmp_path: Path) -> None:
+    (tmp_path / "fine.stl").write_bytes(fine_stl(MOST_STL_TRIANGLES + 1))
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="a"><visual><geometry><mesh filename="fine.stl"/>'
+        "</geometry></visual></link></robot>"
+    )
+    out = tmp_path / "out" / "robot.xml"
+    _, findings = write_mjcf(of(fishbot_urdf.load(robot)), out, base="fixed")
+    assert [d.message for d in findings] == [
+        "link 'a': visual mesh 'fine.stl' is an STL of 200,001 triangles, more than MuJoCo "
+        "reads: converted to fine.obj in the mesh folder"
+    ]
+    model = mujoco.MjModel.from_xml_path(str(out))
+    assert model.mesh_facenum.tolist() == [MOST_STL_TRIANGLES + 1]
+    facts = mesh_facts(tmp_path / "fine.stl")
+    assert facts is not None
+    low, high = _mesh_box(model, "fine")
+    np.testing.assert_allclose(low, facts.low, atol=1e-7)
+    np.testing.assert_allclose(high, facts.high, atol=1e-7)

@@ -19,7 +19,6 @@ if TYPE_CHECKING:
 
 __all__ = [
     "COLLISION_GROUP",
-    "LOADABLE",
     "VISUAL_GROUP",
     "Asset",
     "Assets",
@@ -28,10 +27,6 @@ __all__ = [
     "numbers",
     "place",
 ]
-
-LOADABLE = (".stl", ".obj")
-"""The mesh files MuJoCo reads (by suffix, in any case): an STL only when binary, of 1 to
-`MOST_STL_TRIANGLES` triangles; others are converted into a `MeshFolder`, or left out."""
 
 VISUAL_GROUP = 2
 """The geom group of a visual: drawn by MuJoCo's viewer by default, colliding with nothing."""
