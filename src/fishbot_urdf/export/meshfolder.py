@@ -75,16 +75,16 @@ class MeshFolder:
     def _refuse_input_folder(self, source: Path) -> None:
         if self._folders is None:  # the inputs' folders, found once
             self._folders = {}
-            for given in self.inputs:
-                if not isinstance(given, int):
-                    self._folders.setdefault(os.path.realpath(Path(given).parent), Path(given))
+            for named in self.inputs:
+                if not isinstance(named, int):
+                    self._folders.setdefault(os.path.realpath(Path(named).parent), Path(named))
         folder = os.path.realpath(self.path)
-        given = self._folders.get(folder)
-        if given is None and os.path.realpath(source.parent) == folder:
-            given = source
-        if given is not None:
+        held = self._folders.get(folder)
+        if held is None and os.path.realpath(source.parent) == folder:
+            held = source
+        if held is not None:
             raise InputError(
-                f"refusing to write converted meshes into the folder of the input {given}",
+                f"refusing to write converted meshes into the folder of the input {held}",
                 path=str(self.path),
             )
 
