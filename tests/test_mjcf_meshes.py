@@ -359,3 +359,31 @@ def test_an_stl_of_more_triangles_than_mujoco_reads_becomes_an_obj(tmp_path: Pat
     low, high = _mesh_box(model, "fine")
     np.testing.assert_allclose(low, facts.low, atol=1e-7)
     np.testing.assert_allclose(high, facts.high, atol=1e-7)
+
+
+def test_a_flat_collision_mesh_is_left_out_and_kept_as_a_visual(tmp_path: Path) -> None:
+    # MuJoCo 4.0 refuses to collide with it: "has coplanar vertices, cannot compute convex
+    # hull"; a visual, which collides with nothing, it draws
+    (tmp_path / "plate.stl").write_bytes(box_stl(0.2, 0.2, 0.0))
+    (tmp_path / "plate_ascii.stl").write_text(_ascii_stl(_box_triangles(0.2, 0.2, 0.0)))
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="a">\n'
+        '<visual><geometry><mesh filename="plate.stl"/></geometry></visual>\n'
+        '<collision><geometry><mesh filename="plate.stl"/></geometry></collision>\n'
+        '<collision><geometry><mesh filename="plate_ascii.stl"/></geometry></collision>\n'
+        "</link></robot>\n"
+    )
+    out = tmp_path / "out" / "robot.xml"
+    _, findings = write_mjcf(of(fishbot_urdf.load(robot)), out, base="fixed")
+    why = (
+        "has every vertex in one plane, no volume to collide with: MuJoCo refuses the robot "
+        "('coplanar vertices, cannot compute convex hull'): left out of the MJCF (collide with "
+        "a thin box, or give the mesh its thickness) [mjcf-left-out]"
+    )
+    assert [d.format() for d in findings] == [
+        f"{robot}:3:22: warning: link 'a': collision mesh 'plate.stl' {why}",
+        f"{robot}:4:22: warning: link 'a': collision mesh 'plate_ascii.stl' {why}",
+    ]
+    model = mujoco.MjModel.from_xml_path(str(out))
+    assert model.geom_group.tolist() == [2]  # the visual alone

@@ -6,16 +6,14 @@ from __future__ import annotations
 import os
 import xml.etree.ElementTree as ET
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, NamedTuple
+from typing import NamedTuple
 
 from ..analysis import Analysis
 from ..errors import InputError, ShapeError, ToolNotFoundError
+from ..meshfile import MeshFacts, triangles_facts
 from ..model import Box, Cylinder, Geometry, Mesh, Origin, Sphere
 from ..spatial import quaternion, rpy_matrix
 from .meshfolder import MOST_STL_TRIANGLES, MeshFolder
-
-if TYPE_CHECKING:
-    from numpy.typing import NDArray
 
 __all__ = [
     "COLLISION_GROUP",
@@ -66,6 +64,8 @@ class Asset(NamedTuple):
     """What to do about a mesh left out."""
     convertible: bool = False
     """Whether a mesh left out would have been converted into a mesh folder."""
+    facts: MeshFacts | None = None
+    """The facts of the file MuJoCo reads (the converted one, for a mesh converted)."""
 
 
 class Assets:
@@ -103,7 +103,7 @@ class Assets:
         converted = None
         if why is None:
             facts = self.analysis.meshes.facts(file)
-            few = _few(facts.vertices if facts is not None else None)
+            few = _few(facts)
             if few is not None:
                 return Asset(None, why=few, hint=_FEW_HINT)
         else:
@@ -115,7 +115,8 @@ class Assets:
                 return Asset(None, why=f"{why}, and {exc.message}", hint=exc.hint)
             except (ShapeError, InputError) as exc:
                 return Asset(None, why=f"{why}, and cannot be converted: {exc.message}")
-            few = _few(_distinct(triangles))
+            facts = triangles_facts(triangles)
+            few = _few(facts)
             if few is not None:
                 return Asset(None, why=f"{why}, and {few}", hint=_FEW_HINT)
             converted = self.folder.add(file, triangles)  # (an error writing it stops all)
@@ -125,7 +126,7 @@ class Assets:
             count += 1
             name = f"{file.stem}_{count}"
         self._taken.add(name)
-        asset = self._names[key] = Asset(name, converted, why)
+        asset = self._names[key] = Asset(name, converted, why, facts=facts)
         where = converted if converted is not None else self._file(file)
         element = ET.SubElement(self.element, "mesh", name=name, file=where)
         # MuJoCo computes a mesh's inertia even when it makes no mass of it, and refuses a
@@ -168,22 +169,12 @@ _FEW_HINT = "give it its thickness, or draw it as a thin box"
 _LEAST_VERTICES = 4  # MuJoCo refuses a mesh of fewer ("at least 4 vertices required")
 
 
-def _few(vertices: int | None) -> str | None:
-    """Why MuJoCo refuses a mesh of ``vertices`` distinct vertices; None when it does not
-    (or they were not counted: a mesh of more than a few triangles)."""
-    if vertices is None or vertices >= _LEAST_VERTICES:
+def _few(facts: MeshFacts | None) -> str | None:
+    """Why MuJoCo refuses a mesh of these facts for its few distinct vertices; None when it
+    does not (or they were not counted: a mesh of more than a few triangles)."""
+    if facts is None or facts.vertices is None or facts.vertices >= _LEAST_VERTICES:
         return None
-    return f"has {vertices} distinct vertices, fewer than the {_LEAST_VERTICES} MuJoCo needs"
-
-
-def _distinct(triangles: NDArray[Any]) -> int | None:
-    """The distinct corners of at most 4 triangles, as `MeshFacts.vertices` counts those of
-    an STL or OBJ file of at most 12 corners; None for more (not counted)."""
-    if len(triangles) > 4:
-        return None
-    import numpy as np  # numpy: ~190 ms to load, only where a mesh is converted
-
-    return len(np.unique(np.asarray(triangles).reshape(-1, 3), axis=0))
+    return f"has {facts.vertices} distinct vertices, fewer than the {_LEAST_VERTICES} MuJoCo needs"
 
 
 def geom(

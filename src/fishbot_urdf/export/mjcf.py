@@ -21,8 +21,9 @@ from ..diagnostics import Diagnostic
 from ..errors import ArgumentError, StructureError
 from ..model import Collision, Joint, JointType, Link, Mesh, Robot, Visual
 from ..output import Source, write_atomic
+from ..rules._contents import refused_hull
 from ..spatial import quaternion
-from ._geoms import Assets, geom, number, numbers, place
+from ._geoms import Asset, Assets, geom, number, numbers, place
 from ._masses import masses, principal, refused
 from ._mjcf_findings import converting, joining, leaving_out, refusal
 from .meshfolder import MeshFolder
@@ -273,6 +274,10 @@ class _Writer:
             name = None
             if isinstance(shape.geometry, Mesh):
                 asset = self.assets.mesh(shape.geometry)
+                if not visual and asset.name is not None and asset.facts is not None:
+                    flat = refused_hull(asset.facts)  # (a visual collides with nothing)
+                    if flat is not None:
+                        asset = Asset(None, why=flat, hint=_FLAT_HINT)
                 if asset.name is None:
                     self.findings.append(
                         leaving_out(self.analysis, link, shape.geometry, kind, asset)
@@ -365,5 +370,6 @@ class _Writer:
         element.set("polycoef", numbers((follows.offset, follows.multiplier, 0.0, 0.0, 0.0)))
 
 
+_FLAT_HINT = "collide with a thin box, or give the mesh its thickness"
 _LEAST_MASS = 1e-15  # MuJoCo's mjMINVAL: a moving body's mass must be above it
 _ONE_NUMBER = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)
