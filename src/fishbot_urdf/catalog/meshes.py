@@ -266,8 +266,8 @@ MJCF_LEFT_OUT = Rule(
     "of faces should be between 1 and 200000` for an ASCII STL), or a file that is not there. "
     "Written to a file, `fishbot mjcf` converts such a mesh into a folder beside the model "
     "(`mjcf-mesh-converted`); written to standard output, or when the conversion fails (a "
-    "file that holds no triangles or fewer than 4 distinct vertices, which MuJoCo refuses "
-    "too, COLLADA without the `mesh` extra), it leaves the shape out "
+    "file that holds no triangles or fewer than 4 distinct vertices, or a collision mesh all "
+    "in one plane, which MuJoCo refuses too; COLLADA without the `mesh` extra), it leaves the shape out "
     "of its body, with this warning, and the command succeeds. The body keeps its inertial, "
     "so only what is drawn or collides is lost; write the MJCF to a file, export the mesh as "
     "binary STL or OBJ, or name the file that is there.",
