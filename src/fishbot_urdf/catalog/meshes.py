@@ -267,10 +267,10 @@ MJCF_LEFT_OUT = Rule(
     "Written to a file, `fishbot mjcf` converts such a mesh into a folder beside the model "
     "(`mjcf-mesh-converted`); written to standard output, or when the conversion fails (a "
     "file that holds no triangles or fewer than 4 distinct vertices, or a collision mesh all "
-    "in one plane, which MuJoCo refuses too; COLLADA without the `mesh` extra), it leaves the shape out "
-    "of its body, with this warning, and the command succeeds. The body keeps its inertial, "
-    "so only what is drawn or collides is lost; write the MJCF to a file, export the mesh as "
-    "binary STL or OBJ, or name the file that is there.",
+    "in one plane, which MuJoCo refuses too; COLLADA without the `mesh` extra), it leaves "
+    "the shape out of its body, with this warning, and the command succeeds. The body keeps "
+    "its inertial, so only what is drawn or collides is lost; write the MJCF to a file, "
+    "export the mesh as binary STL or OBJ, or name the file that is there.",
     bad="""\
 # mixed.urdf: a visual mesh in COLLADA, meshes/base_link.dae, written to standard output
 fishbot mjcf mixed.urdf
