@@ -75,7 +75,8 @@ def test_what_mujoco_refuses_and_what_is_left_out_are_findings(tmp_path: Path) -
     assert code == 0 and "<geom" not in out
     assert err == (
         f"{robot}:3:23: warning: link 'a': visual mesh 'part.dae' is a .dae file, which MuJoCo "
-        "cannot read: left out of the MJCF (export it as STL or OBJ) [mjcf-left-out]\n"
+        "cannot read: left out of the MJCF (export it as binary STL or OBJ; or write the MJCF "
+        "to a file (-o FILE), which converts it into a folder beside it) [mjcf-left-out]\n"
     )
 
 
@@ -93,3 +94,71 @@ def test_never_over_the_robot_and_a_broken_robot_writes_nothing(tmp_path: Path) 
     code, out, err = _mjcf(str(broken), "-o", str(tmp_path / "out.xml"))
     assert (code, out) == (1, "") and "[undefined-link]" in err
     assert not (tmp_path / "out.xml").exists()
+
+
+ASCII_TETRAHEDRON = """solid part
+facet normal 0 0 0
+outer loop
+vertex 0.0 0.0 0.0
+vertex 0.5 0.0 0.0
+vertex 0.0 0.5 0.0
+endloop
+endfacet
+facet normal 0 0 0
+outer loop
+vertex 0.0 0.0 0.0
+vertex 0.0 0.5 0.0
+vertex 0.0 0.0 0.25
+endloop
+endfacet
+facet normal 0 0 0
+outer loop
+vertex 0.0 0.0 0.0
+vertex 0.0 0.0 0.25
+vertex 0.5 0.0 0.0
+endloop
+endfacet
+facet normal 0 0 0
+outer loop
+vertex 0.5 0.0 0.0
+vertex 0.0 0.5 0.0
+vertex 0.0 0.0 0.25
+endloop
+endfacet
+endsolid part
+"""
+
+
+def test_a_mesh_mujoco_cannot_read_is_converted_beside_the_file(tmp_path: Path) -> None:
+    (tmp_path / "robot_meshes").mkdir()
+    (tmp_path / "robot_meshes" / "part.stl").write_text(ASCII_TETRAHEDRON)
+    robot = tmp_path / "robot_meshes" / "robot.urdf"
+    robot.write_text(
+        '<robot name="r">\n  <link name="a">\n'
+        '    <visual><geometry><mesh filename="part.stl"/></geometry></visual>\n'
+        "  </link>\n</robot>\n"
+    )
+    out = tmp_path / "build" / "robot.xml"
+    code, out_text, err = _mjcf(str(robot), "--fixed-base", "-o", str(out))
+    assert (code, out_text) == (0, "")
+    assert err == (
+        f"{robot}:3:23: note: link 'a': visual mesh 'part.stl' is an ASCII STL, which MuJoCo "
+        "cannot read: converted to part.stl in the mesh folder (export it as binary STL or OBJ "
+        "to have MuJoCo read it where it is) [mjcf-mesh-converted]\n"
+    )
+    assert sorted(p.name for p in (tmp_path / "build").iterdir()) == ["robot.xml", "robot_meshes"]
+    model = mujoco.MjModel.from_xml_path(str(out))
+    assert (model.nmesh, model.mesh_facenum.tolist()) == (1, [4])
+    # robot.xml beside robot_meshes/, which holds the robot's files: refused, and nothing
+    # written
+    code, _, err = _mjcf(str(robot), "-o", str(tmp_path / "robot.xml"))
+    assert (code, err) == (
+        2,
+        f"{tmp_path / 'robot_meshes'}: error: refusing to write converted meshes into the "
+        f"folder of the input {robot} [io]\n",
+    )
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["build", "robot_meshes"]
+    assert sorted(p.name for p in (tmp_path / "robot_meshes").iterdir()) == [
+        "part.stl",
+        "robot.urdf",
+    ]

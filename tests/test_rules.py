@@ -120,6 +120,43 @@ WORKSPACE["mixed.urdf"] = WORKSPACE["fishbot.urdf"].replace(
     '<visual><geometry><mesh filename="meshes/base_link.dae"/></geometry></visual>',
 )
 WORKSPACE["meshes/base_link.dae"] = ""
+# mjcf-mesh-converted's: a visual mesh in ASCII STL, which MuJoCo refuses and mjcf converts.
+WORKSPACE["ascii.urdf"] = WORKSPACE["fishbot.urdf"].replace(
+    '<visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>',
+    '<visual><geometry><mesh filename="meshes/base_link_ascii.stl"/></geometry></visual>',
+)
+WORKSPACE["meshes/base_link_ascii.stl"] = """\
+solid base_link
+facet normal 0 0 0
+outer loop
+vertex 0 0 0
+vertex 0.2 0 0
+vertex 0 0.2 0
+endloop
+endfacet
+facet normal 0 0 0
+outer loop
+vertex 0 0 0
+vertex 0 0.2 0
+vertex 0 0 0.1
+endloop
+endfacet
+facet normal 0 0 0
+outer loop
+vertex 0 0 0
+vertex 0 0 0.1
+vertex 0.2 0 0
+endloop
+endfacet
+facet normal 0 0 0
+outer loop
+vertex 0.2 0 0
+vertex 0 0.2 0
+vertex 0 0 0.1
+endloop
+endfacet
+endsolid base_link
+"""
 # mjcf-refused's: a massless link between the two joints of a hip.
 WORKSPACE["hip.urdf"] = WORKSPACE["fishbot.urdf"].replace(
     "</robot>",
@@ -271,9 +308,9 @@ WORKSPACE["weak_arm.urdf"] = """\
 </robot>
 """
 
-# Rules of what render and view cannot draw, and of what mjcf leaves out: the picture or the
-# model is made without it, exit status 0.
-DRAWING_RULES = {"shape-not-drawn", "mjcf-left-out", "mjcf-joined-inertial"}
+# Rules of what render and view cannot draw, and of what mjcf leaves out or converts: the
+# picture or the model is made without it, exit status 0.
+DRAWING_RULES = {"shape-not-drawn", "mjcf-left-out", "mjcf-joined-inertial", "mjcf-mesh-converted"}
 
 
 def _modules() -> Iterator[object]:

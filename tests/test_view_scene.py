@@ -7,6 +7,7 @@ import io
 import json
 import math
 import struct
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -75,3 +76,22 @@ def test_the_corners_of_the_box_around_points() -> None:
     points = np.array([[0.0, 1.0, -2.0], [3.0, -1.0, 0.5], [1.0, 0.0, 0.0]])
     found = {tuple(c) for c in corners(np, points).tolist()}
     assert found == {(x, y, z) for x in (0.0, 3.0) for y in (-1.0, 1.0) for z in (-2.0, 0.5)}
+
+
+def test_a_material_named_alone_takes_the_colour_urdfdom_gives_it(tmp_path: Path) -> None:
+    import fishbot_urdf
+    from fishbot_urdf.drawing.scene import build_scene
+
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(
+        '<robot name="r"><material name="red"><color rgba="1 0 0 1"/></material>'
+        '<link name="a"><visual><geometry><box size="1 1 1"/></geometry>'
+        '<material name="red"><color rgba="0 0 1 1"/></material></visual>'
+        '<visual><geometry><box size="1 1 1"/></geometry>'
+        '<material name="green"><color rgba="0 1 0 0.5"/></material></visual>'
+        '<visual><geometry><box size="1 1 1"/></geometry><material name="green"/></visual>'
+        "</link></robot>"
+    )
+    # the top-level red first; green as the visual before defined it
+    colours = [part.color for part in build_scene(fishbot_urdf.load(robot)).parts]
+    assert colours == [(1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 0.5), (0.0, 1.0, 0.0, 0.5)]

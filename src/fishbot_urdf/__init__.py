@@ -39,7 +39,7 @@ if TYPE_CHECKING:
         XmlSyntaxError,
     )
     from .expansion import Expansion, XacroError, expand
-    from .export.mjcf import export_mjcf, to_mjcf
+    from .export.mjcf import export_mjcf, to_mjcf, write_mjcf
     from .export.sdf import to_sdf
     from .graph import chain, leaves, root, subtree, to_networkx, tree_text
     from .inertia import (
@@ -220,6 +220,7 @@ __all__ = [
     "transform",
     "tree_text",
     "volume",
+    "write_mjcf",
     "xacro_suggestions",
 ]
 
@@ -337,6 +338,7 @@ _WHERE = {
     "transform": "kinematics",
     "tree_text": "graph",
     "volume": "inertia",
+    "write_mjcf": "export.mjcf",
     "xacro_suggestions": "inertia",
 }
 

@@ -44,10 +44,12 @@ __all__ = [
     "EmptyMeshError",
     "MeshFacts",
     "Reader",
+    "binary_stl_count",
     "mesh_bounds",
     "mesh_closed",
     "mesh_facts",
     "mesh_triangles",
+    "triangles_facts",
 ]
 
 
@@ -307,6 +309,28 @@ def _positions_bounds(data: bytes) -> tuple[Vector3, Vector3] | None:
         return None
     low, high = [min(points[k::3]) for k in range(3)], [max(points[k::3]) for k in range(3)]
     return (low[0], low[1], low[2]), (high[0], high[1], high[2])
+
+
+def triangles_facts(triangles: NDArray[Any]) -> MeshFacts | None:
+    """The facts of triangles (T, 3, 3) read from a file of another format (a COLLADA
+    file, for one): as a file of them would have; None for none, or a vertex at infinity."""
+    corners = triangles.reshape(-1, 3)
+    if not len(corners):
+        return None
+    axes = [corners[:, k] for k in range(3)]
+    lows = [float(axis.min()) for axis in axes]
+    highs = [float(axis.max()) for axis in axes]
+    return _facts(len(triangles), lows, highs, axes)
+
+
+def binary_stl_count(path: str | Path, read: Reader | None = None) -> int | None:
+    """The triangles of a binary STL file, as its header counts them, when its length is
+    what that count makes it; None for any other file (an ASCII STL, one cut short).
+
+    Raises:
+        InputError: The file cannot be read (or is bigger than the size limit).
+    """
+    return _binary_count((read or read_input)(path))
 
 
 def _binary_count(data: bytes) -> int | None:

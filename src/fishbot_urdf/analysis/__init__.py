@@ -17,11 +17,12 @@ from typing import NamedTuple
 
 from ..extensions import Reference, from_robot
 from ..inputs import deadline
-from ..model import Joint, JointType, Link, Mesh, Robot
+from ..model import Joint, JointType, Link, Material, Mesh, Robot, Visual
 from ..packages import PackageFinder
 from ..spatial import Pose, Vector3
 from .drive import Drive, drives, wheels
 from .gazebo import Block, Lumping, blocks, lumping
+from .materials import visual_materials
 from .meshcontents import MeshContents
 from .meshpaths import MeshPaths
 from .plan import Plan, build
@@ -144,6 +145,15 @@ class Analysis:
         if not path.found or path.file is None:
             return None
         return self.meshes.bounds(path.file)
+
+    @cached_property
+    def _materials(self) -> Mapping[int, Material | None]:
+        return visual_materials(self.robot)
+
+    def material(self, visual: Visual) -> Material | None:
+        """The material of one of the robot's visuals as urdfdom resolves its name (see
+        `fishbot_urdf.analysis.materials`): its own when it names none."""
+        return self._materials.get(id(visual), visual.material)
 
     @cached_property
     def mesh_paths(self) -> MeshPaths:

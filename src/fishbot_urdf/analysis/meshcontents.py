@@ -28,7 +28,15 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 from ..errors import ShapeError, ToolNotFoundError
 from ..inputs import read_input
-from ..meshfile import MeshFacts, Reader, mesh_bounds, mesh_closed, mesh_facts, mesh_triangles
+from ..meshfile import (
+    MeshFacts,
+    Reader,
+    binary_stl_count,
+    mesh_bounds,
+    mesh_closed,
+    mesh_facts,
+    mesh_triangles,
+)
 from ..model import Vector3
 from ..spatial import Matrix3
 
@@ -93,17 +101,29 @@ class MeshContents:
 
     def triangles(self, file: Path) -> NDArray[Any]:
         """The triangles (T, 3, 3) of a mesh file, in its units: STL and OBJ as
-        `fishbot_urdf.meshfile.mesh_triangles` reads them, other formats through trimesh.
+        `fishbot_urdf.meshfile.mesh_triangles` reads them, other formats through trimesh;
+        a COLLADA file's as RViz places them, in metres (its nodes' transforms and its
+        ``<unit meter>`` applied, its ``<up_axis>`` not).
 
         Raises:
             InputError: The file cannot be read (or is bigger than the size limit).
             ShapeError: The file is not well formed, or holds no triangles.
-            ToolNotFoundError: The file is not STL or OBJ and trimesh is not installed.
+            ToolNotFoundError: The file is not STL or OBJ and trimesh is not installed (or,
+                for COLLADA, pycollada).
             TimeLimitError: Reading went past the deadline in force.
         """
         if file.suffix.lower() in (".stl", ".obj"):
             return self._once("triangles", file, lambda: mesh_triangles(file, self._bytes))
         return self._once("triangles", file, lambda: _foreign_triangles(file, self._bytes))
+
+    def binary_count(self, file: Path) -> int | None:
+        """The triangles of a binary STL file (see `fishbot_urdf.meshfile.binary_stl_count`);
+        None for any other file.
+
+        Raises:
+            InputError: The file cannot be read (or is bigger than the size limit).
+        """
+        return self._once("binary", file, lambda: binary_stl_count(file, self._bytes))
 
     def bounds(self, file: Path) -> tuple[Vector3, Vector3] | None:
         """The box around what vertices of a mesh file can be read, even when it is not well
@@ -153,11 +173,19 @@ def _foreign_triangles(file: Path, read: Reader) -> NDArray[Any]:
     kind = file.suffix.lower()
     trimesh = _trimesh(f"reading a {kind or 'file without extension'} mesh")
     data = read(file)
+    triangles: NDArray[Any]
     try:
-        loaded: Any = trimesh.load(io.BytesIO(data), file_type=kind.lstrip("."), force="mesh")
-        if not hasattr(loaded, "triangles") or not len(loaded.faces):
-            raise ShapeError("no triangles")
-        triangles = np.asarray(loaded.triangles, dtype=float)
+        if kind == ".dae":
+            triangles = _collada_triangles(np, trimesh, data)
+        else:
+            loaded: Any = trimesh.load(io.BytesIO(data), file_type=kind.lstrip("."), force="mesh")
+            if not hasattr(loaded, "triangles") or not len(loaded.faces):
+                raise ShapeError("no triangles")
+            triangles = np.asarray(loaded.triangles, dtype=float)
+    except ImportError as exc:  # COLLADA is read by the pycollada package, which is optional
+        if kind == ".dae":
+            raise _no_pycollada(file) from exc
+        raise ShapeError(str(exc) or type(exc).__name__) from exc
     except ShapeError:
         raise
     except Exception as exc:  # whatever a foreign reader makes of a file it cannot read
@@ -165,6 +193,28 @@ def _foreign_triangles(file: Path, read: Reader) -> NDArray[Any]:
     if triangles.ndim != 3 or triangles.shape[1:] != (3, 3) or not np.isfinite(triangles).all():
         raise ShapeError("a vertex is not a finite number")
     return triangles
+
+
+def _collada_triangles(np: Any, trimesh: Any, data: bytes) -> Any:
+    """A COLLADA file's triangles as RViz draws them: each geometry moved by its nodes'
+    transforms (trimesh does so), in metres by the file's ``<unit meter>`` (trimesh notes
+    the unit but does not apply it), its ``<up_axis>`` ignored (as RViz and trimesh do)."""
+    scene: Any = trimesh.load(io.BytesIO(data), file_type="dae", force="scene")
+    if scene.units not in (None, "meters"):
+        scene = scene.convert_units("meters")
+    parts = [np.asarray(g.triangles, dtype=float) for g in scene.dump() if hasattr(g, "faces")]
+    parts = [p for p in parts if len(p)]
+    if not parts:
+        raise ShapeError("no triangles")
+    return np.concatenate(parts)
+
+
+def _no_pycollada(file: Path) -> ToolNotFoundError:
+    return ToolNotFoundError(
+        f"reading the COLLADA mesh {file} needs the pycollada package",
+        tool="pycollada",
+        hint="pip install 'fishbot-urdf[mesh]'",
+    )
 
 
 def _solid(path: Path, read: Reader, scale: Vector3 | None) -> Solid:
@@ -188,11 +238,7 @@ def _solid(path: Path, read: Reader, scale: Vector3 | None) -> Solid:
             mesh: Any = trimesh.load(io.BytesIO(data), file_type=kind, force="mesh")
         except ImportError as exc:
             if kind == "dae":  # COLLADA is read by the pycollada package, which is optional
-                raise ToolNotFoundError(
-                    f"reading the COLLADA mesh {path} needs the pycollada package",
-                    tool="pycollada",
-                    hint="pip install pycollada",
-                ) from exc
+                raise _no_pycollada(path) from exc
             raise ShapeError(
                 f"cannot read the mesh {path} as {kind.upper()}", path=str(path)
             ) from exc

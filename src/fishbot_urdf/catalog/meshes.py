@@ -246,21 +246,59 @@ fishbot render fishbot.urdf -o fishbot.png
     language="shell",
 )
 
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class MjcfLeftOutFacts(Facts):
+    """The facts of an `mjcf-left-out` finding."""
+
+    convertible: bool = False
+    """Whether the mesh would have been converted, had the MJCF been written to a file."""
+
+
 MJCF_LEFT_OUT = Rule(
     "mjcf-left-out",
     W,
     Family.MESHES,
-    summary="A mesh `fishbot mjcf` leaves out of the MJCF: MuJoCo cannot read its file (not "
-    "STL or OBJ, such as COLLADA), or its file is not found.",
-    explanation="MuJoCo reads mesh files in STL and OBJ, and refuses a model that names a file "
-    "it cannot decode (`no decoder found for mesh file`), such as a COLLADA `.dae`, or a file "
-    "that is not there. `fishbot mjcf` writes a model MuJoCo loads: it leaves such a shape out "
-    "of its body, with this warning, and the command succeeds; the body keeps its inertial, so "
-    "only what is drawn or collides is lost. Export the mesh as STL or OBJ (a visual can keep "
-    "its COLLADA file for RViz if the collision shape is STL), or name the file that is there.",
+    summary="A mesh `fishbot mjcf` leaves out of the MJCF: its file is not found, or MuJoCo "
+    "cannot read it and it could not be converted.",
+    explanation="MuJoCo reads binary STL and OBJ mesh files, and refuses a model that names a "
+    "file it cannot decode (`no decoder found for mesh file` for COLLADA, PLY or glTF, `number "
+    "of faces should be between 1 and 200000` for an ASCII STL), or a file that is not there. "
+    "Written to a file, `fishbot mjcf` converts such a mesh into a folder beside the model "
+    "(`mjcf-mesh-converted`); written to standard output, or when the conversion fails (a "
+    "file that holds no triangles or fewer than 4 distinct vertices, or a collision mesh all "
+    "in one plane, which MuJoCo refuses too; COLLADA without the `mesh` extra), it leaves "
+    "the shape out of its body, with this warning, and the command succeeds. The body keeps "
+    "its inertial, so only what is drawn or collides is lost; write the MJCF to a file, "
+    "export the mesh as binary STL or OBJ, or name the file that is there.",
     bad="""\
-# mixed.urdf: a visual mesh in COLLADA, meshes/base_link.dae
-fishbot mjcf mixed.urdf -o mixed.xml
+# mixed.urdf: a visual mesh in COLLADA, meshes/base_link.dae, written to standard output
+fishbot mjcf mixed.urdf
+""",
+    good="""\
+fishbot mjcf fishbot.urdf -o fishbot.xml
+""",
+    consumers=(Consumer.MUJOCO,),
+    language="shell",
+)
+
+MJCF_MESH_CONVERTED = Rule(
+    "mjcf-mesh-converted",
+    Severity.NOTE,
+    Family.MESHES,
+    summary="A mesh `fishbot mjcf` converted for MuJoCo into the folder beside the model: "
+    "COLLADA, PLY, glTF, an ASCII STL, or an STL of more triangles than MuJoCo reads.",
+    explanation="MuJoCo reads only binary STL (of 1 to 200,000 triangles) and OBJ. Written to "
+    "a file (`-o robot.xml`), `fishbot mjcf` writes the triangles of any other mesh, placed "
+    "as RViz draws them (a COLLADA file's node transforms and `<unit meter>` applied), as a "
+    "binary STL (OBJ past 200,000 triangles) in the folder `robot_meshes/` beside the model, "
+    "which the model's `<compiler meshdir>` names; the source file is left as it is. This "
+    "note says which; the converted file loses the source's colours and textures, and the "
+    "geom takes the URDF material's colour instead. Export the mesh as binary STL or OBJ to "
+    "have MuJoCo read it where it is.",
+    bad="""\
+# ascii.urdf: a visual mesh in ASCII STL, meshes/base_link_ascii.stl
+fishbot mjcf ascii.urdf -o ascii.xml
 """,
     good="""\
 fishbot mjcf fishbot.urdf -o fishbot.xml

@@ -6,7 +6,14 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 
 from ..catalog import Rule
-from ..catalog.meshes import MESH_NOT_FOUND, NOTHING_DRAWN, MeshNotFoundFacts, NothingDrawnFacts
+from ..catalog.meshes import (
+    MESH_NOT_FOUND,
+    MJCF_LEFT_OUT,
+    NOTHING_DRAWN,
+    MeshNotFoundFacts,
+    MjcfLeftOutFacts,
+    NothingDrawnFacts,
+)
 from ..catalog.physics import (
     ABOVE_GROUND,
     BELOW_GROUND,
@@ -95,6 +102,12 @@ def _package(facts: object) -> str | None:
     return f"give its folder with --package {facts.package}=PATH"
 
 
+def _to_a_file(facts: object) -> str | None:
+    if not isinstance(facts, MjcfLeftOutFacts) or not facts.convertible:
+        return None
+    return "or write the MJCF to a file (-o FILE), which converts it into a folder beside it"
+
+
 def _other_shapes(facts: object) -> str | None:
     """How to say where the packages not found are, and how to draw the shapes of the
     other kind, when some of them can be drawn."""
@@ -129,6 +142,7 @@ _BY_RULE: dict[Rule | None, Callable[[object], str | None]] = {
     FILL_SKIPPED: _fill_skipped,
     MESH_NOT_FOUND: _package,
     NOTHING_DRAWN: _other_shapes,
+    MJCF_LEFT_OUT: _to_a_file,
 }
 
 

@@ -17,9 +17,8 @@ from ..catalog.physics import (
 )
 from ..catalog.reading import NEGATIVE_MASS
 from ..errors import FishbotUrdfError
-from ..export.mjcf import export_mjcf
+from ..export.mjcf import export_mjcf, write_mjcf
 from ..lint import check_again
-from ..output import write_atomic
 from ._checking import nearest_config, posable_input, read_files
 from ._common import (
     EXIT_INVALID,
@@ -68,9 +67,12 @@ def mjcf(
     on a link fixed to its parent joins the parent's body, mjcf-joined-inertial); revolute and
     continuous joints as hinges, prismatic as slides, with their limits, damping and
     friction; planar and floating joints as slides and hinges; mimic joints held to their
-    leader by equality constraints. Visuals are geoms of group 2 that collide with nothing,
-    collisions geoms of group 3; meshes are named by their absolute paths, and one MuJoCo
-    cannot read (not STL or OBJ) or whose file is not found is left out (mjcf-left-out).
+    leader by equality constraints. Visuals are geoms of group 2 that collide with nothing, in
+    their material's colour, collisions geoms of group 3. Meshes MuJoCo reads (binary STL,
+    OBJ) are named by their absolute paths; with -o FILE, any other (COLLADA, PLY, glTF,
+    ASCII STL) is converted to a binary STL in a folder beside it named after it
+    (robot.xml: robot_meshes/, mjcf-mesh-converted); one not converted (to standard output,
+    or when it cannot be) or whose file is not found is left out (mjcf-left-out).
     A robot whose root link is `world` hangs from the world by its joints, any other floats
     (a free joint), unless --fixed-base or --floating-base says otherwise. ARGS are
     name:=value values for a xacro file's <xacro:arg>. Findings about the robot are printed
@@ -96,12 +98,14 @@ def mjcf(
     result = posable_input(file, values, packages_option(package_items), config=config)
     assert result.analysis is not None
     try:
-        made = export_mjcf(result.analysis, base="fixed" if base == "fixed" else _AUTO[base])
+        held = "fixed" if base == "fixed" else _AUTO[base]
         if output == "-":
+            made = export_mjcf(result.analysis, base=held)
             to_stdout(made.text.encode("utf-8", "surrogateescape"))
         else:
             # never over what was read: the robot, its includes, its meshes, the configuration
-            write_atomic(output, made.text, inputs=[*read_files(file, result), *read])
+            inputs = [*read_files(file, result), *read]
+            made = write_mjcf(result.analysis, output, base=held, inputs=inputs)
     except FishbotUrdfError as exc:
         stop_on(exc)
     # what MuJoCo refuses of the inertials as written (of the rules the configuration applies)

@@ -207,7 +207,6 @@ def build_scene(
     config = np.zeros(len(kin.variables)) if q is None else q
     poses_array = kin.forward(config)
     poses = {name: poses_array[i] for i, name in enumerate(kin.links)}
-    materials = {m.name: m for m in analysis.robot.materials if m.name}
     loader = _Loader(analysis)
     parts: list[Part] = []
     check = deadline()
@@ -218,7 +217,7 @@ def build_scene(
         pose = poses[link.name]
         shapes: list[tuple[Geometry, Origin, Material | None, str]] = []
         if "visual" in layers or "gazebo" in layers:  # (gazebo: recoloured below)
-            shapes += [(v.geometry, v.origin, v.material, "visual") for v in link.visuals]
+            shapes += [(v.geometry, v.origin, analysis.material(v), "visual") for v in link.visuals]
         if "collision" in layers:
             shapes += [(c.geometry, c.origin, None, "collision") for c in link.collisions]
         loader.unresolved(link, [geometry for geometry, _, _, _ in shapes])
@@ -229,7 +228,7 @@ def build_scene(
             placed = _placed(np, loader, link, geometry, origin_matrix(np, origin), local, pose)
             if placed is None:
                 continue
-            color = COLLISION if layer == "collision" else _color(material, materials)
+            color = COLLISION if layer == "collision" else _color(material)
             parts.append(Part(link.name, apply(np, pose, placed), color, placed, pose, layer))
         if link.inertial is not None and ("mass" in layers or "inertia" in layers):
             parts += _inertial_parts(np, loader, link, link.inertial, pose, layers)
@@ -472,18 +471,12 @@ def _shown(shape: Geometry | Inertial) -> str:
     return type(shape).__name__.lower()
 
 
-def _color(
-    material: Material | None, materials: Mapping[str, Material]
-) -> tuple[float, float, float, float]:
-    """A visual's colour as urdfdom resolves it: the top-level material of its name first."""
-    if material is None:
+def _color(material: Material | None) -> tuple[float, float, float, float]:
+    """A visual's colour: its material's (as `Analysis.material` resolves it), else grey."""
+    if material is None or material.color is None:
         return GREY
-    defined = materials.get(material.name)
-    for candidate in (defined, material):
-        if candidate is not None and candidate.color is not None:
-            r, g, b, a = candidate.color
-            return (r, g, b, a)
-    return GREY
+    r, g, b, a = material.color
+    return (r, g, b, a)
 
 
 class _Loader:

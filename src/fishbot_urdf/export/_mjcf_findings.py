@@ -3,16 +3,15 @@ refuse of the model it wrote."""
 
 from __future__ import annotations
 
-import os
-
 from ..analysis import Analysis
-from ..catalog.meshes import MJCF_LEFT_OUT
+from ..catalog.meshes import MJCF_LEFT_OUT, MJCF_MESH_CONVERTED, MjcfLeftOutFacts
 from ..catalog.physics import MJCF_JOINED_INERTIAL, MJCF_REFUSED
 from ..diagnostics import Diagnostic, Kind, Subject
 from ..model import Link, Mesh
+from ._geoms import Asset
 from ._masses import own, refused
 
-__all__ = ["joining", "leaving_out", "refusal"]
+__all__ = ["converting", "joining", "leaving_out", "refusal"]
 
 
 def joining(analysis: Analysis, link: Link, holder: str) -> Diagnostic:
@@ -31,21 +30,27 @@ def joining(analysis: Analysis, link: Link, holder: str) -> Diagnostic:
     )
 
 
-def leaving_out(analysis: Analysis, link: Link, mesh: Mesh, kind: str) -> Diagnostic:
+def leaving_out(analysis: Analysis, link: Link, mesh: Mesh, kind: str, asset: Asset) -> Diagnostic:
     """A ``kind`` (visual or collision) mesh of ``link`` MuJoCo cannot read, left out."""
-    path = analysis.mesh_paths.get(mesh.filename)
-    if path.found:
-        suffix = os.path.splitext(mesh.filename)[1].lower()
-        why = f"is a {suffix} file, which MuJoCo cannot read" if suffix else "has no suffix"
-        hint = "export it as STL or OBJ"
-    else:
-        why, hint = "is not found", "name the file that is there"
     return MJCF_LEFT_OUT.report(
-        f"link {link.name!r}: {kind} mesh {mesh.filename!r} {why}: left out of the MJCF",
+        f"link {link.name!r}: {kind} mesh {mesh.filename!r} {asset.why}: left out of the MJCF",
         mesh.source,
         path=analysis.path,
         subject=Subject(Kind.LINK, link.name),
-        hint=hint,
+        hint=asset.hint,
+        data=MjcfLeftOutFacts(convertible=asset.convertible),
+    )
+
+
+def converting(analysis: Analysis, link: Link, mesh: Mesh, kind: str, asset: Asset) -> Diagnostic:
+    """A ``kind`` (visual or collision) mesh of ``link``, converted into the mesh folder."""
+    return MJCF_MESH_CONVERTED.report(
+        f"link {link.name!r}: {kind} mesh {mesh.filename!r} {asset.why}: converted to "
+        f"{asset.converted} in the mesh folder",
+        mesh.source,
+        path=analysis.path,
+        subject=Subject(Kind.LINK, link.name),
+        hint="export it as binary STL or OBJ to have MuJoCo read it where it is",
     )
 
 

@@ -9,7 +9,10 @@ up (an `mjcf-refused` finding says so before it does).
 
 from __future__ import annotations
 
+import os
 import xml.etree.ElementTree as ET
+from collections.abc import Iterable
+from pathlib import Path
 from typing import Literal, NamedTuple
 
 from ..analysis import Analysis, of
@@ -18,11 +21,14 @@ from ..analysis.plan import Step
 from ..diagnostics import Diagnostic
 from ..errors import ArgumentError, StructureError
 from ..model import Collision, Joint, JointType, Link, Mesh, Robot, Visual
+from ..output import Source, write_atomic
+from ..rules._contents import refused_hull
 from ..spatial import quaternion
 from ._actuators import Motor, actuator, motors
-from ._geoms import COLLISION_GROUP, VISUAL_GROUP, Assets, geom, number, numbers, place
+from ._geoms import COLLISION_GROUP, VISUAL_GROUP, Asset, Assets, geom, number, numbers, place
 from ._masses import masses, principal, refused
-from ._mjcf_findings import joining, leaving_out, refusal
+from ._mjcf_findings import converting, joining, leaving_out, refusal
+from .meshfolder import MeshFolder
 
 __all__ = [
     "BASES",
@@ -32,8 +38,10 @@ __all__ = [
     "Mjcf",
     "Motor",
     "export_mjcf",
+    "mesh_folder",
     "motors",
     "to_mjcf",
+    "write_mjcf",
 ]
 
 Base = Literal["auto", "fixed", "floating"]
@@ -49,8 +57,9 @@ class Mjcf(NamedTuple):
     text: str
     """The document."""
     findings: tuple[Diagnostic, ...]
-    """What the conversion changed or left out (`mjcf-joined-inertial`, `mjcf-left-out`),
-    and the bodies MuJoCo will refuse (`mjcf-refused`)."""
+    """What the conversion changed, converted or left out (`mjcf-joined-inertial`,
+    `mjcf-mesh-converted`, `mjcf-left-out`), and the bodies MuJoCo will refuse
+    (`mjcf-refused`)."""
 
 
 def to_mjcf(robot: Robot | Analysis, *, base: Base = "auto", meshdir: str | None = None) -> str:
@@ -85,10 +94,13 @@ def export_mjcf(
       ``NAME.roll`` (URDF's rpy: the same pose as `fishbot_urdf.link_poses` for the same
       numbers); ``<dynamics>`` damping and friction -> ``damping`` and ``frictionloss``; a
       mimic joint -> an ``<equality><joint>`` holding it at ``multiplier * leader + offset``.
-    - Shapes: visuals as geoms of group 2 that collide with nothing, collisions as geoms of
-      group 3 (cylinders along the local z, as URDF's); a mesh only when its file is found
-      and is STL or OBJ (named by its absolute path, or relative to ``meshdir``, which the
-      model then names), else the shape is left out, with an `mjcf-left-out` finding.
+    - Shapes: visuals as geoms of group 2 that collide with nothing, in their material's
+      colour (``rgba``, the material resolved by name as urdfdom does), collisions as geoms
+      of group 3 in MuJoCo's default colour (cylinders along the local z, as URDF's); a mesh
+      only when its file is found and MuJoCo reads it as it is (a binary STL of 1 to 200,000
+      triangles, or an OBJ, of at least 4 distinct vertices), named by its absolute path,
+      or relative to ``meshdir``, which the model then names; else the shape is left out,
+      with an `mjcf-left-out` finding (`write_mjcf` converts such meshes).
 
     Args:
         robot: The robot, or its analysis.
@@ -110,6 +122,72 @@ def export_mjcf(
     return Mjcf(writer.write(), tuple(writer.findings))
 
 
+def mesh_folder(path: str | Path) -> Path:
+    """The folder `write_mjcf` converts meshes into for a model written to ``path``:
+    ``robot_meshes`` beside ``robot.xml``."""
+    path = Path(path)
+    return path.parent / f"{path.stem}_meshes"
+
+
+def write_mjcf(
+    robot: Robot | Analysis,
+    path: str | Path,
+    *,
+    base: Base = "auto",
+    meshes: str | Path | None = None,
+    inputs: Iterable[Source] = (),
+    driven: tuple[Motor, ...] | None = None,
+) -> Mjcf:
+    """Write the MJCF of ``robot`` to ``path``, converting the meshes MuJoCo cannot read.
+
+    What `mujoco.MjModel.from_xml_path` loads: `export_mjcf`'s model, but for its meshes.
+    A mesh MuJoCo reads as it is (a binary STL of 1 to 200,000 triangles, an OBJ) is named
+    by its absolute path. Any other found (COLLADA, PLY, glTF, OFF, an ASCII STL, an STL of
+    too many triangles) has its triangles, placed as RViz draws them (a COLLADA file's node
+    transforms and ``<unit meter>`` applied, its ``<up_axis>`` not), written as a binary
+    STL (an OBJ past 200,000 triangles) named after it in the folder ``meshes``, which the
+    model's ``<compiler meshdir>`` names (relative to the model's folder), with an
+    `mjcf-mesh-converted` finding; its ``<mesh scale>`` stays the asset's scale. A mesh
+    that cannot be converted (holding no triangles, or fewer than 4 distinct vertices, which
+    MuJoCo refuses; not read; COLLADA without pycollada, any format but STL without
+    trimesh: the ``mesh`` extra) is left out, with an `mjcf-left-out` finding. Each file is
+    written whole or not at all; a converted file that holds the same bytes already is left
+    as it is, so writing twice gives the same files; other files in the folder are kept.
+
+    Args:
+        robot: The robot, or its analysis.
+        path: The model file to write.
+        base: As for `export_mjcf`.
+        meshes: The folder converted meshes go to; None for `mesh_folder` of ``path``
+            (``robot_meshes`` beside ``robot.xml``; none for a device or a pipe, such as
+            ``/dev/null``: nothing is converted). Made only when a mesh is converted.
+        inputs: The files the robot was read from, which nothing is written over; the
+            robot's mesh files are added to them.
+        driven: As for `export_mjcf`.
+
+    Raises:
+        InputError: ``path`` or a converted file would replace an input, the folder holds
+            an input, or a file cannot be written.
+        StructureError: As for `export_mjcf`.
+        ArgumentError: As for `export_mjcf`.
+    """
+    if base not in BASES:
+        raise ArgumentError(f"base {base!r} is none of {', '.join(BASES)}", name="base")
+    analysis = of(robot)
+    _refuse(analysis)
+    path = Path(path)
+    folder = Path(meshes) if meshes is not None else mesh_folder(path)
+    sources = (*inputs, *analysis.mesh_paths.found(analysis.robot))
+    # a device or a pipe (/dev/null) has no folder beside it to convert into
+    device = meshes is None and path.exists() and not path.is_file()
+    converter = None if device else MeshFolder(folder, inputs=sources)
+    chosen = motors(analysis) if driven is None else driven
+    writer = _Writer(analysis, base, None, chosen, converter)
+    text = writer.write(None if device else os.path.relpath(folder, path.parent))
+    write_atomic(path, text, inputs=sources)
+    return Mjcf(text, tuple(writer.findings))
+
+
 def _refuse(analysis: Analysis) -> None:
     """Stop on a robot MuJoCo cannot name or build as a tree."""
     robot = analysis.robot
@@ -124,7 +202,12 @@ def _refuse(analysis: Analysis) -> None:
 
 class _Writer:
     def __init__(
-        self, analysis: Analysis, base: Base, meshdir: str | None, driven: tuple[Motor, ...]
+        self,
+        analysis: Analysis,
+        base: Base,
+        meshdir: str | None,
+        driven: tuple[Motor, ...],
+        folder: MeshFolder | None = None,
     ) -> None:
         self.analysis = analysis
         self.driven = driven
@@ -132,7 +215,7 @@ class _Writer:
         self.friction = _friction(analysis)
         self.base = base
         self.meshdir = meshdir
-        self.assets = Assets(analysis, meshdir)
+        self.assets = Assets(analysis, meshdir, folder)
         self.equality = ET.Element("equality")
         self.masses, joined = masses(analysis)
         self.moving: list[str] = []  # the links whose bodies have joints
@@ -143,7 +226,9 @@ class _Writer:
         plan = analysis.plan
         self.steps = {plan.links[step.link]: step for step in plan.steps}
 
-    def write(self) -> str:
+    def write(self, folder: str | None = None) -> str:
+        """The model's text; ``folder`` is the mesh folder's name relative to the model's,
+        which ``<compiler meshdir>`` gives when a mesh was converted into it."""
         analysis = self.analysis
         plan = analysis.plan
         model = ET.Element("mujoco", model=analysis.robot.name)
@@ -189,6 +274,8 @@ class _Writer:
             model.append(actuators)
         if not len(self.assets.element):
             model.remove(self.assets.element)
+        if folder is not None and self.assets.converted:
+            compiler.set("meshdir", folder)
         ET.indent(model)
         return ET.tostring(model, encoding="unicode") + "\n"
 
@@ -215,18 +302,36 @@ class _Writer:
         shapes: list[Visual | Collision] = [*link.visuals, *link.collisions]
         for shape in shapes:
             visual = isinstance(shape, Visual)
-            found = geom(self.assets, shape.geometry, shape.origin, visual=visual)
-            if found is not None:
-                friction = None if visual else self.friction.get(link.name)
-                if friction is not None:
-                    found.set("friction", f"{number(friction)} 0.005 0.0001")
-                    # as Gazebo, whatever the floor's: MuJoCo takes the greater of two
-                    # geoms' frictions, or the one of the greater priority
-                    found.set("priority", "1")
-                body.append(found)
-            elif isinstance(shape.geometry, Mesh):
-                kind = "visual" if visual else "collision"
-                self.findings.append(leaving_out(self.analysis, link, shape.geometry, kind))
+            kind = "visual" if visual else "collision"
+            name = None
+            if isinstance(shape.geometry, Mesh):
+                asset = self.assets.mesh(shape.geometry)
+                if not visual and asset.name is not None and asset.facts is not None:
+                    flat = refused_hull(asset.facts)  # (a visual collides with nothing)
+                    if flat is not None:
+                        asset = Asset(None, why=flat, hint=_FLAT_HINT)
+                if asset.name is None:
+                    self.findings.append(
+                        leaving_out(self.analysis, link, shape.geometry, kind, asset)
+                    )
+                    continue
+                if asset.converted is not None:
+                    self.findings.append(
+                        converting(self.analysis, link, shape.geometry, kind, asset)
+                    )
+                name = asset.name
+            rgba = None
+            if isinstance(shape, Visual):
+                material = self.analysis.material(shape)
+                rgba = None if material is None else material.color
+            found = geom(shape.geometry, shape.origin, visual=visual, mesh=name, rgba=rgba)
+            friction = None if visual else self.friction.get(link.name)
+            if friction is not None:
+                found.set("friction", f"{number(friction)} 0.005 0.0001")
+                # as Gazebo, whatever the floor's: MuJoCo takes the greater of two geoms'
+                # frictions, or the one of the greater priority
+                found.set("priority", "1")
+            body.append(found)
 
     def _refusals(self) -> None:
         """A finding for each body MuJoCo will refuse: an inertia no solid has, or a moving
@@ -316,5 +421,6 @@ def _friction(analysis: Analysis) -> dict[str, float]:
     return found
 
 
+_FLAT_HINT = "collide with a thin box, or give the mesh its thickness"
 _LEAST_MASS = 1e-15  # MuJoCo's mjMINVAL: a moving body's mass must be above it
 _ONE_NUMBER = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)

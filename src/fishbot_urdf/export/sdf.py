@@ -11,7 +11,6 @@ turned into SDF; sdformat's reader then completes and prints that document.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
 
 from ..analysis import Analysis, of
 from ..errors import ConversionError, StructureError
@@ -19,7 +18,6 @@ from ..model import (
     Joint,
     JointType,
     Link,
-    Material,
     Origin,
     Robot,
 )
@@ -126,16 +124,13 @@ class _Model:
             for block in analysis.gazebo_blocks
             if block.element.tag == "gazebo"
         )
-        materials = _materials(analysis.robot)
         self.mass: dict[str, Mass | None] = {}
         self.visuals: dict[str, list[Shape]] = {}
         self.collisions: dict[str, list[Shape]] = {}
         for link in analysis.links.values():
             self.mass[link.name] = _mass(link)
             self.visuals[link.name] = [
-                Shape(
-                    v.name or "", _placement(v.origin), v.geometry, materials.get(id(v), v.material)
-                )
+                Shape(v.name or "", _placement(v.origin), v.geometry, analysis.material(v))
                 for v in link.visuals
             ]
             self.collisions[link.name] = [
@@ -284,26 +279,6 @@ class _Model:
                     material.put("ambient", ambient)
         self.extensions.link(element, name)
         return element
-
-
-def _materials(robot: Robot) -> Mapping[int, Material | None]:
-    """Each visual's material (by the visual's id) as urdfdom resolves it: a material of the
-    same name defined at the top level, or by a visual before it, comes first; one with a
-    name alone that none defined so far is none."""
-    known: dict[str, Material] = {}
-    for material in robot.materials:
-        known.setdefault(material.name, material)
-    found: dict[int, Material | None] = {}
-    for link in robot.links:
-        for visual in link.visuals:
-            given = visual.material
-            if given is None or not given.name:
-                continue
-            if given.color is None and given.texture is None:
-                found[id(visual)] = known.get(given.name)
-            else:
-                found[id(visual)] = known.setdefault(given.name, given)
-    return found
 
 
 def _mass(link: Link) -> Mass | None:

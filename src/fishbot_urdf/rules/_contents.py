@@ -9,7 +9,7 @@ from collections.abc import Iterator
 from ..meshfile import MeshFacts
 from ..model import Box, Cylinder, Link, Sphere
 
-__all__ = ["flat_mesh", "millimetres"]
+__all__ = ["flat_mesh", "millimetres", "refused_hull"]
 
 _LARGEST_PART = 5.0  # metres: a robot part larger than this is implausible
 _FLAT = 1e-5  # a mesh thinner than this share of its size is flat (its numbers' rounding)
@@ -17,6 +17,19 @@ _FLAT = 1e-5  # a mesh thinner than this share of its size is flat (its numbers'
 
 def flat_mesh(facts: MeshFacts) -> str | None:
     """Why a collision mesh has no volume to make a convex hull of, or None if it has one."""
+    found = _flatness(facts)
+    return None if found is None else found[0]
+
+
+def refused_hull(facts: MeshFacts) -> str | None:
+    """Why MuJoCo refuses a collision mesh of these facts (fewer than 4 distinct vertices,
+    or all in one plane or on one line), or None if it makes a convex hull of it."""
+    found = _flatness(facts)
+    return found[0] if found is not None and found[1] else None
+
+
+def _flatness(facts: MeshFacts) -> tuple[str, bool] | None:
+    """Why a mesh has no volume, and whether MuJoCo refuses it for that; None if it has."""
     if facts.spread is None:
         return None
     plane, line = facts.spread
@@ -30,7 +43,7 @@ def flat_mesh(facts: MeshFacts) -> str | None:
         return (
             f"has {facts.vertices} distinct vertices, no volume to collide with: MuJoCo "
             "refuses the robot ('at least 4 vertices required')"
-        )
+        ), True
     if line <= rounding:
         shape, said = "on one line", "collinear"
     else:
@@ -40,11 +53,11 @@ def flat_mesh(facts: MeshFacts) -> str | None:
         return (
             f"has every vertex {shape}, no volume to collide with: MuJoCo refuses the robot "
             f"('{said} vertices, cannot compute convex hull')"
-        )
+        ), True
     return (
         f"has every vertex {shape} but for {plane:.2g} (the file's rounding), no volume to "
         "collide with: MuJoCo makes a convex hull of it only as thick as that"
-    )
+    ), False
 
 
 def millimetres(link: Link, extent: float) -> str | None:
