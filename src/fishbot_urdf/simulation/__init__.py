@@ -19,12 +19,15 @@ extra (``pip install 'fishbot-urdf[sim]'``).
 from __future__ import annotations
 
 import math
+import tempfile
+from pathlib import Path
 from typing import Literal
 
 from ..analysis import Analysis, of
+from ..catalog.meshes import MJCF_MESH_CONVERTED
 from ..diagnostics import Diagnostic
 from ..errors import ArgumentError
-from ..export.mjcf import export_mjcf, motors
+from ..export.mjcf import motors, write_mjcf
 from ..model import Robot
 from . import _findings as say
 from ._driving import SETTLE, drive
@@ -79,18 +82,22 @@ def simulate(
     wheel_motors = motors(analysis, drives=(pair,)) if pair is not None else ()
     held = held_joints(analysis, {m.joint for m in wheel_motors})
     driven = (*wheel_motors, *servos(analysis, held))
-    made = export_mjcf(analysis, base="fixed" if trial == "hold" else "floating", driven=driven)
-    refused = [d for d in made.findings if d.is_error]
-    if refused:
-        return Outcome(analysis.robot.name, trial, 0.0, 0, (), made.findings)
-    try:
-        world = World(analysis, made.text, floor=trial != "hold")
-    except Refused as exc:
-        found = (*made.findings, say.refused(analysis, exc.why))
-        return Outcome(analysis.robot.name, trial, 0.0, 0, (), found)
+    with tempfile.TemporaryDirectory(prefix="fishbot-sim-") as folder:
+        # the meshes MuJoCo cannot read are converted there, and read as it compiles
+        model = Path(folder) / "robot.xml"
+        base_of = "fixed" if trial == "hold" else "floating"
+        made = write_mjcf(analysis, model, base=base_of, driven=driven)
+        conversion = tuple(d for d in made.findings if d.rule != MJCF_MESH_CONVERTED.id)
+        if any(d.is_error for d in conversion):
+            return Outcome(analysis.robot.name, trial, 0.0, 0, (), conversion)
+        try:
+            world = World(analysis, made.text, floor=trial != "hold", folder=Path(folder))
+        except Refused as exc:
+            found = (*conversion, say.refused(analysis, exc.why))
+            return Outcome(analysis.robot.name, trial, 0.0, 0, (), found)
     root = _root(analysis)
     watch = Watch(world, world.body(root))
-    found: list[Diagnostic] = list(made.findings)
+    found: list[Diagnostic] = list(conversion)
     target = start(analysis, world, held)
     for one, other, depth in world.overlaps():
         found.append(say.self_contact(analysis, one, other, depth, _at(trial)))

@@ -376,7 +376,8 @@ def sag(
 def self_contact(analysis: Analysis, one: str, other: str, depth: float, at: str) -> Diagnostic:
     """The collision shapes of ``one`` and ``other`` overlap by ``depth`` at ``at``."""
     return rules.SIM_SELF_CONTACT.report(
-        f"the collision shapes of {one} and {other} overlap by {_cm(depth)} {at}",
+        f"the collision shapes of {one} and {other} overlap by {_cm(depth)} {at}, as MuJoCo "
+        "collides them (a mesh by its convex hull)",
         _where_link(analysis, one),
         path=analysis.path,
         subject=_link(analysis, one),

@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 import xml.etree.ElementTree as ET
 from collections.abc import Sequence
+from pathlib import Path
 from types import ModuleType
 from typing import Any
 
@@ -59,7 +60,8 @@ def load_mujoco() -> ModuleType:
 
 
 class World:
-    """The robot of ``analysis``, written as ``mjcf``, in MuJoCo over a floor.
+    """The robot of ``analysis``, written as ``mjcf`` (in ``folder``, which its ``meshdir``
+    is relative to), in MuJoCo over a floor.
 
     Attributes:
         model: MuJoCo's model.
@@ -68,9 +70,15 @@ class World:
         collisions: The geom ids of the robot's collision shapes.
     """
 
-    def __init__(self, analysis: Analysis, mjcf: str, *, floor: bool = True) -> None:
+    def __init__(
+        self, analysis: Analysis, mjcf: str, *, floor: bool = True, folder: Path | None = None
+    ) -> None:
         mujoco = load_mujoco()
         root = ET.fromstring(mjcf)
+        compiler = root.find("compiler")
+        meshdir = compiler.get("meshdir") if compiler is not None else None
+        if compiler is not None and meshdir is not None and folder is not None:
+            compiler.set("meshdir", str(folder / meshdir))  # relative to the model's folder
         world = root.find("worldbody")
         assert world is not None
         ground = ET.Element("geom", name=FLOOR, type="plane", size="0 0 1")
