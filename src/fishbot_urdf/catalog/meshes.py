@@ -218,6 +218,28 @@ SHAPE_SIZE = Rule(
 """,
     consumers=(Consumer.MUJOCO,),
 )
+MJCF_EMPTY_SHAPE = Rule(
+    "mjcf-empty-shape",
+    W,
+    Family.MESHES,
+    summary="A shape of no size `fishbot mjcf` leaves out of the MJCF: a box, cylinder or "
+    "sphere with a size of 0 or less, or a mesh scaled by 0.",
+    explanation="MuJoCo refuses a model with a geom whose size is not positive (`size 0 must "
+    "be positive in geom`), visual or not, and a visual box of size 0 is a placeholder many "
+    "robots use for a frame (upkie's, laikago's). Such a shape draws nothing and collides with "
+    "nothing, so `fishbot mjcf` writes the model without it, says so with this warning, and "
+    "the command succeeds; the body keeps its inertial. A collision of no size is an error of "
+    "its own (`shape-size`). Give the shape its real size, or delete it.",
+    bad="""\
+# frame.urdf: a visual box of size 0 0 0
+fishbot mjcf frame.urdf -o frame.xml
+""",
+    good="""\
+fishbot mjcf fishbot.urdf -o fishbot.xml
+""",
+    consumers=(Consumer.MUJOCO,),
+    language="shell",
+)
 SHAPE_NOT_DRAWN = Rule(
     "shape-not-drawn",
     W,

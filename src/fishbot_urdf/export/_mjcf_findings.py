@@ -1,34 +1,17 @@
-"""The findings of a conversion to MJCF: what it changed or left out, and what MuJoCo will
-refuse of the model it wrote."""
+"""The findings of a conversion to MJCF that only writing it finds: the shapes it left out
+(the bodies MuJoCo refuses and the inertials moved are foretold by
+`fishbot_urdf.rules.mujoco`, which the check runs too)."""
 
 from __future__ import annotations
 
 import os
 
 from ..analysis import Analysis
-from ..catalog.meshes import MJCF_LEFT_OUT
-from ..catalog.physics import MJCF_JOINED_INERTIAL, MJCF_REFUSED
+from ..catalog.meshes import MJCF_EMPTY_SHAPE, MJCF_LEFT_OUT
 from ..diagnostics import Diagnostic, Kind, Subject
-from ..model import Link, Mesh
-from ._masses import own, refused
+from ..model import Geometry, Link, Mesh
 
-__all__ = ["joining", "leaving_out", "refusal"]
-
-
-def joining(analysis: Analysis, link: Link, holder: str) -> Diagnostic:
-    """`link`'s inertial, which MuJoCo refuses on a body of its own, joins ``holder``'s."""
-    inertial = link.inertial
-    assert inertial is not None
-    why = refused(own(inertial))
-    return MJCF_JOINED_INERTIAL.report(
-        f"link {link.name!r}: {why}, which MuJoCo refuses on a body of its own: its "
-        f"inertial joins that of {holder!r}, to which it is fixed",
-        inertial.source,
-        path=analysis.path,
-        subject=Subject(Kind.LINK, link.name),
-        hint="give it the inertia of its shape",
-        element="inertial",
-    )
+__all__ = ["emptying", "leaving_out"]
 
 
 def leaving_out(analysis: Analysis, link: Link, mesh: Mesh, kind: str) -> Diagnostic:
@@ -49,14 +32,12 @@ def leaving_out(analysis: Analysis, link: Link, mesh: Mesh, kind: str) -> Diagno
     )
 
 
-def refusal(analysis: Analysis, name: str, why: str) -> Diagnostic:
-    """The body of link ``name``, which MuJoCo will refuse for ``why``."""
-    link = analysis.links[name]
-    where = link.inertial.source if link.inertial is not None else link.source
-    return MJCF_REFUSED.report(
-        f"link {name!r}: {why}: MuJoCo refuses the model",
-        where,
+def emptying(analysis: Analysis, link: Link, shape: Geometry, kind: str, what: str) -> Diagnostic:
+    """A ``kind`` (visual or collision) shape of ``link`` of no size (``what``), left out."""
+    return MJCF_EMPTY_SHAPE.report(
+        f"link {link.name!r}: <{kind}> {what}, which MuJoCo refuses: left out of the MJCF",
+        shape.source,
         path=analysis.path,
-        subject=Subject(Kind.LINK, name),
-        hint="give it the mass and inertia of its shape",
+        subject=Subject(Kind.LINK, link.name),
+        hint="give the shape its real size (m), or delete it",
     )

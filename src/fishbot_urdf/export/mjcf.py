@@ -10,25 +10,21 @@ up (an `mjcf-refused` finding says so before it does).
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
-from typing import Literal, NamedTuple
+from typing import NamedTuple
 
 from ..analysis import Analysis, of
+from ..analysis.mujoco import BASES, WORLD, Base, moves, mujoco_bodies, no_tree, principal
 from ..analysis.plan import Step
 from ..diagnostics import Diagnostic
 from ..errors import ArgumentError, StructureError
 from ..model import Collision, Joint, JointType, Link, Mesh, Robot, Visual
+from ..rules.mujoco import joining, refusal
+from ..rules.shapes import sizeless
 from ..spatial import quaternion
 from ._geoms import Assets, geom, number, numbers, place
-from ._masses import masses, principal, refused
-from ._mjcf_findings import joining, leaving_out, refusal
+from ._mjcf_findings import emptying, leaving_out
 
 __all__ = ["BASES", "Mjcf", "export_mjcf", "to_mjcf"]
-
-Base = Literal["auto", "fixed", "floating"]
-BASES: tuple[Base, ...] = ("auto", "fixed", "floating")
-"""How the robot's base may be held: as the robot says, fixed to the world, or free."""
-
-WORLD = "world"
 
 
 class Mjcf(NamedTuple):
@@ -37,8 +33,8 @@ class Mjcf(NamedTuple):
     text: str
     """The document."""
     findings: tuple[Diagnostic, ...]
-    """What the conversion changed or left out (`mjcf-joined-inertial`, `mjcf-left-out`),
-    and the bodies MuJoCo will refuse (`mjcf-refused`)."""
+    """What the conversion changed or left out (`mjcf-joined-inertial`, `mjcf-left-out`,
+    `mjcf-empty-shape`), and the bodies MuJoCo will refuse (`mjcf-refused`)."""
 
 
 def to_mjcf(robot: Robot | Analysis, *, base: Base = "auto", meshdir: str | None = None) -> str:
@@ -61,7 +57,9 @@ def export_mjcf(
       inertia MuJoCo refuses on a body (not positive semi-definite, or breaking A + B >= C)
       joins, summed exactly, the body of the link it is fixed to (its parent, else the first
       child on a fixed joint that takes it), with an `mjcf-joined-inertial` finding; a body
-      MuJoCo will refuse all the same, or a moving one without mass, an `mjcf-refused` one.
+      MuJoCo will refuse all the same, or a moving one that, with the bodies fixed to it,
+      has no mass or no inertia about some axis, an `mjcf-refused` one (the findings
+      `fishbot_urdf.rules.mujoco` foretells, which ``fishbot check --target mujoco`` runs).
     - Joints: revolute -> hinge with ``range``, continuous -> hinge, prismatic -> slide with
       ``range``, fixed -> no joint, planar -> slides ``NAME.x`` and ``NAME.y`` then a hinge
       ``NAME.yaw`` about its axis, floating -> a free joint at the top level, else slides
@@ -72,7 +70,9 @@ def export_mjcf(
     - Shapes: visuals as geoms of group 2 that collide with nothing, collisions as geoms of
       group 3 (cylinders along the local z, as URDF's); a mesh only when its file is found
       and is STL or OBJ (named by its absolute path, or relative to ``meshdir``, which the
-      model then names), else the shape is left out, with an `mjcf-left-out` finding.
+      model then names), else the shape is left out, with an `mjcf-left-out` finding; a
+      shape of no size (a box, cylinder or sphere with a size of 0 or less, a mesh scaled by
+      0), which MuJoCo refuses, is left out with an `mjcf-empty-shape` one.
 
     Args:
         robot: The robot, or its analysis.
@@ -88,21 +88,11 @@ def export_mjcf(
     if base not in BASES:
         raise ArgumentError(f"base {base!r} is none of {', '.join(BASES)}", name="base")
     analysis = of(robot)
-    _refuse(analysis)
+    why = no_tree(analysis)
+    if why is not None:
+        raise StructureError(f"robot {analysis.robot.name!r} has {why}")
     writer = _Writer(analysis, base, meshdir)
     return Mjcf(writer.write(), tuple(writer.findings))
-
-
-def _refuse(analysis: Analysis) -> None:
-    """Stop on a robot MuJoCo cannot name or build as a tree."""
-    robot = analysis.robot
-    why = None
-    if len(analysis.links) != len(robot.links) or len(analysis.joints) != len(robot.joints):
-        why = "a link or joint name used twice, which MJCF refuses"
-    elif analysis.loops:
-        why = "a joint loop, which no tree of bodies holds"
-    if why is not None:
-        raise StructureError(f"robot {robot.name!r} has {why}")
 
 
 class _Writer:
@@ -112,11 +102,11 @@ class _Writer:
         self.meshdir = meshdir
         self.assets = Assets(analysis, meshdir)
         self.equality = ET.Element("equality")
-        self.masses, joined = masses(analysis)
-        self.moving: list[str] = []  # the links whose bodies have joints
-        self.welded: dict[str, list[str]] = {}  # the links whose bodies are fixed to each
+        self.bodies = mujoco_bodies(analysis, base)
+        self.masses = self.bodies.masses
         self.findings = [
-            joining(analysis, analysis.links[link], holder) for link, holder in joined.items()
+            joining(analysis, analysis.links[link], holder)
+            for link, holder in self.bodies.joined.items()
         ]
         plan = analysis.plan
         self.steps = {plan.links[step.link]: step for step in plan.steps}
@@ -140,9 +130,8 @@ class _Writer:
                 self._shapes(world, analysis.links[root])
             else:
                 body = bodies[root] = self._body(world, analysis.links[root])
-                if self.base != "fixed":
+                if root in self.bodies.moving:
                     ET.SubElement(body, "freejoint")
-                    self.moving.append(root)
         for step in plan.steps:
             parent, link = plan.links[step.parent], plan.links[step.link]
             body = self._body(bodies[parent], analysis.links[link])
@@ -150,11 +139,7 @@ class _Writer:
             joints = self._joints(step, top=parent == WORLD)
             body[:0] = joints
             bodies[link] = body
-            if joints:
-                self.moving.append(link)
-            elif parent != WORLD:
-                self.welded.setdefault(parent, []).append(link)
-        self._refusals()
+        self.findings += [refusal(analysis, link, why) for link, why in self.bodies.refusals]
         for joint in analysis.robot.joints:
             self._mimic(joint)
         if len(self.equality):
@@ -187,39 +172,26 @@ class _Writer:
         shapes: list[Visual | Collision] = [*link.visuals, *link.collisions]
         for shape in shapes:
             visual = isinstance(shape, Visual)
+            kind = "visual" if visual else "collision"
+            empty = sizeless(shape.geometry)
+            if empty is not None:
+                self.findings.append(emptying(self.analysis, link, shape.geometry, kind, empty))
+                continue
             found = geom(self.assets, shape.geometry, shape.origin, visual=visual)
             if found is not None:
                 body.append(found)
             elif isinstance(shape.geometry, Mesh):
-                kind = "visual" if visual else "collision"
                 self.findings.append(leaving_out(self.analysis, link, shape.geometry, kind))
-
-    def _refusals(self) -> None:
-        """A finding for each body MuJoCo will refuse: an inertia no solid has, or a moving
-        body that, with the bodies fixed to it, has no mass."""
-        for name, mass in self.masses.items():
-            why = refused(mass)
-            if why is not None:
-                why = f"{why}, and nothing fixed to it can take it"
-                self.findings.append(refusal(self.analysis, name, why))
-        for name in self.moving:
-            group, total = [name], 0.0
-            while group:
-                link = group.pop()
-                held = self.masses.get(link)
-                total += 0.0 if held is None else held.mass
-                group.extend(self.welded.get(link, ()))
-            if total < _LEAST_MASS:
-                why = "it moves, and neither it nor a link fixed to it has mass"
-                self.findings.append(refusal(self.analysis, name, why))
 
     def _joints(self, step: Step, *, top: bool) -> list[ET.Element]:
         joint, kind = step.joint, step.kind
-        if kind is JointType.FIXED:
-            return [ET.Element("freejoint")] if top and self.base == "floating" else []
+        if not moves(kind, top=top, base=self.base):
+            return []
+        if kind is JointType.FIXED:  # a child of the world, floating
+            return [ET.Element("freejoint")]
         if kind is JointType.FLOATING:
             if top:
-                return [] if self.base == "fixed" else [ET.Element("freejoint", name=joint.name)]
+                return [ET.Element("freejoint", name=joint.name)]
             parts = [("x", "slide", (1.0, 0.0, 0.0)), ("y", "slide", (0.0, 1.0, 0.0))]
             parts += [("z", "slide", (0.0, 0.0, 1.0)), ("yaw", "hinge", (0.0, 0.0, 1.0))]
             parts += [("pitch", "hinge", (0.0, 1.0, 0.0)), ("roll", "hinge", (1.0, 0.0, 0.0))]
@@ -270,5 +242,4 @@ class _Writer:
         element.set("polycoef", numbers((follows.offset, follows.multiplier, 0.0, 0.0, 0.0)))
 
 
-_LEAST_MASS = 1e-15  # MuJoCo's mjMINVAL: a moving body's mass must be above it
 _ONE_NUMBER = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)
