@@ -6,6 +6,7 @@ and every robot of example-robot-data MuJoCo does not refuse as written."""
 from __future__ import annotations
 
 import math
+import struct
 from pathlib import Path
 
 import mujoco
@@ -37,8 +38,6 @@ EXCLUDED = {
     "romeo_description/urdf/romeo.urdf": "moving bodies must be larger than mjMINVAL",
     "romeo_description/urdf/romeo_laas_small.urdf": "A + B >= C",
     "romeo_description/urdf/romeo_small.urdf": "A + B >= C",
-    # an STL file of 0 faces
-    "simple_humanoid_description/urdf/simple_humanoid.urdf": "number of faces",
     "ur_description/urdf/ur3.urdf": "has no name",
 }
 
@@ -56,9 +55,9 @@ def _corpus_id(item: object) -> str:
 
 
 def test_the_exclusions_are_known() -> None:
-    assert len(EXCLUDED) == 8
+    assert len(EXCLUDED) == 7
     assert set(EXCLUDED) <= {_corpus_id(item) for item in CORPUS}
-    assert len(CORPUS) - len(EXCLUDED) == 61
+    assert len(CORPUS) - len(EXCLUDED) == 62
 
 
 def _analysis(path: Path, packages: dict[str, Path] | None = None) -> Analysis:
@@ -273,9 +272,8 @@ def test_mujoco_compiles_every_corpus_robot_to_our_numbers(item: object) -> None
         text, found = export_mjcf(_analysis(path, packages))
         with pytest.raises(ValueError, match=EXCLUDED[name].replace("+", r"\+")):
             mujoco.MjModel.from_xml_string(text)
-        # said before MuJoCo says it (but for a mesh file's contents, which we do not read)
-        refused = [d for d in found if d.rule == "mjcf-refused"]
-        assert bool(refused) is (EXCLUDED[name] != "number of faces")
+        # said before MuJoCo says it
+        assert "mjcf-refused" in {d.rule for d in found}
         return
     analysis = _analysis(path, packages)
     text, found = export_mjcf(analysis)
@@ -437,8 +435,27 @@ def test_a_massless_moving_link_stays_massless() -> None:
     assert ("missing-inertial", "upper") in errors
 
 
+def _stl(triangles: list[tuple[tuple[float, float, float], ...]]) -> bytes:
+    """A binary STL file of ``triangles``."""
+    data = bytearray(80) + struct.pack("<I", len(triangles))
+    for corners in triangles:
+        data += struct.pack("<12fH", 0.0, 0.0, 0.0, *(v for c in corners for v in c), 0)
+    return bytes(data)
+
+
+_O, _X, _Y, _Z = (0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)
+TETRAHEDRON = _stl([(_O, _Y, _X), (_O, _X, _Z), (_O, _Z, _Y), (_X, _Y, _Z)])
+SQUARE = _stl([(_O, _X, _Y), (_X, (1.0, 1.0, 0.0), _Y)])
+
+
 def test_meshes_mujoco_cannot_read_are_left_out(tmp_path: Path) -> None:
-    (tmp_path / "part.stl").write_bytes(b"")
+    (tmp_path / "part.stl").write_bytes(TETRAHEDRON)
+    (tmp_path / "square.stl").write_bytes(SQUARE)
+    (tmp_path / "empty.stl").write_bytes(b"")
+    (tmp_path / "text.stl").write_text(
+        "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+        "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n"
+    )
     (tmp_path / "part.dae").write_bytes(b"")
     robot = tmp_path / "robot.urdf"
     robot.write_text(
@@ -446,18 +463,46 @@ def test_meshes_mujoco_cannot_read_are_left_out(tmp_path: Path) -> None:
         '<visual><geometry><mesh filename="part.dae"/></geometry></visual>'
         '<visual><geometry><mesh filename="gone.stl"/></geometry></visual>'
         '<visual><geometry><mesh filename="part.stl" scale="0.001 0.001 0.001"/></geometry>'
-        "</visual></link></robot>"
+        "</visual>\n"
+        '<visual><geometry><mesh filename="empty.stl"/></geometry></visual>\n'
+        '<visual><geometry><mesh filename="text.stl"/></geometry></visual>\n'
+        '<visual><geometry><mesh filename="square.stl"/></geometry></visual>\n'
+        '<collision><geometry><mesh filename="square.stl"/></geometry></collision>\n'
+        "</link></robot>"
     )
     text, findings = export_mjcf(_analysis(robot), base="fixed")  # (no mass: held still)
-    assert text.count("<geom") == 1
+    assert text.count("<geom") == 2  # the tetrahedron, and the square that is only seen
     assert [d.format() for d in findings] == [
         f"{robot}:1:50: warning: link 'a': visual mesh 'part.dae' is a .dae file, which MuJoCo "
         "cannot read: left out of the MJCF (export it as STL or OBJ) [mjcf-left-out]",
         f"{robot}:1:115: warning: link 'a': visual mesh 'gone.stl' is not found: left out of "
         "the MJCF (name the file that is there) [mjcf-left-out]",
+        *(
+            f"{robot}:{line}:{column}: warning: link 'a': {kind} mesh '{name}' {why}: left out "
+            "of the MJCF (export it again as a binary STL of at most 200000 triangles, with a "
+            "volume) [mjcf-left-out]"
+            for line, column, kind, name, why in (
+                (2, 19, "visual", "empty.stl", "holds no triangle MuJoCo can read"),
+                (
+                    3,
+                    19,
+                    "visual",
+                    "text.stl",
+                    "is an STL file written as text, which MuJoCo cannot read",
+                ),
+                (
+                    5,
+                    22,
+                    "collision",
+                    "square.stl",
+                    "has every vertex in one plane, no volume for a convex hull",
+                ),
+            )
+        ),
     ]
     assert f'<mesh name="part" file="{tmp_path.resolve() / "part.stl"}"' in text
     assert 'scale="0.001 0.001 0.001"' in text
+    mujoco.MjModel.from_xml_string(text)
 
 
 def test_refusals() -> None:

@@ -99,6 +99,8 @@ class MeshFacts:
             (None for the others); None when not measured.
         vertices: Its distinct vertices, counted for a mesh of a few triangles only (None
             for the others).
+        binary: Whether an STL file is written in binary (MuJoCo reads no other); None for
+            an OBJ file.
     """
 
     faces: int
@@ -107,6 +109,7 @@ class MeshFacts:
     path: str | None = field(default=None, compare=False, repr=False)
     spread: tuple[float, float | None] | None = field(default=None, compare=False, repr=False)
     vertices: int | None = field(default=None, compare=False, repr=False)
+    binary: bool | None = field(default=None, compare=False, repr=False)
 
     def extent(self, scale: Vector3 | None = None) -> float:
         """The largest side of the box around the vertices, after ``scale``."""
@@ -225,9 +228,11 @@ def _read_facts(kind: str, data: bytes) -> MeshFacts | None:
         return _obj_facts(data)
     count = _binary_count(data)
     if count is not None:
-        return _binary_stl(data, count)
+        facts = _binary_stl(data, count)
+        return None if facts is None else replace(facts, binary=True)
     vertices = _ASCII_VERTEX.findall(data)
-    return _bounds(vertices, len(vertices) // 3)
+    facts = _bounds(vertices, len(vertices) // 3)
+    return None if facts is None else replace(facts, binary=False)
 
 
 def _obj_facts(data: bytes) -> MeshFacts | None:

@@ -273,13 +273,18 @@ MJCF_LEFT_OUT = Rule(
     W,
     Family.MESHES,
     summary="A mesh `fishbot mjcf` leaves out of the MJCF: MuJoCo cannot read its file (not "
-    "STL or OBJ, such as COLLADA), or its file is not found.",
+    "STL or OBJ, such as COLLADA, an STL written as text or of more than 200000 triangles, "
+    "one with none, a flat collision mesh), or its file is not found.",
     explanation="MuJoCo reads mesh files in STL and OBJ, and refuses a model that names a file "
     "it cannot decode (`no decoder found for mesh file`), such as a COLLADA `.dae`, or a file "
-    "that is not there. `fishbot mjcf` writes a model MuJoCo loads: it leaves such a shape out "
+    "that is not there; of STL it reads only binary files of 1 to 200000 triangles (`number "
+    "of faces should be between 1 and 200000`), and of a mesh that collides it makes a convex "
+    "hull, which a flat one has not (`coplanar vertices, cannot compute convex hull`, what "
+    "`mesh-flat` warns of). `fishbot mjcf` writes a model MuJoCo loads: it leaves such a shape out "
     "of its body, with this warning, and the command succeeds; the body keeps its inertial, so "
     "only what is drawn or collides is lost. Export the mesh as STL or OBJ (a visual can keep "
-    "its COLLADA file for RViz if the collision shape is STL), or name the file that is there.",
+    "its COLLADA file for RViz if the collision shape is STL; a binary STL of fewer "
+    "triangles; a thin box for a flat collision), or name the file that is there.",
     bad="""\
 # mixed.urdf: a visual mesh in COLLADA, meshes/base_link.dae
 fishbot mjcf mixed.urdf -o mixed.xml

@@ -22,7 +22,7 @@ from ..rules.mujoco import joining, refusal
 from ..rules.shapes import sizeless
 from ..spatial import quaternion
 from ._geoms import Assets, geom, number, numbers, place
-from ._mjcf_findings import emptying, leaving_out
+from ._mjcf_findings import emptying, leaving_out, unreadable
 
 __all__ = ["BASES", "Mjcf", "export_mjcf", "to_mjcf"]
 
@@ -70,7 +70,9 @@ def export_mjcf(
     - Shapes: visuals as geoms of group 2 that collide with nothing, collisions as geoms of
       group 3 (cylinders along the local z, as URDF's); a mesh only when its file is found
       and is STL or OBJ (named by its absolute path, or relative to ``meshdir``, which the
-      model then names), else the shape is left out, with an `mjcf-left-out` finding; a
+      model then names), and MuJoCo can read it (a binary STL of at most 200000
+      triangles, a file with one, and, for a collision, one with a volume to hull), else
+      the shape is left out, with an `mjcf-left-out` finding; a
       shape of no size (a box, cylinder or sphere with a size of 0 or less, a mesh scaled by
       0), which MuJoCo refuses, is left out with an `mjcf-empty-shape` one.
 
@@ -177,6 +179,13 @@ class _Writer:
             if empty is not None:
                 self.findings.append(emptying(self.analysis, link, shape.geometry, kind, empty))
                 continue
+            if isinstance(shape.geometry, Mesh):
+                why = unreadable(self.analysis, shape.geometry, collides=not visual)
+                if why is not None:
+                    self.findings.append(
+                        leaving_out(self.analysis, link, shape.geometry, kind, why)
+                    )
+                    continue
             found = geom(self.assets, shape.geometry, shape.origin, visual=visual)
             if found is not None:
                 body.append(found)
