@@ -19,6 +19,7 @@ import fishbot_urdf
 from fishbot_urdf import Kinematics
 from fishbot_urdf.analysis import Analysis, of
 from fishbot_urdf.config import Config
+from fishbot_urdf.diagnostics import Diagnostic
 from fishbot_urdf.errors import ArgumentError, StructureError
 from fishbot_urdf.export.mjcf import export_mjcf, to_mjcf
 from fishbot_urdf.kinematics import joint_positions, link_poses
@@ -457,6 +458,10 @@ def test_meshes_mujoco_cannot_read_are_left_out(tmp_path: Path) -> None:
         "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n"
     )
     (tmp_path / "part.dae").write_bytes(b"")
+    # normals, and a face that names none (pybullet's table_square)
+    corners = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 1\n"
+    faces = "f 1//1 3//1 2//1\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"
+    (tmp_path / "mixed.obj").write_text(corners + faces)
     robot = tmp_path / "robot.urdf"
     robot.write_text(
         '<robot name="r"><link name="a">'
@@ -468,6 +473,7 @@ def test_meshes_mujoco_cannot_read_are_left_out(tmp_path: Path) -> None:
         '<visual><geometry><mesh filename="text.stl"/></geometry></visual>\n'
         '<visual><geometry><mesh filename="square.stl"/></geometry></visual>\n'
         '<collision><geometry><mesh filename="square.stl"/></geometry></collision>\n'
+        '<visual><geometry><mesh filename="mixed.obj"/></geometry></visual>\n'
         "</link></robot>"
     )
     text, findings = export_mjcf(_analysis(robot), base="fixed")  # (no mass: held still)
@@ -489,6 +495,13 @@ def test_meshes_mujoco_cannot_read_are_left_out(tmp_path: Path) -> None:
                     "visual",
                     "text.stl",
                     "is an STL file written as text, which MuJoCo cannot read",
+                ),
+                (
+                    6,
+                    19,
+                    "visual",
+                    "mixed.obj",
+                    "has normals, and faces that name none, which MuJoCo refuses",
                 ),
                 (
                     5,
@@ -555,3 +568,102 @@ def test_a_root_whose_inertia_mujoco_refuses_joins_the_link_fixed_below_it() -> 
     assert "its inertial joins that of 'trunk', to which it is fixed" in finding.format()
     model = mujoco.MjModel.from_xml_string(text)
     assert (model.body("base").mass[0], model.body("trunk").mass[0]) == (0.0, 5.000001)
+
+
+def _mujoco_findings(robot: fishbot_urdf.Robot, *targets: str) -> list[Diagnostic]:
+    config = Config(targets=targets) if targets else Config()
+    found = fishbot_urdf.check(robot, config=config)
+    return [d for d in found if d.rule in ("mjcf-refused", "mjcf-joined-inertial")]
+
+
+def test_check_for_mujoco_foretells_what_the_conversion_finds() -> None:
+    """`check --target mujoco` (and `all`) reports the conversion's own mjcf-refused and
+    mjcf-joined-inertial findings, at their severity, without writing the MJCF; for any
+    other target it does not look."""
+    antenna = """
+  <link name="antenna"><inertial><mass value="0.01"/>
+    <inertia ixx="1e-6" ixy="0" ixz="0" iyy="1e-6" iyz="0" izz="1e-5"/></inertial></link>
+  <joint name="antenna_joint" type="fixed"><parent link="base"/><child link="antenna"/></joint>
+</robot>"""
+    robot = fishbot_urdf.parse(ARM.format(upper="").replace("</robot>", antenna))
+    converted = export_mjcf(robot).findings
+    assert [(d.rule, d.severity.value) for d in converted] == [
+        ("mjcf-joined-inertial", "warning"),
+        ("mjcf-refused", "error"),
+    ]
+    for targets in (("mujoco",), ("all",), ("ros", "mjcf")):
+        assert _mujoco_findings(robot, *targets) == sorted(converted, key=lambda d: d.line or 0)
+    assert _mujoco_findings(robot) == []
+    assert _mujoco_findings(robot, "gazebo", "ros") == []
+    # selected alone, it alone runs
+    only = fishbot_urdf.check(robot, config=Config(targets=("mujoco",), select=("mjcf-refused",)))
+    assert [d.rule for d in only] == ["mjcf-refused"]
+
+
+def test_a_free_base_without_inertia_about_an_axis_is_refused() -> None:
+    # as pybullet's random_urdfs write a body: izz of 0, and nothing fixed to it
+    robot = fishbot_urdf.parse("""<robot name="block">
+  <link name="block"><inertial><mass value="0.1"/>
+    <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="0"/></inertial></link>
+</robot>""")
+    text, (finding,) = export_mjcf(robot)
+    with pytest.raises(ValueError, match="mass and inertia of moving bodies"):
+        mujoco.MjModel.from_xml_string(text)
+    assert finding.rule == "mjcf-refused"
+    assert "it moves, and with the links fixed to it it has no inertia about some axis" in (
+        finding.message
+    )
+    assert _mujoco_findings(robot, "mujoco") == [finding]
+    # held still, MuJoCo takes it
+    text, found = export_mjcf(robot, base="fixed")
+    assert found == ()
+    mujoco.MjModel.from_xml_string(text)
+
+
+def test_a_moving_body_massless_alone_is_taken_with_what_is_fixed_to_it() -> None:
+    # two point masses, fixed apart: together they have inertia about two axes only
+    rod = """<robot name="rod">
+  <link name="a"><inertial><mass value="1"/>{a}</inertial></link>
+  <link name="b"><inertial><mass value="1"/>
+    <inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial></link>
+  <joint name="j" type="fixed"><parent link="a"/><child link="b"/><origin xyz="0 0 1"/></joint>
+</robot>"""
+    point = '<inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/>'
+    ball = '<inertia ixx="1e-3" ixy="0" ixz="0" iyy="1e-3" iyz="0" izz="1e-3"/>'
+    for inertia, refused in ((point, True), (ball, False)):
+        text, found = export_mjcf(fishbot_urdf.parse(rod.format(a=inertia)))
+        assert [d.rule for d in found] == (["mjcf-refused"] if refused else [])
+        if refused:
+            with pytest.raises(ValueError, match="mass and inertia of moving bodies"):
+                mujoco.MjModel.from_xml_string(text)
+        else:
+            mujoco.MjModel.from_xml_string(text)
+
+
+def test_shapes_of_no_size_are_left_out() -> None:
+    # upkie and laikago draw frames as boxes of size 0; MuJoCo refuses any geom of size 0
+    robot = fishbot_urdf.parse("""<robot name="frames">
+  <link name="base"><inertial><mass value="1"/>
+    <inertia ixx="1e-3" ixy="0" ixz="0" iyy="1e-3" iyz="0" izz="1e-3"/></inertial>
+    <visual><geometry><box size="0 0 0"/></geometry></visual>
+    <collision><geometry><cylinder radius="0" length="0.1"/></geometry></collision>
+    <collision><geometry><sphere radius="0.1"/></geometry></collision>
+  </link>
+</robot>""")
+    text, found = export_mjcf(robot)
+    assert text.count("<geom") == 1
+    mujoco.MjModel.from_xml_string(text)
+    assert [(d.rule, d.line, d.message) for d in found] == [
+        (
+            "mjcf-empty-shape",
+            4,
+            "link 'base': <visual> box of size \"0 0 0\", which MuJoCo refuses: left out of "
+            "the MJCF",
+        ),
+        (
+            "mjcf-empty-shape",
+            5,
+            "link 'base': <collision> cylinder of radius 0, which MuJoCo refuses: left out of "
+            "the MJCF",
+        ),
+    ]

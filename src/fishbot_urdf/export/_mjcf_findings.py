@@ -41,8 +41,9 @@ def leaving_out(
 
 def unreadable(analysis: Analysis, mesh: Mesh, *, collides: bool) -> str | None:
     """Why MuJoCo refuses a model with the found STL or OBJ file of ``mesh``, or None: an
-    STL file written as text, or of more than 200000 triangles, a file with no triangle, or
-    a mesh that collides and has no volume to make a convex hull of."""
+    STL file written as text, or of more than 200000 triangles, a file with no triangle, an
+    OBJ file with normals that some faces do not name, or a mesh that collides and has no
+    volume to make a convex hull of."""
     path = analysis.mesh_paths.get(mesh.filename)
     if not path.found or path.file is None or path.file.suffix.lower() not in LOADABLE:
         return None
@@ -51,6 +52,8 @@ def unreadable(analysis: Analysis, mesh: Mesh, *, collides: bool) -> str | None:
         return "holds no triangle MuJoCo can read"
     if facts.binary is False:
         return "is an STL file written as text, which MuJoCo cannot read"
+    if facts.missing_normals:
+        return "has normals, and faces that name none, which MuJoCo refuses"
     if facts.binary and facts.faces > MOST_STL_FACES:
         return f"has {facts.faces} triangles, more than the {MOST_STL_FACES} MuJoCo reads"
     return hull_refused(facts) if collides else None
