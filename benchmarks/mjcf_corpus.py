@@ -107,7 +107,7 @@ def sweep(package: str, root: Path, path: Path, kind: str, named: dict[str, list
             raise FishbotUrdfError("no robot")
         made = export_mjcf(checked.analysis)
     except FishbotUrdfError as exc:
-        result.outcome, result.message = "unread", str(exc).splitlines()[0]
+        result.outcome, result.message = "unread", exc.message.splitlines()[0]
         result.seconds = time.perf_counter() - start
         return result
     errors = [d for d in checked.diagnostics if d.is_error and d.line is not None]
