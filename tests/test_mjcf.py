@@ -6,18 +6,20 @@ and every robot of example-robot-data MuJoCo does not refuse as written."""
 from __future__ import annotations
 
 import math
+import struct
 from pathlib import Path
 
 import mujoco
 import numpy as np
 import pinocchio as pin
 import pytest
-from conftest import FISHBOT, box_stl, golden_inputs
+from conftest import FISHBOT, golden_inputs
 
 import fishbot_urdf
 from fishbot_urdf import Kinematics
 from fishbot_urdf.analysis import Analysis, of
 from fishbot_urdf.config import Config
+from fishbot_urdf.diagnostics import Diagnostic
 from fishbot_urdf.errors import ArgumentError, StructureError
 from fishbot_urdf.export.mjcf import export_mjcf, to_mjcf
 from fishbot_urdf.kinematics import joint_positions, link_poses
@@ -105,9 +107,10 @@ def _world_inertial(pose: Pose, inertial: Inertial) -> tuple[float, np.ndarray, 
 
 def _refused(tensor: np.ndarray) -> bool:
     """Whether MuJoCo refuses an inertia on a body: not positive semi-definite, or its
-    principal moments break the triangle inequality."""
+    principal moments break the triangle inequality (by more than the rounding of turning
+    it into the world's frame: Stretch's base_imu has A + B = C exactly, in its own)."""
     a, b, c = np.linalg.eigvalsh(tensor)
-    return bool(a < 0 or a + b < c)
+    return bool(a < -1e-12 * c or a + b < c * (1.0 - 1e-12))
 
 
 def _combined(
@@ -279,6 +282,52 @@ def test_mujoco_compiles_every_corpus_robot_to_our_numbers(item: object) -> None
     _held_to_ours(analysis, text, len(name), urdf=path)
 
 
+def _issue_robot(name: str) -> tuple[Path, dict[str, Path] | None]:
+    """A robot the issue names, and the packages its meshes are in."""
+    if name == "fishbot":
+        return XACRO, None
+    if name == "upkie":
+        import upkie_description
+
+        folder = Path(upkie_description.URDF_PATH).parent.parent
+        return Path(upkie_description.URDF_PATH), {"upkie_description": folder}
+    if name == "stretch":
+        import stretch_urdf
+
+        return Path(stretch_urdf.__file__).parent / "SE3" / _STRETCH, None
+    robots = _packages()["example-robot-data"] / "robots"
+    return robots / _IN_EXAMPLE_ROBOT_DATA[name], _packages()
+
+
+_STRETCH = "stretch_description_SE3_eoa_wrist_dw3_tool_sg3.urdf"
+_IN_EXAMPLE_ROBOT_DATA = {
+    "panda": "panda_description/urdf/panda.urdf",
+    "ur5": "ur_description/urdf/ur5_robot.urdf",
+    "go1": "go1_description/urdf/go1.urdf",
+}
+
+
+@pytest.mark.parametrize("name", ["fishbot", "panda", "ur5", "go1", "upkie", "stretch"])
+def test_the_robots_of_the_issue_load_with_every_mass(tmp_path: Path, name: str) -> None:
+    """The six robots the issue names load in MuJoCo, every body with our mass, centre of
+    mass and inertia, every link where we place it, and the whole robot weighs what its
+    URDF's links do (other converters drop Stretch's root inertial: 17.4 of its 24.8 kg)."""
+    path, packages = _issue_robot(name)
+    analysis = _analysis(path, packages)
+    urdf = tmp_path / "robot.urdf"  # expanded, for pinocchio
+    urdf.write_text(fishbot_urdf.to_urdf(analysis.robot))
+    made = export_mjcf(analysis)
+    assert "mjcf-refused" not in {d.rule for d in made.findings}
+    _held_to_ours(analysis, made.text, len(name), urdf)
+    model = mujoco.MjModel.from_xml_string(made.text)
+    total = math.fsum(link.inertial.mass for link in analysis.robot.links if link.inertial)
+    assert model.body_subtreemass[0] == pytest.approx(total, rel=1e-12, abs=TOLERANCE)
+    if name == "stretch":
+        assert total == pytest.approx(24.8, abs=0.05)
+        root = analysis.links[analysis.plan.roots[0]].inertial
+        assert root is not None and model.body(analysis.plan.roots[0]).mass[0] == root.mass
+
+
 def test_the_fishbot_floats_or_is_fixed_as_asked(tmp_path: Path) -> None:
     analysis = _analysis(XACRO)
     urdf = tmp_path / "fishbot.urdf"  # expanded, for pinocchio
@@ -387,33 +436,61 @@ def test_a_massless_moving_link_stays_massless() -> None:
     assert ("missing-inertial", "upper") in errors
 
 
+def _stl(triangles: list[tuple[tuple[float, float, float], ...]]) -> bytes:
+    """A binary STL file of ``triangles``."""
+    data = bytearray(80) + struct.pack("<I", len(triangles))
+    for corners in triangles:
+        data += struct.pack("<12fH", 0.0, 0.0, 0.0, *(v for c in corners for v in c), 0)
+    return bytes(data)
+
+
+_O, _X, _Y, _Z = (0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)
+TETRAHEDRON = _stl([(_O, _Y, _X), (_O, _X, _Z), (_O, _Z, _Y), (_X, _Y, _Z)])
+SQUARE = _stl([(_O, _X, _Y), (_X, (1.0, 1.0, 0.0), _Y)])
+
+
 def test_meshes_mujoco_cannot_read_are_left_out(tmp_path: Path) -> None:
-    (tmp_path / "part.stl").write_bytes(box_stl(1.0, 2.0, 3.0))
+    (tmp_path / "part.stl").write_bytes(TETRAHEDRON)
+    (tmp_path / "square.stl").write_bytes(SQUARE)
     (tmp_path / "empty.stl").write_bytes(b"")
     (tmp_path / "part.dae").write_bytes(b"")
+    # normals, and a face that names none (pybullet's table_square)
+    corners = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 1\n"
+    faces = "f 1//1 3//1 2//1\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"
+    (tmp_path / "mixed.obj").write_text(corners + faces)
     robot = tmp_path / "robot.urdf"
     robot.write_text(
         '<robot name="r"><link name="a">'
         '<visual><geometry><mesh filename="part.dae"/></geometry></visual>'
         '<visual><geometry><mesh filename="gone.stl"/></geometry></visual>'
-        '<visual><geometry><mesh filename="empty.stl"/></geometry></visual>'
         '<visual><geometry><mesh filename="part.stl" scale="0.001 0.001 0.001"/></geometry>'
-        "</visual></link></robot>"
+        "</visual>\n"
+        '<visual><geometry><mesh filename="empty.stl"/></geometry></visual>\n'
+        '<visual><geometry><mesh filename="square.stl"/></geometry></visual>\n'
+        '<collision><geometry><mesh filename="square.stl"/></geometry></collision>\n'
+        '<visual><geometry><mesh filename="mixed.obj"/></geometry></visual>\n'
+        "</link></robot>"
     )
     text, findings = export_mjcf(_analysis(robot), base="fixed")  # (no mass: held still)
-    assert text.count("<geom") == 1
+    assert text.count("<geom") == 2  # the tetrahedron, and the square that is only seen
+    # (visuals first, then collisions)
     assert [d.format() for d in findings] == [
         f"{robot}:1:50: warning: link 'a': visual mesh 'part.dae' is a .dae file, which MuJoCo "
         "cannot read: left out of the MJCF (export it as binary STL or OBJ) [mjcf-left-out]",
         f"{robot}:1:115: warning: link 'a': visual mesh 'gone.stl' is not found: left out of "
         "the MJCF (name the file that is there) [mjcf-left-out]",
-        f"{robot}:1:180: warning: link 'a': visual mesh 'empty.stl' holds no triangles MuJoCo "
+        f"{robot}:2:19: warning: link 'a': visual mesh 'empty.stl' holds no triangles MuJoCo "
         "reads: left out of the MJCF (export it as binary STL or OBJ) [mjcf-left-out]",
+        f"{robot}:5:19: warning: link 'a': visual mesh 'mixed.obj' has normals, and faces that "
+        "name none, which MuJoCo refuses: left out of the MJCF (export it as binary STL or OBJ) "
+        "[mjcf-left-out]",
+        f"{robot}:4:22: warning: link 'a': collision mesh 'square.stl' has every vertex in one "
+        "plane, no volume for a convex hull: left out of the MJCF (collide with a thin box, or "
+        "give the mesh its thickness) [mjcf-left-out]",
     ]
     assert f'<mesh name="part" file="{tmp_path.resolve() / "part.stl"}"' in text
     assert 'scale="0.001 0.001 0.001"' in text
-    model = mujoco.MjModel.from_xml_string(text)
-    assert model.nmesh == 1
+    mujoco.MjModel.from_xml_string(text)
 
 
 def test_refusals() -> None:
@@ -466,3 +543,102 @@ def test_a_root_whose_inertia_mujoco_refuses_joins_the_link_fixed_below_it() -> 
     assert "its inertial joins that of 'trunk', to which it is fixed" in finding.format()
     model = mujoco.MjModel.from_xml_string(text)
     assert (model.body("base").mass[0], model.body("trunk").mass[0]) == (0.0, 5.000001)
+
+
+def _mujoco_findings(robot: fishbot_urdf.Robot, *targets: str) -> list[Diagnostic]:
+    config = Config(targets=targets) if targets else Config()
+    found = fishbot_urdf.check(robot, config=config)
+    return [d for d in found if d.rule in ("mjcf-refused", "mjcf-joined-inertial")]
+
+
+def test_check_for_mujoco_foretells_what_the_conversion_finds() -> None:
+    """`check --target mujoco` (and `all`) reports the conversion's own mjcf-refused and
+    mjcf-joined-inertial findings, at their severity, without writing the MJCF; for any
+    other target it does not look."""
+    antenna = """
+  <link name="antenna"><inertial><mass value="0.01"/>
+    <inertia ixx="1e-6" ixy="0" ixz="0" iyy="1e-6" iyz="0" izz="1e-5"/></inertial></link>
+  <joint name="antenna_joint" type="fixed"><parent link="base"/><child link="antenna"/></joint>
+</robot>"""
+    robot = fishbot_urdf.parse(ARM.format(upper="").replace("</robot>", antenna))
+    converted = export_mjcf(robot).findings
+    assert [(d.rule, d.severity.value) for d in converted] == [
+        ("mjcf-joined-inertial", "warning"),
+        ("mjcf-refused", "error"),
+    ]
+    for targets in (("mujoco",), ("all",), ("ros", "mjcf")):
+        assert _mujoco_findings(robot, *targets) == sorted(converted, key=lambda d: d.line or 0)
+    assert _mujoco_findings(robot) == []
+    assert _mujoco_findings(robot, "gazebo", "ros") == []
+    # selected alone, it alone runs
+    only = fishbot_urdf.check(robot, config=Config(targets=("mujoco",), select=("mjcf-refused",)))
+    assert [d.rule for d in only] == ["mjcf-refused"]
+
+
+def test_a_free_base_without_inertia_about_an_axis_is_refused() -> None:
+    # as pybullet's random_urdfs write a body: izz of 0, and nothing fixed to it
+    robot = fishbot_urdf.parse("""<robot name="block">
+  <link name="block"><inertial><mass value="0.1"/>
+    <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="0"/></inertial></link>
+</robot>""")
+    text, (finding,) = export_mjcf(robot)
+    with pytest.raises(ValueError, match="mass and inertia of moving bodies"):
+        mujoco.MjModel.from_xml_string(text)
+    assert finding.rule == "mjcf-refused"
+    assert "it moves, and with the links fixed to it it has no inertia about some axis" in (
+        finding.message
+    )
+    assert _mujoco_findings(robot, "mujoco") == [finding]
+    # held still, MuJoCo takes it
+    text, found = export_mjcf(robot, base="fixed")
+    assert found == ()
+    mujoco.MjModel.from_xml_string(text)
+
+
+def test_a_moving_body_massless_alone_is_taken_with_what_is_fixed_to_it() -> None:
+    # two point masses, fixed apart: together they have inertia about two axes only
+    rod = """<robot name="rod">
+  <link name="a"><inertial><mass value="1"/>{a}</inertial></link>
+  <link name="b"><inertial><mass value="1"/>
+    <inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial></link>
+  <joint name="j" type="fixed"><parent link="a"/><child link="b"/><origin xyz="0 0 1"/></joint>
+</robot>"""
+    point = '<inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/>'
+    ball = '<inertia ixx="1e-3" ixy="0" ixz="0" iyy="1e-3" iyz="0" izz="1e-3"/>'
+    for inertia, refused in ((point, True), (ball, False)):
+        text, found = export_mjcf(fishbot_urdf.parse(rod.format(a=inertia)))
+        assert [d.rule for d in found] == (["mjcf-refused"] if refused else [])
+        if refused:
+            with pytest.raises(ValueError, match="mass and inertia of moving bodies"):
+                mujoco.MjModel.from_xml_string(text)
+        else:
+            mujoco.MjModel.from_xml_string(text)
+
+
+def test_shapes_of_no_size_are_left_out() -> None:
+    # upkie and laikago draw frames as boxes of size 0; MuJoCo refuses any geom of size 0
+    robot = fishbot_urdf.parse("""<robot name="frames">
+  <link name="base"><inertial><mass value="1"/>
+    <inertia ixx="1e-3" ixy="0" ixz="0" iyy="1e-3" iyz="0" izz="1e-3"/></inertial>
+    <visual><geometry><box size="0 0 0"/></geometry></visual>
+    <collision><geometry><cylinder radius="0" length="0.1"/></geometry></collision>
+    <collision><geometry><sphere radius="0.1"/></geometry></collision>
+  </link>
+</robot>""")
+    text, found = export_mjcf(robot)
+    assert text.count("<geom") == 1
+    mujoco.MjModel.from_xml_string(text)
+    assert [(d.rule, d.line, d.message) for d in found] == [
+        (
+            "mjcf-empty-shape",
+            4,
+            "link 'base': <visual> box of size \"0 0 0\", which MuJoCo refuses: left out of "
+            "the MJCF",
+        ),
+        (
+            "mjcf-empty-shape",
+            5,
+            "link 'base': <collision> cylinder of radius 0, which MuJoCo refuses: left out of "
+            "the MJCF",
+        ),
+    ]

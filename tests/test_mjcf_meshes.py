@@ -377,9 +377,8 @@ def test_a_flat_collision_mesh_is_left_out_and_kept_as_a_visual(tmp_path: Path) 
     out = tmp_path / "out" / "robot.xml"
     _, findings = write_mjcf(of(fishbot_urdf.load(robot)), out, base="fixed")
     why = (
-        "has every vertex in one plane, no volume to collide with: MuJoCo refuses the robot "
-        "('coplanar vertices, cannot compute convex hull'): left out of the MJCF (collide with "
-        "a thin box, or give the mesh its thickness) [mjcf-left-out]"
+        "has every vertex in one plane, no volume for a convex hull: left out of the MJCF "
+        "(collide with a thin box, or give the mesh its thickness) [mjcf-left-out]"
     )
     assert [d.format() for d in findings] == [
         f"{robot}:3:22: warning: link 'a': collision mesh 'plate.stl' {why}",

@@ -265,10 +265,14 @@ def _rule_findings(
         if d.is_error and d.subject is not None and d.subject.kind in (Kind.LINK, Kind.JOINT):
             unread.setdefault(d.subject, []).append(d)
     mm = config.ground_tolerance
-    for_gazebo = Consumer.GAZEBO in consumers_of(targets_of(analysis.robot, config.targets))
+    consumers = consumers_of(targets_of(analysis.robot, config.targets))
     selected = frozenset(r.id for check in CHECKS for r in check.reports if config.applies(r.id))
     settings = Settings(
-        packages, GROUND_TOLERANCE if mm is None else mm / 1000.0, for_gazebo, selected
+        packages,
+        GROUND_TOLERANCE if mm is None else mm / 1000.0,
+        Consumer.GAZEBO in consumers,
+        selected,
+        for_mujoco=Consumer.MUJOCO in consumers,
     )
     # A check runs only when one of its rules is selected (--ignore meshes reads no mesh file).
     for check in CHECKS:

@@ -101,6 +101,10 @@ class MeshFacts:
             (None for the others); None when not measured.
         vertices: Its distinct vertices, counted for a mesh of a few triangles only (None
             for the others).
+        binary: Whether an STL file is written in binary (MuJoCo reads no other); None for
+            an OBJ file.
+        missing_normals: Whether an OBJ file has normals (``vn``) and a face that names
+            none (MuJoCo refuses it: ``normal index out of bounds``).
     """
 
     faces: int
@@ -109,6 +113,8 @@ class MeshFacts:
     path: str | None = field(default=None, compare=False, repr=False)
     spread: tuple[float, float | None] | None = field(default=None, compare=False, repr=False)
     vertices: int | None = field(default=None, compare=False, repr=False)
+    binary: bool | None = field(default=None, compare=False, repr=False)
+    missing_normals: bool = field(default=False, compare=False, repr=False)
 
     def extent(self, scale: Vector3 | None = None) -> float:
         """The largest side of the box around the vertices, after ``scale``."""
@@ -224,12 +230,24 @@ def _closed(triangles: NDArray[Any]) -> bool:
 
 def _read_facts(kind: str, data: bytes) -> MeshFacts | None:
     if kind == ".obj":
-        return _obj_facts(data)
+        facts = _obj_facts(data)
+        if facts is None or not _OBJ_NORMAL.search(data):
+            return facts
+        return replace(facts, missing_normals=bool(_OBJ_FACE_WITHOUT_NORMAL.search(data)))
     count = _binary_count(data)
     if count is not None:
-        return _binary_stl(data, count)
+        facts = _binary_stl(data, count)
+        return None if facts is None else replace(facts, binary=True)
     vertices = _ASCII_VERTEX.findall(data)
-    return _bounds(vertices, len(vertices) // 3)
+    facts = _bounds(vertices, len(vertices) // 3)
+    return None if facts is None else replace(facts, binary=False)
+
+
+_OBJ_NORMAL = re.compile(rb"^[ \t]*vn[ \t]", re.MULTILINE)
+# a face with a corner of a vertex alone, or a vertex and a texture coordinate ("3", "3/1")
+_OBJ_FACE_WITHOUT_NORMAL = re.compile(
+    rb"^[ \t]*f[ \t](?:[^\n#]*?[ \t])?-?\d+(?:/-?\d*)?(?=[ \t\r#]|$)", re.MULTILINE
+)
 
 
 def _obj_facts(data: bytes) -> MeshFacts | None:

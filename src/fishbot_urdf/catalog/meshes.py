@@ -218,6 +218,28 @@ SHAPE_SIZE = Rule(
 """,
     consumers=(Consumer.MUJOCO,),
 )
+MJCF_EMPTY_SHAPE = Rule(
+    "mjcf-empty-shape",
+    W,
+    Family.MESHES,
+    summary="A shape of no size `fishbot mjcf` leaves out of the MJCF: a box, cylinder or "
+    "sphere with a size of 0 or less, or a mesh scaled by 0.",
+    explanation="MuJoCo refuses a model with a geom whose size is not positive (`size 0 must "
+    "be positive in geom`), visual or not, and a visual box of size 0 is a placeholder many "
+    "robots use for a frame (upkie's, laikago's). Such a shape draws nothing and collides with "
+    "nothing, so `fishbot mjcf` writes the model without it, says so with this warning, and "
+    "the command succeeds; the body keeps its inertial. A collision of no size is an error of "
+    "its own (`shape-size`). Give the shape its real size, or delete it.",
+    bad="""\
+# frame.urdf: a visual box of size 0 0 0
+fishbot mjcf frame.urdf -o frame.xml
+""",
+    good="""\
+fishbot mjcf fishbot.urdf -o fishbot.xml
+""",
+    consumers=(Consumer.MUJOCO,),
+    language="shell",
+)
 SHAPE_NOT_DRAWN = Rule(
     "shape-not-drawn",
     W,
@@ -267,7 +289,8 @@ MJCF_LEFT_OUT = Rule(
     "Written to a file, `fishbot mjcf` converts such a mesh into a folder beside the model "
     "(`mjcf-mesh-converted`); written to standard output, or when the conversion fails (a "
     "file that holds no triangles or fewer than 4 distinct vertices, or a collision mesh all "
-    "in one plane, which MuJoCo refuses too; COLLADA without the `mesh` extra), it leaves "
+    "in one plane, of which MuJoCo cannot make the convex hull it collides with; COLLADA "
+    "without the `mesh` extra), it leaves "
     "the shape out of its body, with this warning, and the command succeeds. The body keeps "
     "its inertial, so only what is drawn or collides is lost; write the MJCF to a file, "
     "export the mesh as binary STL or OBJ, or name the file that is there.",

@@ -454,8 +454,8 @@ MJCF_JOINED_INERTIAL = Rule(
     "simulators that merge fixed links, and `inertia-not-positive` and `inertia-triangle` "
     "judge it so; `fishbot mjcf` adds its mass, centre of mass and inertia, exactly, to the "
     "body of its parent, or of the first link fixed below it (for a root or a moving link), "
-    "says so with this warning, and the link keeps its own body and pose. Give the link the "
-    "inertia of its shape.",
+    "says so with this warning, and the link keeps its own body and pose; `fishbot check "
+    "--target mujoco` says so too. Give the link the inertia of its shape.",
     bad="""\
 # antenna.urdf: a fixed link whose izz is more than ixx + iyy
 fishbot mjcf antenna.urdf -o antenna.xml
@@ -471,18 +471,23 @@ MJCF_REFUSED = Rule(
     E,
     Family.PHYSICS,
     summary="The MJCF `fishbot mjcf` writes has a body MuJoCo refuses: a moving one without "
-    "mass, or an inertia no solid has that no fixed link can take.",
-    explanation="MuJoCo refuses a model with a moving body whose mass, with the bodies fixed "
-    "to it, is 0 (`mass and inertia of moving bodies must be larger than mjMINVAL`), such as "
-    "a massless link between the two joints of a hip, and a body whose inertia is not "
-    "positive semi-definite or breaks the triangle inequality. `fishbot mjcf` makes no mass "
-    "up: it writes the model, names each such link with this error, and exits with status 1. "
-    "Give the link the mass and inertia of its part.",
+    "mass or inertia, or an inertia no solid has that no fixed link can take.",
+    explanation="MuJoCo refuses a model with a moving body whose mass, or a principal moment, "
+    "with the bodies fixed to it, is 0 (`mass and inertia of moving bodies must be larger "
+    "than mjMINVAL`), such as a massless link between the two joints of a hip, or a free "
+    "base whose izz is 0, and a body whose inertia is not positive semi-definite or breaks "
+    "the triangle inequality. `fishbot mjcf` makes no mass up: it writes the model, names "
+    "each such link with this error, and exits with status 1. `fishbot check --target "
+    "mujoco` (or `--target all`) foretells the same errors from the robot's masses, without "
+    "writing the model; for any other target it does not look. Give the link the mass and "
+    "inertia of its part.",
     bad="""\
 # hip.urdf: a massless link between two revolute joints
+fishbot check --target mujoco hip.urdf
 fishbot mjcf hip.urdf -o hip.xml
 """,
     good="""\
+fishbot check --target mujoco fishbot.urdf
 fishbot mjcf fishbot.urdf -o fishbot.xml
 """,
     consumers=(Consumer.MUJOCO,),

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 import click
 
-from ..catalog.physics import MISSING_INERTIAL
+from ..catalog.physics import MISSING_INERTIAL, MJCF_JOINED_INERTIAL, MJCF_REFUSED
 from ..errors import ArgumentError, FishbotUrdfError, InertiaUnderflowError, UnknownNameError
 from ..inertia import (
     box_inertia,
@@ -326,14 +326,18 @@ def robot(
     read = inputs_read()
     config = nearest_config(file)
     if config.targets is None:  # masses and inertias are the simulators': checked for them
-        config = config.updated(targets=["all"])
+        # (but what MuJoCo refuses of the model `fishbot mjcf` writes, its free base among
+        # it, is for `--target mujoco` to ask)
+        config = config.updated(targets=["all"], ignore=_CONVERSION)
     try:
         result = check_input(file, values, packages, config)
     except FishbotUrdfError as exc:
         stop_on(exc)
     if fill:
-        # The robot's own faults come first; a missing inertial is what --fill writes.
-        errors = [d for d in result.diagnostics if d.is_error and d.rule != MISSING_INERTIAL.id]
+        # The robot's own faults come first; a missing inertial is what --fill writes (and
+        # what MuJoCo refuses of a link without one: a fault of the robot's own is reported
+        # by the other rules too).
+        errors = [d for d in result.diagnostics if d.is_error and d.rule not in _FILLED]
         if result.analysis is None or errors:
             emit_findings(errors or result.diagnostics)
             said = "nothing written" if output is not None else "nothing to suggest"
@@ -364,3 +368,7 @@ def robot(
     else:
         to_stdout(table.to_text().encode("utf-8", "surrogateescape"))
     sys.exit(EXIT_INVALID if not result.ok else EXIT_OK)
+
+
+_FILLED = (MISSING_INERTIAL.id, MJCF_REFUSED.id)
+_CONVERSION = (MJCF_REFUSED.id, MJCF_JOINED_INERTIAL.id)

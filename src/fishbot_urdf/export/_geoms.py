@@ -141,6 +141,9 @@ class Assets:
         """Why MuJoCo cannot read ``file`` as it is; None when it can."""
         suffix = file.suffix.lower()
         if suffix == ".obj":
+            facts = self.analysis.meshes.facts(file)
+            if facts is not None and facts.missing_normals:
+                return "has normals, and faces that name none, which MuJoCo refuses"
             return None
         if suffix != ".stl":
             return f"is a {suffix} file, which MuJoCo cannot read" if suffix else "has no suffix"

@@ -1,33 +1,21 @@
-"""The findings of a conversion to MJCF: what it changed or left out, and what MuJoCo will
-refuse of the model it wrote."""
+"""The findings of a conversion to MJCF that only writing it finds: the shapes it converted
+or left out (the bodies MuJoCo refuses and the inertials moved are foretold by
+`fishbot_urdf.rules.mujoco`, which the check runs too)."""
 
 from __future__ import annotations
 
 from ..analysis import Analysis
-from ..catalog.meshes import MJCF_LEFT_OUT, MJCF_MESH_CONVERTED, MjcfLeftOutFacts
-from ..catalog.physics import MJCF_JOINED_INERTIAL, MJCF_REFUSED
+from ..catalog.meshes import (
+    MJCF_EMPTY_SHAPE,
+    MJCF_LEFT_OUT,
+    MJCF_MESH_CONVERTED,
+    MjcfLeftOutFacts,
+)
 from ..diagnostics import Diagnostic, Kind, Subject
-from ..model import Link, Mesh
+from ..model import Geometry, Link, Mesh
 from ._geoms import Asset
-from ._masses import own, refused
 
-__all__ = ["converting", "joining", "leaving_out", "refusal"]
-
-
-def joining(analysis: Analysis, link: Link, holder: str) -> Diagnostic:
-    """`link`'s inertial, which MuJoCo refuses on a body of its own, joins ``holder``'s."""
-    inertial = link.inertial
-    assert inertial is not None
-    why = refused(own(inertial))
-    return MJCF_JOINED_INERTIAL.report(
-        f"link {link.name!r}: {why}, which MuJoCo refuses on a body of its own: its "
-        f"inertial joins that of {holder!r}, to which it is fixed",
-        inertial.source,
-        path=analysis.path,
-        subject=Subject(Kind.LINK, link.name),
-        hint="give it the inertia of its shape",
-        element="inertial",
-    )
+__all__ = ["converting", "emptying", "leaving_out"]
 
 
 def leaving_out(analysis: Analysis, link: Link, mesh: Mesh, kind: str, asset: Asset) -> Diagnostic:
@@ -54,14 +42,12 @@ def converting(analysis: Analysis, link: Link, mesh: Mesh, kind: str, asset: Ass
     )
 
 
-def refusal(analysis: Analysis, name: str, why: str) -> Diagnostic:
-    """The body of link ``name``, which MuJoCo will refuse for ``why``."""
-    link = analysis.links[name]
-    where = link.inertial.source if link.inertial is not None else link.source
-    return MJCF_REFUSED.report(
-        f"link {name!r}: {why}: MuJoCo refuses the model",
-        where,
+def emptying(analysis: Analysis, link: Link, shape: Geometry, kind: str, what: str) -> Diagnostic:
+    """A ``kind`` (visual or collision) shape of ``link`` of no size (``what``), left out."""
+    return MJCF_EMPTY_SHAPE.report(
+        f"link {link.name!r}: <{kind}> {what}, which MuJoCo refuses: left out of the MJCF",
+        shape.source,
         path=analysis.path,
-        subject=Subject(Kind.LINK, name),
-        hint="give it the mass and inertia of its shape",
+        subject=Subject(Kind.LINK, link.name),
+        hint="give the shape its real size (m), or delete it",
     )

@@ -13,21 +13,23 @@ import os
 import xml.etree.ElementTree as ET
 from collections.abc import Iterable
 from pathlib import Path
-from typing import Literal, NamedTuple
+from typing import NamedTuple
 
 from ..analysis import Analysis, of
 from ..analysis.gazebo import number as setting
+from ..analysis.mujoco import BASES, WORLD, Base, moves, mujoco_bodies, no_tree, principal
 from ..analysis.plan import Step
 from ..diagnostics import Diagnostic
 from ..errors import ArgumentError, StructureError
 from ..model import Collision, Joint, JointType, Link, Mesh, Robot, Visual
 from ..output import Source, write_atomic
-from ..rules._contents import refused_hull
+from ..rules._contents import hull_refused
+from ..rules.mujoco import joining, refusal
+from ..rules.shapes import sizeless
 from ..spatial import quaternion
 from ._actuators import Motor, actuator, motors
 from ._geoms import COLLISION_GROUP, VISUAL_GROUP, Asset, Assets, geom, number, numbers, place
-from ._masses import masses, principal, refused
-from ._mjcf_findings import converting, joining, leaving_out, refusal
+from ._mjcf_findings import converting, emptying, leaving_out
 from .meshfolder import MeshFolder
 
 __all__ = [
@@ -44,12 +46,6 @@ __all__ = [
     "write_mjcf",
 ]
 
-Base = Literal["auto", "fixed", "floating"]
-BASES: tuple[Base, ...] = ("auto", "fixed", "floating")
-"""How the robot's base may be held: as the robot says, fixed to the world, or free."""
-
-WORLD = "world"
-
 
 class Mjcf(NamedTuple):
     """An MJCF document, and the findings of its conversion."""
@@ -58,8 +54,8 @@ class Mjcf(NamedTuple):
     """The document."""
     findings: tuple[Diagnostic, ...]
     """What the conversion changed, converted or left out (`mjcf-joined-inertial`,
-    `mjcf-mesh-converted`, `mjcf-left-out`), and the bodies MuJoCo will refuse
-    (`mjcf-refused`)."""
+    `mjcf-mesh-converted`, `mjcf-left-out`, `mjcf-empty-shape`), and the bodies MuJoCo will
+    refuse (`mjcf-refused`)."""
 
 
 def to_mjcf(robot: Robot | Analysis, *, base: Base = "auto", meshdir: str | None = None) -> str:
@@ -100,7 +96,10 @@ def export_mjcf(
       only when its file is found and MuJoCo reads it as it is (a binary STL of 1 to 200,000
       triangles, or an OBJ, of at least 4 distinct vertices), named by its absolute path,
       or relative to ``meshdir``, which the model then names; else the shape is left out,
-      with an `mjcf-left-out` finding (`write_mjcf` converts such meshes).
+      with an `mjcf-left-out` finding (`write_mjcf` converts such meshes); a collision mesh
+      with no volume to make a convex hull of is left out so too. A shape of no size (a box,
+      cylinder or sphere with a size of 0 or less, a mesh scaled by 0), which MuJoCo
+      refuses, is left out with an `mjcf-empty-shape` finding.
 
     Args:
         robot: The robot, or its analysis.
@@ -190,14 +189,9 @@ def write_mjcf(
 
 def _refuse(analysis: Analysis) -> None:
     """Stop on a robot MuJoCo cannot name or build as a tree."""
-    robot = analysis.robot
-    why = None
-    if len(analysis.links) != len(robot.links) or len(analysis.joints) != len(robot.joints):
-        why = "a link or joint name used twice, which MJCF refuses"
-    elif analysis.loops:
-        why = "a joint loop, which no tree of bodies holds"
+    why = no_tree(analysis)
     if why is not None:
-        raise StructureError(f"robot {robot.name!r} has {why}")
+        raise StructureError(f"robot {analysis.robot.name!r} has {why}")
 
 
 class _Writer:
@@ -217,11 +211,11 @@ class _Writer:
         self.meshdir = meshdir
         self.assets = Assets(analysis, meshdir, folder)
         self.equality = ET.Element("equality")
-        self.masses, joined = masses(analysis)
-        self.moving: list[str] = []  # the links whose bodies have joints
-        self.welded: dict[str, list[str]] = {}  # the links whose bodies are fixed to each
+        self.bodies = mujoco_bodies(analysis, base)
+        self.masses = self.bodies.masses
         self.findings = [
-            joining(analysis, analysis.links[link], holder) for link, holder in joined.items()
+            joining(analysis, analysis.links[link], holder)
+            for link, holder in self.bodies.joined.items()
         ]
         plan = analysis.plan
         self.steps = {plan.links[step.link]: step for step in plan.steps}
@@ -247,9 +241,8 @@ class _Writer:
                 self._shapes(world, analysis.links[root])
             else:
                 body = bodies[root] = self._body(world, analysis.links[root])
-                if self.base != "fixed":
+                if root in self.bodies.moving:
                     ET.SubElement(body, "freejoint")
-                    self.moving.append(root)
         for step in plan.steps:
             parent, link = plan.links[step.parent], plan.links[step.link]
             body = self._body(bodies[parent], analysis.links[link])
@@ -257,11 +250,7 @@ class _Writer:
             joints = self._joints(step, top=parent == WORLD)
             body[:0] = joints
             bodies[link] = body
-            if joints:
-                self.moving.append(link)
-            elif parent != WORLD:
-                self.welded.setdefault(parent, []).append(link)
-        self._refusals()
+        self.findings += [refusal(analysis, link, why) for link, why in self.bodies.refusals]
         for joint in analysis.robot.joints:
             self._mimic(joint)
         if len(self.equality):
@@ -303,11 +292,15 @@ class _Writer:
         for shape in shapes:
             visual = isinstance(shape, Visual)
             kind = "visual" if visual else "collision"
+            empty = sizeless(shape.geometry)
+            if empty is not None:
+                self.findings.append(emptying(self.analysis, link, shape.geometry, kind, empty))
+                continue
             name = None
             if isinstance(shape.geometry, Mesh):
                 asset = self.assets.mesh(shape.geometry)
                 if not visual and asset.name is not None and asset.facts is not None:
-                    flat = refused_hull(asset.facts)  # (a visual collides with nothing)
+                    flat = hull_refused(asset.facts)  # (a visual collides with nothing)
                     if flat is not None:
                         asset = Asset(None, why=flat, hint=_FLAT_HINT)
                 if asset.name is None:
@@ -333,32 +326,15 @@ class _Writer:
                 found.set("priority", "1")
             body.append(found)
 
-    def _refusals(self) -> None:
-        """A finding for each body MuJoCo will refuse: an inertia no solid has, or a moving
-        body that, with the bodies fixed to it, has no mass."""
-        for name, mass in self.masses.items():
-            why = refused(mass)
-            if why is not None:
-                why = f"{why}, and nothing fixed to it can take it"
-                self.findings.append(refusal(self.analysis, name, why))
-        for name in self.moving:
-            group, total = [name], 0.0
-            while group:
-                link = group.pop()
-                held = self.masses.get(link)
-                total += 0.0 if held is None else held.mass
-                group.extend(self.welded.get(link, ()))
-            if total < _LEAST_MASS:
-                why = "it moves, and neither it nor a link fixed to it has mass"
-                self.findings.append(refusal(self.analysis, name, why))
-
     def _joints(self, step: Step, *, top: bool) -> list[ET.Element]:
         joint, kind = step.joint, step.kind
-        if kind is JointType.FIXED:
-            return [ET.Element("freejoint")] if top and self.base == "floating" else []
+        if not moves(kind, top=top, base=self.base):
+            return []
+        if kind is JointType.FIXED:  # a child of the world, floating
+            return [ET.Element("freejoint")]
         if kind is JointType.FLOATING:
             if top:
-                return [] if self.base == "fixed" else [ET.Element("freejoint", name=joint.name)]
+                return [ET.Element("freejoint", name=joint.name)]
             parts = [("x", "slide", (1.0, 0.0, 0.0)), ("y", "slide", (0.0, 1.0, 0.0))]
             parts += [("z", "slide", (0.0, 0.0, 1.0)), ("yaw", "hinge", (0.0, 0.0, 1.0))]
             parts += [("pitch", "hinge", (0.0, 1.0, 0.0)), ("roll", "hinge", (1.0, 0.0, 0.0))]
@@ -422,5 +398,4 @@ def _friction(analysis: Analysis) -> dict[str, float]:
 
 
 _FLAT_HINT = "collide with a thin box, or give the mesh its thickness"
-_LEAST_MASS = 1e-15  # MuJoCo's mjMINVAL: a moving body's mass must be above it
 _ONE_NUMBER = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)

@@ -16,7 +16,7 @@ from ..analysis import Analysis, of
 from ..catalog import Consumer, Family, Rule, all_rules, get, ids
 from ..diagnostics import Diagnostic
 from ..packages import PackageFinder
-from . import gazebo, joints, meshes, physics, references, shapes, structure
+from . import gazebo, joints, meshes, mujoco, physics, references, shapes, structure
 
 __all__ = [
     "CHECKS",
@@ -43,12 +43,15 @@ class Settings:
             decides (where it looks for meshes) is judged only then.
         select: The ids of the rules selected (None: all), for a check that runs its parts
             only for their rules (Gazebo's).
+        for_mujoco: Whether the robot is checked for MuJoCo: what MuJoCo refuses of the MJCF
+            `fishbot mjcf` writes is foretold only then.
     """
 
     packages: Mapping[str, str | Path] | PackageFinder | None = None
     ground_tolerance: float = physics.GROUND_TOLERANCE
     for_gazebo: bool = True
     select: frozenset[str] | None = None
+    for_mujoco: bool = False
 
 
 @dataclass(frozen=True, slots=True)
@@ -106,6 +109,12 @@ CHECKS: tuple[Check, ...] = (
         "gazebo",
         gazebo.REPORTS,
         lambda analysis, s: gazebo.gazebo(analysis, s.select, for_gazebo=s.for_gazebo),
+    ),
+    # The MJCF's bodies, foretold from the masses alone (it opens no mesh file).
+    Check(
+        "mujoco",
+        mujoco.REPORTS,
+        lambda analysis, s: mujoco.predict(analysis) if s.for_mujoco else (),
     ),
 )
 """Every check, in the order its findings come."""

@@ -9,7 +9,7 @@ from collections.abc import Iterator
 from ..meshfile import MeshFacts
 from ..model import Box, Cylinder, Link, Sphere
 
-__all__ = ["flat_mesh", "millimetres", "refused_hull"]
+__all__ = ["flat_mesh", "hull_refused", "millimetres"]
 
 _LARGEST_PART = 5.0  # metres: a robot part larger than this is implausible
 _FLAT = 1e-5  # a mesh thinner than this share of its size is flat (its numbers' rounding)
@@ -21,15 +21,16 @@ def flat_mesh(facts: MeshFacts) -> str | None:
     return None if found is None else found[0]
 
 
-def refused_hull(facts: MeshFacts) -> str | None:
-    """Why MuJoCo refuses a collision mesh of these facts (fewer than 4 distinct vertices,
-    or all in one plane or on one line), or None if it makes a convex hull of it."""
+def hull_refused(facts: MeshFacts) -> str | None:
+    """Why MuJoCo cannot make a convex hull of a mesh, which it makes of every mesh that
+    collides, and refuses the model for it (see `flat_mesh`), or None."""
     found = _flatness(facts)
-    return found[0] if found is not None and found[1] else None
+    return None if found is None else found[1]
 
 
-def _flatness(facts: MeshFacts) -> tuple[str, bool] | None:
-    """Why a mesh has no volume, and whether MuJoCo refuses it for that; None if it has."""
+def _flatness(facts: MeshFacts) -> tuple[str, str | None] | None:
+    """Why a mesh has no volume to make a convex hull of, and, when MuJoCo refuses it, why
+    in few words."""
     if facts.spread is None:
         return None
     plane, line = facts.spread
@@ -42,8 +43,9 @@ def _flatness(facts: MeshFacts) -> tuple[str, bool] | None:
     if facts.vertices is not None and facts.vertices < 4:
         return (
             f"has {facts.vertices} distinct vertices, no volume to collide with: MuJoCo "
-            "refuses the robot ('at least 4 vertices required')"
-        ), True
+            "refuses the robot ('at least 4 vertices required')",
+            f"has {facts.vertices} distinct vertices, too few for a convex hull",
+        )
     if line <= rounding:
         shape, said = "on one line", "collinear"
     else:
@@ -52,12 +54,14 @@ def _flatness(facts: MeshFacts) -> tuple[str, bool] | None:
     if plane <= 1e-12 * max(size, corners) or line <= rounding:
         return (
             f"has every vertex {shape}, no volume to collide with: MuJoCo refuses the robot "
-            f"('{said} vertices, cannot compute convex hull')"
-        ), True
+            f"('{said} vertices, cannot compute convex hull')",
+            f"has every vertex {shape}, no volume for a convex hull",
+        )
     return (
         f"has every vertex {shape} but for {plane:.2g} (the file's rounding), no volume to "
-        "collide with: MuJoCo makes a convex hull of it only as thick as that"
-    ), False
+        "collide with: MuJoCo makes a convex hull of it only as thick as that",
+        None,
+    )
 
 
 def millimetres(link: Link, extent: float) -> str | None:

@@ -326,13 +326,14 @@ def _fault(meshes: MeshContents, file: Path) -> str | None:
 
 
 # (shape-not-drawn and nothing-drawn are render's and view's findings: the check never draws;
-# mjcf-left-out and mjcf-mesh-converted are what `fishbot mjcf` leaves out or converts;
-# shape-size is the shapes' check's, which opens no file)
+# mjcf-left-out, mjcf-empty-shape and mjcf-mesh-converted are what `fishbot mjcf` leaves
+# out or converts; shape-size is the shapes' check's, which opens no file)
 _OTHERS = (
     catalog.meshes.SHAPE_NOT_DRAWN,
     catalog.meshes.NOTHING_DRAWN,
     catalog.meshes.MJCF_LEFT_OUT,
     catalog.meshes.MJCF_MESH_CONVERTED,
+    catalog.meshes.MJCF_EMPTY_SHAPE,
     catalog.meshes.SHAPE_SIZE,
 )
 REPORTS: tuple[Rule, ...] = tuple(r for r in rules_in(catalog.meshes) if r not in _OTHERS)

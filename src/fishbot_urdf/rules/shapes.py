@@ -12,7 +12,7 @@ from ..catalog.meshes import SHAPE_SIZE
 from ..diagnostics import Diagnostic, Kind, Severity, Subject
 from ..model import Box, Cylinder, Geometry, Mesh
 
-__all__ = ["REPORTS", "shapes"]
+__all__ = ["REPORTS", "shapes", "sizeless"]
 
 
 def shapes(analysis: Analysis) -> Iterator[Diagnostic]:
@@ -44,6 +44,13 @@ def shapes(analysis: Analysis) -> Iterator[Diagnostic]:
                 hint="give the shape its real size (m), or delete it",
                 severity=None if collides else Severity.WARNING,
             )
+
+
+def sizeless(shape: Geometry) -> str | None:
+    """What a shape of no size is (a box, cylinder or sphere with a size of 0 or less, a mesh
+    scaled by 0), as `shape-size` says it, or None for a shape with a size."""
+    found = _size(shape)
+    return None if found is None else found[0]
 
 
 def _size(shape: Geometry) -> tuple[str, tuple[int, float] | None, bool] | None:

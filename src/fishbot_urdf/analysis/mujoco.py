@@ -1,13 +1,14 @@
-"""The inertial of each MJCF body: its link's own, as written, unless MuJoCo would refuse it
-on a body of its own (a link on a fixed joint whose inertia is no solid's), which then joins
-the inertial of the body it is fixed to, summed exactly."""
+"""The bodies MuJoCo makes of a robot's links, one body per link, and what it refuses of them:
+each body's inertial (its link's own, as written, unless MuJoCo would refuse it on a body of
+its own, which then joins the inertial of a body it is fixed to, summed exactly), which
+bodies move, and which MuJoCo refuses. Owned here, so that the MJCF converter writes them
+and the check foretells its refusals from the same facts, without writing the MJCF."""
 
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import NamedTuple
+from typing import Literal, NamedTuple
 
-from ..analysis import Analysis
 from ..model import Inertial, JointType, Vector3
 from ..spatial import (
     Matrix3,
@@ -21,8 +22,28 @@ from ..spatial import (
     rpy_matrix,
     scale,
 )
+from . import Analysis
 
-__all__ = ["Mass", "masses", "own", "principal", "refused"]
+__all__ = [
+    "BASES",
+    "Base",
+    "Mass",
+    "MujocoBodies",
+    "masses",
+    "moves",
+    "mujoco_bodies",
+    "no_tree",
+    "own",
+    "principal",
+    "refused",
+]
+
+Base = Literal["auto", "fixed", "floating"]
+BASES: tuple[Base, ...] = ("auto", "fixed", "floating")
+"""How the robot's base may be held: as the robot says, fixed to the world, or free."""
+
+WORLD = "world"
+LEAST_MASS = 1e-15  # MuJoCo's mjMINVAL: a moving body's mass must be above it
 
 _ZERO: Matrix3 = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
 
@@ -112,7 +133,7 @@ def masses(analysis: Analysis) -> tuple[Mapping[str, Mass], Mapping[str, str]]:
         if refused(mass) is not None:
             step = steps.get(link)
             parent = None if step is None else plan.links[step.parent]
-            if step is not None and step.kind is JointType.FIXED and parent != "world":
+            if step is not None and step.kind is JointType.FIXED and parent != WORLD:
                 assert parent is not None
                 below.setdefault(parent, []).append((mass, step.origin, link))
                 moved[link] = parent
@@ -151,4 +172,89 @@ def _down(
         if refused(summed) is None:
             found[child] = summed
             return child
+    return None
+
+
+def no_tree(analysis: Analysis) -> str | None:
+    """Why MuJoCo cannot name the robot's links and joints, or build them as a tree of
+    bodies (a name used twice, a joint loop), or None."""
+    robot = analysis.robot
+    if len(analysis.links) != len(robot.links) or len(analysis.joints) != len(robot.joints):
+        return "a link or joint name used twice, which MJCF refuses"
+    if analysis.loops:
+        return "a joint loop, which no tree of bodies holds"
+    return None
+
+
+def moves(kind: JointType, *, top: bool, base: Base) -> bool:
+    """Whether the body a joint of ``kind`` places has joints of its own in MuJoCo: a fixed
+    joint gives none (but a free one, for a child of ``world`` whose base floats), a
+    floating one from ``world`` none when the base is fixed."""
+    if kind is JointType.FIXED:
+        return top and base == "floating"
+    if kind is JointType.FLOATING:
+        return not (top and base == "fixed")
+    return True
+
+
+class MujocoBodies(NamedTuple):
+    """The bodies MuJoCo makes of a robot's links (see `mujoco_bodies`)."""
+
+    masses: Mapping[str, Mass]
+    """Each body's inertial, by link (a body without one has none)."""
+    joined: Mapping[str, str]
+    """Each link whose inertial joined another body's, with that body."""
+    moving: tuple[str, ...]
+    """The links whose bodies have joints (a free joint included)."""
+    refusals: tuple[tuple[str, str], ...]
+    """Each body MuJoCo refuses, by link, and why."""
+
+
+def mujoco_bodies(analysis: Analysis, base: Base = "auto") -> MujocoBodies:
+    """The bodies MuJoCo makes of ``analysis``'s links held as ``base`` says (``auto``: a
+    root other than ``world`` is free, ``fixed``: fixed to the world, ``floating``: free, and
+    each child of ``world`` too), and those it refuses: an inertia no solid has that no link
+    fixed to it can take, and a moving body that, with the bodies fixed to it, has no mass.
+
+    Raises:
+        FishbotUrdfError: The robot has no kinematic plan (see `Analysis.plan`).
+    """
+    plan = analysis.plan
+    found, joined = masses(analysis)
+    moving = [root for root in plan.roots if root != WORLD and base != "fixed"]
+    welded: dict[str, list[tuple[str, Pose]]] = {}  # the bodies fixed to each, and where
+    for step in plan.steps:
+        parent, link = plan.links[step.parent], plan.links[step.link]
+        if moves(step.kind, top=parent == WORLD, base=base):
+            moving.append(link)
+        elif parent != WORLD:
+            welded.setdefault(parent, []).append((link, step.origin))
+    refusals = []
+    for name, mass in found.items():
+        why = refused(mass)
+        if why is not None:
+            refusals.append((name, f"{why}, and nothing fixed to it can take it"))
+    # MuJoCo judges a moving body with the bodies fixed to it (and to them): children first
+    together: dict[str, Mass] = {}
+    for link in reversed(plan.links):
+        total = found.get(link, _NONE)
+        for child, at in welded.pop(link, ()):
+            total = _sum(total, together[child], at, child)
+        together[link] = total
+    for name in moving:
+        why = _massless(together[name])
+        if why is not None:
+            refusals.append((name, f"it moves, and {why}"))
+    return MujocoBodies(found, joined, tuple(moving), tuple(refusals))
+
+
+def _massless(mass: Mass) -> str | None:
+    """Why MuJoCo refuses ``mass`` on a moving body (with the bodies fixed to it): its mass,
+    or a principal moment, not above mjMINVAL; or None."""
+    if mass.mass < LEAST_MASS:
+        return "neither it nor a link fixed to it has mass"
+    moments = eigenvalues(mass.tensor)  # smallest first
+    if moments[0] < LEAST_MASS:
+        shown = ", ".join(f"{m:.3g}" for m in moments)
+        return f"with the links fixed to it it has no inertia about some axis ({shown} kg*m^2)"
     return None
