@@ -145,6 +145,22 @@ def xacro_corpus() -> list[Path]:
 
 
 CORPUS = corpus()
+
+# A 1 m arm of 5 kg, its mass at its middle, on a joint whose effort limit is {effort} N*m:
+# fishbot sim holds it level against 5 * 9.81 * 0.5 N*m of gravity, or it sags.
+ARM = """\
+<robot name="arm">
+  <link name="base"/>
+  <link name="arm">
+    <collision><origin xyz="0.5 0 0"/><geometry><box size="1 0.05 0.05"/></geometry></collision>
+    <inertial><origin xyz="0.5 0 0"/><mass value="5"/>
+      <inertia ixx="0.002" ixy="0" ixz="0" iyy="0.418" iyz="0" izz="0.418"/></inertial>
+  </link>
+  <joint name="shoulder" type="revolute"><axis xyz="0 1 0"/>
+    <parent link="base"/><child link="arm"/>
+    <limit lower="-1.57" upper="1.57" effort="{effort}" velocity="1"/></joint>
+</robot>
+"""
 XACRO_CORPUS = xacro_corpus()
 
 

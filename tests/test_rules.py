@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner, Result
-from conftest import ROOT, box_stl, fine_stl, require_tool, run_check_urdf
+from conftest import ARM, ROOT, box_stl, fine_stl, require_tool, run_check_urdf
 
 import fishbot_urdf
 from fishbot_urdf.catalog import Family, Rule, all_rules, get, ids
@@ -299,19 +299,7 @@ for _name, _edits in _FAULTS.items():
         _text = _text.replace(_old, _new, 1)
     WORKSPACE[_name] = _text
 # sim-sag's: a 1 m arm of 5 kg, its mass at its middle, on a joint of 1 N*m.
-WORKSPACE["weak_arm.urdf"] = """\
-<robot name="weak_arm">
-  <link name="base"/>
-  <link name="arm">
-    <collision><origin xyz="0.5 0 0"/><geometry><box size="1 0.05 0.05"/></geometry></collision>
-    <inertial><origin xyz="0.5 0 0"/><mass value="5"/>
-      <inertia ixx="0.002" ixy="0" ixz="0" iyy="0.418" iyz="0" izz="0.418"/></inertial>
-  </link>
-  <joint name="shoulder" type="revolute"><axis xyz="0 1 0"/>
-    <parent link="base"/><child link="arm"/>
-    <limit lower="-1.57" upper="1.57" effort="1" velocity="1"/></joint>
-</robot>
-"""
+WORKSPACE["weak_arm.urdf"] = ARM.format(effort=1)
 
 # Rules of what render and view cannot draw, and of what mjcf leaves out or converts: the
 # picture or the model is made without it, exit status 0.

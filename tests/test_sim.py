@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from conftest import FISHBOT, REQUIRE_TOOLS
+from conftest import ARM, FISHBOT, REQUIRE_TOOLS
 
 if not REQUIRE_TOOLS:  # on a user's machine without the [sim] extra: skipped, with a reason
     pytest.importorskip("mujoco", reason="fishbot sim needs the [sim] extra")
@@ -226,20 +226,6 @@ def test_a_wheel_without_inertial_is_refused_at_its_link(tmp_path: Path) -> None
 
 
 # -- robots without wheels, and the command line ------------------------------------------
-
-ARM = """\
-<robot name="arm">
-  <link name="base"/>
-  <link name="arm">
-    <collision><origin xyz="0.5 0 0"/><geometry><box size="1 0.05 0.05"/></geometry></collision>
-    <inertial><origin xyz="0.5 0 0"/><mass value="5"/>
-      <inertia ixx="0.002" ixy="0" ixz="0" iyy="0.418" iyz="0" izz="0.418"/></inertial>
-  </link>
-  <joint name="shoulder" type="revolute"><axis xyz="0 1 0"/>
-    <parent link="base"/><child link="arm"/>
-    <limit lower="-1.57" upper="1.57" effort="{effort}" velocity="1"/></joint>
-</robot>
-"""
 
 
 def test_an_arm_strong_enough_holds_and_a_weak_one_sags() -> None:
