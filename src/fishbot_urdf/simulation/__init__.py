@@ -11,6 +11,10 @@ held at a configuration, and what went wrong said as findings in the robot's fil
 - **drop**: with ``base="floating"``, a robot without wheels is dropped on the floor with
   its joints so held.
 
+`Live` drives a robot live (a command, real-time steps, the links' poses and the lidars'
+scans), and `stream` shows it on the viewer's page, driven by its keys (`fishbot sim
+--view`).
+
 Every trial watches for a state that blows up, a base that tips over, shapes deep in the
 floor, and links whose collision shapes overlap at the start. MuJoCo is the ``sim``
 extra (``pip install 'fishbot-urdf[sim]'``).
@@ -29,11 +33,25 @@ from ..model import Robot
 from . import _findings as say
 from ._driving import SETTLE, drive
 from ._holding import held_joints, hold, servos, start, tune
+from ._live import LaserScan, Live, Obstacle
 from ._outcome import Measure, Outcome, Trial
+from ._streaming import Stream, stream
 from ._watch import Watch
 from ._world import INSTALL, World, load_mujoco
 
-__all__ = ["INSTALL", "Measure", "Outcome", "Trial", "load_mujoco", "simulate"]
+__all__ = [
+    "INSTALL",
+    "LaserScan",
+    "Live",
+    "Measure",
+    "Obstacle",
+    "Outcome",
+    "Stream",
+    "Trial",
+    "load_mujoco",
+    "simulate",
+    "stream",
+]
 
 TIPPED = math.radians(30.0)
 """How far the base may lean from upright."""
