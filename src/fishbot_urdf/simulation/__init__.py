@@ -33,7 +33,7 @@ from ..model import Robot
 from . import _findings as say
 from ._driving import SETTLE, drive
 from ._holding import held_joints, hold, servos, start, tune
-from ._live import LaserScan, Live, Obstacle
+from ._live import ROOM, LaserScan, Live, Obstacle
 from ._outcome import Measure, Outcome, Trial
 from ._streaming import Stream, stream
 from ._watch import Watch
@@ -41,6 +41,7 @@ from ._world import INSTALL, World, load_mujoco
 
 __all__ = [
     "INSTALL",
+    "ROOM",
     "LaserScan",
     "Live",
     "Measure",

@@ -107,6 +107,13 @@ class Live:
         robot: The robot, or its analysis.
         walls: Whether a wheeled robot is in the room (else the floor is endless and bare).
 
+    Attributes:
+        drive: The drive its wheels are turned as (None: the robot is held).
+        obstacles: The room's walls.
+        speed, turn: The last command (m/s, rad/s).
+        since: When it was given (s of simulated time).
+        exploded: When the state blew up (s), if it did: it is stepped no further.
+
     Raises:
         ToolNotFoundError: mujoco is not installed.
         ConversionError: MuJoCo refuses the model.
@@ -146,7 +153,7 @@ class Live:
             self._separation = self.drive.separation or _apart(world, left, right)
         self._from = (0.0, 0.0)
         self._to = (0.0, 0.0)
-        self._since = 0.0
+        self.since = 0.0  # when the last command was given (s of simulated time)
         self._owed = 0.0  # simulated time asked for and not stepped yet (s)
         self.speed, self.turn = 0.0, 0.0
         self.exploded: float | None = None
@@ -174,7 +181,7 @@ class Live:
             )
             half = turn * self._separation / 2.0
             self._to = ((speed - half) / self._radius, (speed + half) / self._radius)
-            self._since = self.world.time
+            self.since = self.world.time
 
     def advance(self, seconds: float) -> None:
         """Step ``seconds`` of simulated time (nothing once the state blew up), casting the
@@ -191,7 +198,7 @@ class Live:
             while steps > 0 and self.exploded is None:
                 now = min(chunk, steps)
                 steps -= now
-                share = min(1.0, (world.time + now * tick - self._since) / RAMP)
+                share = min(1.0, (world.time + now * tick - self.since) / RAMP)
                 controls = {
                     actuator: was + (to - was) * share
                     for actuator, was, to in zip(self._wheels, self._from, self._to, strict=True)
