@@ -55,6 +55,7 @@ HOME = "~/fishbot-urdf"  # what the scratch folder's path is shown as
 # Every block that does not run, by page: (a few words of its reason).
 SKIPPED = {
     "README.md": ["installs fishbot-urdf", "makes a virtual environment", "runs until stopped"],
+    "docs/commands/sim.md": ["runs until stopped"],
     "docs/commands/view.md": ["runs until stopped", "needs a Python without viser"],
     "docs/development.md": [
         "installs the ROS tools",
@@ -464,6 +465,7 @@ def test_each_command_has_its_page(site: Path) -> None:
         "render",
         "rules",
         "sdf",
+        "sim",
         "tf",
         "view",
     }
