@@ -27,7 +27,7 @@ from selenium.webdriver.common.action_chains import ActionChains
 from selenium.webdriver.common.by import By
 from selenium.webdriver.common.keys import Keys
 from test_view import _free_port, _screenshot, _settled, _wait, headless_chromium
-from test_view_page import _orange, _tick
+from test_view_page import _box_of, _orange, _tick
 
 from fishbot_urdf import check_file
 from fishbot_urdf.cli import cli
@@ -107,6 +107,15 @@ def test_a_ray_that_hits_nothing_reads_the_maximum_range(analysis: Any) -> None:
     assert scan.ranges == (FARTHEST,) * SAMPLES
 
 
+def test_a_robot_without_a_drive_is_held_and_the_keys_move_nothing() -> None:
+    live = Live(check_file(FISHBOT / "urdf" / "first_robot.urdf").analysis)
+    assert (live.drive, live.obstacles) == (None, ())
+    before = live.poses()
+    live.command(0.5, 1.0)
+    live.advance(0.5)
+    assert live.poses() == before  # (the robot has no joint that moves)
+
+
 def test_scans_are_cast_at_the_sensors_rate(analysis: Any) -> None:
     live = Live(analysis, walls=False)
     times = []
@@ -176,13 +185,16 @@ def test_an_arrow_key_drives_the_robot_as_far_as_commanded(page: tuple[Any, Any]
 
 def test_the_lidar_rays_show_when_sensors_is_ticked(page: tuple[Any, Any]) -> None:
     shown, driver = page
-    assert not _orange(_settled(driver)).any()
+    assert not _orange(_screenshot(driver)).any()
     _tick(driver, "Sensors")
-    _wait(lambda: _orange(_settled(driver)).mean() > 0.002)
-    ends = shown.live.scans()[0].ends
-    assert len(ends) == SAMPLES
+    # (a screenshot, not a settled one: the rays are drawn anew 5.5 times a second)
+    rays = _wait(lambda: (lambda p: p if _orange(p).mean() > 0.002 else None)(_screenshot(driver)))
+    # 1.5 m to the walls from a robot 0.2 m across that fills the view: out of it.
+    top, bottom, _, _ = _box_of(_orange(rays))
+    assert bottom - top > 0.5 * rays.shape[0]
+    assert len(shown.live.scans()[0].ends) == SAMPLES
     _tick(driver, "Sensors")
-    _wait(lambda: not _orange(_settled(driver)).any())
+    _wait(lambda: not _orange(_screenshot(driver)).any())
 
 
 def test_sim_view_prints_its_url_and_serves_the_page(tmp_path: Any) -> None:

@@ -19,7 +19,7 @@ import json
 import logging
 import threading
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any, Protocol
 
 from ._sensors import LIDAR
@@ -40,6 +40,9 @@ FPS = 30.0
 _LONGEST = 0.1
 """The most simulated time one frame steps (s): a slow machine runs behind real time rather
 than in ever longer steps."""
+_STILL = 1e-5
+"""How far a link must move (m, or in a quaternion's parts) for its new pose to be sent: a
+hundredth of a millimetre, a thousandth of a degree, well under a pixel."""
 _WALL = (170, 170, 170)
 
 KEYS = {
@@ -84,6 +87,10 @@ class Source(Protocol):
     def scans(self) -> Sequence[Any]:
         """Each lidar's latest scan: ``sensor``, ``time``, ``origin`` and ``ends`` (N, 3)."""
 
+    @property
+    def exploded(self) -> float | None:
+        """When the simulation blew up (s of simulated time), if it did."""
+
 
 class Teleop:
     """``source`` on ``viewer``'s page (a `Viewer` made with ``live=True``), stepped in real
@@ -113,6 +120,8 @@ class Teleop:
         self._lock = threading.Lock()
         self._drawn: dict[str, float] = {}
         self._rays: dict[str, Any] = {}
+        self._broken = False  # said on the page once the simulation blew up
+        self._sent: dict[str, tuple[Sequence[float], Sequence[float]]] = {}
         scene, gui = viewer.server.scene, viewer.server.gui
         scene.add_grid("/ground", ground, ground, cell_size=0.1, section_size=1.0)
         for index, box in enumerate(obstacles):
@@ -121,8 +130,7 @@ class Teleop:
             )
         self._readout = gui.add_markdown(self._said())
         ids = {
-            name: viewer.add_button(label, lambda name=name: self.press(name))
-            for name, (label, _) in KEYS.items()
+            name: viewer.add_button(label, self._presser(name)) for name, (label, _) in KEYS.items()
         }
         keys = {key: ids[name] for name, (_, pressed) in KEYS.items() for key in pressed}
         viewer.run_script(_SCRIPT % json.dumps(keys))
@@ -153,6 +161,9 @@ class Teleop:
             self.source.command(self.speed, self.turn)
             self._readout.content = self._said()
 
+    def _presser(self, name: str) -> Callable[[], None]:
+        return lambda: self.press(name)
+
     def close(self) -> None:
         """Stop stepping the simulation (the viewer is the caller's to close)."""
         self._stop.set()
@@ -160,6 +171,11 @@ class Teleop:
             self._thread.join()
 
     def _said(self) -> str:
+        if self._broken:
+            return (
+                f"**The simulation blew up** at {self.source.exploded:.2f} s (see `fishbot "
+                "sim` without --view for why): the robot is shown as it was then."
+            )
         return (
             f"**Drive**: {self.speed:+.2f} m/s, {self.turn:+.2f} rad/s. Keys: Up and Down "
             "change the speed, Left and Right the turn, space or k stops."
@@ -172,13 +188,35 @@ class Teleop:
             now = time.monotonic()
             try:
                 self.source.advance(min(now - last, _LONGEST))
-                self.viewer.place(self.source.poses())
+                self.viewer.place(self._moved(self.source.poses()))
                 self._scan()
             except Exception as exc:  # a fault of the page's or the simulation's: said once
                 _log.warning("the simulation stopped: %s", exc)
                 return
             last = now
             self.frames += 1
+            if self.source.exploded is not None and not self._broken:
+                self._broken = True
+                self._readout.content = self._said()
+
+    def _moved(
+        self, poses: Mapping[str, tuple[Sequence[float], Sequence[float]]]
+    ) -> dict[str, tuple[Sequence[float], Sequence[float]]]:
+        """The links of ``poses`` that moved since they were last sent (by more than
+        `_STILL`): a robot at rest costs the page nothing."""
+        moved = {}
+        for link, (position, wxyz) in poses.items():
+            was = self._sent.get(link)
+            if (
+                was is None
+                or max(
+                    max(abs(a - b) for a, b in zip(position, was[0], strict=True)),
+                    max(abs(a - b) for a, b in zip(wxyz, was[1], strict=True)),
+                )
+                > _STILL
+            ):
+                moved[link] = self._sent[link] = (position, wxyz)
+        return moved
 
     def _scan(self) -> None:
         """Draw each lidar's scan that is newer than the one on the page."""

@@ -127,7 +127,7 @@ class Live:
         pair = analysis.drives[0] if analysis.drives else None
         wheels = wheels_of(analysis, pair) if pair is not None else None
         self.drive = pair if wheels is not None else None
-        wheel_motors = motors(analysis, drives=(pair,)) if self.drive is not None else ()
+        wheel_motors = motors(analysis, drives=(self.drive,)) if self.drive is not None else ()
         held = held_joints(analysis, {m.joint for m in wheel_motors})
         floating = self.drive is not None
         made = export_mjcf(
