@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from conftest import FISHBOT, REQUIRE_TOOLS
+from conftest import DATA, FISHBOT, REQUIRE_TOOLS
 
 if not REQUIRE_TOOLS:  # on a user's machine without the extras: skipped, with a reason
     pytest.importorskip("mujoco", reason="fishbot sim needs the [sim] extra")
@@ -226,4 +226,15 @@ def test_without_viser_one_line_says_how_to_install(monkeypatch: pytest.MonkeyPa
         "fishbot sim: error: setup: the viser package, an optional part of fishbot-urdf that "
         "the viewer needs, is not installed (install it: pip install 'fishbot-urdf[view]') "
         "[tool-missing]\n"
+    )
+
+
+def test_a_body_mujoco_refuses_is_said_where_it_is_written() -> None:
+    robot = DATA / "physics" / "massless_wheel.urdf"
+    result = CliRunner().invoke(cli, ["sim", str(robot), "--view", "--port", "0"])
+    assert (result.exit_code, result.stdout) == (1, "")
+    assert result.stderr == (
+        f"{robot}:24:5: error: link 'left_wheel_link': it moves, and neither it nor a link "
+        "fixed to it has mass: MuJoCo refuses the model (give it the mass and inertia of its "
+        "shape) [mjcf-refused]\n"
     )

@@ -13,7 +13,7 @@ import click
 
 from ..analysis import Analysis
 from ..diagnostics import escape_controls
-from ..errors import FishbotUrdfError, ToolNotFoundError
+from ..errors import FishbotUrdfError, RobotError, ToolNotFoundError
 from ..simulation import Outcome, simulate, stream
 from ._checking import nearest_config, posable_input
 from ._common import (
@@ -190,6 +190,9 @@ def _live(analysis: Analysis, host: str, port: int) -> None:
         needs = "the simulation" if exc.tool == "mujoco" else "the viewer"
         emit_findings([not_installed(exc, "fishbot sim", needs)])
         sys.exit(status_of(exc))
+    except RobotError as exc:  # mjcf-refused: the bodies MuJoCo would refuse, located
+        emit_findings(list(exc.diagnostics))
+        sys.exit(EXIT_INVALID)
     except FishbotUrdfError as exc:  # cannot serve there, MuJoCo refuses the robot
         stop_on(exc)
     try:

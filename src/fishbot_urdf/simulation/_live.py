@@ -20,6 +20,7 @@ import numpy as np
 
 from ..analysis import Analysis, of
 from ..analysis.sensors import RAYS, Scan, Sensor
+from ..errors import RobotError
 from ..export.mjcf import COLLISION_GROUP, export_mjcf, motors
 from ..model import Robot
 from ._driving import _apart, wheels_of
@@ -116,6 +117,7 @@ class Live:
 
     Raises:
         ToolNotFoundError: mujoco is not installed.
+        RobotError: A body MuJoCo would refuse (its ``mjcf-refused`` findings).
         ConversionError: MuJoCo refuses the model.
         StructureError: The robot cannot be built as a tree of bodies.
     """
@@ -135,6 +137,9 @@ class Live:
             base="floating" if floating else "fixed",
             driven=(*wheel_motors, *servos(analysis, held)),
         )
+        refused = [d for d in made.findings if d.is_error]
+        if refused:  # (mjcf-refused: a body MuJoCo would refuse, said where it is written)
+            raise RobotError(refused)
         self.obstacles: tuple[Obstacle, ...] = _room() if floating and walls else ()
         self.world = World(analysis, _with(made.text, self.obstacles), floor=floating)
         world = self.world

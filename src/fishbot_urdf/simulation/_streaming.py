@@ -49,6 +49,7 @@ def stream(
     Raises:
         ToolNotFoundError: mujoco or viser is not installed.
         ServeError: ``host`` and ``port`` cannot be served on.
+        RobotError: A body MuJoCo would refuse (its ``mjcf-refused`` findings).
         ConversionError: MuJoCo refuses the model.
     """
     analysis = of(robot)
