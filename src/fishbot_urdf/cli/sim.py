@@ -11,10 +11,11 @@ from typing import Literal
 
 import click
 
+from .. import simulation
 from ..analysis import Analysis
 from ..diagnostics import escape_controls
 from ..errors import FishbotUrdfError, RobotError, ToolNotFoundError
-from ..simulation import Outcome, simulate, stream
+from ..simulation import Outcome, simulate
 from ._checking import nearest_config, posable_input
 from ._common import (
     EXIT_INVALID,
@@ -185,7 +186,7 @@ def sim(
 def _live(analysis: Analysis, host: str, port: int) -> None:
     """Serve the robot live until Ctrl-C (never returns)."""
     try:
-        shown = stream(analysis, host=host, port=port)
+        shown = simulation.stream(analysis, host=host, port=port)
     except ToolNotFoundError as exc:  # mujoco or viser: the setup's fault, not the robot's
         needs = "the simulation" if exc.tool == "mujoco" else "the viewer"
         emit_findings([not_installed(exc, "fishbot sim", needs)])

@@ -23,7 +23,7 @@ extra (``pip install 'fishbot-urdf[sim]'``).
 from __future__ import annotations
 
 import math
-from typing import Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 from ..analysis import Analysis, of
 from ..diagnostics import Diagnostic
@@ -35,9 +35,11 @@ from ._driving import SETTLE, drive
 from ._holding import held_joints, hold, servos, start, tune
 from ._live import ROOM, LaserScan, Live, Obstacle
 from ._outcome import Measure, Outcome, Trial
-from ._streaming import Stream, stream
 from ._watch import Watch
 from ._world import INSTALL, World, load_mujoco
+
+if TYPE_CHECKING:
+    from ._streaming import Stream, stream
 
 __all__ = [
     "INSTALL",
@@ -159,3 +161,11 @@ def _root(analysis: Analysis) -> str:
 
 def _at(trial: Trial) -> str:
     return "at the configuration the robot is held at" if trial == "hold" else "as it stands"
+
+
+def __getattr__(name: str) -> Any:
+    if name in ("Stream", "stream"):  # the viewer's modules (~100 ms): only for --view
+        from . import _streaming
+
+        return getattr(_streaming, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
