@@ -68,7 +68,7 @@ SKIPPED = {
         "an editor's settings, not fishbot's",
         "an editor's settings",
     ],
-    "docs/commands/sim.md": ["it installs from PyPI", "one run's numbers"],
+    "docs/commands/sim.md": ["it installs from PyPI", "one run's numbers", "runs until stopped"],
     "docs/gazebo.md": ["needs ROS 2 and Gazebo Classic"],
     "docs/trust.md": ["runs a file's code"],
 }

@@ -5,12 +5,16 @@ from __future__ import annotations
 
 import json
 import sys
+import time
 from collections.abc import Sequence
 from typing import Literal
 
 import click
 
-from ..errors import FishbotUrdfError, ToolNotFoundError
+from .. import simulation
+from ..analysis import Analysis
+from ..diagnostics import escape_controls
+from ..errors import FishbotUrdfError, RobotError, ToolNotFoundError
 from ..simulation import Outcome, simulate
 from ._checking import nearest_config, posable_input
 from ._common import (
@@ -79,6 +83,22 @@ class _Drive(click.ParamType):
     flag_value="floating",
     help="Drop the robot on the floor (the default for a wheeled robot).",
 )
+@click.option(
+    "--view",
+    is_flag=True,
+    help="Run the robot live on the page of `fishbot view`, driven by the arrow keys, "
+    "until Ctrl-C, in place of the trial.",
+)
+@click.option(
+    "--host", default="127.0.0.1", show_default=True, help="With --view: where to serve the page."
+)
+@click.option(
+    "--port",
+    default=8080,
+    show_default=True,
+    type=click.IntRange(0, 65535),
+    help="With --view: the port (0: any free one).",
+)
 @format_option(("text", "json"), "text: what was measured, as a table; json: the same.")
 @package_option()
 @limit_options()
@@ -88,6 +108,9 @@ def sim(
     drive: tuple[float, float],
     seconds: float,
     base: str | None,
+    view: bool,
+    host: str,
+    port: int,
     fmt: str,
     package_items: Sequence[str],
 ) -> None:
@@ -115,12 +138,22 @@ def sim(
     was told, 1 something went wrong (an error finding), 2 a file could not be read,
     mujoco is not installed, or the command line is wrong.
 
+    With --view, the robot runs live in real time on the page of `fishbot view` (prints
+    the URL; Ctrl-C stops), in a square room 3 m wide: Up and Down step its speed by
+    0.1 m/s, Left and Right its turn rate by 0.5 rad/s, space or k stops (or the page's
+    buttons), each wheel turned as its drive plugin turns it, ramped over 0.5 s. The
+    Sensors checkbox shows each lidar's rays to what they hit, cast at the sensor's
+    <update_rate> from its <range> min to max. A robot without a drive is held by its
+    root link. --drive, --seconds, the bases and --format are for the trial. Needs the
+    view extra too: pip install 'fishbot-urdf[view]'.
+
     \b
     Examples:
       fishbot sim robots/fishbot/urdf/fishbot/fishbot.urdf.xacro
       fishbot sim robot.urdf.xacro --drive 0.2,0.5 --seconds 5
       fishbot sim arm.urdf --format json
       fishbot sim humanoid.urdf --floating-base
+      fishbot sim robot.urdf.xacro --view --port 8081
     """
     if file == "-" and args:
         raise click.UsageError("name:=value arguments are for a .xacro file, not standard input")
@@ -128,6 +161,8 @@ def sim(
     config = nearest_config(file)
     result = posable_input(file, values, packages_option(package_items), config=config)
     assert result.analysis is not None
+    if view:
+        _live(result.analysis, host, port)
     speed, turn = drive
     chosen: Literal["auto", "fixed", "floating"] = (
         "fixed" if base == "fixed" else "floating" if base == "floating" else "auto"
@@ -146,6 +181,37 @@ def sim(
         to_stdout(_table(outcome, speed, turn).encode("utf-8"))
     emit_findings(findings)
     sys.exit(EXIT_INVALID if any(d.is_error for d in findings) else EXIT_OK)
+
+
+def _live(analysis: Analysis, host: str, port: int) -> None:
+    """Serve the robot live until Ctrl-C (never returns)."""
+    try:
+        shown = simulation.stream(analysis, host=host, port=port)
+    except ToolNotFoundError as exc:  # mujoco or viser: the setup's fault, not the robot's
+        needs = "the simulation" if exc.tool == "mujoco" else "the viewer"
+        emit_findings([not_installed(exc, "fishbot sim", needs)])
+        sys.exit(status_of(exc))
+    except RobotError as exc:  # mjcf-refused: the bodies MuJoCo would refuse, located
+        emit_findings(list(exc.diagnostics))
+        sys.exit(EXIT_INVALID)
+    except FishbotUrdfError as exc:  # cannot serve there, MuJoCo refuses the robot
+        stop_on(exc)
+    try:
+        if shown.live.drive is None:
+            _say(
+                f"fishbot sim: {analysis.robot.name} has no differential drive: it is held "
+                "by its root link, and the keys move nothing"
+            )
+        _say(f"fishbot sim: {shown.url} (Ctrl-C stops)")
+        while True:
+            time.sleep(3600)
+    finally:
+        shown.close()
+
+
+def _say(line: str) -> None:
+    """A line on stdout, as every command writes there (a closed stdout is an error)."""
+    to_stdout(f"{escape_controls(line)}\n".encode("utf-8", "surrogateescape"))
 
 
 _DONE = {

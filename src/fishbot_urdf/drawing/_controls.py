@@ -1,5 +1,6 @@
 """The viewer page's controls: which values each may hold (a slider's range, a number
-within it, a checkbox's true or false), and the log line of a value dropped."""
+within it, a checkbox's true or false, a button's press), and the log line of a value
+dropped."""
 
 from __future__ import annotations
 
@@ -21,17 +22,19 @@ _SLACK = 1e-9  # a slider's end, reached in steps of (high - low) / 1000, may mi
 @dataclass(frozen=True, slots=True)
 class Input:
     """A control on the page: a joint's slider (``low`` .. ``high``), or, with ``toggle``,
-    a checkbox."""
+    a checkbox, or, with ``button``, a button (whose one value is true: pressed)."""
 
     label: str
     low: float = 0.0
     high: float = 0.0
     toggle: bool = False
+    button: bool = False
 
     @property
     def title(self) -> str:
         """How a log line names it."""
-        return f"{'checkbox' if self.toggle else 'joint'} {self.label!r}"
+        kind = "checkbox" if self.toggle else "button" if self.button else "joint"
+        return f"{kind} {self.label!r}"
 
 
 def position(value: Any, low: float, high: float) -> float | None:

@@ -18,7 +18,7 @@ from urllib.parse import urlsplit
 
 from ..errors import InputError, ToolError, ToolNotFoundError
 
-__all__ = ["ServeError", "authority", "control_id", "serve"]
+__all__ = ["ServeError", "authority", "control_id", "script", "serve"]
 
 _log = logging.getLogger(
     "fishbot_urdf.drawing.viewer"
@@ -86,6 +86,26 @@ def control_id(handle: Any) -> str:
     """The id viser gives a control on the page, as in its messages (it has no public name
     for it)."""
     return str(handle._impl.uuid)
+
+
+def script(server: Any, source: str) -> None:
+    """Run the JavaScript ``source`` in every page of ``server``, those open and those opened
+    later (viser keeps the message for them), as viser itself sends plotly.js: it has no
+    public call for it, and no other way to hear the page's keys.
+
+    Raises:
+        ToolError: viser is of a version that cannot be sent a script.
+    """
+    try:
+        from viser._messages import RunJavascriptMessage  # viser (optional)
+
+        server.gui._websock_interface.queue_message(RunJavascriptMessage(source=source))
+    except Exception as exc:  # any surprise: a viser whose insides are not these
+        raise ToolError(
+            f"the viewer cannot send the page a script with this viser (version "
+            f"{_viser().__version__}): {exc}",
+            tool="viser",
+        ) from None
 
 
 def authority(host: str, port: int) -> str:

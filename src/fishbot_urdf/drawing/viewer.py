@@ -43,7 +43,8 @@ from ._controls import slider_range
 from ._glb import glb
 from ._lumping import notes
 from ._notes import failure_note, findings_of, viewed
-from ._serving import ServeError, authority, control_id, serve, shown
+from ._sensors import LIDAR
+from ._serving import ServeError, authority, control_id, script, serve, shown
 from .scene import Scene, build_scene, in_gazebo_colours
 
 __all__ = ["TOGGLES", "ServeError", "Viewer"]
@@ -94,6 +95,9 @@ class Viewer:
         report: Called after every load the viewer makes on its own (after an edit, and
             a first load that waits) with the error that stopped it, or None when the
             robot is shown; on the thread that watches the files.
+        live: The links are posed by something else (a simulation, through `place`): no
+            joint sliders, and no lidar fans of the robot's description (the live scans
+            are drawn in their place).
 
     Raises:
         ServeError: ``host`` and ``port`` cannot be served on.
@@ -112,8 +116,10 @@ class Viewer:
         watch: Sequence[str] = (),
         wait: Callable[[FishbotUrdfError], bool] | None = None,
         report: Callable[[FishbotUrdfError | None], None] | None = None,
+        live: bool = False,
     ) -> None:
         self._load = load
+        self.live = live
         self._watched = tuple(watch)
         self._report = report
         self._points: Any = None  # the robot's, framed by the first load that succeeds
@@ -198,6 +204,7 @@ class Viewer:
     def _reload(self) -> None:
         import numpy as np  # numpy: ~190 ms to load, only where arrays are made
 
+        live = self.live
         with self._lock, time_limit(max_seconds()):
             analysis, files = self._load()
             kinematics = Kinematics(analysis)
@@ -224,7 +231,8 @@ class Viewer:
                 )
                 self._frames[link] = frame
                 self._nodes.append(frame)  # removing a frame removes what hangs below it
-            for parts in (visual.parts, collision.parts, marks.parts, sensors.parts, gazebo):
+            drawn = [p for p in sensors.parts if not (live and p.color == LIDAR)]
+            for parts in (visual.parts, collision.parts, marks.parts, drawn, gazebo):
                 for index, part in enumerate(parts):
                     mesh = self._mesh(
                         np,
@@ -242,7 +250,10 @@ class Viewer:
             self.findings = viewed(visual, collision, marks)
             if self._points is None:
                 self._frame(np, (visual, collision, marks), length)
-            ranges = {name: slider_range(analysis, name) for name in analysis.plan.outwards()}
+            ranges = {
+                name: slider_range(analysis, name)
+                for name in ([] if self.live else analysis.plan.outwards())
+            }
             inputs = dict(self._switches)
             for name, (low, high) in ranges.items():
                 value = float(min(max(self.values.get(name, 0.0), low), high))
@@ -385,6 +396,13 @@ class Viewer:
             )
             return False
         value = updates["value"]
+        if control.button:
+            if value is True:
+                return True
+            _log.warning(
+                "%s: dropped %s sent by the page (not a press)", control.title, shown.repr(value)
+            )
+            return False
         if control.toggle:
             if type(value) is bool:
                 return True
@@ -412,6 +430,44 @@ class Viewer:
                 frame = self._frames[link]
                 frame.position = poses[index, :3, 3]
                 frame.wxyz = _wxyz(poses[index, :3, :3])
+
+    def place(self, poses: Mapping[str, tuple[Sequence[float], Sequence[float]]]) -> None:
+        """Put links where ``poses`` says (in the world: position in metres, orientation as a
+        unit quaternion w, x, y, z), as a simulation moves them; links not named stay."""
+        with self._lock, self.server.atomic():
+            for link, (position, wxyz) in poses.items():
+                frame = self._frames.get(link)
+                if frame is not None:
+                    frame.position = tuple(position)
+                    frame.wxyz = tuple(wxyz)
+
+    def showing(self, layer: str) -> bool:
+        """Whether the page shows ``layer`` (one of `TOGGLES`) now."""
+        return self._visible(layer)
+
+    def on_toggle(self, call: Callable[[], None]) -> None:
+        """Call ``call`` (on viser's thread) whenever a checkbox changes."""
+        for toggle in self._toggles.values():
+            toggle.on_update(lambda _: call())
+
+    def add_button(self, label: str, press: Callable[[], None]) -> str:
+        """A button below the checkboxes that calls ``press`` (on viser's thread) when
+        pressed; the id of its element on the page (for a script to press it)."""
+        button = self.server.gui.add_button(label)
+        button.on_click(lambda _: press())
+        uuid = control_id(button)
+        with self._lock:
+            self._switches[uuid] = _Input(label, button=True)
+            self._inputs = {**self._inputs, uuid: self._switches[uuid]}
+        return uuid
+
+    def run_script(self, source: str) -> None:
+        """Run the JavaScript ``source`` in every page, open now or later.
+
+        Raises:
+            ToolError: viser is of a version that cannot be sent a script.
+        """
+        script(self.server, source)
 
     def _visible(self, layer: str) -> bool:
         """Whether a layer's parts show: the visuals give way to their Gazebo colours."""

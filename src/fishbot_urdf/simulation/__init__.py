@@ -11,6 +11,10 @@ held at a configuration, and what went wrong said as findings in the robot's fil
 - **drop**: with ``base="floating"``, a robot without wheels is dropped on the floor with
   its joints so held.
 
+`Live` drives a robot live (a command, real-time steps, the links' poses and the lidars'
+scans), and `stream` shows it on the viewer's page, driven by its keys (`fishbot sim
+--view`).
+
 Every trial watches for a state that blows up, a base that tips over, shapes deep in the
 floor, and links whose collision shapes overlap at the start. MuJoCo is the ``sim``
 extra (``pip install 'fishbot-urdf[sim]'``).
@@ -21,7 +25,7 @@ from __future__ import annotations
 import math
 import tempfile
 from pathlib import Path
-from typing import Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 from ..analysis import Analysis, of
 from ..catalog.meshes import MJCF_MESH_CONVERTED
@@ -32,11 +36,28 @@ from ..model import Robot
 from . import _findings as say
 from ._driving import SETTLE, drive
 from ._holding import held_joints, hold, servos, start, tune
+from ._live import ROOM, LaserScan, Live, Obstacle
 from ._outcome import Measure, Outcome, Trial
 from ._watch import Watch
 from ._world import INSTALL, Refused, World, load_mujoco
 
-__all__ = ["INSTALL", "Measure", "Outcome", "Trial", "load_mujoco", "simulate"]
+if TYPE_CHECKING:
+    from ._streaming import Stream, stream
+
+__all__ = [
+    "INSTALL",
+    "ROOM",
+    "LaserScan",
+    "Live",
+    "Measure",
+    "Obstacle",
+    "Outcome",
+    "Stream",
+    "Trial",
+    "load_mujoco",
+    "simulate",
+    "stream",
+]
 
 TIPPED = math.radians(30.0)
 """How far the base may lean from upright."""
@@ -151,3 +172,11 @@ def _root(analysis: Analysis) -> str:
 
 def _at(trial: Trial) -> str:
     return "at the configuration the robot is held at" if trial == "hold" else "as it stands"
+
+
+def __getattr__(name: str) -> Any:
+    if name in ("Stream", "stream"):  # the viewer's modules (~100 ms): only for --view
+        from . import _streaming
+
+        return getattr(_streaming, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
