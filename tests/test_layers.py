@@ -88,6 +88,7 @@ LAZY_HERE = {
     "src/fishbot_urdf/cli/expand.py": {"..analysis", "..parsing"},
     "src/fishbot_urdf/cli/check.py": {"._fixing"},
     "src/fishbot_urdf/fixes.py": {".inertia"},
+    "src/fishbot_urdf/simulation/__init__.py": {"."},
 }
 
 

@@ -175,7 +175,8 @@ def _at(trial: Trial) -> str:
 
 
 def __getattr__(name: str) -> Any:
-    if name in ("Stream", "stream"):  # the viewer's modules (~100 ms): only for --view
+    if name in ("Stream", "stream"):
+        # the viewer's modules (~100 ms): only for --view
         from . import _streaming
 
         return getattr(_streaming, name)
