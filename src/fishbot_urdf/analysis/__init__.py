@@ -17,9 +17,9 @@ from typing import NamedTuple
 
 from ..extensions import Reference, from_robot
 from ..inputs import deadline
-from ..model import Joint, JointType, Link, Material, Mesh, Robot, Visual
+from ..model import Joint, JointType, Link, Material, Mesh, Robot, Vector3, Visual
 from ..packages import PackageFinder
-from ..spatial import Pose, Vector3
+from ..spatial import Pose
 from .drive import Drive, drives, wheels
 from .gazebo import Block, Lumping, blocks, lumping
 from .materials import visual_materials

@@ -14,8 +14,8 @@ from dataclasses import dataclass, field
 
 from lxml import etree
 
-from ..model import Cylinder, Joint, JointType, Link, Mesh, Sphere
-from ..spatial import Pose, Vector3, dot, mat_vec, rpy_matrix, scale, transpose
+from ..model import Cylinder, Joint, JointType, Link, Mesh, Sphere, Vector3
+from ..spatial import Pose, dot, mat_vec, rpy_matrix, scale, transpose
 from .gazebo import Block, number, plugins, text, texts
 
 __all__ = [
@@ -228,7 +228,8 @@ def wheels(
             if abs(r1 - r2) > 1e-6 * max(r1, r2):
                 continue
             p1, p2 = poses[one.child], poses[other.child]
-            between = tuple(a - b for a, b in zip(p1.translation, p2.translation, strict=True))
+            (x1, y1, z1), (x2, y2, z2) = p1.translation, p2.translation
+            between = (x1 - x2, y1 - y2, z1 - z2)
             length = math.sqrt(dot(between, between))
             if length < _EPS or abs(between[1]) / length < ALONG:
                 continue

@@ -33,7 +33,7 @@ from ._common import (
 )
 
 
-class _Drive(click.ParamType):
+class _Drive(click.ParamType):  # type: ignore[type-arg]
     """``V,OMEGA``: a speed (m/s) and a turn rate (rad/s)."""
 
     name = "V,OMEGA"
@@ -42,7 +42,7 @@ class _Drive(click.ParamType):
         self, value: object, param: click.Parameter | None, ctx: click.Context | None
     ) -> tuple[float, float]:
         if isinstance(value, tuple):
-            return value  # type: ignore[return-value]
+            return (float(value[0]), float(value[1]))
         parts = str(value).split(",")
         try:
             speed, turn = (float(p) for p in parts)

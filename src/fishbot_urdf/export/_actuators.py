@@ -131,7 +131,8 @@ def moved_inertia(analysis: Analysis, joint: Joint) -> float:
             continue
         place = poses[name].then(Pose.of(inertial.origin))
         tensor = rotate_tensor(place.rotation, inertial.inertia.matrix())
-        arm = tuple(c - o for c, o in zip(place.translation, frame.translation, strict=True))
+        (cx, cy, cz), (ox, oy, oz) = place.translation, frame.translation
+        arm = (cx - ox, cy - oy, cz - oz)
         across = cross(arm, axis)
         total += dot(axis, mat_vec(tensor, axis)) + inertial.mass * dot(across, across)
     return max(total, 0.0)

@@ -106,7 +106,7 @@ def simulate(
     with tempfile.TemporaryDirectory(prefix="fishbot-sim-") as folder:
         # the meshes MuJoCo cannot read are converted there, and read as it compiles
         model = Path(folder) / "robot.xml"
-        base_of = "fixed" if trial == "hold" else "floating"
+        base_of: Literal["fixed", "floating"] = "fixed" if trial == "hold" else "floating"
         made = write_mjcf(analysis, model, base=base_of, driven=driven)
         conversion = tuple(d for d in made.findings if d.rule != MJCF_MESH_CONVERTED.id)
         if any(d.is_error for d in conversion):
@@ -114,8 +114,8 @@ def simulate(
         try:
             world = World(analysis, made.text, floor=trial != "hold", folder=Path(folder))
         except Refused as exc:
-            found = (*conversion, say.refused(analysis, exc.why))
-            return Outcome(analysis.robot.name, trial, 0.0, 0, (), found)
+            refusal = (*conversion, say.refused(analysis, exc.why))
+            return Outcome(analysis.robot.name, trial, 0.0, 0, (), refusal)
     root = _root(analysis)
     watch = Watch(world, world.body(root))
     found: list[Diagnostic] = list(conversion)

@@ -56,7 +56,8 @@ def load_mujoco() -> ModuleType:
         raise ToolNotFoundError(
             "the mujoco package is not installed", tool="mujoco", hint=INSTALL
         ) from exc
-    return mujoco
+    module: ModuleType = mujoco
+    return module
 
 
 class World:
@@ -215,8 +216,8 @@ class World:
         for one, other, depth in self.contacts():
             if self.floor in (one, other):
                 continue
-            pair = tuple(sorted((self.link_of(one), self.link_of(other))))
-            found[pair] = max(found.get(pair, 0.0), depth)  # type: ignore[index]
+            first, second = sorted((self.link_of(one), self.link_of(other)))
+            found[first, second] = max(found.get((first, second), 0.0), depth)
         return [(a, b, depth) for (a, b), depth in sorted(found.items()) if depth > 0.001]
 
     def positions(self, joints: Sequence[int]) -> list[float]:
