@@ -48,3 +48,12 @@ def call_chain(calls: tuple[tuple[str, Location], ...]) -> str:
     """Macro calls, innermost first, as a finding names them: ``macro cylinder_inertia
     called at wheel.urdf.xacro:13, in macro wheel_xacro called at fishbot.urdf.xacro:60``."""
     return ", in ".join(f"macro {name} called at {site.path}:{site.line}" for name, site in calls)
+
+
+def passed_through(where: Location | None) -> str:
+    """For a value a macro call wrote (in the macro's body): ``, or what macro ... called at
+    ... passes for it``, the place the learner edits; "" for a value written where it is."""
+    calls = calls_of(where)
+    if not calls:
+        return ""
+    return f", or what {call_chain(calls)} passes for it"

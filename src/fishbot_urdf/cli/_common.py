@@ -287,6 +287,27 @@ def output_option(what: str) -> Callable[[Wrapped], Wrapped]:
     )
 
 
+def base_options(fixed: str, floating: str) -> Callable[[Wrapped], Wrapped]:
+    """``--fixed-base`` and ``--floating-base`` (``fixed`` and ``floating`` their help),
+    given to the command as ``base`` (``fixed``, ``floating`` or None); both at once are a
+    usage error."""
+
+    def decorate(function: Wrapped) -> Wrapped:
+        @functools.wraps(function)
+        def chosen(*args: Any, fixed_base: bool, floating_base: bool, **kwargs: Any) -> Any:
+            if fixed_base and floating_base:
+                raise click.UsageError("--fixed-base and --floating-base cannot both be given")
+            base = "fixed" if fixed_base else "floating" if floating_base else None
+            return function(*args, base=base, **kwargs)
+
+        with_floating = click.option(
+            "--floating-base", "floating_base", is_flag=True, help=floating
+        )(chosen)
+        return click.option("--fixed-base", "fixed_base", is_flag=True, help=fixed)(with_floating)  # type: ignore[return-value]
+
+    return decorate
+
+
 def joint_option() -> Callable[[Wrapped], Wrapped]:
     """``-j/--joint NAME=VALUE`` (repeatable), stored as ``joint_items``: a joint position,
     written with ``=`` so that it is never taken for a xacro ``name:=value``."""

@@ -23,6 +23,7 @@ from ._checking import nearest_config, posable_input, read_files
 from ._common import (
     EXIT_INVALID,
     EXIT_OK,
+    base_options,
     emit_findings,
     inputs_read,
     limit_options,
@@ -39,17 +40,9 @@ from ._common import (
 @click.argument("file", type=click.Path(allow_dash=True))
 @click.argument("args", nargs=-1, metavar="[name:=value]...")
 @output_option("the MJCF")
-@click.option(
-    "--fixed-base",
-    "base",
-    flag_value="fixed",
-    help="Fix the root link to the world (the default for a robot whose root is `world`).",
-)
-@click.option(
-    "--floating-base",
-    "base",
-    flag_value="floating",
-    help="Let the root link move freely (the default for any other robot).",
+@base_options(
+    "Fix the root link to the world (the default for a robot whose root is `world`).",
+    "Let the root link move freely (the default for any other robot).",
 )
 @package_option()
 @limit_options()

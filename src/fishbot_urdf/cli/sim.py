@@ -13,13 +13,18 @@ import click
 
 from .. import simulation
 from ..analysis import Analysis
+from ..catalog.gazebo import DIFF_DRIVE_SIZE, DIFF_DRIVE_WHEELS
+from ..catalog.joints import WHEEL_AXIS
+from ..catalog.references import UNKNOWN_REFERENCE
 from ..diagnostics import escape_controls
 from ..errors import FishbotUrdfError, RobotError, ToolNotFoundError
-from ..simulation import Outcome, simulate
+from ..lint import check_again
+from ..simulation import Outcome, quiet_mujoco, simulate
 from ._checking import nearest_config, posable_input
 from ._common import (
     EXIT_INVALID,
     EXIT_OK,
+    base_options,
     emit_findings,
     format_option,
     limit_options,
@@ -71,17 +76,9 @@ class _Drive(click.ParamType):  # type: ignore[type-arg]
     show_default=True,
     help="How long each drive (or the hold) lasts once the command is reached (simulated s).",
 )
-@click.option(
-    "--fixed-base",
-    "base",
-    flag_value="fixed",
-    help="Hold the robot by its root link (the default for a robot without wheels).",
-)
-@click.option(
-    "--floating-base",
-    "base",
-    flag_value="floating",
-    help="Drop the robot on the floor (the default for a wheeled robot).",
+@base_options(
+    "Hold the robot by its root link (the default for a robot without wheels).",
+    "Drop the robot on the floor (the default for a wheeled robot).",
 )
 @click.option(
     "--view",
@@ -168,13 +165,23 @@ def sim(
         "fixed" if base == "fixed" else "floating" if base == "floating" else "auto"
     )
     try:
+        quiet_mujoco()  # its warnings are the findings' to say (and no log file is written)
         outcome = simulate(result.analysis, seconds=seconds, speed=speed, turn=turn, base=chosen)
     except ToolNotFoundError as exc:  # mujoco: the setup's fault, not the robot's
         emit_findings([not_installed(exc, "fishbot sim", "the simulation")])
         sys.exit(status_of(exc))
     except FishbotUrdfError as exc:
         stop_on(exc)
-    findings = [d for d in outcome.findings if config.applies(d.rule)]
+    # what the check says of the drive first (it names the cause the simulation shows), then
+    # what the simulation found that it did not say
+    drive_rules = [rule.id for rule in _DRIVE_RULES if config.applies(rule.id)]
+    said = list(check_again(result, config.updated(select=drive_rules))) if drive_rules else []
+    places = {(d.rule, d.path, d.line) for d in said}
+    findings = said + [
+        d
+        for d in outcome.findings
+        if config.applies(d.rule) and (d.rule, d.path, d.line) not in places
+    ]
     if fmt == "json":
         to_stdout((json.dumps(_json(outcome, findings), indent=2) + "\n").encode("utf-8"))
     else:
@@ -214,6 +221,8 @@ def _say(line: str) -> None:
     to_stdout(f"{escape_controls(line)}\n".encode("utf-8", "surrogateescape"))
 
 
+_DRIVE_RULES = (WHEEL_AXIS, UNKNOWN_REFERENCE, DIFF_DRIVE_WHEELS, DIFF_DRIVE_SIZE)
+"""The check's rules on a drive, which say what the simulation will show, and why."""
 _DONE = {
     "drive": "dropped on the floor, driven straight at {speed:g} m/s, turned at {turn:g} rad/s",
     "hold": "held by its root link, each joint by its servo",
@@ -223,8 +232,8 @@ _DONE = {
 
 def _table(outcome: Outcome, speed: float, turn: float) -> str:
     done = _DONE[outcome.trial].format(speed=speed, turn=turn)
-    if not outcome.steps:
-        return f"{outcome.robot}: not simulated: MuJoCo refuses the model\n"
+    if outcome.stopped:
+        return f"{outcome.robot}: not simulated: {outcome.stopped}\n"
     lines = [f"{outcome.robot}: {done} ({outcome.seconds:.2f} s simulated, {outcome.steps} steps)"]
     rows = []
     for m in outcome.measures:

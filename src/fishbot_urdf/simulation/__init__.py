@@ -32,6 +32,7 @@ from ..catalog.meshes import MJCF_MESH_CONVERTED
 from ..diagnostics import Diagnostic
 from ..errors import ArgumentError
 from ..export.mjcf import motors, write_mjcf
+from ..inputs import deadline
 from ..model import Robot
 from . import _findings as say
 from ._driving import SETTLE, drive
@@ -39,7 +40,7 @@ from ._holding import held_joints, hold, servos, start, tune
 from ._live import ROOM, LaserScan, Live, Obstacle
 from ._outcome import Measure, Outcome, Trial
 from ._watch import Watch
-from ._world import INSTALL, Refused, World, load_mujoco
+from ._world import INSTALL, Refused, World, load_mujoco, quiet_mujoco
 
 if TYPE_CHECKING:
     from ._streaming import Stream, stream
@@ -55,12 +56,13 @@ __all__ = [
     "Stream",
     "Trial",
     "load_mujoco",
+    "quiet_mujoco",
     "simulate",
     "stream",
 ]
 
-TIPPED = math.radians(30.0)
-"""How far the base may lean from upright."""
+TIPPED = 30.0
+"""How far the base may lean from upright (degrees)."""
 DEEP = 0.01
 """How deep a shape may sink into the floor (m)."""
 DROP = 0.005
@@ -100,6 +102,11 @@ def simulate(
     pairs = analysis.drives
     pair = pairs[0] if pairs and base != "fixed" else None
     trial: Trial = "drive" if pair is not None else "drop" if base == "floating" else "hold"
+    if pair is not None:
+        faults = say.undrivable(analysis, pair)
+        if faults:
+            why = "the drive's wheels cannot be driven"
+            return Outcome(analysis.robot.name, trial, 0.0, 0, (), tuple(faults), why)
     wheel_motors = motors(analysis, drives=(pair,)) if pair is not None else ()
     held = held_joints(analysis, {m.joint for m in wheel_motors})
     driven = (*wheel_motors, *servos(analysis, held))
@@ -110,14 +117,16 @@ def simulate(
         made = write_mjcf(analysis, model, base=base_of, driven=driven)
         conversion = tuple(d for d in made.findings if d.rule != MJCF_MESH_CONVERTED.id)
         if any(d.is_error for d in conversion):
-            return Outcome(analysis.robot.name, trial, 0.0, 0, (), conversion)
+            why = "MuJoCo refuses the model"
+            return Outcome(analysis.robot.name, trial, 0.0, 0, (), conversion, why)
         try:
             world = World(analysis, made.text, floor=trial != "hold", folder=Path(folder))
         except Refused as exc:
             refusal = (*conversion, say.refused(analysis, exc.why))
-            return Outcome(analysis.robot.name, trial, 0.0, 0, (), refusal)
+            why = "MuJoCo refuses the model"
+            return Outcome(analysis.robot.name, trial, 0.0, 0, (), refusal, why)
     root = _root(analysis)
-    watch = Watch(world, world.body(root))
+    watch = Watch(world, world.body(root), deadline=deadline())
     found: list[Diagnostic] = list(conversion)
     target = start(analysis, world, held)
     for one, other, depth in world.overlaps():
@@ -139,10 +148,11 @@ def simulate(
         found.append(say.exploded(analysis, watch.exploded, watch.fastest))
     else:
         if trial != "hold":
-            tilt, most = math.degrees(watch.tilt), math.degrees(TIPPED)
-            measures.append(Measure("largest tilt", tilt, None, "degrees", tilt <= most, most=most))
-            if watch.tilt > TIPPED:
-                found.append(say.tipped(analysis, root, tilt))
+            tilt = math.degrees(watch.tilt)
+            ok = tilt <= TIPPED
+            measures.append(Measure("largest tilt", tilt, None, "degrees", ok, most=TIPPED))
+            if not ok:
+                found.append(say.tipped(analysis, root, tilt, wheeled=pair is not None))
             depth, link = watch.depth
             measures.append(
                 Measure("deepest in the floor", depth, None, "m", depth <= DEEP, link, most=DEEP)
@@ -150,7 +160,8 @@ def simulate(
             if depth > DEEP:
                 found.append(say.penetration(analysis, link, depth))
     steps = round(world.time / world.model.opt.timestep)
-    return Outcome(analysis.robot.name, trial, world.time, steps, tuple(measures), tuple(found))
+    seconds_run = round(world.time, 9)  # (a sum of time steps)
+    return Outcome(analysis.robot.name, trial, seconds_run, steps, tuple(measures), tuple(found))
 
 
 def _settle(

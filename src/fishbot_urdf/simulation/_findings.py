@@ -9,8 +9,11 @@ from typing import TYPE_CHECKING
 from ..analysis import Analysis
 from ..analysis.drive import Drive
 from ..catalog import simulation as rules
+from ..catalog.gazebo import DIFF_DRIVE_WHEELS
 from ..catalog.physics import MJCF_REFUSED
+from ..catalog.references import UNKNOWN_REFERENCE
 from ..diagnostics import Diagnostic, Kind, Subject
+from ..location import passed_through
 from ..model import JointType, Location, Sphere
 from ..spatial import mat_vec, rpy_matrix
 
@@ -31,6 +34,7 @@ __all__ = [
     "speed",
     "tipped",
     "turn",
+    "undrivable",
     "wheel_off",
 ]
 
@@ -65,10 +69,13 @@ def sank(analysis: Analysis, wheel: Wheel, low: float) -> Diagnostic:
         along = mat_vec(rpy_matrix(wheel.collision.origin.rpy), (0.0, 0.0, 1.0))
         lies = " ".join(f"{round(v, 3):g}" for v in along)
         cause = (
-            f": its collision cylinder lies along {lies} of the link, not along joint "
-            f"{wheel.joint.name!r}'s axis ({axis}), so it rolls on its rims and flat sides"
+            f": its collision cylinder lies along {lies} of the link, and joint "
+            f"{wheel.joint.name!r} turns it about {axis}, so it rolls on its rims and flat sides"
         )
-        hint = 'turn the cylinder onto the axle: rpy="1.5708 0 0" on its origin for an axle along y'
+        hint = (
+            "make the cylinder's axis and the joint's <axis> one, the axle (URDF's cylinders lie "
+            'along z: rpy="1.5708 0 0" on the collision\'s origin lays one along y)'
+        )
     where = wheel.collision.source if wheel.collision is not None else wheel.link.source
     return rules.SIM_SANK.report(
         f"{wheel.link.name} sank {_cm(low)}: its centre came down to "
@@ -89,11 +96,16 @@ def wheel_off(
     where = wheel.joint.source
     cause = ""
     hint = "place the wheels' lowest point at the floor the rest of the robot stands on"
-    if below is not None:
-        link, depth, at = below
-        cause = f": {link} reaches {_cm(depth)} below the wheels' lowest point and holds them up"
-        hint = f"raise {link} by {_cm(depth)}, so that its lowest point is the wheels'"
+    if below:
+        links = " and ".join(link for link, _, _ in below)
+        depth, at = below[0][1], below[0][2]
+        reach = "reaches" if len(below) == 1 else "reach"
+        cause = f": {links} {reach} {_cm(depth)} below the wheels' lowest point and hold them up"
         where = at or where
+        hint = (
+            f"raise {links} by {_cm(depth)}, so that their lowest point is the wheels'"
+            + passed_through(where)
+        )
     return rules.SIM_WHEEL_OFF_FLOOR.report(
         f"{wheel.link.name} touched the floor {share:.0%} of the time while driving{cause}",
         where,
@@ -105,15 +117,16 @@ def wheel_off(
 
 def _below_wheels(
     analysis: Analysis, wheels: tuple[Wheel, Wheel]
-) -> tuple[str, float, Location | None] | None:
-    """The ball-shaped support (a caster) reaching lowest below the wheels' lowest point in
-    the robot's frame, every joint at zero, if one does by more than a millimetre."""
+) -> list[tuple[str, float, Location | None]]:
+    """The ball-shaped supports (casters) reaching below the wheels' lowest point in the
+    robot's frame, every joint at zero, by more than a millimetre: the deepest, and those
+    within a millimetre of it."""
     poses = analysis.zero_poses
     lows = [poses[w.link.name].translation[2] - w.radius for w in wheels if w.link.name in poses]
     if not lows:
-        return None
+        return []
     floor = min(lows)
-    deepest: tuple[str, float, Location | None] | None = None
+    found: list[tuple[str, float, Location | None]] = []
     names = {w.link.name for w in wheels}
     for name, pose in poses.items():
         link = analysis.links.get(name)
@@ -124,9 +137,10 @@ def _below_wheels(
                 continue
             centre = pose.apply(collision.origin.xyz)
             depth = floor - (centre[2] - collision.geometry.radius)
-            if depth > 0.001 and (deepest is None or depth > deepest[1]):
-                deepest = (name, depth, _joint_place(analysis, name) or collision.source)
-    return deepest
+            if depth > 0.001:
+                found.append((name, depth, _joint_place(analysis, name) or collision.source))
+    found.sort(key=lambda item: -item[1])
+    return [item for item in found if item[1] > found[0][1] - 0.001]
 
 
 def _joint_place(analysis: Analysis, link: str) -> Location | None:
@@ -187,9 +201,13 @@ def speed(
     """Driven straight at ``asked`` m/s, the robot moved at ``moved``; ``seen`` names the
     finding that explains it, if one does."""
     cause, hint = "", "look at how the wheels touch the floor (fishbot view, Collision)"
-    where = _plugin_place(pair, pair.dialect.size if pair.dialect else "") or wheels[0].joint.source
-    if radius_cause := _radius_cause(pair, wheels[0].radius):
+    where = _plugin_place(pair, "") or wheels[0].joint.source
+    if stopping := _stopping(wheels):
+        cause, hint, where = stopping
+    elif radius_cause := _radius_cause(pair, wheels[0].radius):
         cause, hint = radius_cause
+        where = _plugin_place(pair, pair.dialect.size if pair.dialect else "") or where
+        hint += passed_through(where)
     elif seen:
         cause = f": see {seen}"
         hint = f"fix what {seen} says"
@@ -205,6 +223,19 @@ def speed(
         subject=Subject(Kind.ROBOT, analysis.robot.name),
         hint=hint,
     )
+
+
+def _stopping(wheels: tuple[Wheel, Wheel]) -> tuple[str, str, Location | None] | None:
+    """The cause, fix and place when a wheel's joint is revolute, and stops at its limits."""
+    for wheel in wheels:
+        joint, limit = wheel.joint, wheel.joint.limit
+        if joint.type is JointType.REVOLUTE and limit is not None:
+            cause = (
+                f": wheel joint {joint.name!r} is revolute, and stops at its limits "
+                f"({limit.lower:.3g} to {limit.upper:.3g} rad)"
+            )
+            return cause, "make the wheel's joint continuous", joint.source
+    return None
 
 
 def _radius_cause(pair: Drive, rolls: float) -> tuple[str, str] | None:
@@ -250,9 +281,11 @@ def turn(
     the finding that explains it, if one does."""
     left, right = wheels
     hint = "look at the wheels and casters as they touch the floor"
-    where = _plugin_place(pair, pair.dialect.separation if pair.dialect else "")
+    where = _plugin_place(pair, "")
     cause = ""
-    if asked * rate < 0 and abs(rate) > 0.1 * abs(asked):
+    if stopping := _stopping(wheels):
+        cause, hint, where = stopping
+    elif asked * rate < 0 and abs(rate) > 0.1 * abs(asked):
         side = "right" if left.joint.origin.xyz[1] < right.joint.origin.xyz[1] else "left"
         cause = (
             f": it turns the other way, as the drive's left wheel {left.joint.name!r} is on "
@@ -264,15 +297,19 @@ def turn(
         else:
             hint = "turn the wheel joints' axes the same way, along +y"
         where = _plugin_place(pair, pair.dialect.left if pair.dialect else "") or where
+        hint += passed_through(where)
     elif radius_cause := _radius_cause(pair, wheels[0].radius):
         cause, hint = radius_cause
+        where = _plugin_place(pair, pair.dialect.size if pair.dialect else "") or where
+        hint += passed_through(where)
     elif told > 0 and abs(told - apart) > 0.02 * apart:
         tag = pair.dialect.separation if pair.dialect is not None else "wheel separation"
         cause = (
             f": the drive is told the wheels are {told:.4g} m apart (<{tag}>), they are "
             f"{apart:.4g} m"
         )
-        hint = f"write <{tag}>{apart:.4g}</{tag}>"
+        where = _plugin_place(pair, tag) or where
+        hint = f"write <{tag}>{apart:.4g}</{tag}>" + passed_through(where)
     elif seen:
         cause, hint = f": see {seen}", f"fix what {seen} says"
     return rules.SIM_TURN.report(
@@ -291,6 +328,42 @@ def _plugin_place(pair: Drive, tag: str) -> Location | None:
     found = pair.plugin.find(tag) if tag else None
     at = pair.block.place_of(found) if found is not None else None
     return at or pair.block.place_of(pair.plugin) or pair.block.where
+
+
+def undrivable(analysis: Analysis, pair: Drive) -> list[Diagnostic]:
+    """Why ``pair``'s wheels cannot be driven: a joint it names that the robot does not have,
+    or one that does not turn (empty when both can be)."""
+    found = []
+    names = pair.dialect
+    for name, tag in (
+        (pair.left, names.left if names else ""),
+        (pair.right, names.right if names else ""),
+    ):
+        joint = analysis.joints.get(name)
+        where = _plugin_place(pair, tag)
+        if joint is None:
+            found.append(
+                UNKNOWN_REFERENCE.report(
+                    f"the drive's wheel joint {name!r} is not a joint of the robot: fishbot sim "
+                    "cannot drive it",
+                    where,
+                    path=analysis.path,
+                    subject=Subject(Kind.JOINT, name),
+                    hint="name the wheel's continuous joint",
+                )
+            )
+        elif joint.type not in (JointType.CONTINUOUS, JointType.REVOLUTE):
+            found.append(
+                DIFF_DRIVE_WHEELS.report(
+                    f"the drive's wheel joint {name!r} is a {joint.type.value} joint, which does "
+                    "not turn: fishbot sim cannot drive it",
+                    where or joint.source,
+                    path=analysis.path,
+                    subject=Subject(Kind.JOINT, name),
+                    hint="make the wheel's joint continuous, about the axle",
+                )
+            )
+    return found
 
 
 def refused(analysis: Analysis, why: str) -> Diagnostic:
@@ -327,15 +400,17 @@ def exploded(analysis: Analysis, time: float, fastest: str) -> Diagnostic:
     )
 
 
-def tipped(analysis: Analysis, root: str, degrees: float) -> Diagnostic:
+def tipped(analysis: Analysis, root: str, degrees: float, *, wheeled: bool) -> Diagnostic:
     """The root leaned ``degrees`` from upright."""
+    hint = "check where each link's mass is (fishbot view, Mass)"
+    if wheeled:
+        hint += ", and place the casters where they hold the body up"
     return rules.SIM_TIPPED.report(
         f"{root} tipped over: it leaned {degrees:.0f} degrees from upright",
         _where_link(analysis, root),
         path=analysis.path,
         subject=_link(analysis, root),
-        hint="check where each link's mass is (fishbot view, Mass), and place the casters "
-        "where they hold the body up",
+        hint=hint,
     )
 
 
@@ -358,8 +433,10 @@ def sag(
     sliding = known is not None and known.type is JointType.PRISMATIC
     length, force = ("m", "N") if sliding else ("rad", "N*m")
     limit = "it has no effort limit"
-    if effort is not None:
+    if effort is not None and abs(gravity) > effort:
         limit = f"its effort limit is {effort:.3g} {force}"
+    elif effort is not None:
+        limit = f"its effort limit of {effort:.3g} {force} holds that: the links it carries move it"
     where = None
     if known is not None:
         where = known.limit.source if known.limit is not None else known.source

@@ -116,19 +116,24 @@ def hold(
     if not watch.run(seconds, ramp=False):
         return measures, found
     ids = [world.joint(name) for name in joints]
-    worst = 0.0
+    worst, most = 0.0, ""
+    sagged: list[tuple[str, float, float | None]] = []  # (joint, drift, effort limit)
     for name, value in zip(joints, world.positions(ids), strict=True):
         joint = analysis.joints[name]
         scale = 5.0 if joint.type is JointType.PRISMATIC else 1.0
         moved = abs(value - target[name])
-        worst = max(worst, moved * scale)
+        if moved * scale > worst:
+            worst, most = moved * scale, name
         if moved * scale > DRIFT:
-            effort = world.model.actuator_forcerange[world.actuator(name)][1]
-            limited = bool(world.model.actuator_forcelimited[world.actuator(name)])
-            unit = " m" if scale != 1.0 else " rad"
-            measures.append(Measure("drift", moved, 0.0, unit.strip(), False, name))
-            found.append(
-                say.sag(analysis, name, moved, gravity[name], float(effort) if limited else None)
-            )
-    measures.insert(0, Measure("largest drift", worst, None, "rad", worst <= DRIFT, most=DRIFT))
-    return measures, found
+            actuator = world.actuator(name)
+            limited = bool(world.model.actuator_forcelimited[actuator])
+            effort = float(world.model.actuator_forcerange[actuator][1]) if limited else None
+            unit = "m" if scale != 1.0 else "rad"
+            measures.append(Measure("drift", moved, 0.0, unit, False, name))
+            sagged.append((name, moved, effort))
+    # the joints gravity overcomes; a joint only dragged along by them is not at fault
+    weak = [s for s in sagged if s[2] is not None and abs(gravity[s[0]]) > s[2]]
+    for name, moved, effort in weak or sagged[:1]:
+        found.append(say.sag(analysis, name, moved, gravity[name], effort))
+    largest = Measure("largest drift", worst, None, "rad", worst <= DRIFT, most, most=DRIFT)
+    return [largest, *measures], found

@@ -63,6 +63,7 @@ class Outcome:
         measures: The numbers measured, in the order they were.
         findings: What went wrong (the ``sim-*`` rules), and what the conversion to MJCF
             changed or left out, each located in the robot's files.
+        stopped: Why nothing was simulated ("" when it was): the findings say where.
     """
 
     robot: str
@@ -71,6 +72,7 @@ class Outcome:
     steps: int
     measures: tuple[Measure, ...]
     findings: tuple[Diagnostic, ...]
+    stopped: str = ""
 
     @property
     def ok(self) -> bool:

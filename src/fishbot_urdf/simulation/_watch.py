@@ -9,10 +9,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..inputs import Deadline
 from ._world import SAMPLE, World
 
 __all__ = ["RAMP", "Watch"]
 
+RUNAWAY = 1e4
+"""A body turning faster than this (rad/s) has blown up, whatever its numbers still are."""
 RAMP = 0.5
 """How long a change of command takes (s): drive plugins ramp their wheels, and a step from
 rest to full speed makes a light robot jump."""
@@ -34,6 +37,7 @@ class Watch:
             `count` began.
         heights: The lowest height each body of `track` was seen at (m).
         fastest: The link that turned fastest at the last look.
+        deadline: When to stop (the time limit in force), looked at each look.
     """
 
     world: World
@@ -46,6 +50,7 @@ class Watch:
     forces: dict[str, tuple[float, float]] = field(default_factory=dict)
     heights: dict[int, float] = field(default_factory=dict)
     fastest: str = ""
+    deadline: Deadline | None = None
 
     def track(self, bodies: list[int]) -> None:
         """Watch how low ``bodies`` go, from now on."""
@@ -82,10 +87,12 @@ class Watch:
 
     def _look(self) -> bool:
         world = self.world
-        if world.broken():
+        if self.deadline is not None:
+            self.deadline.check("the simulation")
+        spins = np.linalg.norm(world.data.cvel[:, :3], axis=1)
+        if world.broken() or float(np.max(spins, initial=0.0)) > RUNAWAY:
             self.exploded = world.time
             return False
-        spins = np.linalg.norm(world.data.cvel[:, :3], axis=1)
         self.fastest = world.links[int(np.argmax(spins))]
         upright = float(world.data.xmat[self.root][8])  # the root's z axis, up component
         self.tilt = max(self.tilt, math.acos(max(-1.0, min(1.0, upright))))

@@ -19,7 +19,7 @@ from ..analysis import Analysis
 from ..errors import ConversionError, ToolNotFoundError
 from ..export.mjcf import COLLISION_GROUP
 
-__all__ = ["FLOOR", "INSTALL", "Refused", "World", "load_mujoco"]
+__all__ = ["FLOOR", "INSTALL", "Refused", "World", "load_mujoco", "quiet_mujoco"]
 
 INSTALL = "pip install 'fishbot-urdf[sim]'"
 """How to install what `fishbot sim` needs."""
@@ -32,6 +32,22 @@ _ROBOT, _GROUND = 1, 2
 Gazebo leaves a URDF robot's links (``<self_collide>`` is off unless a link turns it on)."""
 SAMPLE = 0.01
 """How often the trials look at the simulation (s of simulated time)."""
+
+
+def quiet_mujoco() -> None:
+    """Have MuJoCo keep its warnings to itself, for the whole process: by default it prints
+    each (a blow-up's ``Nan, Inf or huge value in QACC``) and appends it to
+    ``MUJOCO_LOG.TXT`` in the current folder. A simulation says what MuJoCo warns of as its
+    findings (`sim-exploded`); a front end calls this once, the library never does.
+
+    Raises:
+        ToolNotFoundError: mujoco is not installed.
+    """
+    load_mujoco().set_mju_user_warning(_ignored)
+
+
+def _ignored(message: str) -> None:
+    """A MuJoCo warning, said elsewhere."""
 
 
 class Refused(ConversionError):
@@ -214,11 +230,24 @@ class World:
         millimetre, with the depth (before `apart`)."""
         found: dict[tuple[str, str], float] = {}
         for one, other, depth in self.contacts():
-            if self.floor in (one, other):
+            if self.floor in (one, other) or self._joined(one, other):
                 continue
             first, second = sorted((self.link_of(one), self.link_of(other)))
             found[first, second] = max(found.get((first, second), 0.0), depth)
         return [(a, b, depth) for (a, b), depth in sorted(found.items()) if depth > 0.001]
+
+    def _joined(self, one: int, other: int) -> bool:
+        """Whether two geoms' bodies are one rigid body, or a body and its parent's, which
+        MuJoCo lets overlap (but for the world's bodies, whose children it collides)."""
+        model = self.model
+        weld = model.body_weldid
+        first, second = int(model.geom_bodyid[one]), int(model.geom_bodyid[other])
+        up_first, up_second = model.body_parentid[first], model.body_parentid[second]
+        return bool(
+            weld[first] == weld[second]
+            or weld[up_first] == weld[second]
+            or weld[up_second] == weld[first]
+        )
 
     def positions(self, joints: Sequence[int]) -> list[float]:
         """The positions of one-number joints."""

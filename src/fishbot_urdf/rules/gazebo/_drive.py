@@ -12,7 +12,7 @@ from ...analysis.drive import ALONG, GZ, Dialect, dialect, unit, wheel_radius
 from ...analysis.gazebo import Block, place, plugins, text, texts
 from ...catalog.gazebo import DIFF_DRIVE_SIZE, DIFF_DRIVE_WHEELS
 from ...diagnostics import Diagnostic, Kind, Subject
-from ...location import call_chain, calls_of
+from ...location import passed_through
 from ...model import Joint, JointType, Location
 from ...spatial import Pose, dot, mat_vec
 
@@ -51,7 +51,7 @@ def _drive(
                     path=analysis.path,
                     subject=subject,
                     hint="name the wheels' continuous joints, turning about the axle, left as "
-                    f"the wheel on +y{_through(_at(block, plugin, named, index))}",
+                    f"the wheel on +y{passed_through(_at(block, plugin, named, index))}",
                 )
             continue
         if pair is None:
@@ -108,16 +108,8 @@ def _size(analysis: Analysis, message: str, where: Location | None, hint: str) -
         where,
         path=analysis.path,
         subject=Subject(Kind.ROBOT, analysis.robot.name),
-        hint=hint + _through(where),
+        hint=hint + passed_through(where),
     )
-
-
-def _through(where: Location | None) -> str:
-    """For a setting a macro call made: the call, where its value is given."""
-    calls = calls_of(where)
-    if not calls:
-        return ""
-    return f", or what {call_chain(calls)} passes for it"
 
 
 def _is(value: float, written: bool) -> str:
