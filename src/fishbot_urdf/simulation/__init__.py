@@ -28,14 +28,15 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal
 
 from ..analysis import Analysis, of
+from ..analysis.drive import Drive
 from ..catalog.meshes import MJCF_MESH_CONVERTED
 from ..diagnostics import Diagnostic
 from ..errors import ArgumentError
 from ..export.mjcf import motors, write_mjcf
 from ..inputs import deadline
-from ..model import Robot
+from ..model import Cylinder, Robot
 from . import _findings as say
-from ._driving import SETTLE, drive
+from ._driving import SETTLE, Wheel, drive, wheels_of
 from ._holding import held_joints, hold, servos, start, tune
 from ._live import ROOM, LaserScan, Live, Obstacle
 from ._outcome import Measure, Outcome, Trial
@@ -108,7 +109,7 @@ def simulate(
             why = "the drive's wheels cannot be driven"
             return Outcome(analysis.robot.name, trial, 0.0, 0, (), tuple(faults), why)
     wheel_motors = motors(analysis, drives=(pair,)) if pair is not None else ()
-    held = held_joints(analysis, {m.joint for m in wheel_motors})
+    held = held_joints(analysis, {m.joint for m in wheel_motors}, rolling=pair is not None)
     driven = (*wheel_motors, *servos(analysis, held))
     with tempfile.TemporaryDirectory(prefix="fishbot-sim-") as folder:
         # the meshes MuJoCo cannot read are converted there, and read as it compiles
@@ -120,7 +121,13 @@ def simulate(
             why = "MuJoCo refuses the model"
             return Outcome(analysis.robot.name, trial, 0.0, 0, (), conversion, why)
         try:
-            world = World(analysis, made.text, floor=trial != "hold", folder=Path(folder))
+            world = World(
+                analysis,
+                made.text,
+                floor=trial != "hold",
+                folder=Path(folder),
+                tyres=_tyres(analysis, pair),
+            )
         except Refused as exc:
             refusal = (*conversion, say.refused(analysis, exc.why))
             why = "MuJoCo refuses the model"
@@ -170,6 +177,18 @@ def _settle(
     """Leave a robot without wheels on the floor ``seconds``."""
     watch.run(SETTLE + seconds, ramp=False)
     return [], []
+
+
+def _tyres(analysis: Analysis, pair: Drive | None) -> frozenset[str]:
+    """The drive's wheels that roll on collision cylinders about their axles."""
+    wheels = wheels_of(analysis, pair) if pair is not None else None
+    if wheels is None:
+        return frozenset()
+    return frozenset(w.link.name for w in wheels if w.along and isinstance(_shape(w), Cylinder))
+
+
+def _shape(wheel: Wheel) -> object:
+    return wheel.collision.geometry if wheel.collision is not None else None
 
 
 def _root(analysis: Analysis) -> str:

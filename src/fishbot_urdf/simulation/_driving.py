@@ -13,13 +13,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
 from ..analysis import Analysis
 from ..analysis.drive import Drive, rolling_radius
 from ..diagnostics import Diagnostic
-from ..model import Collision, Cylinder, Joint, Link, Sphere
+from ..model import Collision, Cylinder, Joint, JointType, Link, Sphere
 from . import _findings as say
 from ._outcome import Measure
 from ._watch import RAMP, Watch
@@ -116,7 +117,7 @@ def drive(
     straight = run.go(speed, 0.0, seconds)
     if straight is None:
         return measures, found
-    forward, rolled, _ = straight
+    forward, rolled = straight.forward, straight.rolled
     drags = dict(watch.forces)
     touched_straight, looks_straight = dict(watch.touches), watch.looks
     if not watch.run(STOP, dict.fromkeys(actuators, 0.0)):
@@ -124,7 +125,7 @@ def drive(
     turned = run.go(0.0, turn, seconds)
     if turned is None:
         return measures, found
-    _, _, rate = turned
+    rate = turned.rate
     touches = {
         k: touched_straight.get(k, 0) + watch.touches.get(k, 0)
         for k in {*touched_straight, *watch.touches}
@@ -135,6 +136,9 @@ def drive(
     measures.append(_near("straight speed", forward, speed, "m/s", SPEED_TOLERANCE))
     measures.append(_near("speed from the wheels", forward, rolled, "m/s", SPEED_TOLERANCE))
     measures.append(_near("turn rate", rate, turn, "rad/s", TURN_TOLERANCE))
+    measures.append(
+        _near("turn rate from the wheels", rate, turned.wheels_rate, "rad/s", TURN_TOLERANCE)
+    )
     off = [w for w in wheels if touches.get(w.link.name, 0) < TOUCHING * looks]
     for wheel in off:
         share = touches.get(wheel.link.name, 0) / max(looks, 1)
@@ -147,7 +151,7 @@ def drive(
     for link, count in sorted(touches.items()):
         if link in names or count < 0.2 * looks:
             continue
-        if _caster(analysis.links.get(link)):
+        if _caster(analysis, link):
             tangential = drags.get(link, (0.0, 0.0))[1]
             pull = tangential / max(looks_straight, 1)
             if weight > 0 and pull > DRAG * weight:
@@ -184,9 +188,8 @@ class _Run:
         self.world, self.watch, self.wheels = world, watch, wheels
         self.actuators, self.radius, self.separation = actuators, radius, separation
 
-    def go(self, speed: float, turn: float, seconds: float) -> tuple[float, float, float] | None:
-        """Ramp to the command, then hold it ``seconds``: the forward speed (m/s), the
-        speed the wheels' turning gives (m/s) and the turn rate (rad/s) over that time;
+    def go(self, speed: float, turn: float, seconds: float) -> _Went | None:
+        """Ramp to the command, then hold it ``seconds``: what the robot did over that time;
         None when the state blew up."""
         half = turn * self.separation / 2.0
         controls = {}
@@ -203,15 +206,17 @@ class _Run:
             return None
         watch.count()
         start, yaw = watch.heading()
-        turned, rolled = [0.0], [0.0, 0]
+        turned, rolled = [0.0], [0.0, 0.0, 0]
 
         def look() -> None:
             _, now = watch.heading()
             step = (now - yaw_at[0] + math.pi) % (2 * math.pi) - math.pi
             turned[0] += step
             yaw_at[0] = now
-            rolled[0] += self._rolling(now)
-            rolled[1] += 1
+            left, right = self._rolling(now)
+            rolled[0] += left
+            rolled[1] += right
+            rolled[2] += 1
 
         yaw_at = [yaw]
         if not watch.run(seconds, controls, ramp=False, each=look):
@@ -219,20 +224,37 @@ class _Run:
         end, _ = watch.heading()
         middle = yaw + turned[0] / 2.0
         forward = float(np.dot(end - start, (math.cos(middle), math.sin(middle)))) / seconds
-        return forward, rolled[0] / max(rolled[1], 1), turned[0] / seconds
+        looks = max(int(rolled[2]), 1)
+        left, right = rolled[0] / looks, rolled[1] / looks
+        apart = _apart(self.world, *self.wheels)
+        wheels_turn = (right - left) / apart if apart > 0 else 0.0
+        return _Went(forward, (left + right) / 2.0, turned[0] / seconds, wheels_turn)
 
-    def _rolling(self, yaw: float) -> float:
-        """How fast the wheels' turning, relative to the body, would carry the robot
-        forward now (m/s): their mean over both wheels."""
+    def _rolling(self, yaw: float) -> tuple[float, float]:
+        """How fast each wheel's turning, relative to the body, would carry it forward
+        now (m/s): the left's, the right's."""
         world = self.world
         base = world.data.cvel[self.watch.root][:3]
         heading = np.array((math.cos(yaw), math.sin(yaw), 0.0))
-        total = 0.0
+        speeds = []
         for wheel in self.wheels:
             body = world.body(wheel.link.name)
             spin = world.data.cvel[body][:3] - base
-            total += float(np.dot(np.cross(spin, (0.0, 0.0, wheel.radius)), heading))
-        return total / 2.0
+            speeds.append(float(np.dot(np.cross(spin, (0.0, 0.0, wheel.radius)), heading)))
+        return speeds[0], speeds[1]
+
+
+class _Went(NamedTuple):
+    """What the robot did at one command, measured."""
+
+    forward: float
+    """Its speed forward (m/s)."""
+    rolled: float
+    """The speed its wheels' turning gives (m/s), their radius times their spin."""
+    rate: float
+    """Its turn rate (rad/s)."""
+    wheels_rate: float
+    """The turn rate its wheels' speeds give over the distance between them (rad/s)."""
 
 
 def _rest(
@@ -265,12 +287,17 @@ def _apart(world: World, left: Wheel, right: Wheel) -> float:
     return float(np.linalg.norm(one - other))
 
 
-def _caster(link: Link | None) -> bool:
-    """Whether ``link`` is a caster: named so, or rolling on a ball."""
+def _caster(analysis: Analysis, name: str) -> bool:
+    """Whether link ``name`` is a caster: named so, rolling on a ball, or on a continuous
+    joint (a wheel no drive turns, or a swivel)."""
+    link = analysis.links.get(name)
     if link is None:
         return False
-    return "caster" in link.name.lower() or any(
-        isinstance(c.geometry, Sphere) for c in link.collisions
+    joint = analysis.parent_joint.get(name)
+    return (
+        "caster" in name.lower()
+        or any(isinstance(c.geometry, Sphere) for c in link.collisions)
+        or (joint is not None and joint.type is JointType.CONTINUOUS)
     )
 
 

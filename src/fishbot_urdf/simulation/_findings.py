@@ -279,14 +279,16 @@ def turn(
 ) -> Diagnostic:
     """Turned on the spot at ``asked`` rad/s, the robot turned at ``rate``; ``seen`` names
     the finding that explains it, if one does."""
-    left, right = wheels
+    left = wheels[0]
     hint = "look at the wheels and casters as they touch the floor"
     where = _plugin_place(pair, "")
     cause = ""
     if stopping := _stopping(wheels):
         cause, hint, where = stopping
     elif asked * rate < 0 and abs(rate) > 0.1 * abs(asked):
-        side = "right" if left.joint.origin.xyz[1] < right.joint.origin.xyz[1] else "left"
+        poses = analysis.zero_poses
+        ys = [poses[w.link.name].translation[1] if w.link.name in poses else 0.0 for w in wheels]
+        side = "right" if ys[0] < ys[1] else "left"
         cause = (
             f": it turns the other way, as the drive's left wheel {left.joint.name!r} is on "
             f"the robot's {side}"

@@ -34,9 +34,11 @@ DRIFT = 0.05
 _ONE_NUMBER = (JointType.REVOLUTE, JointType.CONTINUOUS, JointType.PRISMATIC)
 
 
-def held_joints(analysis: Analysis, driven: set[str]) -> list[str]:
+def held_joints(analysis: Analysis, driven: set[str], *, rolling: bool = False) -> list[str]:
     """The joints held by servos: every joint that moves along one number, is not in
-    ``driven``, and follows no other (a mimic joint follows by its equality constraint)."""
+    ``driven``, and follows no other (a mimic joint follows by its equality constraint);
+    with ``rolling``, a continuous joint is left free: on a wheeled robot, it is a wheel or
+    a caster that rolls or swivels as it is pushed."""
     plan = analysis.plan
     return [
         step.joint.name
@@ -44,6 +46,7 @@ def held_joints(analysis: Analysis, driven: set[str]) -> list[str]:
         if step.kind in _ONE_NUMBER
         and step.joint.name not in driven
         and step.joint.name not in plan.mimics
+        and not (rolling and step.kind is JointType.CONTINUOUS)
     ]
 
 

@@ -130,7 +130,8 @@ class Live:
         wheels = wheels_of(analysis, pair) if pair is not None else None
         self.drive = pair if wheels is not None else None
         wheel_motors = motors(analysis, drives=(self.drive,)) if self.drive is not None else ()
-        held = held_joints(analysis, {m.joint for m in wheel_motors})
+        rolling = self.drive is not None
+        held = held_joints(analysis, {m.joint for m in wheel_motors}, rolling=rolling)
         floating = self.drive is not None
         made = export_mjcf(
             analysis,

@@ -78,7 +78,8 @@ def load_mujoco() -> ModuleType:
 
 class World:
     """The robot of ``analysis``, written as ``mjcf`` (in ``folder``, which its ``meshdir``
-    is relative to), in MuJoCo over a floor.
+    is relative to), in MuJoCo over a floor; the collision cylinders of the links named in
+    ``tyres`` (wheels rolling on them) touch it as balls of their radius (see `_round`).
 
     Attributes:
         model: MuJoCo's model.
@@ -88,7 +89,13 @@ class World:
     """
 
     def __init__(
-        self, analysis: Analysis, mjcf: str, *, floor: bool = True, folder: Path | None = None
+        self,
+        analysis: Analysis,
+        mjcf: str,
+        *,
+        floor: bool = True,
+        folder: Path | None = None,
+        tyres: frozenset[str] = frozenset(),
     ) -> None:
         mujoco = load_mujoco()
         root = ET.fromstring(mjcf)
@@ -98,6 +105,7 @@ class World:
             compiler.set("meshdir", str(folder / meshdir))  # relative to the model's folder
         world = root.find("worldbody")
         assert world is not None
+        _round(world, tyres)
         ground = ET.Element("geom", name=FLOOR, type="plane", size="0 0 1")
         ground.set("friction", "0 0.005 0.0001")
         ground.set("contype", str(_GROUND) if floor else "0")
@@ -252,3 +260,19 @@ class World:
     def positions(self, joints: Sequence[int]) -> list[float]:
         """The positions of one-number joints."""
         return [float(self.data.qpos[self.model.jnt_qposadr[j]]) for j in joints]
+
+
+def _round(world: ET.Element, tyres: frozenset[str]) -> None:
+    """Make the collision cylinders of the bodies named in ``tyres`` balls of their radius.
+
+    A wheel rolling on a cylinder touches a floor along a line, which MuJoCo holds at its
+    two ends: turned on the spot, the ends scrub, and the robot turns a fifth slower than
+    its wheels' speeds say (tiago), where a tyre touches at one point. The ball touches
+    the floor where the cylinder's middle does, at the wheel's radius."""
+    for body in world.iter("body"):
+        if body.get("name") not in tyres:
+            continue
+        for geom in body.findall("geom"):
+            if geom.get("type") == "cylinder" and geom.get("group") == str(COLLISION_GROUP):
+                geom.set("type", "sphere")
+                geom.set("size", (geom.get("size") or "0").split()[0])
