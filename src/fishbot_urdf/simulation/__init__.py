@@ -34,9 +34,9 @@ from ..diagnostics import Diagnostic
 from ..errors import ArgumentError
 from ..export.mjcf import motors, write_mjcf
 from ..inputs import deadline
-from ..model import Cylinder, Robot
+from ..model import Robot
 from . import _findings as say
-from ._driving import SETTLE, Wheel, drive, wheels_of
+from ._driving import SETTLE, drive, wheels_of
 from ._holding import held_joints, hold, servos, start, tune
 from ._live import ROOM, LaserScan, Live, Obstacle
 from ._outcome import Measure, Outcome, Trial
@@ -179,16 +179,12 @@ def _settle(
     return [], []
 
 
-def _tyres(analysis: Analysis, pair: Drive | None) -> frozenset[str]:
-    """The drive's wheels that roll on collision cylinders about their axles."""
+def _tyres(analysis: Analysis, pair: Drive | None) -> dict[str, float]:
+    """The drive's wheels that roll about their axles, and the radius each rolls on."""
     wheels = wheels_of(analysis, pair) if pair is not None else None
     if wheels is None:
-        return frozenset()
-    return frozenset(w.link.name for w in wheels if w.along and isinstance(_shape(w), Cylinder))
-
-
-def _shape(wheel: Wheel) -> object:
-    return wheel.collision.geometry if wheel.collision is not None else None
+        return {}
+    return {w.link.name: w.radius for w in wheels if w.along and w.radius > 0}
 
 
 def _root(analysis: Analysis) -> str:

@@ -21,6 +21,7 @@ from ..analysis import Analysis
 from ..analysis.drive import Drive, rolling_radius
 from ..diagnostics import Diagnostic
 from ..model import Collision, Cylinder, Joint, JointType, Link, Sphere
+from ..spatial import mat_vec
 from . import _findings as say
 from ._outcome import Measure
 from ._watch import RAMP, Watch
@@ -58,6 +59,9 @@ class Wheel:
             that of its largest collision cylinder; 0 when it has neither.
         along: Whether it rolls on that radius about the joint's axis.
         collision: That cylinder's collision.
+        forward: The sign of a speed that rolls the wheel forward: -1 for a wheel no plugin
+            drives whose joint turns about -y (a mirrored motor: a controller is told so),
+            else 1 (a plugin turns each joint as it is told, whichever way it rolls).
     """
 
     joint: Joint
@@ -65,6 +69,7 @@ class Wheel:
     radius: float
     along: bool
     collision: Collision | None
+    forward: float = 1.0
 
 
 def wheels_of(analysis: Analysis, drive: Drive) -> tuple[Wheel, Wheel] | None:
@@ -85,7 +90,11 @@ def wheels_of(analysis: Analysis, drive: Drive) -> tuple[Wheel, Wheel] | None:
                 largest.geometry.radius if largest is not None else 0.0  # type: ignore[union-attr]
             )
         )
-        found.append(Wheel(joint, link, radius, rolling is not None, largest))
+        forward = 1.0
+        if drive.plugin is None and joint.child in analysis.zero_poses:
+            axis = mat_vec(analysis.zero_poses[joint.child].rotation, joint.axis)
+            forward = -1.0 if axis[1] < 0 else 1.0
+        found.append(Wheel(joint, link, radius, rolling is not None, largest, forward))
     return found[0], found[1]
 
 
@@ -194,9 +203,10 @@ class _Run:
         half = turn * self.separation / 2.0
         controls = {}
         if self.radius > 0:
+            left, right = self.wheels
             controls = {
-                self.actuators[0]: (speed - half) / self.radius,
-                self.actuators[1]: (speed + half) / self.radius,
+                self.actuators[0]: left.forward * (speed - half) / self.radius,
+                self.actuators[1]: right.forward * (speed + half) / self.radius,
             }
         controls = {a: v for a, v in controls.items() if a >= 0}
         watch = self.watch

@@ -16,6 +16,7 @@ from ..diagnostics import Diagnostic, Kind, Subject
 from ..location import passed_through
 from ..model import JointType, Location, Sphere
 from ..spatial import mat_vec, rpy_matrix
+from ..wording import did_you_mean
 
 if TYPE_CHECKING:
     from ._driving import Wheel
@@ -351,7 +352,7 @@ def undrivable(analysis: Analysis, pair: Drive) -> list[Diagnostic]:
                     where,
                     path=analysis.path,
                     subject=Subject(Kind.JOINT, name),
-                    hint="name the wheel's continuous joint",
+                    hint=f"{did_you_mean(name, analysis.joints)}name the wheel's continuous joint",
                 )
             )
         elif joint.type not in (JointType.CONTINUOUS, JointType.REVOLUTE):

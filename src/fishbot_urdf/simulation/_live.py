@@ -152,8 +152,10 @@ class Live:
         self._lock = threading.Lock()
         self._wheels: tuple[int, int] = (-1, -1)
         self._radius = self._separation = 0.0
+        self._forward = (1.0, 1.0)
         if self.drive is not None and wheels is not None:
             left, right = wheels
+            self._forward = (left.forward, right.forward)
             self._wheels = (world.actuator(left.joint.name), world.actuator(right.joint.name))
             self._radius = self.drive.radius or left.radius
             self._separation = self.drive.separation or _apart(world, left, right)
@@ -186,7 +188,11 @@ class Live:
                 float(data.ctrl[a]) if a >= 0 else 0.0 for a in self._wheels
             )
             half = turn * self._separation / 2.0
-            self._to = ((speed - half) / self._radius, (speed + half) / self._radius)
+            left, right = self._forward
+            self._to = (
+                left * (speed - half) / self._radius,
+                right * (speed + half) / self._radius,
+            )
             self.since = self.world.time
 
     def advance(self, seconds: float) -> None:

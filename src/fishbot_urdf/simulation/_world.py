@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 import xml.etree.ElementTree as ET
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from types import ModuleType
 from typing import Any
@@ -78,8 +78,9 @@ def load_mujoco() -> ModuleType:
 
 class World:
     """The robot of ``analysis``, written as ``mjcf`` (in ``folder``, which its ``meshdir``
-    is relative to), in MuJoCo over a floor; the collision cylinders of the links named in
-    ``tyres`` (wheels rolling on them) touch it as balls of their radius (see `_round`).
+    is relative to), in MuJoCo over a floor; the collision cylinders and meshes of the links
+    ``tyres`` names (wheels, with the radius they roll on) touch it as balls of that radius
+    (see `_round`).
 
     Attributes:
         model: MuJoCo's model.
@@ -95,7 +96,7 @@ class World:
         *,
         floor: bool = True,
         folder: Path | None = None,
-        tyres: frozenset[str] = frozenset(),
+        tyres: Mapping[str, float] | None = None,
     ) -> None:
         mujoco = load_mujoco()
         root = ET.fromstring(mjcf)
@@ -105,7 +106,7 @@ class World:
             compiler.set("meshdir", str(folder / meshdir))  # relative to the model's folder
         world = root.find("worldbody")
         assert world is not None
-        _round(world, tyres)
+        _round(world, tyres or {})
         ground = ET.Element("geom", name=FLOOR, type="plane", size="0 0 1")
         ground.set("friction", "0 0.005 0.0001")
         ground.set("contype", str(_GROUND) if floor else "0")
@@ -262,17 +263,21 @@ class World:
         return [float(self.data.qpos[self.model.jnt_qposadr[j]]) for j in joints]
 
 
-def _round(world: ET.Element, tyres: frozenset[str]) -> None:
-    """Make the collision cylinders of the bodies named in ``tyres`` balls of their radius.
+def _round(world: ET.Element, tyres: Mapping[str, float]) -> None:
+    """Make the collision cylinders and meshes of the bodies named in ``tyres`` balls of the
+    radius given for each.
 
     A wheel rolling on a cylinder touches a floor along a line, which MuJoCo holds at its
-    two ends: turned on the spot, the ends scrub, and the robot turns a fifth slower than
-    its wheels' speeds say (tiago), where a tyre touches at one point. The ball touches
-    the floor where the cylinder's middle does, at the wheel's radius."""
+    two ends (a mesh, at the corners of its hull): turned on the spot, the ends scrub, and
+    the robot turns a fifth slower than its wheels' speeds say (tiago), where a tyre touches
+    at one point. The ball touches the floor where the wheel's middle does, at its radius."""
     for body in world.iter("body"):
-        if body.get("name") not in tyres:
+        radius = tyres.get(body.get("name") or "")
+        if radius is None:
             continue
         for geom in body.findall("geom"):
-            if geom.get("type") == "cylinder" and geom.get("group") == str(COLLISION_GROUP):
+            kind = geom.get("type")
+            if kind in ("cylinder", "mesh") and geom.get("group") == str(COLLISION_GROUP):
                 geom.set("type", "sphere")
-                geom.set("size", (geom.get("size") or "0").split()[0])
+                geom.set("size", repr(radius))
+                geom.attrib.pop("mesh", None)
