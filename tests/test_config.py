@@ -321,14 +321,14 @@ def test_an_empty_selection_still_prints_the_tree(arm: Path) -> None:
             '[tool.fishbot]\nselect = ["structure", "massless-lnk"]\n',
             "pyproject.toml:2: error: select: no rule or family 'massless-lnk' (did you mean "
             "'massless-link'? families: xml, urdf, structure, joints, references, meshes, "
-            "physics, gazebo, xacro, setup, lint; "
+            "physics, gazebo, simulation, xacro, setup, lint; "
             "`fishbot rules` lists the rules) [config]",
         ),
         (
             '[tool.fishbot]\nextend-select = ["physic"]\n',
             "pyproject.toml:2: error: extend-select: no rule or family 'physic' (did you mean "
             "'physics'? families: xml, urdf, structure, joints, references, meshes, "
-            "physics, gazebo, xacro, setup, lint; "
+            "physics, gazebo, simulation, xacro, setup, lint; "
             "`fishbot rules` lists the rules) [config]",
         ),
         (
@@ -415,8 +415,8 @@ def test_a_configuration_that_cannot_be_read(arm: Path, monkeypatch: pytest.Monk
 
 def test_a_wrong_option_is_a_usage_error(arm: Path) -> None:
     families = (
-        "families: xml, urdf, structure, joints, references, meshes, physics, gazebo, xacro, "
-        "setup, lint"
+        "families: xml, urdf, structure, joints, references, meshes, physics, gazebo, "
+        "simulation, xacro, setup, lint"
     )
     cases = {
         ("--select", "structure,physic"): "Invalid value for '--select': no rule or family "
