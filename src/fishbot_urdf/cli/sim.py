@@ -129,7 +129,7 @@ def sim(
     sim-penetration, sim-sag, sim-self-contact; `fishbot rules sim-speed` explains one),
     with the line to fix and the cause where the robot's files show it; a body MuJoCo
     refuses is an mjcf-refused error and nothing is simulated. The table of what was
-    measured goes to standard output (--format json: the same, and the findings). Needs
+    measured goes to standard output (--format json: the same, with the findings). Needs
     the sim extra: pip install 'fishbot-urdf[sim]'. Exit status: 0 the robot did what it
     was told, 1 something went wrong (an error finding), 2 a file could not be read,
     mujoco is not installed, or the command line is wrong.
@@ -181,11 +181,11 @@ def sim(
         for d in outcome.findings
         if config.applies(d.rule) and (d.rule, d.path, d.line) not in places
     ]
-    if fmt == "json":
+    if fmt == "json":  # the findings are in it, as check --format json has them
         to_stdout((json.dumps(_json(outcome, findings), indent=2) + "\n").encode("utf-8"))
     else:
         to_stdout(_table(outcome, speed, turn).encode("utf-8"))
-    emit_findings(findings)
+        emit_findings(findings)
     sys.exit(EXIT_INVALID if any(d.is_error for d in findings) else EXIT_OK)
 
 
