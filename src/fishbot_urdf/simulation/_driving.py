@@ -223,9 +223,9 @@ class _Run:
             step = (now - yaw_at[0] + math.pi) % (2 * math.pi) - math.pi
             turned[0] += step
             yaw_at[0] = now
-            left, right = self._rolling(now)
-            rolled[0] += left
-            rolled[1] += right
+            on_left, on_right = self._rolling(now)
+            rolled[0] += on_left
+            rolled[1] += on_right
             rolled[2] += 1
 
         yaw_at = [yaw]
@@ -235,10 +235,10 @@ class _Run:
         middle = yaw + turned[0] / 2.0
         forward = float(np.dot(end - start, (math.cos(middle), math.sin(middle)))) / seconds
         looks = max(int(rolled[2]), 1)
-        left, right = rolled[0] / looks, rolled[1] / looks
+        on_left, on_right = rolled[0] / looks, rolled[1] / looks
         apart = _apart(self.world, *self.wheels)
-        wheels_turn = (right - left) / apart if apart > 0 else 0.0
-        return _Went(forward, (left + right) / 2.0, turned[0] / seconds, wheels_turn)
+        wheels_turn = (on_right - on_left) / apart if apart > 0 else 0.0
+        return _Went(forward, (on_left + on_right) / 2.0, turned[0] / seconds, wheels_turn)
 
     def _rolling(self, yaw: float) -> tuple[float, float]:
         """How fast each wheel's turning, relative to the body, would carry it forward
