@@ -9,6 +9,7 @@ import json
 import math
 import shutil
 import sys
+import types
 from pathlib import Path
 
 import pytest
@@ -356,3 +357,13 @@ def test_a_blow_up_leaves_no_mujoco_log(tmp_path: Path, monkeypatch: pytest.Monk
     assert [r for _, _, r in _findings(err)] == ["sim-exploded"]
     assert "WARNING" not in out + err
     assert not (tmp_path / "MUJOCO_LOG.TXT").exists()
+
+
+def test_a_mujoco_folder_left_by_an_uninstall_is_no_mujoco(monkeypatch: pytest.MonkeyPatch) -> None:
+    # pip uninstall mujoco can leave its folder behind: Python then imports it as an empty
+    # namespace package
+    monkeypatch.setitem(sys.modules, "mujoco", types.ModuleType("mujoco"))
+    code, out, err = _sim(str(FISHBOT / MAIN))
+    assert (code, out) == (2, "")
+    assert "the mujoco package, an optional part of fishbot-urdf" in err
+    assert err.count("\n") == 1

@@ -72,6 +72,10 @@ def load_mujoco() -> ModuleType:
         raise ToolNotFoundError(
             "the mujoco package is not installed", tool="mujoco", hint=INSTALL
         ) from exc
+    if not hasattr(mujoco, "MjModel"):  # a folder left behind by an uninstall
+        raise ToolNotFoundError(
+            "the mujoco package is not installed", tool="mujoco", hint=INSTALL
+        )
     module: ModuleType = mujoco
     return module
 
