@@ -367,3 +367,13 @@ def test_a_mujoco_folder_left_by_an_uninstall_is_no_mujoco(monkeypatch: pytest.M
     assert (code, out) == (2, "")
     assert "the mujoco package, an optional part of fishbot-urdf" in err
     assert err.count("\n") == 1
+
+
+def test_json_reports_a_robot_whose_tree_is_in_doubt(tmp_path: Path) -> None:
+    robot = tmp_path / "two.urdf"
+    robot.write_text('<robot name="two"><link name="a"/><link name="b"/></robot>\n')
+    code, out, err = _sim(str(robot), "--format", "json")
+    assert (code, err) == (1, "")
+    report = json.loads(out)
+    assert (report["ok"], report["trial"], report["steps"]) == (False, None, 0)
+    assert [f["rule"] for f in report["findings"]] == ["multiple-roots"]

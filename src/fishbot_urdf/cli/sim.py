@@ -15,11 +15,12 @@ from .. import simulation
 from ..analysis import Analysis
 from ..catalog.gazebo import DIFF_DRIVE_SIZE, DIFF_DRIVE_WHEELS
 from ..catalog.joints import WHEEL_AXIS
+from ..config import Config
 from ..diagnostics import escape_controls
 from ..errors import FishbotUrdfError, RobotError, ToolNotFoundError
-from ..lint import check_again
+from ..lint import CheckResult, check_again
 from ..simulation import Outcome, quiet_mujoco, simulate
-from ._checking import nearest_config, posable_input
+from ._checking import check_input, nearest_config, posable_input, posing, posing_errors
 from ._common import (
     EXIT_INVALID,
     EXIT_OK,
@@ -155,7 +156,11 @@ def sim(
         raise click.UsageError("name:=value arguments are for a .xacro file, not standard input")
     values = xacro_args(args)
     config = nearest_config(file)
-    result = posable_input(file, values, packages_option(package_items), config=config)
+    packages = packages_option(package_items)
+    if fmt == "json":  # the robot's errors in the report too, and nothing on stderr
+        result = _json_input(file, values, packages, config)
+    else:
+        result = posable_input(file, values, packages, config=config)
     assert result.analysis is not None
     if view:
         _live(result.analysis, host, port)
@@ -187,6 +192,31 @@ def sim(
         to_stdout(_table(outcome, speed, turn).encode("utf-8"))
         emit_findings(findings)
     sys.exit(EXIT_INVALID if any(d.is_error for d in findings) else EXIT_OK)
+
+
+def _json_input(
+    file: str, values: dict[str, str], packages: dict[str, str], config: Config
+) -> CheckResult:
+    """FILE read and checked as `posable_input` does, for --format json: a robot whose tree
+    is in doubt is a report of its errors, with no trial (exit 1)."""
+    try:
+        result = check_input(file, values, packages, posing(config))
+    except FishbotUrdfError as exc:
+        stop_on(exc)
+    blocking = posing_errors(result.diagnostics)
+    if result.analysis is not None and not blocking:
+        return result
+    report = {
+        "robot": result.robot.name if result.robot is not None else None,
+        "trial": None,
+        "seconds": 0.0,
+        "steps": 0,
+        "ok": False,
+        "measures": [],
+        "findings": [d.to_dict() for d in blocking],
+    }
+    to_stdout((json.dumps(report, indent=2) + "\n").encode("utf-8"))
+    sys.exit(EXIT_INVALID)
 
 
 def _live(analysis: Analysis, host: str, port: int) -> None:

@@ -73,9 +73,7 @@ def load_mujoco() -> ModuleType:
             "the mujoco package is not installed", tool="mujoco", hint=INSTALL
         ) from exc
     if not hasattr(mujoco, "MjModel"):  # a folder left behind by an uninstall
-        raise ToolNotFoundError(
-            "the mujoco package is not installed", tool="mujoco", hint=INSTALL
-        )
+        raise ToolNotFoundError("the mujoco package is not installed", tool="mujoco", hint=INSTALL)
     module: ModuleType = mujoco
     return module
 
