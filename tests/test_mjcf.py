@@ -642,3 +642,21 @@ def test_shapes_of_no_size_are_left_out() -> None:
             "the MJCF",
         ),
     ]
+
+
+def test_a_planar_joints_parts_never_take_a_joints_name() -> None:
+    inertial = (
+        '<inertial><mass value="1"/>'
+        '<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>'
+    )
+    robot = fishbot_urdf.parse(
+        f'<robot name="odd"><link name="world"/><link name="a">{inertial}</link>'
+        f'<link name="b">{inertial}</link>'
+        '<joint name="pl" type="planar"><parent link="world"/><child link="a"/>'
+        '<axis xyz="0 0 1"/></joint>'
+        '<joint name="pl.x" type="continuous"><parent link="a"/><child link="b"/></joint>'
+        "</robot>"
+    )
+    model = mujoco.MjModel.from_xml_string(to_mjcf(robot))
+    names = [model.joint(i).name for i in range(model.njnt)]
+    assert names == ["pl.x_", "pl.y", "pl.yaw", "pl.x"]

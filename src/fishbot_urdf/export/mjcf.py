@@ -338,17 +338,26 @@ class _Writer:
             parts = [("x", "slide", (1.0, 0.0, 0.0)), ("y", "slide", (0.0, 1.0, 0.0))]
             parts += [("z", "slide", (0.0, 0.0, 1.0)), ("yaw", "hinge", (0.0, 0.0, 1.0))]
             parts += [("pitch", "hinge", (0.0, 1.0, 0.0)), ("roll", "hinge", (1.0, 0.0, 0.0))]
-            return [self._joint(joint, f"{joint.name}.{p}", t, a, False) for p, t, a in parts]
+            return [self._joint(joint, self._part(joint, p), t, a, False) for p, t, a in parts]
         if kind is JointType.PLANAR:
             along, across = step.plane or ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0))
             return [
-                self._joint(joint, f"{joint.name}.x", "slide", along, False),
-                self._joint(joint, f"{joint.name}.y", "slide", across, False),
-                self._joint(joint, f"{joint.name}.yaw", "hinge", step.axis, False),
+                self._joint(joint, self._part(joint, "x"), "slide", along, False),
+                self._joint(joint, self._part(joint, "y"), "slide", across, False),
+                self._joint(joint, self._part(joint, "yaw"), "hinge", step.axis, False),
             ]
         kind_name = "slide" if kind is JointType.PRISMATIC else "hinge"
         limited = kind is not JointType.CONTINUOUS
         return [self._joint(joint, joint.name, kind_name, step.axis, limited)]
+
+    def _part(self, joint: Joint, part: str) -> str:
+        """The name of one part of a planar or floating joint: ``NAME.part``, with ``_``
+        added until no joint of the robot, nor one written, has it (MJCF refuses a name
+        twice)."""
+        name = f"{joint.name}.{part}"
+        while name in self.analysis.joints or name in self.made:
+            name += "_"
+        return name
 
     def _joint(
         self,
