@@ -99,7 +99,8 @@ def export_mjcf(
       with an `mjcf-left-out` finding (`write_mjcf` converts such meshes); a collision mesh
       with no volume to make a convex hull of is left out so too. A shape of no size (a box,
       cylinder or sphere with a size of 0 or less, a mesh scaled by 0), which MuJoCo
-      refuses, is left out with an `mjcf-empty-shape` finding.
+      refuses, is left out with an `mjcf-empty-shape` finding. A link's ``<gazebo
+      reference>`` ``<mu1>`` and ``<mu2>`` (the smaller) are its collisions' friction.
 
     Args:
         robot: The robot, or its analysis.
@@ -396,14 +397,18 @@ class _Writer:
 
 
 def _friction(analysis: Analysis) -> dict[str, float]:
-    """Each link's friction as its ``<gazebo reference>`` blocks give it (``<mu1>``, the last
-    one written), as Gazebo gives it to the link's collisions."""
-    found: dict[str, float] = {}
+    """Each link's friction as its ``<gazebo reference>`` blocks give it (``<mu1>`` and
+    ``<mu2>``, the last of each written, 1 when one is not: Gazebo's default): MuJoCo's is
+    the same in every direction, so the smaller, in which the link slides."""
+    given: dict[str, dict[str, float]] = {}
     for block in analysis.gazebo_blocks:
-        mu = setting(block.element, "mu1") if block.reference is not None else None
-        if block.reference is not None and mu is not None and mu >= 0:
-            found[block.reference] = mu
-    return found
+        if block.reference is None:
+            continue
+        for tag in ("mu1", "mu2"):
+            mu = setting(block.element, tag)
+            if mu is not None and mu >= 0:
+                given.setdefault(block.reference, {})[tag] = mu
+    return {link: min(mus.get("mu1", 1.0), mus.get("mu2", 1.0)) for link, mus in given.items()}
 
 
 _FLAT_HINT = "collide with a thin box, or give the mesh its thickness"

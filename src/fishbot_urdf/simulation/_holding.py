@@ -116,15 +116,21 @@ def hold(
     found: list[Diagnostic] = []
     target = start(analysis, world, joints)
     gravity = tune(world, target)
-    if not watch.run(seconds, ramp=False):
-        return measures, found
     ids = [world.joint(name) for name in joints]
+    drifts = dict.fromkeys(joints, 0.0)  # the farthest each went, at any look
+
+    def look() -> None:
+        for name, value in zip(joints, world.positions(ids), strict=True):
+            drifts[name] = max(drifts[name], abs(value - target[name]))
+
+    if not watch.run(seconds, ramp=False, each=look):
+        return measures, found
     worst, most = 0.0, ""
     sagged: list[tuple[str, float, float | None]] = []  # (joint, drift, effort limit)
-    for name, value in zip(joints, world.positions(ids), strict=True):
+    for name in joints:
         joint = analysis.joints[name]
         scale = 5.0 if joint.type is JointType.PRISMATIC else 1.0
-        moved = abs(value - target[name])
+        moved = drifts[name]
         if moved * scale > worst:
             worst, most = moved * scale, name
         if moved * scale > DRIFT:
