@@ -223,10 +223,11 @@ def test_a_heavy_body_on_tiny_wheels_does_not_drive(tmp_path: Path) -> None:
     root = _copy(tmp_path, "heavy body, tiny wheels")
     code, out, err = _sim(str(root / MAIN))
     assert code == 1, out + err
-    # the casters, 2.7 cm below the 5 mm wheels, take the 100 kg: the robot rocks on them,
-    # and hardly moves
+    # the casters, 2.7 cm below the 5 mm wheels, take the 100 kg: the robot rocks over on
+    # them (what it did lying over is not said again) and hardly moves
     rules = [r for _, _, r in _findings(err)]
-    assert "sim-speed" in rules and "sim-tipped" in rules
+    assert rules == ["sim-tipped"]
+    assert "base_link's 100 kg are" in err
     speed = next(line for line in out.splitlines() if line.split()[:2] == ["straight", "speed"])
     assert abs(float(speed.split()[2])) < 0.1
 
@@ -377,3 +378,26 @@ def test_json_reports_a_robot_whose_tree_is_in_doubt(tmp_path: Path) -> None:
     report = json.loads(out)
     assert (report["ok"], report["trial"], report["steps"]) == (False, None, 0)
     assert [f["rule"] for f in report["findings"]] == ["multiple-roots"]
+
+
+def test_wheels_of_two_radii_drive_in_a_circle(tmp_path: Path) -> None:
+    old = '<xacro:wheel_xacro name="left" side="1" radius="${wheel_radius}"'
+    root = _edited(tmp_path, MAIN, old, old.replace("${wheel_radius}", "0.04"))
+    code, out, err = _sim(str(root / MAIN))
+    assert code == 1, out
+    assert "driven straight at 0.5 m/s, the robot turned at" in err
+    assert "left_wheel_link rolls on 4.0 cm and right_wheel_link on 3.2 cm" in err
+
+
+def test_a_mirrored_wheel_axis_is_named(tmp_path: Path) -> None:
+    root = _edited(tmp_path, WHEEL, '<axis xyz="0.0 1.0 0.0"/>', '<axis xyz="0.0 ${side} 0.0"/>')
+    code, _, err = _sim(str(root / MAIN))
+    assert code == 1
+    axis = _line(root / WHEEL, '<joint name="${name}_wheel_joint"')
+    assert (str(root / WHEEL), axis, "sim-speed") in _findings(err)
+    assert "joint 'right_wheel_joint' turns about -y and the other about +y" in err
+
+
+def test_an_absurd_command_is_a_usage_error() -> None:
+    code, _, err = _sim(str(FISHBOT / MAIN), "--drive", "1e9,0")
+    assert code == 2 and "a speed of at most 20 m/s" in err

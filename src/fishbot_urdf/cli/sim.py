@@ -37,6 +37,8 @@ from ._common import (
     xacro_args,
 )
 
+_FASTEST, _TURNIEST = 20.0, 50.0  # m/s, rad/s: beyond what a robot described in URDF drives
+
 
 class _Drive(click.ParamType):  # type: ignore[type-arg]
     """``V,OMEGA``: a speed (m/s) and a turn rate (rad/s)."""
@@ -53,8 +55,13 @@ class _Drive(click.ParamType):  # type: ignore[type-arg]
             speed, turn = (float(p) for p in parts)
         except ValueError:
             self.fail(f"{value!r} is not V,OMEGA: two numbers, as 0.5,1.0", param, ctx)
-        if not all(abs(x) < float("inf") for x in (speed, turn)):
-            self.fail(f"{value!r}: the numbers must be finite", param, ctx)
+        if not (abs(speed) <= _FASTEST and abs(turn) <= _TURNIEST):
+            self.fail(
+                f"{value!r}: a speed of at most {_FASTEST:g} m/s and a turn rate of at most "
+                f"{_TURNIEST:g} rad/s, either way",
+                param,
+                ctx,
+            )
         return speed, turn
 
 

@@ -29,6 +29,7 @@ from typing import TYPE_CHECKING, Any, Literal
 
 from ..analysis import Analysis, of
 from ..analysis.drive import Drive
+from ..catalog import simulation as catalog
 from ..catalog.meshes import MJCF_MESH_CONVERTED
 from ..diagnostics import Diagnostic
 from ..errors import ArgumentError
@@ -159,7 +160,10 @@ def simulate(
             ok = tilt <= TIPPED
             measures.append(Measure("largest tilt", tilt, None, "degrees", ok, most=TIPPED))
             if not ok:
-                found.append(say.tipped(analysis, root, tilt, wheeled=pair is not None))
+                # what went wrong while it lay over follows from its fall: the fall first,
+                # and those findings left out
+                fell = say.tipped(analysis, root, tilt, wheeled=pair is not None)
+                found = [fell, *(d for d in found if d.rule not in _FALLEN)]
             depth, link = watch.depth
             measures.append(
                 Measure("deepest in the floor", depth, None, "m", depth <= DEEP, link, most=DEEP)
@@ -177,6 +181,20 @@ def _settle(
     """Leave a robot without wheels on the floor ``seconds``."""
     watch.run(SETTLE + seconds, ramp=False)
     return [], []
+
+
+_FALLEN = frozenset(
+    rule.id
+    for rule in (
+        catalog.SIM_SANK,
+        catalog.SIM_WHEEL_OFF_FLOOR,
+        catalog.SIM_BODY_ON_FLOOR,
+        catalog.SIM_CASTER_DRAG,
+        catalog.SIM_SPEED,
+        catalog.SIM_TURN,
+    )
+)
+"""The findings of a drive that a fall explains."""
 
 
 def _tyres(analysis: Analysis, pair: Drive | None) -> dict[str, float]:

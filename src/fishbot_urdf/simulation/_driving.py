@@ -40,6 +40,8 @@ TURN_TOLERANCE = 0.15
 as the robot turns on the spot."""
 TOUCHING = 0.5
 """The share of the looks a driven wheel must touch the floor at."""
+VEER = 0.05
+"""The most a robot driven straight may turn (rad/s): 3 degrees a second."""
 LEAST_OFF = 0.02
 """The least a speed (m/s) or turn rate (rad/s) may be off before it is wrong."""
 DRAG = 0.05
@@ -143,6 +145,8 @@ def drive(
     for wheel in wheels:
         _rest(analysis, world, watch, wheel, measures, found)
     measures.append(_near("straight speed", forward, speed, "m/s", SPEED_TOLERANCE))
+    veer = straight.rate
+    measures.append(Measure("turn while straight", veer, 0.0, "rad/s", abs(veer) <= VEER))
     measures.append(_near("speed from the wheels", forward, rolled, "m/s", SPEED_TOLERANCE))
     measures.append(_near("turn rate", rate, turn, "rad/s", TURN_TOLERANCE))
     measures.append(
@@ -176,6 +180,8 @@ def drive(
         found.append(say.speed(analysis, pair, wheels, forward, speed, rolled, radius, seen))
     elif not _ok(measures, "speed from the wheels"):
         found.append(say.slip(analysis, pair, wheels, forward, rolled))
+    if not _ok(measures, "turn while straight"):
+        found.append(say.veered(analysis, pair, wheels, speed, veer))
     if not _ok(measures, "turn rate"):
         apart = _apart(world, left, right)
         found.append(say.turn(analysis, pair, wheels, rate, turn, separation, apart, seen))

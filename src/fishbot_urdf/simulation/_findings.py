@@ -36,6 +36,7 @@ __all__ = [
     "tipped",
     "turn",
     "undrivable",
+    "veered",
     "wheel_off",
 ]
 
@@ -203,8 +204,8 @@ def speed(
     finding that explains it, if one does."""
     cause, hint = "", "look at how the wheels touch the floor (fishbot view, Collision)"
     where = _plugin_place(pair, "") or wheels[0].joint.source
-    if stopping := _stopping(wheels):
-        cause, hint, where = stopping
+    if fault := _wheel_fault(analysis, pair, wheels):
+        cause, hint, where = fault
     elif radius_cause := _radius_cause(pair, wheels[0].radius):
         cause, hint = radius_cause
         where = _plugin_place(pair, pair.dialect.size if pair.dialect else "") or where
@@ -224,6 +225,40 @@ def speed(
         subject=Subject(Kind.ROBOT, analysis.robot.name),
         hint=hint,
     )
+
+
+def _wheel_fault(
+    analysis: Analysis, pair: Drive, wheels: tuple[Wheel, Wheel]
+) -> tuple[str, str, Location | None] | None:
+    """The cause, fix and place of what is wrong with the wheels themselves: a revolute
+    joint that stops at its limits; axes a plugin turns opposite ways (a mirrored motor,
+    which the plugin does not know of); wheels of two radii."""
+    stopping = _stopping(wheels)
+    if stopping is not None:
+        return stopping
+    poses = analysis.zero_poses
+    left, right = wheels
+    if pair.plugin is not None and left.link.name in poses and right.link.name in poses:
+        ys = [mat_vec(poses[w.link.name].rotation, w.joint.axis)[1] for w in wheels]
+        if ys[0] * ys[1] < 0:
+            back = right if ys[1] < 0 else left
+            cause = (
+                f": joint {back.joint.name!r} turns about -y and the other about +y, and the "
+                "drive plugin turns both joints the same way: that wheel rolls backwards"
+            )
+            return cause, "give both wheel joints the axis 0 1 0", back.joint.source
+    if (
+        left.radius > 0
+        and right.radius > 0
+        and abs(left.radius - right.radius) > 0.01 * max(left.radius, right.radius)
+    ):
+        cause = (
+            f": {left.link.name} rolls on {_cm(left.radius)} and {right.link.name} on "
+            f"{_cm(right.radius)}, so at one speed they drive it round in a circle"
+        )
+        where = right.collision.source if right.collision is not None else right.link.source
+        return cause, "give both wheels one radius", where
+    return None
 
 
 def _stopping(wheels: tuple[Wheel, Wheel]) -> tuple[str, str, Location | None] | None:
@@ -252,6 +287,23 @@ def _radius_cause(pair: Drive, rolls: float) -> tuple[str, str] | None:
         f"roll on {_cm(rolls)}"
     )
     return cause, f"write <{size}>{value:.4g}</{size}>"
+
+
+def veered(
+    analysis: Analysis, pair: Drive, wheels: tuple[Wheel, Wheel], asked: float, rate: float
+) -> Diagnostic:
+    """Driven straight at ``asked`` m/s, the robot turned at ``rate`` rad/s."""
+    cause, hint = "", "look at the wheels and casters as they touch the floor"
+    where = _plugin_place(pair, "") or wheels[0].joint.source
+    if fault := _wheel_fault(analysis, pair, wheels):
+        cause, hint, where = fault
+    return rules.SIM_TURN.report(
+        f"driven straight at {asked:.3g} m/s, the robot turned at {rate:.3g} rad/s{cause}",
+        where,
+        path=analysis.path,
+        subject=Subject(Kind.ROBOT, analysis.robot.name),
+        hint=hint,
+    )
 
 
 def slip(
@@ -284,8 +336,8 @@ def turn(
     hint = "look at the wheels and casters as they touch the floor"
     where = _plugin_place(pair, "")
     cause = ""
-    if stopping := _stopping(wheels):
-        cause, hint, where = stopping
+    if fault := _wheel_fault(analysis, pair, wheels):
+        cause, hint, where = fault
     elif asked * rate < 0 and abs(rate) > 0.1 * abs(asked):
         poses = analysis.zero_poses
         ys = [poses[w.link.name].translation[1] if w.link.name in poses else 0.0 for w in wheels]
@@ -404,17 +456,41 @@ def exploded(analysis: Analysis, time: float, fastest: str) -> Diagnostic:
 
 
 def tipped(analysis: Analysis, root: str, degrees: float, *, wheeled: bool) -> Diagnostic:
-    """The root leaned ``degrees`` from upright."""
+    """The root leaned ``degrees`` from upright: placed at the inertial that weighs most,
+    height times mass, above the root (what raises the centre of mass), if one does."""
     hint = "check where each link's mass is (fishbot view, Mass)"
     if wheeled:
         hint += ", and place the casters where they hold the body up"
+    where, high = _where_link(analysis, root), ""
+    top = _heaviest_high(analysis)
+    if top is not None:
+        link, height, mass = top
+        inertial = analysis.links[link].inertial
+        where = inertial.source if inertial is not None and inertial.source else where
+        high = f"; {link}'s {mass:.3g} kg are {height:.3g} m up"
+        hint += passed_through(where)
     return rules.SIM_TIPPED.report(
-        f"{root} tipped over: it leaned {degrees:.0f} degrees from upright",
-        _where_link(analysis, root),
+        f"{root} tipped over: it leaned {degrees:.0f} degrees from upright{high}",
+        where,
         path=analysis.path,
         subject=_link(analysis, root),
         hint=hint,
     )
+
+
+def _heaviest_high(analysis: Analysis) -> tuple[str, float, float] | None:
+    """The link whose mass times its height above the root, every joint at zero, is the
+    greatest (its name, height, mass), if one is above the root at all."""
+    best: tuple[float, str, float, float] | None = None
+    for name, pose in analysis.zero_poses.items():
+        link = analysis.links.get(name)
+        if link is None or link.inertial is None or link.inertial.mass <= 0:
+            continue
+        height = pose.apply(link.inertial.origin.xyz)[2]
+        weight = height * link.inertial.mass
+        if height > 0 and (best is None or weight > best[0]):
+            best = (weight, name, height, link.inertial.mass)
+    return None if best is None else (best[1], best[2], best[3])
 
 
 def penetration(analysis: Analysis, link: str, depth: float) -> Diagnostic:
