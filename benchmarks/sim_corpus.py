@@ -51,8 +51,8 @@ class Run:
 
     @property
     def trial(self) -> str:
-        if self.report is None:
-            return "not read" if self.status != 1 else "refused"
+        if self.report is None or self.report["trial"] is None:
+            return "not read"  # (a file the check stops at, or one that cannot be read)
         if not self.report["steps"]:
             return self.report["trial"] + " (refused by MuJoCo)"
         return self.report["trial"]
