@@ -401,3 +401,22 @@ def test_a_mirrored_wheel_axis_is_named(tmp_path: Path) -> None:
 def test_an_absurd_command_is_a_usage_error() -> None:
     code, _, err = _sim(str(FISHBOT / MAIN), "--drive", "1e9,0")
     assert code == 2 and "a speed of at most 20 m/s" in err
+
+
+def test_wheels_without_grip_are_named(tmp_path: Path) -> None:
+    old = "      <mu1>20.0</mu1>\n      <mu2>20.0</mu2>"
+    root = _edited(tmp_path, WHEEL, old, "      <mu1>0</mu1>\n      <mu2>0</mu2>")
+    code, _, err = _sim(str(root / MAIN))
+    assert code == 1
+    assert "its wheels grip the floor with a friction of 0" in err
+    assert (str(root / WHEEL), _line(root / WHEEL, "<mu1>0</mu1>"), "sim-speed") in _findings(err)
+
+
+def test_a_torque_too_small_is_named(tmp_path: Path) -> None:
+    old = "<max_wheel_torque>30</max_wheel_torque>"
+    root = _edited(tmp_path, PLUGIN, old, "<max_wheel_torque>0.005</max_wheel_torque>")
+    code, _, err = _sim(str(root / MAIN))
+    assert code == 1
+    assert "on the 0.005 N*m the plugin allows them (<max_wheel_torque>)" in err
+    torque = _line(root / PLUGIN, "<max_wheel_torque>")
+    assert (str(root / PLUGIN), torque, "sim-speed") in _findings(err)

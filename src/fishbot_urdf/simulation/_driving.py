@@ -177,7 +177,8 @@ def drive(
             found.append(say.body_on_floor(analysis, link, count / looks, wheels))
     seen = next((d.rule for d in found if d.rule in _CAUSES), "")
     if not _ok(measures, "straight speed"):
-        found.append(say.speed(analysis, pair, wheels, forward, speed, rolled, radius, seen))
+        grip = min(_grip(world, wheel) for wheel in wheels)
+        found.append(say.speed(analysis, pair, wheels, forward, speed, rolled, radius, seen, grip))
     elif not _ok(measures, "speed from the wheels"):
         found.append(say.slip(analysis, pair, wheels, forward, rolled))
     if not _ok(measures, "turn while straight"):
@@ -294,6 +295,16 @@ def _rest(
     )
     if low > tolerance:
         found.append(say.sank(analysis, wheel, low))
+
+
+def _grip(world: World, wheel: Wheel) -> float:
+    """The greatest friction of the wheel's collision shapes (what it grips the floor with:
+    the floor's is 0)."""
+    model, body = world.model, world.body(wheel.link.name)
+    grips = [
+        float(model.geom_friction[g][0]) for g in world.collisions if model.geom_bodyid[g] == body
+    ]
+    return max(grips, default=1.0)
 
 
 def _apart(world: World, left: Wheel, right: Wheel) -> float:

@@ -181,6 +181,26 @@ def caster_drag(analysis: Analysis, link: str, pull: float, weight: float) -> Di
     )
 
 
+_LEAST_GRIP = 0.05
+"""The friction below which a wheel spins on the floor rather than rolling."""
+
+
+def _weak(pair: Drive, rolled: float, asked: float) -> tuple[str, str, Location | None] | None:
+    """The cause, fix and place when the wheels turned well short of the command with a
+    torque the plugin limits them to."""
+    if pair.torque is None or pair.dialect is None or abs(rolled) >= 0.9 * abs(asked):
+        return None
+    tag = pair.dialect.torque
+    where = _plugin_place(pair, tag)
+    written = pair.plugin is not None and pair.plugin.find(tag) is not None
+    allows = f"<{tag}>" if written else f"<{tag}> not written: its default"
+    cause = (
+        f": its wheels turned for only {rolled:.3g} m/s, on the {pair.torque:.3g} N*m the "
+        f"plugin allows them ({allows})"
+    )
+    return cause, f"give <{tag}> the torque of the wheels' motors" + passed_through(where), where
+
+
 def _friction_place(analysis: Analysis, link: str) -> Location | None:
     for block in analysis.gazebo_blocks:
         if block.reference == link:
@@ -199,9 +219,10 @@ def speed(
     rolled: float,
     told: float,
     seen: str,
+    grip: float = 1.0,
 ) -> Diagnostic:
     """Driven straight at ``asked`` m/s, the robot moved at ``moved``; ``seen`` names the
-    finding that explains it, if one does."""
+    finding that explains it, if one does; ``grip`` is the wheels' friction (the least)."""
     cause, hint = "", "look at how the wheels touch the floor (fishbot view, Collision)"
     where = _plugin_place(pair, "") or wheels[0].joint.source
     if fault := _wheel_fault(analysis, pair, wheels):
@@ -213,6 +234,16 @@ def speed(
     elif seen:
         cause = f": see {seen}"
         hint = f"fix what {seen} says"
+    elif grip < _LEAST_GRIP:
+        cause = (
+            f": its wheels grip the floor with a friction of {grip:.3g} (their <gazebo "
+            "reference> <mu1> and <mu2>): they spin in place"
+        )
+        hint = "give the wheels' <gazebo reference> <mu1> and <mu2> of about 1"
+        where = _friction_place(analysis, wheels[0].link.name) or where
+        hint += passed_through(where)
+    elif torque := _weak(pair, rolled, asked):
+        cause, hint, where = torque[0], torque[1], torque[2] or where
     elif abs(rolled - asked) > 0.1 * abs(asked):
         cause = (
             f": its wheels turned for {rolled:.3g} m/s, held back by a part on the floor or "
