@@ -147,7 +147,9 @@ def simulate(
     if pair is not None:
         more, faults = drive(analysis, world, watch, pair, speed=speed, turn=turn, seconds=seconds)
     elif trial == "drop":
-        more, faults = _settle(analysis, world, watch, seconds)
+        # a robot without wheels left on the floor: tilt, depth and blow-up are its measures
+        watch.run(SETTLE + seconds, ramp=False)
+        more, faults = [], []
     else:
         more, faults = hold(analysis, world, watch, held, seconds=seconds)
     measures += more
@@ -173,14 +175,6 @@ def simulate(
     steps = round(world.time / world.model.opt.timestep)
     seconds_run = round(world.time, 9)  # (a sum of time steps)
     return Outcome(analysis.robot.name, trial, seconds_run, steps, tuple(measures), tuple(found))
-
-
-def _settle(
-    analysis: Analysis, world: World, watch: Watch, seconds: float
-) -> tuple[list[Measure], list[Diagnostic]]:
-    """Leave a robot without wheels on the floor ``seconds``."""
-    watch.run(SETTLE + seconds, ramp=False)
-    return [], []
 
 
 _FALLEN = frozenset(

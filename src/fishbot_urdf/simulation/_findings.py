@@ -510,12 +510,15 @@ def tipped(analysis: Analysis, root: str, degrees: float, *, wheeled: bool) -> D
 
 
 def _heaviest_high(analysis: Analysis) -> tuple[str, float, float] | None:
-    """The link whose mass times its height above the root, every joint at zero, is the
-    greatest (its name, height, mass), if one is above the root at all."""
+    """Of the links holding a tenth of the robot's mass or more, the one whose mass times
+    its height above the root, every joint at zero, is the greatest (its name, height,
+    mass), if one is above the root at all."""
     best: tuple[float, str, float, float] | None = None
+    total = sum(link.inertial.mass for link in analysis.robot.links if link.inertial is not None)
     for name, pose in analysis.zero_poses.items():
         link = analysis.links.get(name)
-        if link is None or link.inertial is None or link.inertial.mass <= 0:
+        # (a link of a tenth of the robot's mass or more: a gram high up raises nothing)
+        if link is None or link.inertial is None or link.inertial.mass < 0.1 * total:
             continue
         height = pose.apply(link.inertial.origin.xyz)[2]
         weight = height * link.inertial.mass

@@ -228,14 +228,6 @@ class World:
             found[link] = (normal + abs(force[0]), tangential + math.hypot(force[1], force[2]))
         return found
 
-    def touching(self) -> set[str]:
-        """The links touching the floor now."""
-        found = set()
-        for one, other, _ in self.contacts():
-            if self.floor in (one, other):
-                found.add(self.link_of(other if one == self.floor else one))
-        return found
-
     def overlaps(self) -> list[tuple[str, str, float]]:
         """The pairs of the robot's links whose collision shapes overlap now by more than a
         millimetre, with the depth (before `apart`)."""
